@@ -1,0 +1,16 @@
+#![doc = include_str!("../README.md")]
+#![warn(missing_docs)]
+
+mod bspline;
+mod curve;
+mod error;
+mod eval;
+mod knots;
+pub mod scalar;
+
+pub use bspline::{basis_funs, BezierSeg, HSpline};
+pub use curve::NurbsCurve;
+pub use error::{CurveError, EvalError};
+pub use eval::{project, CurveEval};
+pub use knots::{find_span, multiplicity};
+pub use scalar::Scalar;

@@ -1,0 +1,134 @@
+//! The crate's own small number trait.
+//!
+//! Every numeric kernel (basis functions, de Boor, derivative control points, knot insertion,
+//! de Casteljau) is written once, generic over [`Scalar`], and instantiated with
+//!
+//! * `f64` — fast floating-point values (no guarantee),
+//! * [`inari::Interval`] — verified enclosures with outward rounding,
+//! * `rug::Float` at [`MPFR_PREC`] bits (feature `mpfr`) — high-precision reference values.
+//!
+//! We deliberately do not use `num_traits::Float`: intervals are not totally ordered, and the
+//! kernels need nothing but the field operations and exact embedding of f64 data.
+
+use inari::Interval;
+use std::fmt::Debug;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// Precision (bits) of the `rug::Float` instance used for reference values.
+pub const MPFR_PREC: u32 = 256;
+
+/// A number type the NURBS kernels can run on.
+///
+/// Soundness contract for verified types: every operation returns a value that encloses the
+/// exact real result for all reals enclosed by the operands (inari guarantees this with
+/// outward rounding), and [`Scalar::from_f64`] embeds an f64 exactly.
+pub trait Scalar:
+    Clone
+    + Debug
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// Exact embedding of an f64 value (the curve data are f64 and are taken as exact).
+    fn from_f64(x: f64) -> Self;
+    /// Additive identity.
+    fn zero() -> Self {
+        Self::from_f64(0.0)
+    }
+    /// Multiplicative identity.
+    fn one() -> Self {
+        Self::from_f64(1.0)
+    }
+    /// Exact embedding of a small integer (binomial coefficients, degrees).
+    fn from_usize(k: usize) -> Self {
+        // Integers up to 2^53 are exact in f64; degrees and binomials used here are far below.
+        Self::from_f64(k as f64)
+    }
+    /// An f64 interval that contains the value (outward rounded for `rug::Float`).
+    fn to_interval(&self) -> Interval;
+    /// A representative f64 (midpoint for intervals, nearest for MPFR).
+    fn to_f64(&self) -> f64;
+    /// Whether the value is exactly zero (a point interval [0,0] counts, a wider one does not).
+    fn is_exact_zero(&self) -> bool;
+}
+
+impl Scalar for f64 {
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+    #[inline]
+    fn to_interval(&self) -> Interval {
+        Interval::try_from((*self, *self)).unwrap_or(Interval::ENTIRE)
+    }
+    #[inline]
+    fn to_f64(&self) -> f64 {
+        *self
+    }
+    #[inline]
+    fn is_exact_zero(&self) -> bool {
+        *self == 0.0
+    }
+}
+
+impl Scalar for Interval {
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        // A finite f64 is a valid singleton; non-finite data never reach the kernels (the curve
+        // constructor rejects them), but stay sound anyway: ENTIRE encloses everything.
+        Interval::try_from((x, x)).unwrap_or(Interval::ENTIRE)
+    }
+    #[inline]
+    fn to_interval(&self) -> Interval {
+        *self
+    }
+    #[inline]
+    fn to_f64(&self) -> f64 {
+        self.mid()
+    }
+    #[inline]
+    fn is_exact_zero(&self) -> bool {
+        self.inf() == 0.0 && self.sup() == 0.0
+    }
+}
+
+#[cfg(feature = "mpfr")]
+impl Scalar for rug::Float {
+    fn from_f64(x: f64) -> Self {
+        rug::Float::with_val(MPFR_PREC, x)
+    }
+    fn from_usize(k: usize) -> Self {
+        rug::Float::with_val(MPFR_PREC, k)
+    }
+    fn to_interval(&self) -> Interval {
+        // Round the MPFR value down and up to f64: the pair encloses it.
+        let lo = self.to_f64_round(rug::float::Round::Down);
+        let hi = self.to_f64_round(rug::float::Round::Up);
+        Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
+    }
+    fn to_f64(&self) -> f64 {
+        rug::Float::to_f64(self)
+    }
+    fn is_exact_zero(&self) -> bool {
+        self.is_zero()
+    }
+}
+
+/// Helpers on intervals used throughout the verified code.
+pub mod iv {
+    use inari::Interval;
+
+    /// The singleton [x, x] (ENTIRE for a non-finite x, which keeps every use sound).
+    #[inline]
+    pub fn point(x: f64) -> Interval {
+        Interval::try_from((x, x)).unwrap_or(Interval::ENTIRE)
+    }
+
+    /// [a, b] for a <= b (ENTIRE when the pair is not a valid interval).
+    #[inline]
+    pub fn span(a: f64, b: f64) -> Interval {
+        Interval::try_from((a, b)).unwrap_or(Interval::ENTIRE)
+    }
+}
