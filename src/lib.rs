@@ -3,13 +3,18 @@
 
 mod bspline;
 mod curve;
+pub mod enclose;
 mod error;
 mod eval;
 mod knots;
+mod refine;
 pub mod scalar;
 
 pub use bspline::{basis_funs, BezierSeg, HSpline};
 pub use curve::NurbsCurve;
+pub use enclose::{
+    BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
+};
 pub use error::{CurveError, EvalError};
 pub use eval::{project, CurveEval};
 pub use knots::{find_span, multiplicity};

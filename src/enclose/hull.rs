@@ -1,0 +1,82 @@
+//! The control-hull box: the box of the control points (convex hull property, thesis
+//! prop. 2.1; valid for NURBS because the weights are positive, so C(u) is a convex
+//! combination of the P_i). Computed exactly: min/max of f64 values involve no rounding.
+
+use super::{
+    BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
+};
+use crate::curve::NurbsCurve;
+use inari::Interval;
+use std::time::Instant;
+
+/// Box of the control points; inner bound: the curve's end points (enclosed with intervals).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ControlHull;
+
+impl BoxEncloser for ControlHull {
+    fn name(&self) -> &'static str {
+        "hull"
+    }
+    fn guarantee(&self) -> Guarantee {
+        Guarantee::Verified
+    }
+    fn enclose(&self, c: &NurbsCurve) -> Enclosure {
+        let t0 = Instant::now();
+        let (a, b) = c.domain();
+        // Only the control points whose basis functions are non-zero somewhere on the domain
+        // matter: all of them for a valid curve (each N_{i,p} has support meeting [u_p, u_{n+1}]).
+        let ea: Vec<Interval> = c.point(a).expect("domain end");
+        let eb: Vec<Interval> = c.point(b).expect("domain end");
+        let mut coords = Vec::with_capacity(c.dim());
+        for j in 0..c.dim() {
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            let (mut ilo, mut ihi) = (0, 0);
+            for i in 0..c.num_points() {
+                let x = c.control_point(i)[j];
+                if x < lo {
+                    lo = x;
+                    ilo = i;
+                }
+                if x > hi {
+                    hi = x;
+                    ihi = i;
+                }
+            }
+            // The end points are reached by the curve: their enclosures' upper (lower) ends
+            // bound a value the curve attains from above (below).
+            let inner_lo = ea[j].sup().min(eb[j].sup()).max(lo);
+            let inner_hi = ea[j].inf().max(eb[j].inf()).min(hi);
+            let at = |i: usize| {
+                let k = &c.knots()[i..=i + c.degree() + 1];
+                Extremum {
+                    u_lo: k[0].max(a),
+                    u_hi: k[k.len() - 1].min(b),
+                    unique: false,
+                    kind: CandidateKind::ControlPoint,
+                }
+            };
+            coords.push(CoordBox {
+                lo,
+                hi,
+                inner_lo,
+                inner_hi,
+                argmin: vec![at(ilo)],
+                argmax: vec![at(ihi)],
+                stats: Stats {
+                    point_evaluations: 2,
+                    ..Default::default()
+                },
+                termination: Termination::Direct,
+            });
+        }
+        let el = t0.elapsed();
+        if let Some(c0) = coords.first_mut() {
+            c0.stats.time_total = el;
+        }
+        Enclosure {
+            strategy: self.name(),
+            verified: true,
+            coords,
+        }
+    }
+}

@@ -1,0 +1,166 @@
+//! Refinement on the f64 curve model: knot insertion, subdivision, Bézier decomposition.
+//! The kernels are the generic ones in [`crate::HSpline`]; here they run in f64 and the result
+//! is converted back to a [`NurbsCurve`] (so these are *not* exact: use `HSpline<Interval>` for
+//! verified refinement).
+
+use crate::bspline::HSpline;
+use crate::curve::NurbsCurve;
+use crate::error::EvalError;
+
+fn from_hspline(h: &HSpline<f64>) -> NurbsCurve {
+    let hd = h.hdim();
+    let d = h.dim;
+    let mut pts = Vec::with_capacity(h.npts() * d);
+    let mut w = Vec::with_capacity(h.npts());
+    for c in h.pts.chunks(hd) {
+        let wi = if h.rational { c[d] } else { 1.0 };
+        pts.extend(c[..d].iter().map(|x| if h.rational { x / wi } else { *x }));
+        w.push(wi);
+    }
+    // Knot insertion keeps weights positive (convex combinations) and the knot vector valid,
+    // so this cannot fail for a curve built from a valid one.
+    NurbsCurve::from_flat(h.degree, d, h.knots.clone(), pts, h.rational.then_some(w))
+        .expect("refinement of a valid curve is valid")
+}
+
+impl NurbsCurve {
+    fn check(&self, u: f64) -> Result<(), EvalError> {
+        let (a, b) = self.domain();
+        if u >= a && u <= b {
+            Ok(())
+        } else {
+            Err(EvalError::ParamOutOfDomain {
+                param: u,
+                start: a,
+                end: b,
+            })
+        }
+    }
+
+    /// Insert the knot u r times (NURBS Book A5.1; thesis eq. 4.12, 4.15/4.16). Insertions
+    /// beyond multiplicity p are ignored. The curve is unchanged up to f64 rounding.
+    pub fn insert_knot(&self, u: f64, r: usize) -> Result<NurbsCurve, EvalError> {
+        self.check(u)?;
+        Ok(from_hspline(
+            &HSpline::<f64>::from_curve(self).insert_knot(u, r),
+        ))
+    }
+
+    /// Split at an interior parameter u (thesis sec. 4: subdivision by inserting u p times):
+    /// the curves over [a, u] and [u, b].
+    pub fn split_at(&self, u: f64) -> Result<(NurbsCurve, NurbsCurve), EvalError> {
+        self.check(u)?;
+        let (a, b) = self.domain();
+        if u == a || u == b {
+            return Err(EvalError::ParamOutOfDomain {
+                param: u,
+                start: a,
+                end: b,
+            });
+        }
+        let p = self.degree();
+        let h = HSpline::<f64>::from_curve(self).insert_knot(u, p);
+        let hd = h.hdim();
+        // after insertion u has multiplicity >= p; the point at u is P_j, j = last(u) - p
+        let last = h.knots.partition_point(|&x| x <= u) - 1;
+        let j = last - p;
+        let mut lk = h.knots[..=j + p].to_vec();
+        lk.push(u);
+        let mut rk = vec![u];
+        rk.extend_from_slice(&h.knots[j + 1..]);
+        let left = HSpline {
+            knots: lk,
+            pts: h.pts[..(j + 1) * hd].to_vec(),
+            ..h.clone()
+        };
+        let right = HSpline {
+            knots: rk,
+            pts: h.pts[j * hd..].to_vec(),
+            ..h
+        };
+        Ok((from_hspline(&left), from_hspline(&right)))
+    }
+
+    /// Bézier decomposition (NURBS Book A5.6): one Bézier curve (clamped, knots {a^(p+1),
+    /// b^(p+1)}) per non-empty span of the domain.
+    pub fn bezier_segments(&self) -> Vec<NurbsCurve> {
+        HSpline::<f64>::from_curve(self)
+            .decompose()
+            .into_iter()
+            .map(|s| {
+                let p = s.degree;
+                let mut knots = vec![s.a; p + 1];
+                knots.extend(std::iter::repeat_n(s.b, p + 1));
+                from_hspline(&HSpline {
+                    degree: p,
+                    knots,
+                    dim: s.dim,
+                    rational: s.rational,
+                    pts: s.pts,
+                })
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use inari::Interval;
+
+    fn curve() -> NurbsCurve {
+        NurbsCurve::new(
+            3,
+            vec![-1., -0.5, 0., 0.3, 0.7, 0.7, 1.2, 2., 2.5, 3.],
+            vec![
+                vec![0., 1.],
+                vec![1., 3.],
+                vec![2., -1.],
+                vec![4., 0.5],
+                vec![3., 3.],
+                vec![5., 2.],
+            ],
+            Some(vec![1., 2., 0.5, 1., 3., 1.]),
+        )
+        .unwrap()
+    }
+
+    fn close(a: &[f64], b: &[f64]) -> bool {
+        a.iter()
+            .zip(b)
+            .all(|(x, y)| (x - y).abs() <= 1e-12 * (1. + x.abs()))
+    }
+
+    #[test]
+    fn insertion_split_and_decomposition_keep_the_curve() {
+        let c = curve();
+        let (a, b) = c.domain();
+        let ins = c.insert_knot(0.5, 2).unwrap();
+        let (l, r) = c.split_at(0.9).unwrap();
+        let segs = c.bezier_segments();
+        assert_eq!(segs.len(), 2);
+        for i in 0..=200 {
+            let u = a + (b - a) * i as f64 / 200.0;
+            let p: Vec<f64> = c.point(u).unwrap();
+            let enc: Vec<Interval> = c.point(u).unwrap();
+            assert!(close(&p, &ins.point::<f64>(u).unwrap()));
+            let side = if u <= 0.9 { &l } else { &r };
+            assert!(close(&p, &side.point::<f64>(u).unwrap()));
+            let seg = segs
+                .iter()
+                .find(|s| s.domain().0 <= u && u <= s.domain().1)
+                .unwrap();
+            let q: Vec<f64> = seg.point(u).unwrap();
+            assert!(close(&p, &q));
+            // verified Bézier extraction encloses the f64 evaluation too
+            let hs = HSpline::<Interval>::from_curve(&c).bezier_segment(c.find_span(u));
+            let t = (u - hs.a) / (hs.b - hs.a);
+            let v =
+                crate::eval::project(hs.eval_local(&Interval::try_from((t, t)).unwrap()), 2, true);
+            for j in 0..2 {
+                assert!(v[j].inf() - 1e-12 <= p[j] && p[j] <= v[j].sup() + 1e-12);
+                assert!(enc[j].contains(p[j]));
+            }
+        }
+    }
+}
