@@ -192,3 +192,24 @@ pub trait BoxEncloser: Send + Sync {
     /// the strategy falls back to a coarser sound bound and says so in `termination`.
     fn enclose(&self, curve: &NurbsCurve) -> Enclosure;
 }
+
+/// Names of all strategies, in the order `--strategy all` uses.
+pub const STRATEGY_NAMES: &[&str] = &["hull"];
+
+/// The strategy called `name` (see [`STRATEGY_NAMES`]), with tolerance `tol` where the strategy
+/// has one (`None`: its default). `None` if the name is unknown.
+pub fn strategy_by_name(name: &str, tol: Option<f64>) -> Option<Box<dyn BoxEncloser>> {
+    let _ = tol; // used by the iterative strategies
+    match name {
+        "hull" => Some(Box::new(ControlHull)),
+        _ => None,
+    }
+}
+
+/// All strategies (see [`STRATEGY_NAMES`]).
+pub fn all_strategies(tol: Option<f64>) -> Vec<Box<dyn BoxEncloser>> {
+    STRATEGY_NAMES
+        .iter()
+        .filter_map(|n| strategy_by_name(n, tol))
+        .collect()
+}
