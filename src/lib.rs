@@ -8,7 +8,9 @@ mod error;
 mod eval;
 mod knots;
 mod refine;
+pub mod report;
 pub mod scalar;
+pub mod validate;
 
 pub use bspline::{basis_funs, BezierSeg, HSpline};
 pub use curve::NurbsCurve;
