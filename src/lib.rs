@@ -3,6 +3,7 @@
 
 mod bspline;
 mod curve;
+mod ddi;
 pub mod enclose;
 mod error;
 mod eval;
@@ -12,6 +13,7 @@ pub mod scalar;
 
 pub use bspline::{basis_funs, BezierSeg, HSpline};
 pub use curve::NurbsCurve;
+pub use ddi::Ddi;
 pub use enclose::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
