@@ -469,7 +469,8 @@ mod tests {
         assert_eq!(U, 2f64.powi(-53));
         assert_eq!(U1, 2f64.powi(-53) + 2f64.powi(-103));
         assert_eq!(INFL, 1.0 + 2f64.powi(-46));
-        assert!(U1 >= U / (1.0 - U));
+        let ratio = U / (1.0 - U);
+        assert!(U1 >= ratio);
     }
 
     /// Random finite f64 with random sign and an exponent in [-e, e].
@@ -547,6 +548,43 @@ mod tests {
                 assert!(zi.subset(iz), "{a} {b}: {zi:?} not in {iz:?}");
                 let ulps = zi.sup().to_bits().abs_diff(zi.inf().to_bits());
                 assert!(ulps <= 1, "{a} {b}: {zi:?} ({ulps} ulps)");
+            }
+        }
+    }
+
+    /// Against inari on random double-word operands (with radii): the outward-rounded Ddi
+    /// result lies inside inari's enclosure up to one ulp on each side (inari's bound is exact
+    /// when the image's end is a float; the Ddi set may exceed the image by ~1e-30 relative).
+    #[test]
+    fn within_inari_on_ddi_operands() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let step = |x: f64, up: bool| {
+            let b = x.to_bits();
+            let t = if (x >= 0.0) == up { b + 1 } else { b - 1 };
+            if x == 0.0 {
+                if up {
+                    f64::from_bits(1)
+                } else {
+                    -f64::from_bits(1)
+                }
+            } else {
+                f64::from_bits(t)
+            }
+        };
+        for _ in 0..20000 {
+            let (x, y) = (rnd_ddi(&mut rng, 40), rnd_ddi(&mut rng, 40));
+            let (ix, iy) = (x.to_interval(), y.to_interval());
+            for (z, iz) in [
+                (x + y, ix + iy),
+                (x - y, ix - iy),
+                (x * y, ix * iy),
+                (x / y, ix / iy),
+            ] {
+                let zi = z.to_interval();
+                assert!(
+                    zi.inf() >= step(iz.inf(), false) && zi.sup() <= step(iz.sup(), true),
+                    "{x:?} {y:?}: {zi:?} vs {iz:?}"
+                );
             }
         }
     }
