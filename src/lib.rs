@@ -10,6 +10,7 @@ mod eval;
 mod knots;
 mod refine;
 pub mod scalar;
+mod tight;
 
 pub use bspline::{basis_funs, BezierSeg, HSpline};
 pub use curve::NurbsCurve;
@@ -21,3 +22,4 @@ pub use error::{CurveError, EvalError};
 pub use eval::{project, CurveEval};
 pub use knots::{find_span, multiplicity};
 pub use scalar::Scalar;
+pub use tight::TightEval;
