@@ -17,6 +17,7 @@
 
 mod bspline;
 mod curve;
+mod ddi;
 pub mod enclose;
 mod error;
 mod eval;
@@ -24,14 +25,18 @@ mod knots;
 mod refine;
 pub mod report;
 pub mod scalar;
+mod tight;
 pub mod validate;
 
 pub use bspline::{basis_funs, BezierSeg, HSpline};
 pub use curve::NurbsCurve;
+pub use ddi::Ddi;
 pub use enclose::{
-    BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
+    all_strategies, strategy_by_name, BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum,
+    Guarantee, Stats, Termination,
 };
 pub use error::{CurveError, EvalError};
 pub use eval::{project, CurveEval};
 pub use knots::{find_span, multiplicity};
 pub use scalar::Scalar;
+pub use tight::TightEval;
