@@ -6,7 +6,10 @@ mod curve;
 pub mod enclose;
 mod error;
 mod eval;
+pub mod gen;
 mod knots;
+#[cfg(feature = "mpfr")]
+pub mod reference;
 mod refine;
 pub mod scalar;
 
