@@ -21,7 +21,10 @@ mod ddi;
 pub mod enclose;
 mod error;
 mod eval;
+pub mod gen;
 mod knots;
+#[cfg(feature = "mpfr")]
+pub mod reference;
 mod refine;
 pub mod report;
 pub mod scalar;
