@@ -99,7 +99,7 @@ impl<S: Scalar> HSpline<S> {
                 for c in 0..h {
                     let hi = out[j * h + c].clone();
                     let lo = out[(j - 1) * h + c].clone();
-                    out[j * h + c] = a.clone() * (hi - lo.clone()) + lo;
+                    out[j * h + c] = S::lerp(&a, &lo, &hi);
                 }
             }
         }
@@ -265,7 +265,7 @@ impl<S: Scalar> BezierSeg<S> {
                 for c in 0..h {
                     let lo = b[i * h + c].clone();
                     let hi = b[(i + 1) * h + c].clone();
-                    b[i * h + c] = t.clone() * (hi - lo.clone()) + lo;
+                    b[i * h + c] = S::lerp(t, &lo, &hi);
                 }
             }
             left.extend_from_slice(&b[0..h]);
@@ -381,7 +381,7 @@ fn knot_ins<S: Scalar>(
             for c in 0..h {
                 let lo = rw[i * h + c].clone();
                 let hi = rw[(i + 1) * h + c].clone();
-                rw[i * h + c] = alpha.clone() * (hi - lo.clone()) + lo;
+                rw[i * h + c] = S::lerp(&alpha, &lo, &hi);
             }
         }
         qw[l * h..(l + 1) * h].clone_from_slice(&rw[0..h]);
