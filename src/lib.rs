@@ -1,4 +1,18 @@
-#![doc = include_str!("../README.md")]
+//! # nurbs-box
+//!
+//! Verified, optimal axis-aligned box enclosures of NURBS curves.
+//!
+//! A [`NurbsCurve`] of any degree and dimension is enclosed by a [`BoxEncloser`] strategy
+//! (see [`enclose`]); the result says per coordinate what the outer bound is, what the curve
+//! provably reaches (the inner bound), where the extrema are and what it cost. The kernels
+//! (span search, basis functions, de Boor corner cutting, derivatives, knot insertion, Bézier
+//! extraction, de Casteljau) are written once, generic over [`Scalar`]: `f64`,
+//! [`inari::Interval`] with outward rounding, and `rug::Float` under the `mpfr` feature.
+//!
+//! Sources: the 2009 diploma thesis "Optimale Box-Einschließungen von NURBS Kurven"
+//! (Universität Wien) and The NURBS Book (Piegl & Tiller); each algorithm cites its source.
+//!
+#![doc = include_str!("guarantees.md")]
 #![warn(missing_docs)]
 
 mod bspline;
@@ -8,7 +22,9 @@ mod error;
 mod eval;
 mod knots;
 mod refine;
+pub mod report;
 pub mod scalar;
+pub mod validate;
 
 pub use bspline::{basis_funs, BezierSeg, HSpline};
 pub use curve::NurbsCurve;

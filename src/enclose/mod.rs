@@ -7,10 +7,12 @@
 use crate::curve::NurbsCurve;
 use std::time::Duration;
 
+mod bezier;
 mod hull;
 mod newton;
 mod search_region;
 
+pub use bezier::BezierSubdivision;
 pub use hull::ControlHull;
 pub use newton::{DerivForm, Newton, Split};
 pub use search_region::SearchRegion;
@@ -198,7 +200,13 @@ pub trait BoxEncloser: Send + Sync {
 }
 
 /// Names of all strategies, in the order `--strategy all` uses.
-pub const STRATEGY_NAMES: &[&str] = &["hull", "newton", "search-region", "search-region-verified"];
+pub const STRATEGY_NAMES: &[&str] = &[
+    "hull",
+    "bezier",
+    "newton",
+    "search-region",
+    "search-region-verified",
+];
 
 /// The strategy called `name` (see [`STRATEGY_NAMES`]), with tolerance `tol` where the strategy
 /// has one (`None`: its default). `None` if the name is unknown.
@@ -206,6 +214,9 @@ pub fn strategy_by_name(name: &str, tol: Option<f64>) -> Option<Box<dyn BoxEnclo
     let newton = tol.map_or_else(Newton::default, Newton::with_tol);
     match name {
         "hull" => Some(Box::new(ControlHull)),
+        "bezier" => Some(Box::new(
+            tol.map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol),
+        )),
         "newton" => Some(Box::new(newton)),
         "search-region" => Some(Box::new(SearchRegion::thesis(newton))),
         "search-region-verified" => Some(Box::new(SearchRegion::verified(newton))),
