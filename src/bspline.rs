@@ -74,36 +74,37 @@ impl<S: Scalar> HSpline<S> {
         find_span(&self.knots, self.degree, self.npts() - 1, u)
     }
 
-    /// de Boor corner cutting on span `k` (thesis CurvePntByCornerCut / NURBS Book A5.1-style
-    /// triangle), all homogeneous rows, written into `out` (`hdim` values).
-    ///
-    /// Each step is the convex combination written as alpha*(R1 - R2) + R2 (thesis sec. 5.1),
-    /// which in interval arithmetic overestimates less than alpha*R1 + (1 - alpha)*R2.
-    /// The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0, so never zero.
-    /// For an interval `u` inside [u_k, u_{k+1}] the result encloses the curve over all of `u`
-    /// (the polynomial piece is the same there; inclusion isotonicity of interval arithmetic).
+    /// de Boor corner cutting on span `k` (see [`corner_cut`]), all homogeneous rows, written
+    /// into `out` (`hdim` values). For an interval `u` inside [u_k, u_{k+1}] the result encloses
+    /// the curve over all of `u`.
     pub fn eval_span(&self, k: usize, u: &S, out: &mut Vec<S>) {
         let p = self.degree;
         let h = self.hdim();
         out.clear();
         out.extend_from_slice(&self.pts[(k - p) * h..(k + 1) * h]);
-        if p == 0 {
-            return;
-        }
-        // alpha for level r, position j (i = k - p + j): (u - u_i) / (u_{i+p+1-r} - u_i)
-        for r in 1..=p {
-            for j in (r..=p).rev() {
-                let i = k - p + j;
-                let a = (u.clone() - S::from_f64(self.knots[i]))
-                    / (S::from_f64(self.knots[i + p + 1 - r]) - S::from_f64(self.knots[i]));
-                for c in 0..h {
-                    let hi = out[j * h + c].clone();
-                    let lo = out[(j - 1) * h + c].clone();
-                    out[j * h + c] = S::lerp(&a, &lo, &hi);
-                }
-            }
-        }
+        corner_cut(&self.knots, p, k, u, h, out);
         out.drain(..p * h);
+    }
+
+    /// Like [`HSpline::eval_span`] but only for the homogeneous rows listed in `rows` (e.g. one
+    /// coordinate and the weight row), without allocating once `buf` has grown: the values are
+    /// returned as the slice `buf[p * rows.len()..]`, in the order of `rows`.
+    pub fn eval_span_rows<'b>(
+        &self,
+        k: usize,
+        u: &S,
+        rows: &[usize],
+        buf: &'b mut Vec<S>,
+    ) -> &'b [S] {
+        let p = self.degree;
+        let h = self.hdim();
+        let nr = rows.len();
+        buf.clear();
+        for i in k - p..=k {
+            buf.extend(rows.iter().map(|&r| self.pts[i * h + r].clone()));
+        }
+        corner_cut(&self.knots, p, k, u, nr, buf);
+        &buf[p * nr..]
     }
 
     /// Evaluate at an f64 parameter (span found exactly).
@@ -392,6 +393,31 @@ fn knot_ins<S: Scalar>(
         qw[i * h..(i + 1) * h].clone_from_slice(&rw[(i - l) * h..(i - l + 1) * h]);
     }
     (uq, qw)
+}
+
+/// de Boor corner cutting (thesis CurvePntByCornerCut, NURBS Book A5.1-style triangle) in place
+/// on `buf`, which holds the p + 1 local control points P_{k-p} .. P_k of span k with `h` rows
+/// each; afterwards the value at `u` is in `buf[p * h..(p + 1) * h]`.
+///
+/// Each step is the convex combination written as alpha*(R1 - R2) + R2 (thesis sec. 5.1),
+/// which in interval arithmetic overestimates less than alpha*R1 + (1 - alpha)*R2.
+/// The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0, so never zero.
+/// For an interval `u` inside [u_k, u_{k+1}] the result encloses the piece over all of `u`
+/// (the polynomial piece is the same there; inclusion isotonicity of interval arithmetic).
+pub fn corner_cut<S: Scalar>(knots: &[f64], p: usize, k: usize, u: &S, h: usize, buf: &mut [S]) {
+    // alpha for level r, position j (i = k - p + j): (u - u_i) / (u_{i+p+1-r} - u_i)
+    for r in 1..=p {
+        for j in (r..=p).rev() {
+            let i = k - p + j;
+            let a = (u.clone() - S::from_f64(knots[i]))
+                / (S::from_f64(knots[i + p + 1 - r]) - S::from_f64(knots[i]));
+            for c in 0..h {
+                let hi = buf[j * h + c].clone();
+                let lo = buf[(j - 1) * h + c].clone();
+                buf[j * h + c] = S::lerp(&a, &lo, &hi);
+            }
+        }
+    }
 }
 
 /// All non-zero basis functions N_{k-p,p}(u) .. N_{k,p}(u) on span k (NURBS Book A2.2

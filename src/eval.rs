@@ -262,7 +262,10 @@ pub(crate) mod tests {
             // f64 evaluation has its own rounding errors: it lies within a few ulps of the
             // (exact-containing) enclosure, not necessarily inside it.
             for j in 0..2 {
-                assert!(p[j].inf() - 4e-16 <= f[j] && f[j] <= p[j].sup() + 4e-16, "u={u}");
+                assert!(
+                    p[j].inf() - 4e-16 <= f[j] && f[j] <= p[j].sup() + 4e-16,
+                    "u={u}"
+                );
             }
             let g: Vec<f64> = c.point_by_basis(u).unwrap();
             assert!((g[0] - f[0]).abs() < 1e-15 && (g[1] - f[1]).abs() < 1e-15);
