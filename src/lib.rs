@@ -1,11 +1,13 @@
 #![doc = include_str!("../README.md")]
 #![warn(missing_docs)]
 
+pub mod batch;
 mod bspline;
 mod curve;
 pub mod enclose;
 mod error;
 mod eval;
+pub mod io;
 mod knots;
 mod refine;
 pub mod scalar;
