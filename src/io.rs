@@ -1066,13 +1066,14 @@ impl<R: Read> RecordReader<R> {
     }
 
     /// Cut out one array element: bytes up to a ',' or ']' at bracket depth 0 outside strings
-    /// (not consumed). Returns (bytes, too_long, hit end of input).
-    fn scan_element(&mut self) -> io::Result<(Vec<u8>, bool, bool)> {
+    /// (not consumed). Returns (bytes, too_long, cut short: the input ended inside a string or
+    /// an open bracket, or `None` if the element ended normally or at a balanced end of input).
+    fn scan_element(&mut self) -> io::Result<(Vec<u8>, bool, Option<bool>)> {
         let (mut depth, mut in_str, mut esc) = (0u64, false, false);
         let (mut out, mut too_long) = (Vec::new(), false);
         loop {
             if !self.fill()? {
-                return Ok((out, too_long, true));
+                return Ok((out, too_long, Some(in_str || depth > 0)));
             }
             let buf = self.inner.buffer();
             let mut end = None;
@@ -1112,7 +1113,7 @@ impl<R: Read> RecordReader<R> {
             }
             self.advance(n);
             if end.is_some() {
-                return Ok((out, too_long, false));
+                return Ok((out, too_long, None));
             }
         }
     }
@@ -1158,8 +1159,9 @@ impl<R: Read> RecordReader<R> {
                     let start = self.pos;
                     let (mut bytes, too_long, eof) = self.scan_element()?;
                     // After a truncated element nothing more is reported (no second error
-                    // for the missing ']').
-                    self.mode = if eof {
+                    // for the missing ']'); after a complete last element the next call
+                    // reports the unclosed array.
+                    self.mode = if eof == Some(true) {
                         Mode::Done
                     } else {
                         Mode::Array {
@@ -1197,9 +1199,14 @@ impl<R: Read> RecordReader<R> {
         match self.mode {
             Mode::Done => Ok(None),
             Mode::Start => {
-                if self.fill()? && self.inner.buffer().starts_with(b"\xEF\xBB\xBF") {
-                    self.consumed += 3;
-                    self.inner.consume(3);
+                // Skip a UTF-8 byte-order mark, byte by byte (reads may be short); a partial one
+                // is dropped too, the rest of the record is invalid anyway.
+                for bom in [0xEF, 0xBB, 0xBF] {
+                    if !(self.fill()? && self.inner.buffer()[0] == bom) {
+                        break;
+                    }
+                    self.consumed += 1;
+                    self.inner.consume(1);
                 }
                 match self.skip_ws()? {
                     Some(b'[') => {
@@ -1463,6 +1470,7 @@ pub fn eval_fields(param: f64, derivative: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::enclose::BoxEncloser;
 
     const GOOD: &str = r#"{"degree": 3, "knots": [0, 0, 0, 0, 0.5, 1, 1, 1, 1], "control_points": [[0, 0], [1, 2], [2, -1], [3, 3], [4, 0]], "weights": [1, 1, 2, 1, 1]}"#;
 
@@ -1470,31 +1478,483 @@ mod tests {
         parse_curve(s.as_bytes()).expect_err(s)
     }
 
-    #[test]
-    fn show_messages() {
-        for s in [
+    /// (input, expected kind, expected message start)
+    const BAD: &[(&str, &str, &str)] = &[
+        (
             r#"{"degree": 3, "knots": [0, 0, 0, "x"], "control_points": []}"#,
+            "wrong_type",
+            "knots[3]: expected a number, got a string \"x\"",
+        ),
+        (
             r#"{"degree": 1, "knots": [0, 0, 1, 1e400], "control_points": [[0], [1]]}"#,
+            "number_out_of_range",
+            "knots[3]: the number 1e400",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [-1e999]]}"#,
+            "number_out_of_range",
+            "control_points[1][0]: the number -1e999",
+        ),
+        (
             r#"{"degree": 1, "knots": [0, 0, NaN, 1], "control_points": [[0], [1]]}"#,
+            "non_finite_literal",
+            "knots[2]: NaN is not",
+        ),
+        (
             r#"{"degree": 1, "knots": [0, 0, -Infinity, 1], "control_points": [[0], [1]]}"#,
-            r#"{"degree": 1, "knots": [0, 0, nan, 1], "control_points": [[0], [1]]}"#,
+            "non_finite_literal",
+            "knots[2]: -Infinity",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]], "weights": [1, inf]}"#,
+            "non_finite_literal",
+            "weights[1]: inf",
+        ),
+        (
             r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1, "NaN"]]}"#,
+            "wrong_type",
+            "control_points[1][1]: expected a number, got a string \"NaN\"",
+        ),
+        (
             r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]"#,
+            "truncated_json",
+            "control_points",
+        ),
+        (r#"{"degree": 1, "kno"#, "truncated_json", "curve"),
+        ("", "truncated_json", "curve"),
+        (
             "{\"degree\": 1, \x00\x01\x7f",
+            "invalid_json",
+            "curve: invalid JSON: key must be a string, found the byte 0x00",
+        ),
+        ("\u{1F600}", "invalid_json", "curve: invalid JSON"),
+        (
             r#"{"degree": -1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]]}"#,
+            "invalid_degree",
+            "degree: expected an integer >= 1, got -1",
+        ),
+        (
             r#"{"degree": 1.5, "knots": [0, 0, 1, 1], "control_points": [[0], [1]]}"#,
+            "invalid_degree",
+            "degree: expected an integer >= 1, got 1.5",
+        ),
+        (
+            r#"{"degree": 1e300, "knots": [0, 0, 1, 1], "control_points": [[0], [1]]}"#,
+            "invalid_degree",
+            "degree",
+        ),
+        (
+            r#"{"degree": "3", "knots": [0, 0, 1, 1], "control_points": [[0], [1]]}"#,
+            "wrong_type",
+            "degree: expected an integer >= 1, got a string \"3\"",
+        ),
+        (
             r#"{"degree": 1000000000, "knots": [0, 0, 1, 1], "control_points": [[0], [1]]}"#,
+            "too_few_control_points",
+            "control_points: a curve of degree 1000000000",
+        ),
+        (
+            r#"{"degree": 18446744073709551615, "knots": [0, 0, 1, 1], "control_points": [[0], [1]]}"#,
+            "invalid_degree",
+            "degree",
+        ),
+        (
+            r#"{"degree": 0, "knots": [0, 1], "control_points": [[0]]}"#,
+            "invalid_degree",
+            "degree",
+        ),
+        (
             r#"{"degree": 1, "knots": [], "control_points": []}"#,
+            "too_few_control_points",
+            "control_points",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[], []]}"#,
+            "zero_dimension",
+            "control_points[0]",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]], "weights": []}"#,
+            "weight_count",
+            "weights",
+        ),
+        (
             r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]], "weight": [1, 2]}"#,
+            "unknown_field",
+            "\"weight\": unknown field",
+        ),
+        (
             r#"{"degree": 1, "knots": [0, 0, 1, 1], "knots": [0, 0, 1, 1], "control_points": [[0], [1]]}"#,
+            "duplicate_field",
+            "knots: the field appears twice",
+        ),
+        (
             r#"{"knots": [0, 0, 1, 1], "control_points": [[0], [1]]}"#,
-            r#"[1, 2]"#,
+            "missing_field",
+            "degree: missing field",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [0, 1]}"#,
+            "wrong_type",
+            "control_points[0]: expected an array of coordinates (numbers), got the number 0",
+        ),
+        (
+            r#"{"degree": 1, "knots": {"a": 1}, "control_points": [[0], [1]]}"#,
+            "wrong_type",
+            "knots: expected an array of numbers, got an object",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, [1], 1], "control_points": [[0], [1]]}"#,
+            "wrong_type",
+            "knots[2]: expected a number, got an array",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": null}"#,
+            "wrong_type",
+            "control_points: expected an array of points (arrays of numbers), got null",
+        ),
+        (r#"[1, 2]"#, "wrong_type", "curve: expected a curve object"),
+        (r#"true"#, "wrong_type", "curve: expected a curve object"),
+        (
             r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]]} x"#,
+            "invalid_json",
+            "curve: invalid JSON: trailing characters, found 'x'",
+        ),
+        (
             r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]], "weights": [1, 0]}"#,
-        ] {
-            let e = err(s);
-            println!("{:<24} {e}", e.kind());
+            "invalid_weight",
+            "weights[1]",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]], "weights": [1, -0.0]}"#,
+            "invalid_weight",
+            "weights[1]",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 1, 0, 1], "control_points": [[0], [1]]}"#,
+            "decreasing_knots",
+            "knots[2]",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0.5, 0.5, 1], "control_points": [[0], [1]]}"#,
+            "empty_domain",
+            "knots",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 0, 1], "control_points": [[0], [1]]}"#,
+            "knot_multiplicity",
+            "knots[0]",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0, 1], [1]]}"#,
+            "dimension_mismatch",
+            "control_points[1]",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1,], "control_points": [[0], [1]]}"#,
+            "invalid_json",
+            "knots[4]: invalid JSON: trailing comma",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]], "x": "\uD800"}"#,
+            "unknown_field",
+            "\"x\"",
+        ),
+        (
+            r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]], "weights": [1, 1], }"#,
+            "invalid_json",
+            "curve: invalid JSON: trailing comma",
+        ),
+    ];
+
+    #[test]
+    fn bad_curves_have_kind_path_and_position() {
+        for (input, kind, start) in BAD {
+            let e = err(input);
+            let msg = e.to_string();
+            assert_eq!(e.kind(), *kind, "{input}: {msg}");
+            assert!(msg.starts_with(start), "{input}: {msg}");
         }
+    }
+
+    #[test]
+    fn positions_are_absolute() {
+        let input =
+            "{\"degree\": 1,\n \"knots\": [0, 0, \"a\", 1], \"control_points\": [[0], [1]]}";
+        let e = parse_curve_at(
+            input.as_bytes(),
+            Position { line: 7, column: 3 },
+            &ParseOptions::default(),
+        )
+        .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                InputError::WrongType {
+                    at: Position {
+                        line: 8,
+                        column: 20
+                    },
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let e = parse_curve_at(
+            br#"{"degree": 1, "knots": [NaN]}"#,
+            Position { line: 2, column: 5 },
+            &ParseOptions::default(),
+        )
+        .unwrap_err();
+        // NaN starts at byte 24 of the record, i.e. column 5 + 24
+        assert!(
+            matches!(
+                e,
+                InputError::NonFiniteLiteral {
+                    at: Position {
+                        line: 2,
+                        column: 29
+                    },
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+    }
+
+    #[test]
+    fn huge_nesting_is_an_error_not_a_crash() {
+        // The visitors reject a nested array where a number belongs at once, before any
+        // recursion.
+        for depth in [200, 100_000] {
+            let s = "[".repeat(depth) + &"]".repeat(depth);
+            assert_eq!(err(&s).kind(), "wrong_type", "depth {depth}");
+            let s = format!("{{\"degree\": 1, \"knots\": {}", "[".repeat(depth));
+            assert_eq!(err(&s).kind(), "wrong_type");
+            let s = format!(
+                "{{\"degree\":1,\"knots\":[0,0,1,1],\"control_points\":[[0],[1]],\"x\":{}}}",
+                "[".repeat(depth) + &"]".repeat(depth)
+            );
+            let opts = ParseOptions {
+                allow_unknown_fields: true,
+                ..ParseOptions::default()
+            };
+            // serde_json skips ignored values iteratively: any depth is fine
+            assert!(parse_curve_at(s.as_bytes(), Position::default(), &opts).is_ok());
+        }
+    }
+
+    #[test]
+    fn numbers_are_correctly_rounded() {
+        // 2^53 + 1 is a tie between 2^53 and 2^53 + 2: ties to even gives 2^53.
+        // 0.1 must be the nearest f64; 1e23 is a classic hard case for naive parsers;
+        // an integer beyond u64 goes through the float path; -0 keeps its sign.
+        let s = r#"{"degree": 1, "knots": [-0, 0.1, 1e23, 100000000000000000000000000001],
+                   "control_points": [[9007199254740993], [2.2250738585072011e-308]]}"#;
+        let c = parse_curve(s.as_bytes()).unwrap();
+        let k = c.knots();
+        assert!(k[0] == 0.0 && k[0].is_sign_negative());
+        assert_eq!(k[1], 0.1);
+        assert_eq!(k[2], 1e23);
+        assert_eq!(k[3], 1e29);
+        assert_eq!(c.control_point(0)[0], 9007199254740992.0);
+        assert_eq!(c.control_point(1)[0], 2.2250738585072011e-308);
+    }
+
+    #[test]
+    fn lenient_options_and_null_weights() {
+        let s = r#"{"name": "x", "degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]], "weights": null, "meta": {"a": [1, {"b": null}]}}"#;
+        assert_eq!(err(s).kind(), "unknown_field");
+        let opts = ParseOptions {
+            allow_unknown_fields: true,
+            ..ParseOptions::default()
+        };
+        let c = parse_curve_at(s.as_bytes(), Position::default(), &opts).unwrap();
+        assert!(!c.is_rational());
+        let c = parse_curve(br#" {"degree": 3.0, "knots": [0,0,0,0,1,1,1,1], "control_points": [[0],[1],[2],[3]]} "#).unwrap();
+        assert_eq!(c.degree(), 3);
+    }
+
+    /// Reads at most `n` bytes per call, to exercise buffer boundaries.
+    struct Trickle<'a>(&'a [u8], usize);
+    impl Read for Trickle<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+            let n = self.1.min(buf.len()).min(self.0.len());
+            buf[..n].copy_from_slice(&self.0[..n]);
+            self.0 = &self.0[n..];
+            Ok(n)
+        }
+    }
+
+    fn kinds(input: &[u8]) -> Vec<String> {
+        let all: Vec<_> = read_curves(input);
+        let trickled: Vec<_> = CurveReader::new(Trickle(input, 1)).collect();
+        assert_eq!(all, trickled, "byte-by-byte reading differs");
+        all.iter()
+            .enumerate()
+            .map(|(i, (idx, r))| {
+                assert_eq!(i, *idx);
+                match r {
+                    Ok(_) => "ok".to_string(),
+                    Err(e) => e.kind().to_string(),
+                }
+            })
+            .collect()
+    }
+
+    const C1: &str = r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]]}"#;
+
+    #[test]
+    fn json_lines_stream() {
+        let input = format!("\n{C1}\n  \n\r\n{{\"degree\": 1}}\n  {C1}  \r\nnot json\n{C1}");
+        assert_eq!(
+            kinds(input.as_bytes()),
+            ["ok", "missing_field", "ok", "invalid_json", "ok"]
+        );
+        let recs: Vec<RawRecord> = RecordReader::new(input.as_bytes()).collect();
+        assert_eq!(recs[2].start, Position { line: 6, column: 3 });
+        assert_eq!(recs[3].start, Position { line: 7, column: 1 });
+        assert_eq!(kinds(b""), Vec::<String>::new());
+        assert_eq!(kinds(b"  \n\n "), Vec::<String>::new());
+        // a byte-order mark is skipped
+        assert_eq!(kinds(format!("\u{feff}{C1}").as_bytes()), ["ok"]);
+        // binary junk: one error per line, never a panic
+        assert_eq!(
+            kinds(b"\xff\xfe\x00\n\x80{\n"),
+            ["invalid_json", "invalid_json"]
+        );
+    }
+
+    #[test]
+    fn array_stream() {
+        let input = format!("[\n {C1},\n {{\"degree\": 1, \"knots\": [\"]\", \"{{\"]}},\n{C1} ]\n");
+        assert_eq!(kinds(input.as_bytes()), ["ok", "wrong_type", "ok"]);
+        let recs: Vec<RawRecord> = RecordReader::new(input.as_bytes()).collect();
+        assert_eq!(recs[2].start, Position { line: 4, column: 1 });
+        assert_eq!(kinds(b"[]"), Vec::<String>::new());
+        assert_eq!(kinds(b" [ ] \n"), Vec::<String>::new());
+        assert_eq!(
+            kinds(format!("[{C1},,{C1}]").as_bytes()),
+            ["ok", "empty_element", "ok"]
+        );
+        assert_eq!(
+            kinds(format!("[{C1},]").as_bytes()),
+            ["ok", "empty_element"]
+        );
+        assert_eq!(
+            kinds(format!("[,{C1}]").as_bytes()),
+            ["empty_element", "ok"]
+        );
+        assert_eq!(kinds(format!("[{C1}").as_bytes()), ["ok", "unclosed_array"]);
+        assert_eq!(
+            kinds(format!("[{C1},").as_bytes()),
+            ["ok", "unclosed_array"]
+        );
+        assert_eq!(kinds(b"["), ["unclosed_array"]);
+        assert_eq!(
+            kinds(format!("[{C1}] x").as_bytes()),
+            ["ok", "trailing_data"]
+        );
+        assert_eq!(
+            kinds(format!("[{C1}]\n[{C1}]").as_bytes()),
+            ["ok", "trailing_data"]
+        );
+        // a truncated element is one error, with no second one for the missing ']'
+        assert_eq!(
+            kinds(format!("[{C1}, {{\"degree\": 1, \"kn").as_bytes()),
+            ["ok", "truncated_json"]
+        );
+        // escaped quotes and brackets inside strings do not end an element
+        let tricky =
+            r#"[{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]],"weights":"\"],["}, 5]"#;
+        assert_eq!(kinds(tricky.as_bytes()), ["wrong_type", "wrong_type"]);
+        // missing comma between elements: the parser reports trailing characters
+        assert_eq!(kinds(format!("[{C1} {C1}]").as_bytes()), ["invalid_json"]);
+        // a '}' too many stays in its element
+        assert_eq!(
+            kinds(format!("[{C1}}}, {C1}]").as_bytes()),
+            ["invalid_json", "ok"]
+        );
+        // deep nesting in the splitter: a counter, no recursion
+        let deep = "[".repeat(100_000) + &"]".repeat(100_000);
+        assert_eq!(kinds(deep.as_bytes()), ["wrong_type"]);
+        let deep = format!("[{}]", "{\"a\":[".repeat(100_000) + &"]}".repeat(100_000));
+        assert_eq!(kinds(deep.as_bytes()), ["unknown_field"]);
+    }
+
+    #[test]
+    fn oversized_records_are_skipped() {
+        let opts = ParseOptions {
+            max_record_bytes: 80,
+            ..ParseOptions::default()
+        };
+        let long = format!(
+            "{{\"degree\":1,\"knots\":[0,0,1,1],\"control_points\":[[0],[1]],\"weights\":[{}1,1]}}",
+            "1,".repeat(50)
+        );
+        for input in [
+            format!("{C1}\n{long}\n{C1}\n"),
+            format!("[{C1}, {long}, {C1}]"),
+        ] {
+            let k: Vec<_> = CurveReader::with_options(Trickle(input.as_bytes(), 7), opts)
+                .map(|(_, r)| r.map_or_else(|e| e.kind(), |_| "ok"))
+                .collect();
+            assert_eq!(k, ["ok", "record_too_large", "ok"]);
+        }
+    }
+
+    #[test]
+    fn read_errors_end_the_stream() {
+        struct Broken;
+        impl Read for Broken {
+            fn read(&mut self, _: &mut [u8]) -> io::Result<usize> {
+                Err(io::Error::other("boom"))
+            }
+        }
+        let v: Vec<_> = CurveReader::new(Broken).collect();
+        assert_eq!(v.len(), 1);
+        assert!(matches!(&v[0].1, Err(InputError::Io(m)) if m.contains("boom")));
+    }
+
+    #[test]
+    fn records_are_well_formed_json() {
+        let c = parse_curve(GOOD.as_bytes()).unwrap();
+        let e = crate::enclose::ControlHull.enclose(&c);
+        let mut out = Vec::new();
+        write_enclosure_record(&mut out, 7, &e, true);
+        let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(v["index"], 7);
+        assert_eq!(v["strategy"], "hull");
+        assert_eq!(v["stats"]["termination"], "direct");
+        assert!(v["stats"]["time_total_s"].is_number());
+        let mut out = Vec::new();
+        let iv = |a, b| Interval::try_from((a, b)).unwrap();
+        write_eval_record(
+            &mut out,
+            0,
+            0.25,
+            1,
+            &[iv(f64::NEG_INFINITY, 1.5), Interval::EMPTY],
+        );
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            r#"{"index":0,"param":0.25,"derivative":1,"lo":["-inf","-inf"],"hi":[1.5,"inf"]}"#
+        );
+        let mut out = Vec::new();
+        write_error_record(
+            &mut out,
+            3,
+            &eval_fields(2.0, 0),
+            "k",
+            "a \"quoted\"\nmessage",
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(v["error"]["message"], "a \"quoted\"\nmessage");
+        assert_eq!(v["param"], 2.0);
+        assert_eq!(
+            termination_name(Termination::IterationLimit),
+            "iteration_limit"
+        );
     }
 
     #[test]
