@@ -1745,6 +1745,7 @@ mod tests {
     }
 
     #[test]
+    #[allow(clippy::excessive_precision)] // the literal is the classic hard case, as written
     fn numbers_are_correctly_rounded() {
         // 2^53 + 1 is a tie between 2^53 and 2^53 + 2: ties to even gives 2^53.
         // 0.1 must be the nearest f64; 1e23 is a classic hard case for naive parsers;

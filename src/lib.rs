@@ -19,5 +19,6 @@ pub use enclose::{
 };
 pub use error::{CurveError, EvalError};
 pub use eval::{project, CurveEval};
+pub use io::{curve_to_json, parse_curve, CurveReader, InputError};
 pub use knots::{find_span, multiplicity};
 pub use scalar::Scalar;

@@ -166,7 +166,7 @@ fn hostile_inputs_are_error_records_with_their_index() {
     // huge nesting, on its own line
     input.extend_from_slice(LINE.as_bytes());
     input.push(b'\n');
-    input.extend_from_slice(&b"{\"degree\": ".repeat(1));
+    input.extend_from_slice(b"{\"degree\": ");
     input.extend_from_slice(&b"[".repeat(500_000));
     input.push(b'\n');
     let (code, recs, _) = run(&["enclose", "--strategy", "hull"], &input);
@@ -198,7 +198,7 @@ fn hostile_inputs_are_error_records_with_their_index() {
         array.extend_from_slice(c);
         array.push(b',');
     }
-    array.extend_from_slice(&cases[0].0[..]);
+    array.extend_from_slice(cases[0].0);
     let (code, recs, _) = run(&["enclose", "--strategy", "hull"], &array);
     assert_eq!(code, 1);
     for (i, r) in recs.iter().enumerate() {
