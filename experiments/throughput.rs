@@ -18,10 +18,9 @@
 use clap::Parser;
 use nurbs_box::batch::{enclose_batch, enclose_stream, StreamOptions};
 use nurbs_box::enclose::strategy_by_name;
+use nurbs_box::gen::{self, GenParams, KnotStyle};
 use nurbs_box::io::{write_curve, RecordReader};
 use nurbs_box::NurbsCurve;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 use std::time::{Duration, Instant};
 
 #[derive(Parser, Debug)]
@@ -45,37 +44,6 @@ struct Args {
     /// random seed
     #[arg(long, default_value_t = 1)]
     seed: u64,
-}
-
-/// A random valid curve: degree 1..=5, dimension 2 or 3, p+1..p+20 control points in
-/// [-100, 100], clamped knots with random (sometimes repeated) interior values, rational half
-/// of the time with weights in [0.1, 10].
-fn random_curve(rng: &mut ChaCha8Rng) -> NurbsCurve {
-    loop {
-        let p = rng.random_range(1..=5usize);
-        let dim = rng.random_range(2..=3usize);
-        let n = p + 1 + rng.random_range(0..20usize);
-        let mut inner: Vec<f64> = (0..n - p - 1).map(|_| rng.random::<f64>()).collect();
-        for k in 1..inner.len() {
-            if rng.random_bool(0.1) {
-                inner[k] = inner[k - 1]; // a repeated knot now and then
-            }
-        }
-        inner.sort_by(f64::total_cmp);
-        let mut knots = vec![0.0; p + 1];
-        knots.extend(inner);
-        knots.extend(vec![1.0; p + 1]);
-        let pts: Vec<f64> = (0..n * dim)
-            .map(|_| rng.random_range(-100.0..100.0))
-            .collect();
-        let weights = rng
-            .random_bool(0.5)
-            .then(|| (0..n).map(|_| rng.random_range(0.1..10.0)).collect());
-        // an occasional draw violates the multiplicity rule: draw again
-        if let Ok(c) = NurbsCurve::from_flat(p, dim, knots, pts, weights) {
-            return c;
-        }
-    }
 }
 
 /// CPU time (user + system) of this process so far, from /proc/self/stat (Linux; `None`
@@ -115,8 +83,23 @@ fn main() {
         eprintln!("unknown strategy {:?}", a.strategy);
         std::process::exit(2);
     };
-    let mut rng = ChaCha8Rng::seed_from_u64(a.seed);
-    let curves: Vec<NurbsCurve> = (0..a.curves).map(|_| random_curve(&mut rng)).collect();
+    // Moderate random curves (nurbs_box::gen): degree 1..=5, dimension 2..=3, p+1..p+20
+    // control points, half rational with weights in [0.1, 10], assorted knot vectors.
+    let params = GenParams {
+        dim: 2..=3,
+        extra_points: 0..=19,
+        knot_styles: vec![
+            KnotStyle::ClampedUniform,
+            KnotStyle::ClampedRandom,
+            KnotStyle::Multiple,
+            KnotStyle::Unclamped,
+        ],
+        ..GenParams::default()
+    };
+    let mut rng = gen::rng(a.seed);
+    let curves: Vec<NurbsCurve> = (0..a.curves)
+        .map(|_| gen::random_curve(&mut rng, &params))
+        .collect();
     let segments: usize = curves.iter().map(|c| c.breakpoints().len() - 1).sum();
     let mut jsonl = Vec::new();
     for c in &curves {

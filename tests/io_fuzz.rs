@@ -2,7 +2,7 @@
 //! through `curve_to_json` bit for bit; both stream forms give the same curves.
 
 use nurbs_box::io::{curve_to_json, parse_curve, read_curves, CurveReader};
-use nurbs_box::NurbsCurve;
+use nurbs_box::{gen, NurbsCurve};
 use proptest::prelude::*;
 use std::io::Read;
 
@@ -59,25 +59,9 @@ fn jsonish() -> impl Strategy<Value = String> {
     prop::collection::vec(token(), 0..60).prop_map(|v| v.concat())
 }
 
-/// A valid curve with random degree, dimension, knots and weights.
+/// A valid curve from the crate's generator of nasty cases (all families, any seed).
 fn curve() -> impl Strategy<Value = NurbsCurve> {
-    (1usize..5, 1usize..4, 0usize..4, any::<bool>()).prop_flat_map(|(p, d, extra, rational)| {
-        let n = p + 1 + extra;
-        (
-            prop::collection::vec(-1e6f64..1e6, n * d),
-            prop::collection::vec(0.0f64..1.0, extra),
-            prop::collection::vec(1e-3f64..1e3, n),
-        )
-            .prop_map(move |(pts, mut inner, w)| {
-                inner.sort_by(f64::total_cmp);
-                let mut knots = vec![0.0; p + 1];
-                knots.extend(inner);
-                knots.extend(vec![1.0; p + 1]);
-                let weights = rational.then_some(w);
-                NurbsCurve::from_flat(p, d, knots, pts, weights)
-            })
-            .prop_filter_map("valid", Result::ok)
-    })
+    any::<u64>().prop_map(|seed| gen::nasty_curve(&mut gen::rng(seed)).1)
 }
 
 /// Reads in pieces of the given sizes (to move buffer boundaries around).

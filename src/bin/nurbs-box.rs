@@ -15,7 +15,7 @@ use nurbs_box::batch::{
 use nurbs_box::enclose::{strategy_by_name, BoxEncloser, STRATEGY_NAMES};
 use nurbs_box::io::{eval_fields, write_error_record, write_eval_record, InputError, ParseOptions};
 use nurbs_box::scalar::iv;
-use nurbs_box::NurbsCurve;
+use nurbs_box::{NurbsCurve, TightEval};
 use std::fs::File;
 use std::io::{self, Read};
 use std::path::PathBuf;
@@ -180,11 +180,23 @@ fn run_eval(a: EvalArgs) -> Result<Outcome, Fatal> {
                 return false;
             }
         };
+        // K = 0: the double-double evaluator gives ~1-ulp boxes (src/tight.rs); built once
+        // per curve, only when needed.
+        let tight = (k == 0).then(|| TightEval::new(&c));
         let mut ok = true;
         for &u in &a.params {
-            // Verified: interval de Boor on the exact f64 parameter (see eval.rs).
+            // Verified: interval de Boor on the exact f64 parameter (eval.rs); it also checks
+            // the domain. For K = 0 it is intersected with the TightEval enclosure: both contain
+            // the exact value, so their intersection does too.
             match c.enclose_derivative(iv::point(u), k) {
-                Ok(v) => write_eval_record(buf, index, u, k, &v),
+                Ok(mut v) => {
+                    if let Some(t) = &tight {
+                        for (x, y) in v.iter_mut().zip(t.point(u)) {
+                            *x = x.intersection(y);
+                        }
+                    }
+                    write_eval_record(buf, index, u, k, &v)
+                }
                 Err(e) => {
                     ok = false;
                     write_error_record(buf, index, &eval_fields(u, k), e.kind(), &e.to_string());
