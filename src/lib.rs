@@ -15,6 +15,7 @@
 #![doc = include_str!("guarantees.md")]
 #![warn(missing_docs)]
 
+pub mod batch;
 mod bspline;
 mod curve;
 mod ddi;
@@ -22,6 +23,7 @@ pub mod enclose;
 mod error;
 mod eval;
 pub mod gen;
+pub mod io;
 mod knots;
 #[cfg(feature = "mpfr")]
 pub mod reference;
@@ -40,6 +42,7 @@ pub use enclose::{
 };
 pub use error::{CurveError, EvalError};
 pub use eval::{project, CurveEval};
+pub use io::{curve_to_json, parse_curve, CurveReader, InputError};
 pub use knots::{find_span, multiplicity};
 pub use scalar::Scalar;
 pub use tight::TightEval;
