@@ -6,9 +6,12 @@ mod curve;
 pub mod enclose;
 mod error;
 mod eval;
+pub mod interpolate;
+pub mod knot_vectors;
 mod knots;
 mod refine;
 pub mod scalar;
+pub mod tridiagonal;
 
 pub use bspline::{basis_funs, BezierSeg, HSpline};
 pub use curve::NurbsCurve;
