@@ -313,30 +313,22 @@ impl<S: Scalar> BezierSeg<S> {
         self.dim + self.rational as usize
     }
 
-    /// de Casteljau evaluation at local t (seed 004; all rows), convex combinations in the
-    /// a*(R1-R2)+R2 form.
+    /// de Casteljau evaluation at local t (seed 004; all rows): the first point of the right
+    /// half of the split at t.
     pub fn eval_local(&self, t: &S) -> Vec<S> {
         let h = self.hdim();
-        let mut b = self.pts.clone();
-        for r in 1..=self.degree {
-            for i in 0..=self.degree - r {
-                for c in 0..h {
-                    let lo = b[i * h + c].clone();
-                    let hi = b[(i + 1) * h + c].clone();
-                    b[i * h + c] = t.clone() * (hi - lo.clone()) + lo;
-                }
-            }
-        }
-        b.truncate(h);
-        b
+        let (_, mut right) = self.split_points(t);
+        right.truncate(h);
+        right
     }
 
-    /// de Casteljau split at local t into the segments over [0, t] and [t, 1]. For intervals
-    /// both halves enclose the exact halves (each new point is a polynomial in the old ones).
-    pub fn split(&self, t: f64) -> (BezierSeg<S>, BezierSeg<S>) {
+    /// de Casteljau subdivision (seed 004) at local t: the control points of the halves over
+    /// [0, t] and [t, 1]. Convex combinations in the a*(R1-R2)+R2 form. For intervals (also an
+    /// interval t) both halves enclose the exact halves for every real t in `t` (each new point
+    /// is a polynomial in t and the old points; inclusion isotonicity).
+    pub fn split_points(&self, t: &S) -> (Vec<S>, Vec<S>) {
         let h = self.hdim();
         let p = self.degree;
-        let ts = S::from_f64(t);
         let mut b = self.pts.clone();
         let mut left = Vec::with_capacity(b.len());
         let mut right = vec![S::zero(); b.len()];
@@ -347,31 +339,60 @@ impl<S: Scalar> BezierSeg<S> {
                 for c in 0..h {
                     let lo = b[i * h + c].clone();
                     let hi = b[(i + 1) * h + c].clone();
-                    b[i * h + c] = ts.clone() * (hi - lo.clone()) + lo;
+                    b[i * h + c] = t.clone() * (hi - lo.clone()) + lo;
                 }
             }
             left.extend_from_slice(&b[0..h]);
             right[(p - r) * h..(p - r + 1) * h].clone_from_slice(&b[(p - r) * h..(p - r + 1) * h]);
         }
+        (left, right)
+    }
+
+    /// de Casteljau split at local t into the segments over [0, t] and [t, 1] (the parameter
+    /// bounds a, b of the halves are f64 approximations of the split point).
+    pub fn split(&self, t: f64) -> (BezierSeg<S>, BezierSeg<S>) {
+        let (left, right) = self.split_points(&S::from_f64(t));
         let m = self.a + t * (self.b - self.a);
         (
             BezierSeg {
-                a: self.a,
                 b: m,
-                degree: p,
-                dim: self.dim,
-                rational: self.rational,
                 pts: left,
+                ..self.clone_meta()
             },
             BezierSeg {
                 a: m,
-                b: self.b,
-                degree: p,
-                dim: self.dim,
-                rational: self.rational,
                 pts: right,
+                ..self.clone_meta()
             },
         )
+    }
+
+    /// The one-coordinate segment of Cartesian coordinate j: rows (w P_j, w), or (P_j).
+    pub fn coord(&self, j: usize) -> BezierSeg<S> {
+        let h = self.hdim();
+        let mut pts = Vec::with_capacity((self.degree + 1) * (1 + self.rational as usize));
+        for c in self.pts.chunks(h) {
+            pts.push(c[j].clone());
+            if self.rational {
+                pts.push(c[self.dim].clone());
+            }
+        }
+        BezierSeg {
+            dim: 1,
+            pts,
+            ..self.clone_meta()
+        }
+    }
+
+    fn clone_meta(&self) -> BezierSeg<S> {
+        BezierSeg {
+            a: self.a,
+            b: self.b,
+            degree: self.degree,
+            dim: self.dim,
+            rational: self.rational,
+            pts: Vec::new(),
+        }
     }
 }
 

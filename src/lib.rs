@@ -10,8 +10,10 @@ pub mod interpolate;
 pub mod knot_vectors;
 mod knots;
 mod refine;
+pub mod report;
 pub mod scalar;
 pub mod tridiagonal;
+pub mod validate;
 
 pub use bspline::{basis_funs, BezierSeg, HSpline};
 pub use curve::NurbsCurve;

@@ -7,8 +7,10 @@
 use crate::curve::NurbsCurve;
 use std::time::Duration;
 
+mod bezier;
 mod hull;
 
+pub use bezier::BezierSubdivision;
 pub use hull::ControlHull;
 
 /// What a strategy promises about its box.
@@ -194,14 +196,16 @@ pub trait BoxEncloser: Send + Sync {
 }
 
 /// Names of all strategies, in the order `--strategy all` uses.
-pub const STRATEGY_NAMES: &[&str] = &["hull"];
+pub const STRATEGY_NAMES: &[&str] = &["hull", "bezier"];
 
 /// The strategy called `name` (see [`STRATEGY_NAMES`]), with tolerance `tol` where the strategy
 /// has one (`None`: its default). `None` if the name is unknown.
 pub fn strategy_by_name(name: &str, tol: Option<f64>) -> Option<Box<dyn BoxEncloser>> {
-    let _ = tol; // used by the iterative strategies
     match name {
         "hull" => Some(Box::new(ControlHull)),
+        "bezier" => Some(Box::new(
+            tol.map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol),
+        )),
         _ => None,
     }
 }
