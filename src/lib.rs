@@ -1,11 +1,13 @@
 #![doc = include_str!("../README.md")]
 #![warn(missing_docs)]
 
+pub mod bezier_tools;
 mod bspline;
 mod curve;
 pub mod enclose;
 mod error;
 mod eval;
+pub mod families;
 pub mod interpolate;
 pub mod knot_vectors;
 mod knots;
