@@ -66,10 +66,15 @@ impl<S: Scalar> BezierSeg<S> {
 
     /// Degree elevation p -> p + 1 (Farin, Curves and Surfaces for CAGD, sec. 5.1; NURBS Book
     /// eq. 5.36 for one segment): Q_0 = P_0, Q_{p+1} = P_p and
-    /// Q_i = a_i P_{i-1} + (1 - a_i) P_i with a_i = i / (p + 1), written as
-    /// a_i (P_{i-1} - P_i) + P_i (thesis sec. 5.1 form). Applied to the homogeneous rows it
-    /// elevates rational segments as well. The curve is the same; a_i is formed in S, so for
-    /// intervals the new points enclose the exact ones.
+    /// Q_i = (i P_{i-1} + (p + 1 - i) P_i) / (p + 1). Applied to the homogeneous rows it
+    /// elevates rational segments as well; the curve is the same.
+    ///
+    /// Written with integer weights and one division (not as a (P_{i-1} - P_i) + P_i with a
+    /// rounded a = i/(p+1)): each P occurs once, so intervals suffer no dependency, the
+    /// products by small integers and the sum are exact for data of moderate precision (e.g.
+    /// font coordinates), and then the result is the correctly rounded value — a singleton
+    /// interval exactly when the elevated point is representable. For intervals the new
+    /// points always enclose the exact ones.
     pub fn elevate(&self) -> BezierSeg<S> {
         let h = self.hdim();
         let p = self.degree;
@@ -77,11 +82,11 @@ impl<S: Scalar> BezierSeg<S> {
         q.extend_from_slice(&self.pts[..h]);
         let den = S::from_usize(p + 1);
         for i in 1..=p {
-            let a = S::from_usize(i) / den.clone();
+            let (wl, wr) = (S::from_usize(i), S::from_usize(p + 1 - i));
             for c in 0..h {
                 let prev = self.pts[(i - 1) * h + c].clone();
                 let cur = self.pts[i * h + c].clone();
-                q.push(a.clone() * (prev - cur.clone()) + cur);
+                q.push((wl.clone() * prev + wr.clone() * cur) / den.clone());
             }
         }
         q.extend_from_slice(&self.pts[p * h..]);

@@ -8,6 +8,7 @@ pub mod enclose;
 mod error;
 mod eval;
 pub mod families;
+pub mod font;
 pub mod interpolate;
 pub mod knot_vectors;
 mod knots;
