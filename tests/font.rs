@@ -10,9 +10,11 @@ use nurbs_box::{BezierSeg, Guarantee};
 use ttf_parser::Face;
 
 const FONT: &[u8] = include_bytes!("data/DejaVuSansMono.ttf");
+/// CFF (cubic) outlines: Inconsolata, SIL Open Font License.
+const CFF_FONT: &[u8] = include_bytes!("data/Inconsolata.otf");
 const CHARS: &str = "AaBgOo08@&SQéß§%{~";
 
-fn check(face: &Face<'_>, boxes: &[GlyphBox]) {
+fn check(face: &Face<'_>, boxes: &[GlyphBox], stored: bool) {
     for ch in CHARS.chars() {
         let gid = face.glyph_index(ch).unwrap();
         let g = boxes.iter().find(|g| g.glyph_id == gid.0).unwrap();
@@ -53,7 +55,7 @@ fn check(face: &Face<'_>, boxes: &[GlyphBox]) {
         for j in 0..2 {
             assert!(g.tight_lo[j] <= g.inner_lo[j] && g.inner_hi[j] <= g.tight_hi[j]);
         }
-        assert!(g.stored_bbox.is_some());
+        assert_eq!(g.stored_bbox.is_some(), stored);
     }
 }
 
@@ -66,8 +68,21 @@ fn verified_glyph_boxes_for_every_verified_strategy() {
         }
         let boxes = glyph_boxes(FONT, s.as_ref()).unwrap();
         assert!(boxes.len() > 2000, "{}", boxes.len());
-        check(&face, &boxes);
+        check(&face, &boxes, true);
+        let cff = Face::parse(CFF_FONT, 0).unwrap();
+        let boxes = glyph_boxes(CFF_FONT, s.as_ref()).unwrap();
+        assert!(boxes.len() > 100, "{}", boxes.len());
+        check(&cff, &boxes, false);
     }
+}
+
+#[test]
+fn cff_outlines_are_cubic() {
+    let face = Face::parse(CFF_FONT, 0).unwrap();
+    let o = glyph_outline(&face, face.glyph_index('O').unwrap());
+    assert!(o.contours.iter().flatten().any(|s| s.pts.len() == 4));
+    let curves = o.curves().unwrap();
+    assert!(curves.iter().any(|c| c.degree() == 3));
 }
 
 #[test]
