@@ -222,7 +222,7 @@ pub fn project<S: Scalar>(mut v: Vec<S>, dim: usize, rational: bool) -> Vec<S> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// The 9-point rational quadratic unit circle (NURBS Book ex. 7.2).

@@ -50,7 +50,7 @@ pub trait Scalar:
     fn to_interval(&self) -> Interval;
     /// A representative f64 (midpoint for intervals, nearest for MPFR).
     fn to_f64(&self) -> f64;
-    /// Whether the value is exactly zero (a point interval [0,0] counts, a wider one does not).
+    /// Whether the value is exactly zero (a point interval `[0, 0]` counts, a wider one does not).
     fn is_exact_zero(&self) -> bool;
 }
 

@@ -232,7 +232,11 @@ impl BezierSubdivision {
                 seg_end(s1, e1, &mut side);
                 continue;
             }
-            let close_enough = u - side.attained <= gap_tol;
+            let seg = &segs[si];
+            // Half-width of the middle piece around a critical point; pieces this narrow are
+            // bounded by the mean-value form, which is then as tight as point evaluation.
+            let d = (seg.b - seg.a) * 2f64.powi(-26);
+            let close_enough = u - side.attained <= gap_tol || s1 - s0 <= 2.0 * d;
             if close_enough || depth >= self.max_depth || pieces >= self.max_pieces {
                 if !close_enough {
                     side.term = if depth >= self.max_depth {
@@ -247,8 +251,6 @@ impl BezierSubdivision {
                 continue;
             }
             side.stats.subdivisions += 1;
-            let seg = &segs[si];
-            let d = (seg.b - seg.a) * 2f64.powi(-26);
             let crit = vals
                 .critical(j, s0, s1)
                 .filter(|&t| t - d > s0 && t + d < s1);
