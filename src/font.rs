@@ -228,7 +228,7 @@ fn contour_curves(contour: &[Segment], out: &mut Vec<NurbsCurve>) -> Result<(), 
                     out.push(run_curve(p, &run)?);
                     run.clear();
                 }
-                out.push(run_curve(s.pts.len() - 1, &[s.pts.clone()])?);
+                out.push(run_curve(s.pts.len() - 1, std::slice::from_ref(&s.pts))?);
             }
         }
     }
@@ -295,8 +295,8 @@ impl GlyphBox {
 
 /// Compare a stored box side by side with the verified bracket of the exact box:
 /// returns (loose_by, too_small_by). Minimum sides: loose if stored < outer (the exact min is
-/// >= outer), too small if stored > inner (the outline reaches <= inner). Maximum sides
-/// mirrored. Differences are rounded down (toward zero) so they stay lower bounds.
+/// at least outer), too small if stored > inner (the outline reaches inner or below). Maximum
+/// sides mirrored. Differences are rounded down (toward zero) so they stay lower bounds.
 fn compare(stored: [f64; 4], outer: [f64; 4], inner: [f64; 4]) -> ([f64; 4], [f64; 4]) {
     let mut loose = [0.0; 4];
     let mut small = [0.0; 4];
