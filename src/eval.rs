@@ -8,7 +8,7 @@ use crate::scalar::{iv, Scalar};
 use inari::Interval;
 
 /// Binomial coefficient (small arguments; exact in f64 up to far beyond what is used).
-fn binom(n: usize, k: usize) -> f64 {
+pub(crate) fn binom(n: usize, k: usize) -> f64 {
     (0..k)
         .fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
         .round()

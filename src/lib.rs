@@ -16,14 +16,19 @@
 #![warn(missing_docs)]
 
 pub mod batch;
+pub mod bezier_tools;
 mod bspline;
 mod curve;
 mod ddi;
 pub mod enclose;
 mod error;
 mod eval;
+pub mod families;
+pub mod font;
 pub mod gen;
+pub mod interpolate;
 pub mod io;
+pub mod knot_vectors;
 mod knots;
 #[cfg(feature = "mpfr")]
 pub mod reference;
@@ -31,6 +36,7 @@ mod refine;
 pub mod report;
 pub mod scalar;
 mod tight;
+pub mod tridiagonal;
 pub mod validate;
 
 pub use bspline::{basis_funs, BezierSeg, HSpline};
