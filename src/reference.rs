@@ -34,7 +34,7 @@
 
 use crate::bspline::{BezierSeg, HSpline};
 use crate::curve::NurbsCurve;
-use crate::scalar::MPFR_PREC;
+use crate::scalar::{ulp, MPFR_PREC};
 use rug::{Assign, Float};
 use std::cmp::Ordering;
 
@@ -322,18 +322,7 @@ pub fn reference_box(curve: &NurbsCurve) -> ReferenceBox {
     }
 }
 
-/// The spacing of f64 numbers at |scale| (the ulp of scale): 2^(e - 52) for a normal scale with
-/// exponent e, 2^-1074 for a zero or subnormal scale; non-finite scales give f64::MAX's ulp.
-pub fn ulp_of(scale: f64) -> f64 {
-    let s = scale.abs();
-    if !s.is_finite() || s == f64::MAX {
-        return f64::MAX - f64::from_bits(f64::MAX.to_bits() - 1);
-    }
-    // next float up minus s: exact (Sterbenz) and equal to the spacing above s.
-    f64::from_bits(s.to_bits() + 1) - s
-}
-
-/// How far an f64 bound lies from the exact extremum, in units of [`ulp_of`]`(scale)`, signed
+/// How far an f64 bound lies from the exact extremum, in units of [`ulp`]`(scale)`, signed
 /// so that a positive value means the bound is on the safe side (hi >= exact for an upper
 /// bound, lo <= exact for a lower bound) and a negative value is a containment miss.
 /// A NaN bound counts as a miss (-inf); an infinite bound on the safe side gives +inf.
@@ -347,7 +336,7 @@ pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f6
     } else {
         exact.clone() - b
     };
-    (diff / fl(ulp_of(scale))).to_f64()
+    (diff / fl(ulp(scale))).to_f64()
 }
 
 #[cfg(test)]
@@ -356,24 +345,7 @@ mod tests {
     use crate::gen::{self, Family};
 
     fn circle() -> NurbsCurve {
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        NurbsCurve::new(
-            2,
-            vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.],
-            vec![
-                vec![1., 0.],
-                vec![1., 1.],
-                vec![0., 1.],
-                vec![-1., 1.],
-                vec![-1., 0.],
-                vec![-1., -1.],
-                vec![0., -1.],
-                vec![1., -1.],
-                vec![1., 0.],
-            ],
-            Some(vec![1., s, 1., s, 1., s, 1., s, 1.]),
-        )
-        .unwrap()
+        gen::nurbs_circle()
     }
 
     #[test]
@@ -648,8 +620,9 @@ mod tests {
     #[test]
     fn ulps_measure() {
         let one = fl(1.0);
-        assert_eq!(ulp_of(1.0), f64::EPSILON);
-        assert_eq!(ulp_of(0.0), f64::from_bits(1));
+        assert_eq!(ulp(1.0), f64::EPSILON);
+        assert_eq!(ulp(0.0), f64::from_bits(1));
+        assert_eq!(ulp(-3.0), 2.0 * f64::EPSILON);
         assert_eq!(ulps_outside(1.0 + 2.0 * f64::EPSILON, &one, 1.0, true), 2.0);
         assert_eq!(ulps_outside(1.0 - f64::EPSILON, &one, 1.0, true), -1.0);
         assert_eq!(ulps_outside(1.0 - f64::EPSILON, &one, 1.0, false), 1.0);
