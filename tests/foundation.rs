@@ -286,6 +286,41 @@ mod mpfr {
     }
 
     proptest! {
+        #![proptest_config(config(64))]
+
+        /// Every verified strategy's box contains the 256-bit reference box (outer bounds on
+        /// the safe side), and its inner bounds are reached (ref lo <= inner_lo, inner_hi <=
+        /// ref hi). The reference is the box of the closure; at a jump knot (multiplicity p + 1)
+        /// the left limit need not be attained, so the outer check is skipped there.
+        #[test]
+        fn verified_strategies_contain_the_reference(seed in any::<u64>()) {
+            use nurbs_box::reference::{reference_box, ulps_outside};
+            let (f, c, _) = seeded(seed);
+            let rb = reference_box(&c);
+            let jumps = c.interior_knots().iter().any(|&(_, m)| m > c.degree());
+            for s in nurbs_box::enclose::all_strategies(None) {
+                if s.guarantee() != nurbs_box::Guarantee::Verified {
+                    continue;
+                }
+                let e = s.enclose(&c);
+                for (j, cb) in e.coords.iter().enumerate() {
+                    let sc = c.coord_scale(j);
+                    if !jumps {
+                        let (l, h) = (ulps_outside(cb.lo, &rb.lo[j], sc, false),
+                            ulps_outside(cb.hi, &rb.hi[j], sc, true));
+                        prop_assert!(l >= 0.0 && h >= 0.0,
+                            "{} on {}: coord {j} lo {} ({l} ulps) hi {} ({h} ulps) vs reference [{}, {}]",
+                            s.name(), f.name(), cb.lo, cb.hi, rb.lo[j], rb.hi[j]);
+                    }
+                    prop_assert!(rb.lo[j] <= cb.inner_lo && cb.inner_hi <= rb.hi[j],
+                        "{} on {}: coord {j} inner [{}, {}] not reached, reference [{}, {}]",
+                        s.name(), f.name(), cb.inner_lo, cb.inner_hi, rb.lo[j], rb.hi[j]);
+                }
+            }
+        }
+    }
+
+    proptest! {
         #![proptest_config(config(128))]
 
         /// A single-span clamped curve is a Bézier curve: C(u) = sum B_i^p(t) w_i P_i /
