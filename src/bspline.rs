@@ -265,14 +265,20 @@ impl<S: Scalar> HSpline<S> {
     }
 
     /// Insert the knot u `r` times (NURBS Book A5.1 CurveKnotIns; thesis eqs. 4.12, 4.15/4.16).
-    /// Requires u in the domain and r + (current multiplicity) <= p; extra insertions are
-    /// ignored. The new points are convex combinations alpha*(Q_i - Q_{i-1}) + Q_{i-1}.
+    /// Requires u in the domain; insertions beyond multiplicity p are ignored. The new points
+    /// are convex combinations alpha*(Q_i - Q_{i-1}) + Q_{i-1}.
     pub fn insert_knot(&self, u: f64, r: usize) -> HSpline<S> {
         let p = self.degree;
         let h = self.hdim();
         let k = self.span(u);
-        let s = crate::knots::multiplicity(&self.knots, u);
-        let r = r.min(p.saturating_sub(s));
+        let total = crate::knots::multiplicity(&self.knots, u);
+        let r = r.min(p.saturating_sub(total));
+        // A5.1 wants s = the copies of u among u_{k-p} ..= u_k (u in [u_k, u_{k+1})). At the
+        // right end of the domain, u = u_{k+1} lies in the closed last span k and no copy of u
+        // is at or below k (u_k < u_{k+1}): s = 0 there (Boehm's formula holds on the closed
+        // span). Using the total multiplicity instead changed the curve of an unclamped
+        // domain end.
+        let s = if u == self.knots[k + 1] { 0 } else { total };
         if r == 0 {
             return self.clone();
         }

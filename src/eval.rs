@@ -110,7 +110,18 @@ impl CurveEval<Interval> {
     /// the knots it straddles and hulled (each piece is one polynomial).
     pub fn enclose_over(&self, c: &NurbsCurve, a: f64, b: f64, k: usize) -> Vec<Vec<Interval>> {
         let mut acc: Option<Vec<Vec<Interval>>> = None;
-        for (span, lo, hi) in c.spans_straddled(a, b) {
+        let mut pieces = c.spans_straddled(a, b);
+        // The value at an interior knot b belongs to the span that starts at b (find_span:
+        // u_k <= u < u_{k+1}), which the straddled spans (ending at b) do not include. It
+        // differs from the left piece's limit where some C^(l), l <= k, may jump: at a knot
+        // of multiplicity m with m + k > p (C is C^{p-m} there). Add the point piece [b, b].
+        if let Some(&(last, _, hi)) = pieces.last() {
+            let kb = c.find_span(hi);
+            if kb != last && crate::knots::multiplicity(c.knots(), hi) + k > c.degree() {
+                pieces.push((kb, hi, hi));
+            }
+        }
+        for (span, lo, hi) in pieces {
             let v = self.derivs_in_span(span, &iv::span(lo, hi), k);
             acc = Some(match acc {
                 None => v,
@@ -227,24 +238,7 @@ pub(crate) mod tests {
 
     /// The 9-point rational quadratic unit circle (NURBS Book ex. 7.2).
     pub(crate) fn circle() -> NurbsCurve {
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        NurbsCurve::new(
-            2,
-            vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.],
-            vec![
-                vec![1., 0.],
-                vec![1., 1.],
-                vec![0., 1.],
-                vec![-1., 1.],
-                vec![-1., 0.],
-                vec![-1., -1.],
-                vec![0., -1.],
-                vec![1., -1.],
-                vec![1., 0.],
-            ],
-            Some(vec![1., s, 1., s, 1., s, 1., s, 1.]),
-        )
-        .unwrap()
+        crate::gen::nurbs_circle()
     }
 
     #[test]
@@ -342,5 +336,31 @@ pub(crate) mod tests {
         }
         assert!(c.enclose_point(iv::span(0.2, 1.5)).is_err());
         assert!(c.point::<f64>(-0.1).is_err());
+    }
+
+    #[test]
+    fn enclosure_ending_at_a_jump_knot_contains_the_value_there() {
+        // regression: C(b) of a knot b of multiplicity p + 1 comes from the span starting at
+        // b, which the straddled spans of [a, b] did not include
+        let c = NurbsCurve::new(
+            1,
+            vec![0., 0., 0.5, 0.5, 1., 1.],
+            vec![vec![0.], vec![1.], vec![5.], vec![6.]],
+            None,
+        )
+        .unwrap();
+        let e = c.enclose_point(iv::span(0.25, 0.5)).unwrap();
+        assert!(e[0].contains(5.0) && e[0].contains(0.5), "{e:?}");
+        // C' of a quadratic with a double knot (C^0) at 0.5: right derivative at 0.5
+        let q = NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.],
+            vec![vec![0.], vec![1.], vec![0.], vec![3.], vec![0.]],
+            None,
+        )
+        .unwrap();
+        let d: Vec<f64> = q.derivative(0.5, 1).unwrap();
+        let e = q.enclose_derivative(iv::span(0.1, 0.5), 1).unwrap();
+        assert!(e[0].contains(d[0]), "{d:?} {e:?}");
     }
 }

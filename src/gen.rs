@@ -336,11 +336,7 @@ pub fn random_curve(rng: &mut impl Rng, params: &GenParams) -> NurbsCurve {
         // Half of the time make the middle the extreme of coordinate 0 (so the box's bound is
         // attained exactly at the middle knot).
         if rng.random_bool(0.5) {
-            let m = pts
-                .iter()
-                .skip(0)
-                .step_by(dim)
-                .fold(0.0f64, |a, x| a.max(x.abs()));
+            let m = pts.iter().step_by(dim).fold(0.0f64, |a, x| a.max(x.abs()));
             for i in [n / 2, n - n / 2] {
                 pts[i * dim] = 2.0 * m + 1.0;
             }
@@ -366,9 +362,7 @@ fn unit_knots(rng: &mut impl Rng, p: usize, n: usize, style: KnotStyle) -> Vec<f
         KnotStyle::ClampedRandom => {
             let mut v: Vec<f64> = (0..ni).map(|_| rng.random_range(0.001..0.999f64)).collect();
             v.sort_by(f64::total_cmp);
-            // random values can repeat only with negligible probability, but multiplicity is
-            // bounded anyway: at most ni <= ... values, a repeat > p + 1 times is impossible
-            // unless identical draws; dedupe by nudging to keep validity unconditional.
+            // Equal draws are improbable; nudging them apart keeps validity unconditional.
             for i in 1..v.len() {
                 if v[i] <= v[i - 1] {
                     v[i] = f64::from_bits(v[i - 1].to_bits() + 1);
@@ -566,6 +560,30 @@ pub fn thesis_curve_2d_nurbs_with(
     let pts: Vec<f64> = (0..2 * npts).map(|_| r.random_range(-1.0..=1.0)).collect();
     let w: Vec<f64> = (0..npts).map(|_| r.random_range(0.5..=2.0)).collect();
     NurbsCurve::from_flat(degree, 2, clamped_uniform(npts, degree)?, pts, Some(w))
+}
+
+/// The 9-point rational quadratic unit circle (NURBS Book ex. 7.2; knots 0, 1/4, 1/2, 3/4, 1
+/// doubled inside, weights 1 and sqrt(2)/2 rounded to f64, so the curve is a circle only to
+/// ~1e-16).
+pub fn nurbs_circle() -> NurbsCurve {
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    NurbsCurve::new(
+        2,
+        vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.],
+        vec![
+            vec![1., 0.],
+            vec![1., 1.],
+            vec![0., 1.],
+            vec![-1., 1.],
+            vec![-1., 0.],
+            vec![-1., -1.],
+            vec![0., -1.],
+            vec![1., -1.],
+            vec![1., 0.],
+        ],
+        Some(vec![1., s, 1., s, 1., s, 1., s, 1.]),
+    )
+    .expect("the circle data are valid")
 }
 
 /// Clamped uniform knots on [0, 1] for `npts` points of degree p (typed error if npts < p + 1

@@ -34,7 +34,7 @@
 
 use crate::bspline::{BezierSeg, HSpline};
 use crate::curve::NurbsCurve;
-use crate::scalar::MPFR_PREC;
+use crate::scalar::{ulp, MPFR_PREC};
 use rug::{Assign, Float};
 use std::cmp::Ordering;
 
@@ -271,32 +271,20 @@ pub fn reference_box(curve: &NurbsCurve) -> ReferenceBox {
         let w = seg.rational.then(|| row(seg, d));
         let (fa, fb) = (fl(seg.a), fl(seg.b));
         let len = fb.clone() - &fa;
+        // Span of the segment in the original curve (seg.a = u_k starts a non-empty span).
+        let k = curve.find_span(seg.a);
+        let p = curve.degree();
         for j in 0..d {
-            let a = row(seg, j);
-            let num = match &w {
-                None => bern_deriv(&a),
-                Some(w) => {
-                    let p1 = bern_mul(&bern_deriv(&a), w);
-                    let p2 = bern_mul(&a, &bern_deriv(w));
-                    p1.into_iter().zip(p2).map(|(x, y)| x - y).collect()
-                }
+            // A coordinate constant over the span's p + 1 control points is exactly that
+            // constant there (partition of unity); MPFR rounding in the decomposition would
+            // blur it by ~2^-256, so take the f64 value itself.
+            let c0 = curve.control_point(k - p)[j];
+            let cands = if (k - p..=k).all(|i| curve.control_point(i)[j] == c0) {
+                vec![(fl(c0), seg.a)]
+            } else {
+                segment_candidates(seg, j, w.as_deref(), &fa, &len)
             };
-            let mut cands = critical_points(&num);
-            cands.push(fl(0.0));
-            cands.push(fl(1.0));
-            for t in cands {
-                let mut v = bern_eval(&a, &t);
-                if let Some(w) = &w {
-                    v /= bern_eval(w, &t);
-                }
-                // t = 0 and 1 give the knots exactly; inside, the nearest f64 parameter.
-                let u = if t.is_zero() {
-                    seg.a
-                } else if t == 1 {
-                    seg.b
-                } else {
-                    (fa.clone() + t * &len).to_f64()
-                };
+            for (v, u) in cands {
                 if lo[j].as_ref().map_or(true, |(m, _)| v < *m) {
                     lo[j] = Some((v.clone(), u));
                 }
@@ -322,21 +310,51 @@ pub fn reference_box(curve: &NurbsCurve) -> ReferenceBox {
     }
 }
 
-/// The spacing of f64 numbers at |scale| (the ulp of scale): 2^(e - 52) for a normal scale with
-/// exponent e, 2^-1074 for a zero or subnormal scale; non-finite scales give f64::MAX's ulp.
-pub fn ulp_of(scale: f64) -> f64 {
-    let s = scale.abs();
-    if !s.is_finite() || s == f64::MAX {
-        return f64::MAX - f64::from_bits(f64::MAX.to_bits() - 1);
-    }
-    // next float up minus s: exact (Sterbenz) and equal to the spacing above s.
-    f64::from_bits(s.to_bits() + 1) - s
+/// Values of C_j = A_j / w on one segment at the critical points and both ends, with their
+/// parameters (rounded to f64).
+fn segment_candidates(
+    seg: &BezierSeg<Float>,
+    j: usize,
+    w: Option<&[Float]>,
+    fa: &Float,
+    len: &Float,
+) -> Vec<(Float, f64)> {
+    let a = row(seg, j);
+    let num = match &w {
+        None => bern_deriv(&a),
+        Some(w) => {
+            let p1 = bern_mul(&bern_deriv(&a), w);
+            let p2 = bern_mul(&a, &bern_deriv(w));
+            p1.into_iter().zip(p2).map(|(x, y)| x - y).collect()
+        }
+    };
+    let mut ts = critical_points(&num);
+    ts.push(fl(0.0));
+    ts.push(fl(1.0));
+    ts.into_iter()
+        .map(|t| {
+            let mut v = bern_eval(&a, &t);
+            if let Some(w) = w {
+                v /= bern_eval(w, &t);
+            }
+            // t = 0 and 1 give the knots exactly; inside, the nearest f64 parameter.
+            let u = if t.is_zero() {
+                seg.a
+            } else if t == 1 {
+                seg.b
+            } else {
+                (fa.clone() + t * len).to_f64()
+            };
+            (v, u)
+        })
+        .collect()
 }
 
-/// How far an f64 bound lies from the exact extremum, in units of [`ulp_of`]`(scale)`, signed
+/// How far an f64 bound lies from the exact extremum, in units of [`ulp`]`(scale)`, signed
 /// so that a positive value means the bound is on the safe side (hi >= exact for an upper
 /// bound, lo <= exact for a lower bound) and a negative value is a containment miss.
 /// A NaN bound counts as a miss (-inf); an infinite bound on the safe side gives +inf.
+/// Distances below the reference's resolution (2^-160 of max(scale, |exact|)) give 0.
 pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f64 {
     if bound.is_nan() {
         return f64::NEG_INFINITY;
@@ -347,7 +365,16 @@ pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f6
     } else {
         exact.clone() - b
     };
-    (diff / fl(ulp_of(scale))).to_f64()
+    // The reference itself is accurate to ~2^-240 of the scale (MPFR rounding in the
+    // decomposition, times the conditioning of the weights): distances below 2^-160 of
+    // max(scale, |exact|) are not resolvable and count as 0 (an f64 bound equal to an exact
+    // f64 extremum, e.g. a control point interpolated at a knot, is then not a false miss).
+    let res = fl(scale.abs()).max(&exact.clone().abs())
+        * Float::with_val(MPFR_PREC, Float::i_exp(1, -160));
+    if diff.clone().abs() <= res {
+        return 0.0;
+    }
+    (diff / fl(ulp(scale))).to_f64()
 }
 
 #[cfg(test)]
@@ -356,24 +383,7 @@ mod tests {
     use crate::gen::{self, Family};
 
     fn circle() -> NurbsCurve {
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        NurbsCurve::new(
-            2,
-            vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.],
-            vec![
-                vec![1., 0.],
-                vec![1., 1.],
-                vec![0., 1.],
-                vec![-1., 1.],
-                vec![-1., 0.],
-                vec![-1., -1.],
-                vec![0., -1.],
-                vec![1., -1.],
-                vec![1., 0.],
-            ],
-            Some(vec![1., s, 1., s, 1., s, 1., s, 1.]),
-        )
-        .unwrap()
+        gen::nurbs_circle()
     }
 
     #[test]
@@ -642,14 +652,25 @@ mod tests {
         let r = reference_box(&c);
         assert_eq!(r.lo[1], 2.0);
         assert_eq!(r.hi[1], 2.0);
+        // flat on interior spans only (rational, several spans): exact there too
+        let c = NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 0.3, 0.6, 1., 1., 1.],
+            vec![vec![0.1], vec![0.1], vec![0.1], vec![0.1], vec![0.7]],
+            Some(vec![1., 3., 0.25, 2., 1.]),
+        )
+        .unwrap();
+        let r = reference_box(&c);
+        assert_eq!(r.lo[0], 0.1);
         check_against_sampling(&c, 200);
     }
 
     #[test]
     fn ulps_measure() {
         let one = fl(1.0);
-        assert_eq!(ulp_of(1.0), f64::EPSILON);
-        assert_eq!(ulp_of(0.0), f64::from_bits(1));
+        assert_eq!(ulp(1.0), f64::EPSILON);
+        assert_eq!(ulp(0.0), f64::from_bits(1));
+        assert_eq!(ulp(-3.0), 2.0 * f64::EPSILON);
         assert_eq!(ulps_outside(1.0 + 2.0 * f64::EPSILON, &one, 1.0, true), 2.0);
         assert_eq!(ulps_outside(1.0 - f64::EPSILON, &one, 1.0, true), -1.0);
         assert_eq!(ulps_outside(1.0 - f64::EPSILON, &one, 1.0, false), 1.0);
@@ -658,5 +679,8 @@ mod tests {
         // an exact value between floats: the bound 1 is 1/3 ulp above 1 - eps/3
         let x = fl(1.0) - fl(f64::EPSILON) / 3u32;
         assert!((ulps_outside(1.0, &x, 1.0, true) - 1.0 / 3.0).abs() < 1e-12);
+        // below the reference's resolution: 0, not a miss
+        let y = fl(1.0) + Float::with_val(MPFR_PREC, Float::i_exp(1, -250));
+        assert_eq!(ulps_outside(1.0, &y, 1.0, true), 0.0);
     }
 }

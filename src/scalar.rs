@@ -156,3 +156,15 @@ pub mod iv {
         Interval::try_from((a, b)).unwrap_or(Interval::ENTIRE)
     }
 }
+
+/// The spacing of f64 numbers just above |x| (the ulp of x, used to report widths and
+/// distances "in ulps of a scale"): 2^(e - 52) for a normal |x| with exponent e, 2^-1074 for a
+/// zero or subnormal |x|; for non-finite |x| (and f64::MAX) the spacing below f64::MAX.
+pub fn ulp(x: f64) -> f64 {
+    let s = x.abs();
+    if !s.is_finite() || s == f64::MAX {
+        return f64::MAX - f64::from_bits(f64::MAX.to_bits() - 1);
+    }
+    // next float up minus s: exact (Sterbenz) and equal to the spacing above s.
+    f64::from_bits(s.to_bits() + 1) - s
+}
