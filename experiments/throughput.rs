@@ -142,6 +142,10 @@ fn main() {
     assert_eq!(n_split, curves.len());
     let strategies = [strategy];
     let mut base: Option<(f64, f64)> = None;
+    // curves per CPU-second of the first thread count (batch, stream)
+    let mut per_cpu0: Option<(f64, f64)> = None;
+    let mut notes = Vec::new();
+    let mut amdahl = None;
     for &t in &a.threads {
         let (tb, cb, out) = best_of(a.repeats, || {
             enclose_batch(&curves, strategies[0].as_ref(), t)
@@ -174,11 +178,28 @@ fn main() {
         );
         if t == 1 {
             let f = t_split.as_secs_f64() / ts.as_secs_f64();
-            println!(
+            amdahl = Some(f);
+            notes.push(format!(
                 "# sequential share of the 1-thread stream (splitting): {:.1}% -> Amdahl bound at 2 threads {:.2}x",
                 100.0 * f,
                 1.0 / (f + (1.0 - f) / 2.0)
-            );
+            ));
         }
+        // Work per CPU-second does not depend on how many cores other processes leave us: its
+        // ratio to the first row is the parallel efficiency (overheads and idle spinning count
+        // against it). t x efficiency (and Amdahl, for the stream) is the speed-up an otherwise
+        // idle machine with >= t cores would show.
+        let (pb, ps) = (rb / cb, rs / cs);
+        let (pb0, ps0) = *per_cpu0.get_or_insert((pb, ps));
+        let (eb, es) = (pb / pb0, ps / ps0);
+        let amdahl_t = amdahl.map_or(t as f64, |f| 1.0 / (f + (1.0 - f) / t as f64));
+        notes.push(format!(
+            "# {t} threads: curves per CPU-second batch {pb:.0}, stream {ps:.0}; parallel efficiency batch {eb:.2}, stream {es:.2} -> idle-machine speed-up about batch {:.2}x, stream {:.2}x",
+            t as f64 * eb,
+            (t as f64 * es).min(amdahl_t)
+        ));
+    }
+    for n in notes {
+        println!("{n}");
     }
 }
