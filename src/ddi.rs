@@ -184,6 +184,27 @@ impl Ddi {
         Ddi::checked(h, l, rad)
     }
 
+    /// The exact difference `x - y` of two f64 (a double-word, by TwoSum).
+    #[inline]
+    pub fn diff(x: f64, y: f64) -> Ddi {
+        let (s, e) = two_sum(x, -y);
+        Ddi::checked(s, e, 0.0)
+    }
+
+    /// The same centre with the radius enlarged by `extra >= 0` (rounded upward); a negative or
+    /// NaN `extra` gives ENTIRE.
+    #[inline]
+    pub fn widen(self, extra: f64) -> Ddi {
+        if extra == 0.0 {
+            return self;
+        }
+        if extra.is_nan() || extra < 0.0 {
+            return Ddi::ENTIRE; // NaN or negative: no valid radius
+        }
+        // A sum of two nonnegative f64: Lemma B (up_sum).
+        Ddi::checked(self.hi, self.lo, up_sum(self.rad + extra))
+    }
+
     /// A `Ddi` containing the interval `x` (ENTIRE if `x` is empty or unbounded).
     pub fn from_interval(x: Interval) -> Ddi {
         if x.is_empty() || !x.inf().is_finite() || !x.sup().is_finite() {
@@ -245,24 +266,35 @@ impl Ddi {
         }
     }
 
-    /// Sum (accurate double-word addition, Joldes, Muller, Popescu, "Tight and rigorous error
+    /// Sum. Exact cases first (a zero operand; two f64: TwoSum is error-free). Otherwise the
+    /// double-word addition "SloppyDWPlusDW" (Joldes, Muller, Popescu, "Tight and rigorous error
     /// bounds for basic building blocks of double-word arithmetic", ACM TOMS 44(2), 2017,
-    /// Alg. 6, with every Fast2Sum replaced by TwoSum so no precondition is needed). The two
-    /// plain additions `c` and `w` are the only inexact steps; their errors are computed exactly
-    /// by TwoSum and added to the radius, so an exact sum keeps radius 0.
+    /// Alg. 4; Dekker 1971 add2) with the final Fast2Sum replaced by TwoSum, and a running error
+    /// bound: only the two plain additions `v` and `w` round, each by at most U1 times its
+    /// computed value (additions have no underflow error). The bound is relative to the
+    /// operands, not to the (possibly cancelled) result: about 2^-104 max(|x|, |y|), which is
+    /// all the curve kernels need (their error budget is an ulp of the coordinate scale).
     ///
-    /// Exact sum of the centres: xh + yh + xl + yl = sh + sl + th + tl = sh + c + tl - e1
-    /// = vh + vl + tl - e1 = vh + w - e1 - e2 = zh + zl - e1 - e2.
+    /// Exact sum of the centres: xh + yh + xl + yl = sh + sl + v - e1 = sh + w - e2 - e1
+    /// = zh + zl - e1 - e2, |e1| <= U1 |v|, |e2| <= U1 |w|.
     #[inline]
     fn add_impl(x: Ddi, y: Ddi) -> Ddi {
+        if y.is_zero() {
+            return x;
+        }
+        if x.is_zero() {
+            return y;
+        }
+        if x.is_f64() && y.is_f64() {
+            let (s, e) = two_sum(x.hi, y.hi);
+            return Ddi::checked(s, e, 0.0);
+        }
         let (sh, sl) = two_sum(x.hi, y.hi);
-        let (th, tl) = two_sum(x.lo, y.lo);
-        let (c, e1) = two_sum(sl, th);
-        let (vh, vl) = two_sum(sh, c);
-        let (w, e2) = two_sum(tl, vl);
-        let (zh, zl) = two_sum(vh, w);
-        // rad >= rx + ry + |e1| + |e2|: a sum of nonnegative f64 (Lemma B, up_sum).
-        let r = up_sum(x.rad + y.rad + e1.abs() + e2.abs());
+        let v = x.lo + y.lo;
+        let w = sl + v;
+        let (zh, zl) = two_sum(sh, w);
+        // Two terms plus a product of U1 and a sum of two nonnegative f64: Lemma B.
+        let r = up(x.rad + y.rad + U1 * (v.abs() + w.abs()));
         Ddi::checked(zh, zl, r)
     }
 
@@ -361,6 +393,15 @@ impl Ddi {
         };
         if x.is_zero() {
             return Ddi::exact(0.0);
+        }
+        // Division by +-2^k is a scaling by the exact power of two 1/y (if that is normal).
+        if y.is_f64() && is_pow2(y.hi) {
+            let s = 1.0 / y.hi;
+            if is_pow2(s) {
+                if let Some(z) = x.scale_exact(s) {
+                    return z;
+                }
+            }
         }
         let q1 = x.hi / y.hi;
         let (ph, pl) = two_prod(q1, y.hi);

@@ -1,0 +1,72 @@
+//! Timing of the precision layer: `cargo run --release --example tight_speed`.
+//!
+//! Measures `TightEval::new`, `coord_at`, `coord_over` (a 1e-12 box around a critical point) on
+//! a 2-D cubic Bézier, and kurbo's (unverified, f64) `CubicBez::bounding_box` as the baseline.
+use kurbo::{CubicBez, ParamCurveExtrema, Point};
+use nurbs_box::{NurbsCurve, TightEval};
+use std::hint::black_box;
+use std::time::Instant;
+
+fn time<F: FnMut() -> f64>(name: &str, n: usize, mut f: F) -> f64 {
+    let mut acc = 0.0;
+    for _ in 0..n / 10 {
+        acc += f();
+    }
+    let t = Instant::now();
+    for _ in 0..n {
+        acc += f();
+    }
+    let ns = t.elapsed().as_nanos() as f64 / n as f64;
+    println!("{name:40} {ns:10.1} ns   (checksum {:.3e})", black_box(acc));
+    ns
+}
+
+fn main() {
+    let p = [(0.0, 0.0), (1.0, 2.0), (2.0, 1.7), (3.0, -0.5)];
+    let c = NurbsCurve::new(
+        3,
+        vec![0., 0., 0., 0., 1., 1., 1., 1.],
+        p.iter().map(|&(x, y)| vec![x, y]).collect(),
+        None,
+    )
+    .unwrap();
+    let cb = CubicBez::new(
+        Point::new(p[0].0, p[0].1),
+        Point::new(p[1].0, p[1].1),
+        Point::new(p[2].0, p[2].1),
+        Point::new(p[3].0, p[3].1),
+    );
+    let ustar = 0.480_213_918_467_826_6; // near the maximum of y
+    let n = 200_000;
+    time("kurbo CubicBez::bounding_box", n, || {
+        let b = black_box(&cb).bounding_box();
+        b.x1 + b.y1
+    });
+    time("TightEval::new (2-D cubic)", n / 10, || {
+        let t = TightEval::new(black_box(&c));
+        t.curve().degree() as f64
+    });
+    let t = TightEval::new(&c);
+    time("coord_at", n, || t.coord_at(1, black_box(0.3)).sup());
+    time("coord_over (1e-12 box at a max)", n, || {
+        t.coord_over(1, black_box(ustar - 1e-12), ustar + 1e-12)
+            .sup()
+    });
+    time("point (2 coords)", n, || t.point(black_box(0.3))[0].sup());
+    let w = [1.0, 0.7, 1.3, 1.0];
+    let cr = NurbsCurve::new(
+        3,
+        vec![0., 0., 0., 0., 1., 1., 1., 1.],
+        p.iter().map(|&(x, y)| vec![x, y]).collect(),
+        Some(w.to_vec()),
+    )
+    .unwrap();
+    let tr = TightEval::new(&cr);
+    time("rational coord_at", n, || {
+        tr.coord_at(1, black_box(0.3)).sup()
+    });
+    time("rational coord_over (1e-12 box)", n, || {
+        tr.coord_over(1, black_box(0.45 - 1e-12), 0.45 + 1e-12)
+            .sup()
+    });
+}
