@@ -72,7 +72,7 @@ const TWOPROD_SAFE: f64 = 4.008_336_720_017_946e-292; // 2^-968
 
 /// Upper bound of a radius formula (Lemma B in the module docs).
 #[inline(always)]
-fn up(r: f64) -> f64 {
+pub(crate) fn up(r: f64) -> f64 {
     r * INFL + FLOOR
 }
 
@@ -80,6 +80,13 @@ fn up(r: f64) -> f64 {
 #[inline(always)]
 fn up_sum(r: f64) -> f64 {
     r * INFL
+}
+
+/// An upper bound of |a - b| for f64 a, b: RN(|a - b|) has relative error <= u and no
+/// underflow error (subtraction), so up_sum covers it (Lemma B, second part).
+#[inline]
+pub(crate) fn dist_up(a: f64, b: f64) -> f64 {
+    up_sum((a - b).abs())
 }
 
 /// TwoSum (Knuth / Møller; Handbook Alg. 4.4): s + e = a + b exactly (no overflow).
@@ -207,17 +214,25 @@ impl Ddi {
 
     /// A `Ddi` containing the interval `x` (ENTIRE if `x` is empty or unbounded).
     pub fn from_interval(x: Interval) -> Ddi {
-        if x.is_empty() || !x.inf().is_finite() || !x.sup().is_finite() {
+        if x.is_empty() {
             return Ddi::ENTIRE;
         }
-        let (a, b) = (x.inf(), x.sup());
+        Ddi::from_bounds(x.inf(), x.sup())
+    }
+
+    /// A `Ddi` containing the real interval [a, b] (ENTIRE if a > b or either is not finite).
+    #[inline]
+    pub fn from_bounds(a: f64, b: f64) -> Ddi {
+        if !(a.is_finite() && b.is_finite() && a <= b) {
+            return Ddi::ENTIRE;
+        }
         if a == b {
             return Ddi::exact(a);
         }
-        // c in [a, b]; the distances c - a, b - c are rounded with relative error <= u (no
-        // underflow for a subtraction), so up_sum of their maximum bounds both (Lemma B).
-        let c = x.mid();
-        Ddi::checked(c, 0.0, up_sum((c - a).max(b - c)))
+        // Any c in [a, b] will do: a + (b - a)/2 rounded, clamped. The distances are bounded by
+        // dist_up (an overflowing b - a gives an infinite radius, hence ENTIRE).
+        let c = (a + 0.5 * (b - a)).clamp(a, b);
+        Ddi::checked(c, 0.0, dist_up(c, a).max(dist_up(b, c)))
     }
 
     /// High part of the centre.
@@ -478,6 +493,28 @@ impl Scalar for Ddi {
     fn to_interval(&self) -> Interval {
         if self.is_entire() {
             return Interval::ENTIRE;
+        }
+        // Fast path. S = |lo| + rad; fl(S) >= S (1 - u) (no underflow error in an addition), so
+        // fl(S) <= |hi| 2^-55 (exact: |hi| >= 2^-960) gives S < |hi| 2^-54, which is less than
+        // the gap from hi to either float neighbour (>= ulp(hi)/2 > |hi| 2^-54). So the exact
+        // ends hi + (lo -+ rad) lie strictly between the neighbours of hi, and which side of hi
+        // they are on is the sign of fl(lo -+ rad) (exact sign: a rounded difference of two
+        // floats is 0 only if they are equal).
+        let a = self.hi.abs();
+        if (2f64.powi(-960)..=f64::MAX / 2.0).contains(&a)
+            && self.lo.abs() + self.rad <= a * 2f64.powi(-55)
+        {
+            let lo = if self.lo - self.rad < 0.0 {
+                next_down(self.hi)
+            } else {
+                self.hi
+            };
+            let hi = if self.lo + self.rad > 0.0 {
+                -next_down(-self.hi)
+            } else {
+                self.hi
+            };
+            return Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE);
         }
         let lo = lower_sum3(self.hi, self.lo, -self.rad);
         // RU(v) = -RD(-v); negation is exact.

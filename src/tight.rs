@@ -33,7 +33,7 @@
 
 use crate::bspline::HSpline;
 use crate::curve::NurbsCurve;
-use crate::ddi::Ddi;
+use crate::ddi::{dist_up, up, Ddi};
 use crate::eval::CurveEval;
 use crate::scalar::{iv, Scalar};
 use inari::Interval;
@@ -79,30 +79,43 @@ pub struct TightEval {
     generic: OnceLock<Vec<CoordEval>>,
 }
 
-/// Horner's rule in `Ddi` (an empty polynomial is 0).
+/// Horner's rule (an empty polynomial is 0); used on `Ddi` and on intervals.
 #[inline]
-fn horner(c: &[Ddi], s: Ddi) -> Ddi {
+fn horner<S: Scalar + Copy>(c: &[S], s: S) -> S {
     match c.split_last() {
-        None => Ddi::exact(0.0),
+        None => S::zero(),
         Some((&last, rest)) => rest.iter().rev().fold(last, |acc, &ck| acc * s + ck),
     }
 }
 
-/// C, C', C'' from homogeneous values (rational: thesis eq. 3.10 for orders 0..=2), `Ddi`.
+/// C, C', C'' from homogeneous values (rational: thesis eq. 3.10 for orders 0..=2).
 /// `a[l]`, `w[l]` are the l-th derivatives of the coordinate row and the weight row; only the
 /// first `n` orders are computed (n <= 3).
 #[inline]
-fn rational_derivs(a: [Ddi; ORDERS], w: Option<[Ddi; ORDERS]>, n: usize) -> [Ddi; ORDERS] {
+fn rational_derivs<S: Scalar + Copy>(
+    a: [S; ORDERS],
+    w: Option<[S; ORDERS]>,
+    n: usize,
+) -> [S; ORDERS] {
     let Some(w) = w else { return a };
-    let mut c = [Ddi::exact(0.0); ORDERS];
+    let mut c = [S::zero(); ORDERS];
     c[0] = a[0] / w[0];
     if n > 1 {
         c[1] = (a[1] - w[1] * c[0]) / w[0];
     }
     if n > 2 {
-        c[2] = (a[2] - Ddi::exact(2.0) * w[1] * c[1] - w[2] * c[0]) / w[0];
+        c[2] = (a[2] - S::from_f64(2.0) * w[1] * c[1] - w[2] * c[0]) / w[0];
     }
     c
+}
+
+/// The polynomial of row r, derivative order l in a coefficient table of degree p (length
+/// p + 1 - l, empty if l > p); layout as in [`Taylor`].
+#[inline]
+fn poly<S>(coef: &[S], p: usize, r: usize, l: usize) -> &[S] {
+    let n = p + 1;
+    let start = (r * ORDERS + l) * n;
+    &coef[start..start + n.saturating_sub(l)]
 }
 
 impl Taylor {
@@ -147,14 +160,6 @@ impl Taylor {
         } else {
             Some(Taylor { coef })
         }
-    }
-
-    /// The polynomial of row r, derivative order l (length p + 1 - l, empty if l > p).
-    #[inline]
-    fn poly(&self, p: usize, r: usize, l: usize) -> &[Ddi] {
-        let n = p + 1;
-        let start = (r * ORDERS + l) * n;
-        &self.coef[start..start + n.saturating_sub(l)]
     }
 }
 
@@ -216,20 +221,23 @@ impl TightEval {
         .as_ref()
     }
 
-    /// C_j^(l)(s), l < n, of span k from the Taylor data at the chosen end, at the `Ddi` point
-    /// or set `s` (the end's variable).
+    /// C_j^(l)(s) for `from <= l < n` (the lower orders are left 0 for a non-rational curve;
+    /// a rational one needs them all for eq. 3.10), from a span's Taylor coefficients at the
+    /// point or set `s` (the expansion end's variable).
     #[inline]
-    fn derivs(&self, t: &Taylor, j: usize, s: Ddi, n: usize) -> [Ddi; ORDERS] {
+    fn derivs(&self, t: &Taylor, j: usize, s: Ddi, from: usize, n: usize) -> [Ddi; ORDERS] {
         let p = self.curve.degree();
-        let d = self.curve.dim();
+        let rational = self.curve.is_rational();
+        let first = if rational { 0 } else { from };
         let mut a = [Ddi::exact(0.0); ORDERS];
-        for (l, al) in a.iter_mut().enumerate().take(n) {
-            *al = horner(t.poly(p, j, l), s);
+        for (l, al) in a.iter_mut().enumerate().take(n).skip(first) {
+            *al = horner(poly(&t.coef, p, j, l), s);
         }
-        let w = self.curve.is_rational().then(|| {
+        let w = rational.then(|| {
+            let d = self.curve.dim();
             let mut w = [Ddi::exact(0.0); ORDERS];
             for (l, wl) in w.iter_mut().enumerate().take(n) {
-                *wl = horner(t.poly(p, d, l), s);
+                *wl = horner(poly(&t.coef, p, d, l), s);
             }
             w
         });
@@ -252,7 +260,7 @@ impl TightEval {
     fn ddi_at(&self, j: usize, k: usize, u: f64) -> Ddi {
         let (right, s) = self.side(k, u);
         match self.taylor(k, right) {
-            Some(t) => self.derivs(t, j, s, 1)[0],
+            Some(t) => self.derivs(t, j, s, 0, 1)[0],
             None => Ddi::ENTIRE,
         }
     }
@@ -321,56 +329,39 @@ impl TightEval {
         }
         let kn = self.curve.knots();
         let m = (lo + 0.5 * (hi - lo)).clamp(lo, hi);
-        // H = X - m, outward rounded; contains 0.
-        let h = iv::span(
-            (iv::point(lo) - iv::point(m)).inf(),
-            (iv::point(hi) - iv::point(m)).sup(),
-        );
         if hi - lo > WIDE * (kn[k + 1] - kn[k]) {
-            return self.piece_over_generic(j, k, lo, hi, m, h);
+            return self.piece_over_generic(j, k, lo, hi, m);
         }
         let (right, sm) = self.side(k, m);
         let Some(t) = self.taylor(k, right) else {
-            return self.piece_over_generic(j, k, lo, hi, m, h);
+            return self.piece_over_generic(j, k, lo, hi, m);
         };
-        // The set of s over X: the centre sm (exact), radius >= max|u - m| = max(-h.inf, h.sup).
-        let sx = sm.widen(h.sup().max(-h.inf()));
-        let px = self.derivs(t, j, sx, 3);
-        if px.iter().any(Ddi::is_entire) {
-            return self.piece_over_generic(j, k, lo, hi, m, h);
+        // R >= max |u - m| over X; the parameter set is s in sm ± R (same for both ends, the
+        // map u -> b - u is an isometry), and h = u - m in H = 0 ± R.
+        let r = dist_up(m, lo).max(dist_up(hi, m));
+        let hset = Ddi::from_bounds(-r, r);
+        let pm = self.derivs(t, j, sm, 0, 2);
+        let c2 = self.derivs(t, j, sm.widen(r), 2, 3)[2];
+        let (cm, c1m) = (pm[0], pm[1]);
+        if cm.is_entire() || c1m.is_entire() || c2.is_entire() {
+            return self.piece_over_generic(j, k, lo, hi, m);
         }
-        let (c0x, c1x, c2x) = (
-            px[0].to_interval(),
-            px[1].to_interval(),
-            px[2].to_interval(),
-        );
+        // Mean-value form for C' itself: C'(X) ⊆ C'(m) + C''(X) H. No zero: monotone on X, and
+        // the range is exactly between C(lo) and C(hi).
+        let c1x = (c1m + c2 * hset).to_interval();
         if c1x.inf() > 0.0 || c1x.sup() < 0.0 {
-            // Monotone on X: the range is exactly [C(lo), C(hi)] (or reversed).
             let (f, g) = (self.ddi_at(j, k, lo), self.ddi_at(j, k, hi));
             if !f.is_entire() && !g.is_entire() {
                 return f.to_interval().convex_hull(g.to_interval());
             }
         }
-        let pm = self.derivs(t, j, sm, 2);
-        let (cm, c1m) = (pm[0], pm[1].to_interval());
-        if cm.is_entire() || pm[1].is_entire() {
-            return self.piece_over_generic(j, k, lo, hi, m, h);
-        }
-        // Mean-value form C'(X) h and the Taylor form, then intersected with C(X) itself.
-        let tx = taylor_term(c1m, c2x, h, c1x * h);
-        finish(cm, tx, c0x)
+        let (tl, tu) = taylor_bounds(c1m.to_interval(), c2.to_interval(), r);
+        (cm + Ddi::from_bounds(tl, tu)).to_interval()
     }
 
-    /// Wide boxes and overflow: generic interval de Boor over X (C, C', C''), Ddi at m.
-    fn piece_over_generic(
-        &self,
-        j: usize,
-        k: usize,
-        lo: f64,
-        hi: f64,
-        m: f64,
-        h: Interval,
-    ) -> Interval {
+    /// Wide boxes and overflow: generic interval de Boor over X (C, C', C''), Ddi at m; the
+    /// mean-value form and the Taylor form, intersected with the naive enclosure C(X).
+    fn piece_over_generic(&self, j: usize, k: usize, lo: f64, hi: f64, m: f64) -> Interval {
         let g = &self.generic()[j];
         let e = g.ival.derivs_in_span(k, &iv::span(lo, hi), 2);
         let (c0x, c1x, c2x) = (e[0][0], e[1][0], e[2][0]);
@@ -379,32 +370,49 @@ impl TightEval {
         if cm.is_entire() {
             return c0x;
         }
-        // Mean-value form: C(u) - C(m) = C'(xi)(u - m), xi in X; then the Taylor form.
-        let tx = taylor_term(c1m, c2x, h, c1x * h);
-        finish(cm, tx, c0x)
+        let r = dist_up(m, lo).max(dist_up(hi, m));
+        let (tl, tu) = taylor_bounds(c1m, c2x, r);
+        // Mean-value form: C(u) - C(m) = C'(xi)(u - m), xi in X.
+        let mv = c1x * iv::span(-r, r);
+        let t = iv::span(tl, tu).intersection(mv);
+        finish(cm, t, c0x)
     }
 }
 
-/// An enclosure of {C(u) - C(m) : u in X} from the second-order Taylor form
-/// `C'(m) h + C''(xi) h^2 / 2` (h = u - m in H, xi in X, c1 ∋ C'(m), c2 ∋ C''(X)), intersected
-/// with `other` (another enclosure of the same set).
+/// Bounds [L, U] of T(h) = c1 h + c2 h^2 / 2 over |h| <= r, c1 in `c1`, c2 in `c2`: the
+/// second-order Taylor remainder form C(u) - C(m) = C'(m) h + C''(xi) h^2 / 2 with c1 ∋ C'(m),
+/// c2 ∋ C''(X) (Moore 1966; Neumaier 1990 sec. 2.3). NaN/infinite input gives (-inf, inf).
 ///
-/// Completing the square on the extremal side: for fixed h the Taylor term is at most
-/// max(c1 h) + sup(c2) h^2 / 2; if sup(c2) = -κ < 0 this is at most g^2 / (2κ) with
-/// g = max(sup c1, -inf c1, 0) (maximise over h >= 0 and h <= 0 separately). Symmetrically
-/// from below if inf(c2) > 0. All in inari (outward rounded).
-fn taylor_term(c1: Interval, c2: Interval, h: Interval, other: Interval) -> Interval {
-    let mut t = (c1 * h + c2 * h.sqr() * iv::point(0.5)).intersection(other);
-    let g = iv::point(c1.sup().max(-c1.inf()).max(0.0));
+/// With G = max|c1|: |c1 h| <= G r and c2 h^2 / 2 lies in [min(inf c2, 0), max(sup c2, 0)] r^2/2.
+/// Completing the square on the extremal side: for fixed h, T <= max(c1 h) + sup(c2) h^2 / 2;
+/// if sup(c2) = -κ < 0, maximising over h >= 0 and h <= 0 separately gives T <= G^2 / (2κ)
+/// (symmetrically T >= -G^2 / (2 inf c2) if inf c2 > 0). This is what makes a box around a
+/// maximum tight even when r is not tiny: the excess is C'(m)^2 / (2|C''|), second order in the
+/// distance of m from the critical point. All arithmetic is `Ddi` (rigorous), rounded outward.
+fn taylor_bounds(c1: Interval, c2: Interval, r: f64) -> (f64, f64) {
+    let g = c1.inf().abs().max(c1.sup().abs());
+    let (c2p, c2n) = (c2.sup().max(0.0), (-c2.inf()).max(0.0));
+    if !(g.is_finite() && c2p.is_finite() && c2n.is_finite() && r.is_finite()) {
+        return (f64::NEG_INFINITY, f64::INFINITY);
+    }
+    // Upper bounds by Lemma B (ddi.rs): each `up` covers one sum of products of two f64.
+    // r is raised to >= 2^-1000 so that 0.5 r is exact.
+    let r = r.max(2f64.powi(-1000));
+    let r2h = up(r * (0.5 * r)); // >= r^2 / 2
+    let mut u = up(g * r + c2p * r2h);
+    let mut l = -up(g * r + c2n * r2h);
     if c2.sup() < 0.0 {
-        let bound = (g.sqr() / (iv::point(-c2.sup()) * iv::point(2.0))).sup();
-        t = t.intersection(iv::span(t.inf(), bound.max(t.inf())));
+        // κ = -sup(c2) = min |c2| > 0 (not max: a larger κ would give a smaller, wrong bound).
+        // q = up(0.5 up(G / κ)) >= G / (2κ) (two single-operation uses of Lemma B; no
+        // overflow of 2κ), and up(G q) >= G^2 / (2κ).
+        let q = up(0.5 * up(g / -c2.sup()));
+        u = u.min(up(g * q));
     }
     if c2.inf() > 0.0 {
-        let bound = (g.sqr() / (iv::point(c2.inf()) * iv::point(2.0))).sup();
-        t = t.intersection(iv::span((-bound).min(t.sup()), t.sup()));
+        let q = up(0.5 * up(g / c2.inf()));
+        l = l.max(-up(g * q));
     }
-    t
+    (l, u)
 }
 
 /// `C(m) + T` rounded outward once, intersected with `naive`. An empty T or result cannot
@@ -654,6 +662,40 @@ mod tests {
     }
 
     #[test]
+    fn taylor_bounds_hold_at_every_sampled_point() {
+        // T(h) = c1 h + c2 h^2 / 2 for c1, c2 at their interval ends (T is linear in both) and h
+        // on a grid plus the vertex -c1/c2: every value must lie in the bounds.
+        let mut rng = ChaCha8Rng::seed_from_u64(4);
+        for _ in 0..20000 {
+            let mut v = |s: f64| rng.random_range(-1.0..1.0) * 10f64.powf(s);
+            let (a, b) = (v(0.0), v(-3.0));
+            let c1 = iv::span(a.min(a + b), a.max(a + b));
+            let (p, q) = (v(1.0), v(-1.0));
+            let c2 = iv::span(p.min(p + q), p.max(p + q));
+            let r = v(0.0).abs();
+            let (l, u) = taylor_bounds(c1, c2, r);
+            for x in [c1.inf(), c1.sup()] {
+                for y in [c2.inf(), c2.sup()] {
+                    let mut hs: Vec<f64> =
+                        (0..=40).map(|i| -r + 2.0 * r * i as f64 / 40.0).collect();
+                    if y != 0.0 && (x / y).abs() <= r {
+                        hs.push(-x / y);
+                    }
+                    for h in hs {
+                        let t = x * h + y * h * h / 2.0;
+                        // f64 evaluation of T: allow its own rounding (relative 1e-15)
+                        let tol = 1e-15 * (x.abs() * r + y.abs() * r * r);
+                        assert!(
+                            l <= t + tol && t - tol <= u,
+                            "{c1:?} {c2:?} r={r} h={h}: {t} not in [{l}, {u}]"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
     fn huge_coordinates_and_extreme_weights_stay_sound() {
         let c = NurbsCurve::new(
             3,
@@ -680,6 +722,66 @@ mod tests {
             let o = t.coord_over(0, u, (u + 1e-3).min(1.0));
             assert!(p[0].subset(o) || !p[0].intersection(o).is_empty());
         }
+    }
+
+    /// Boxes of several widths around the critical points of random curves: containment of the
+    /// 256-bit values at sampled parameters, and the extremal side within one ulp (of the
+    /// coordinate scale) of the point value at the critical point.
+    #[cfg(feature = "mpfr")]
+    #[test]
+    fn coord_over_at_critical_points_mpfr() {
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
+        let mut worst: f64 = 0.0;
+        let mut count = 0;
+        for _ in 0..150 {
+            let c = random_curve(&mut rng, 1);
+            let t = TightEval::new(&c);
+            let f = CurveEval::<f64>::new(&c, 2);
+            let (a, b) = c.domain();
+            for i in 0..8 {
+                // f64 Newton on C' from a start point; keep it if it converged inside the span.
+                let mut u = a + (b - a) * (i as f64 + 0.5) / 8.0;
+                let k0 = c.find_span(u);
+                let (s0, s1) = (c.knots()[k0], c.knots()[k0 + 1]);
+                for _ in 0..60 {
+                    let d = f.derivs(u, 2).unwrap();
+                    u = (u - d[1][0] / d[2][0]).clamp(s0, s1);
+                }
+                let d = f.derivs(u, 2).unwrap();
+                if !(u > s0 && u < s1) || d[1][0].abs() > 1e-9 * c.coord_scale(0) {
+                    continue;
+                }
+                let scale = c.coord_scale(0);
+                let ulp = f64::EPSILON * scale;
+                let at = t.coord_at(0, u);
+                for w in [0.0, 1e-15, 1e-12, 1e-9, 1e-7] {
+                    let (lo, hi) = ((u - w).max(s0), (u + w).min(s1));
+                    let e = t.coord_over(0, lo, hi);
+                    for i in 0..=20 {
+                        let s = (lo + (hi - lo) * i as f64 / 20.0).min(hi);
+                        let x: Vec<rug::Float> = c.point(s).unwrap();
+                        assert!(
+                            e.inf() <= x[0] && x[0] <= e.sup(),
+                            "{c:?} [{lo}, {hi}]: {e:?} misses {} at {s}",
+                            x[0]
+                        );
+                    }
+                    // extremal side: a max (C'' < 0) has its top near C(u), a min its bottom
+                    let excess = if d[2][0] < 0.0 {
+                        e.sup() - at.sup()
+                    } else {
+                        at.inf() - e.inf()
+                    };
+                    if w <= 1e-9 {
+                        worst = worst.max(excess / ulp);
+                        assert!(excess <= 2.0 * ulp, "w={w}: excess {} ulps", excess / ulp);
+                    }
+                    count += 1;
+                }
+            }
+        }
+        println!("coord_over at critical points: {count} boxes, worst extremal excess {worst:.3} ulps of scale");
+        assert!(count > 100);
     }
 
     /// Against 256-bit MPFR on random curves: containment always, width <= 2 ulps of the
