@@ -33,15 +33,15 @@
 //! # Lemma B (rounding of the radius formulas)
 //!
 //! Let `T >= 0` be a real expression that is a sum of at most 8 terms, each term either a
-//! nonnegative f64, a sum of at most 4 nonnegative f64, or a product or quotient of two such sums
+//! nonnegative f64, a sum of at most 8 nonnegative f64, or a product or quotient of two such sums
 //! (a quotient's divisor a positive f64), and let `R` be its value evaluated in binary64
 //! round-to-nearest, with `R` finite. Then [`up`]`(R) = fl(fl(R * INFL) + FLOOR) >= T`, with
 //! `INFL = 1 + 2^-46`, `FLOOR = 2^-1068`.
 //!
 //! *Proof.* All quantities are nonnegative, so each rounding lowers a value by at most a factor
 //! `(1-u)` and, for a product or quotient, an absolute `eta`; no product is multiplied further.
-//! Hence `R >= T (1-u)^14 - 8 eta` (at most 3 + 1 + 7 roundings on any path, at most 8
-//! products). `y = fl(R * INFL) >= R INFL (1-u) - eta >= T (1-u)^15 (1 + 2^-46) - 9 eta
+//! Hence `R >= T (1-u)^15 - 8 eta` (at most 7 + 1 + 7 roundings on any path, at most 8
+//! products). `y = fl(R * INFL) >= R INFL (1-u) - eta >= T (1-u)^16 (1 + 2^-46) - 10 eta
 //! >= T (1 + 100u) - 10 eta` (since `2^-46 = 128u`). Case `y + FLOOR < 2^-1021`: both are
 //! multiples of `2^-1074` below `2^-1021`, so the sum is exact and `y + FLOOR >= T + 118 eta`.
 //! Otherwise `y > 2^-1022`, so `100u y >= 10 eta`, `T <= (y + 10 eta)/(1 + 100u) <= y`, and
@@ -52,7 +52,7 @@
 //! below `2^-1021` and exact, so `R = T`; otherwise `fl(R * INFL) >= R (1 + 2^-46)(1 - u) >=
 //! T (1 - u)^8 (1 + 127u) >= T`.
 
-use crate::scalar::{iv, Scalar};
+use crate::scalar::Scalar;
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -113,10 +113,12 @@ fn is_pow2(x: f64) -> bool {
     x.is_normal() && x.to_bits() & ((1u64 << 52) - 1) == 0
 }
 
-/// The next f64 below a finite x (-MAX goes to -inf).
+/// The next f64 below a finite x (-MAX goes to -inf; +inf to MAX; NaN and -inf to NaN).
 #[inline]
 fn next_down(x: f64) -> f64 {
-    if x == 0.0 {
+    if x.is_nan() || x == f64::NEG_INFINITY {
+        f64::NAN
+    } else if x == 0.0 {
         -f64::from_bits(1)
     } else if x > 0.0 {
         f64::from_bits(x.to_bits() - 1)
@@ -126,30 +128,38 @@ fn next_down(x: f64) -> f64 {
 }
 
 /// A lower f64 bound of a + b + c (a, b, c finite), as tight as round-downward when c is small
-/// against a + b, else via inari's outward-rounded addition.
+/// against a + b, else at most a few ulps below.
 ///
-/// With (s, e) = TwoSum(a, b), (d, e1) = TwoSum(e, c), (s2, e2) = TwoSum(s, d) we have exactly
-/// a + b + c = s2 + e2 + e1, and f = fl(e2 + e1) has the sign of e2 + e1 (round-to-nearest of a
-/// sum of two floats is zero only if the sum is). If f >= 0, s2 is a lower bound. If f < 0 we
-/// return the predecessor of s2, which is a lower bound if |e1 + e2| <= g, the gap below s2:
-/// e2 < 0 means s + d was rounded up to s2, so |e2| <= g/2; if e2 >= 0 then |e1 + e2| <= |e1|;
-/// and |e1| <= u|d|. We require |d| <= |s2|/4, so u|d| <= u|s2|/4 <= g/2 (g >= ulp(s2)/2 >=
-/// u|s2|/2 for normal s2; in the subnormal range all three sums are exact, e1 = e2 = 0).
+/// Tight case: with (s, e) = TwoSum(a, b), (d, e1) = TwoSum(e, c), (s2, e2) = TwoSum(s, d) we
+/// have exactly a + b + c = s2 + e2 + e1, and f = fl(e2 + e1) has the sign of e2 + e1 (round-to-
+/// nearest of a sum of two floats is zero only if the sum is). If f >= 0, s2 is a lower bound.
+/// If f < 0 we return the predecessor of s2, which is a lower bound if |e1 + e2| <= g, the gap
+/// below s2: e2 < 0 means s + d was rounded up to s2, so |e2| <= g/2; if e2 >= 0 then
+/// |e1 + e2| <= |e1|; and |e1| <= u|d|. We require |d| <= |s2|/4, so u|d| <= u|s2|/4 <= g/2
+/// (g >= ulp(s2)/2 >= u|s2|/2 for normal s2; in the subnormal range all three sums are exact,
+/// e1 = e2 = 0).
+///
+/// General case (c not small): still a + b + c = s2 + E, E = e2 + e1 exactly, and
+/// next_down(fl(E)) <= E (the predecessor of the nearest float of E is <= E), so
+/// next_down(fl(s2 + next_down(f))) <= s2 + E: about two ulps below.
+/// Non-finite intermediates give NaN, which the caller maps to ENTIRE.
 #[inline]
 fn lower_sum3(a: f64, b: f64, c: f64) -> f64 {
     let (s, e) = two_sum(a, b);
     let (d, e1) = two_sum(e, c);
     let (s2, e2) = two_sum(s, d);
     let f = e2 + e1;
-    if s2.is_finite() && f.is_finite() && d.abs() <= s2.abs() * 0.25 {
+    if !(s2.is_finite() && f.is_finite()) {
+        return f64::NAN;
+    }
+    if d.abs() <= s2.abs() * 0.25 {
         if f < 0.0 {
             next_down(s2)
         } else {
             s2
         }
     } else {
-        // General case: inari rounds every addition outward.
-        (iv::point(a) + iv::point(b) + iv::point(c)).inf()
+        next_down(s2 + next_down(f))
     }
 }
 
@@ -376,6 +386,40 @@ impl Ddi {
         }
     }
 
+    /// `self * y + c` in one step (the Horner step), more accurate and cheaper than a product
+    /// followed by a sum. Exact special case: a zero factor returns `c`.
+    ///
+    /// Centres: XY + C = xh yh + (xh yl + xl yh + xl yl) + ch + cl. With (ph, pl) =
+    /// TwoProd(xh, yh), (sh, sl) = TwoSum(ph, ch), t0 = fl(xl yl), t1 = fl(xh yl + t0),
+    /// t2 = fl(xl yh + t1), t3 = fl(pl + cl), t4 = fl(t2 + t3), t5 = fl(sl + t4),
+    /// (zh, zl) = TwoSum(sh, t5): XY + C = zh + zl up to the six roundings, each at most
+    /// U1 |t_i| (+ 2 eta for the three products/FMAs, eta for TwoProd: <= ETA16 in all).
+    /// Radii as in the product, plus rc.
+    #[inline]
+    pub fn mul_add(self, y: Ddi, c: Ddi) -> Ddi {
+        let x = self;
+        if x.is_zero() || y.is_zero() {
+            return c;
+        }
+        let (ph, pl) = two_prod(x.hi, y.hi);
+        let (sh, sl) = two_sum(ph, c.hi);
+        let t0 = x.lo * y.lo;
+        let t1 = x.hi.mul_add(y.lo, t0);
+        let t2 = x.lo.mul_add(y.hi, t1);
+        let t3 = pl + c.lo;
+        let t4 = t2 + t3;
+        let t5 = sl + t4;
+        let (zh, zl) = two_sum(sh, t5);
+        // Six terms; products of two sums of at most six nonnegative f64: Lemma B.
+        let r = (x.hi.abs() + x.lo.abs()) * y.rad
+            + (y.hi.abs() + y.lo.abs()) * x.rad
+            + x.rad * y.rad
+            + c.rad
+            + U1 * (t0.abs() + t1.abs() + t2.abs() + t3.abs() + t4.abs() + t5.abs())
+            + ETA16;
+        Ddi::checked(zh, zl, up(r))
+    }
+
     /// A lower bound of min |y| over the set y, or `None` if the set may contain 0 (or is so
     /// close to 0 that bounding the quotient is pointless: below 2^-1000).
     ///
@@ -494,31 +538,35 @@ impl Scalar for Ddi {
         if self.is_entire() {
             return Interval::ENTIRE;
         }
-        // Fast path. S = |lo| + rad; fl(S) >= S (1 - u) (no underflow error in an addition), so
-        // fl(S) <= |hi| 2^-55 (exact: |hi| >= 2^-960) gives S < |hi| 2^-54, which is less than
-        // the gap from hi to either float neighbour (>= ulp(hi)/2 > |hi| 2^-54). So the exact
-        // ends hi + (lo -+ rad) lie strictly between the neighbours of hi, and which side of hi
-        // they are on is the sign of fl(lo -+ rad) (exact sign: a rounded difference of two
-        // floats is 0 only if they are equal).
-        let a = self.hi.abs();
-        if (2f64.powi(-960)..=f64::MAX / 2.0).contains(&a)
-            && self.lo.abs() + self.rad <= a * 2f64.powi(-55)
-        {
-            let lo = if self.lo - self.rad < 0.0 {
-                next_down(self.hi)
+        // Fast path, per end. Lower end v = hi + t with t = lo - rad exactly. RN(lo - rad)
+        // has the sign of t (a rounded difference of two floats is 0 only if they are equal):
+        // if t >= 0, hi <= v is the lower bound. Else, with g = hi - next_down(hi) (exact:
+        // neighbours), |t| <= |fl(t)| / (1 - u) <= fl(|fl(t)| (1 + 2^-50)) (no underflow error:
+        // a tiny difference is exact), so if that is <= g then next_down(hi) <= v. Otherwise
+        // (large radius) the general lower_sum3. The upper end is symmetric.
+        let (h, l, r) = (self.hi, self.lo, self.rad);
+        let t = l - r;
+        let lo = if t >= 0.0 {
+            h
+        } else {
+            let below = next_down(h);
+            if -t * (1.0 + 1.0 / 1_125_899_906_842_624.0) <= h - below {
+                below
             } else {
-                self.hi
-            };
-            let hi = if self.lo + self.rad > 0.0 {
-                -next_down(-self.hi)
+                lower_sum3(h, l, -r)
+            }
+        };
+        let t = l + r;
+        let hi = if t <= 0.0 {
+            h
+        } else {
+            let above = -next_down(-h);
+            if t * (1.0 + 1.0 / 1_125_899_906_842_624.0) <= above - h {
+                above
             } else {
-                self.hi
-            };
-            return Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE);
-        }
-        let lo = lower_sum3(self.hi, self.lo, -self.rad);
-        // RU(v) = -RD(-v); negation is exact.
-        let hi = -lower_sum3(-self.hi, -self.lo, -self.rad);
+                -lower_sum3(-h, -l, -r)
+            }
+        };
         Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
     }
 
@@ -684,6 +732,38 @@ mod tests {
         }
     }
 
+    /// `to_interval` of sets with every radius size (tight path and general path) contains the
+    /// exact ends, computed in MPFR; the general path is at most a few ulps loose.
+    #[cfg(feature = "mpfr")]
+    #[test]
+    fn to_interval_contains_exact_ends() {
+        use rug::Float;
+        let mut rng = ChaCha8Rng::seed_from_u64(21);
+        for _ in 0..50000 {
+            let h = rnd(&mut rng, 300);
+            let l = h * rnd(&mut rng, 2) * 1e-17;
+            let r = (h * 10f64.powf(rng.random_range(-40.0..2.0))).abs();
+            let d = Ddi::new(h, l, r);
+            let i = d.to_interval();
+            let c = Float::with_val(1200, d.hi()) + d.lo();
+            let (lo, hi) = (c.clone() - d.rad(), c + d.rad());
+            assert!(i.inf() <= lo && hi <= i.sup(), "{d:?} -> {i:?}");
+            // at most 4 ulps beyond the exact ends (the general path is about 2)
+            let (a, b) = (
+                lo.to_f64_round(rug::float::Round::Down),
+                hi.to_f64_round(rug::float::Round::Up),
+            );
+            assert!(
+                a.to_bits().abs_diff(i.inf().to_bits()) <= 4 || a.signum() != i.inf().signum(),
+                "{d:?}"
+            );
+            assert!(
+                b.to_bits().abs_diff(i.sup().to_bits()) <= 4 || b.signum() != i.sup().signum(),
+                "{d:?}"
+            );
+        }
+    }
+
     /// Containment against 256-bit MPFR at the centre and both ends of every operand.
     #[cfg(feature = "mpfr")]
     #[test]
@@ -705,7 +785,21 @@ mod tests {
         for _ in 0..20000 {
             let x = rnd_ddi(&mut rng, 60);
             let y = rnd_ddi(&mut rng, 60);
+            let w = rnd_ddi(&mut rng, 60);
             let (ex, ey) = (ends(&x), ends(&y));
+            // x * y + w at every corner and the centre of w as well
+            let fma = x.mul_add(y, w);
+            for a in &ex {
+                for b in &ey {
+                    for c in ends(&w) {
+                        let v = Float::with_val(prec, a * b) + c;
+                        assert!(
+                            inside(&fma, &v),
+                            "mul_add: {x:?} {y:?} {w:?} -> {fma:?} misses {v}"
+                        );
+                    }
+                }
+            }
             for (op, z) in [(0, x + y), (1, x - y), (2, x * y), (3, x / y)] {
                 for a in &ex {
                     for b in &ey {

@@ -79,32 +79,33 @@ pub struct TightEval {
     generic: OnceLock<Vec<CoordEval>>,
 }
 
-/// Horner's rule (an empty polynomial is 0); used on `Ddi` and on intervals.
+/// Horner's rule in `Ddi` with the fused step [`Ddi::mul_add`] (an empty polynomial is 0).
 #[inline]
-fn horner<S: Scalar + Copy>(c: &[S], s: S) -> S {
+fn horner(c: &[Ddi], s: Ddi) -> Ddi {
     match c.split_last() {
-        None => S::zero(),
-        Some((&last, rest)) => rest.iter().rev().fold(last, |acc, &ck| acc * s + ck),
+        None => Ddi::exact(0.0),
+        Some((&last, rest)) => rest.iter().rev().fold(last, |acc, &ck| acc.mul_add(s, ck)),
     }
 }
 
-/// C, C', C'' from homogeneous values (rational: thesis eq. 3.10 for orders 0..=2).
+/// C, C', C'' from homogeneous values (rational: thesis eq. 3.10 for orders 0..=2) in `Ddi`.
 /// `a[l]`, `w[l]` are the l-th derivatives of the coordinate row and the weight row; only the
-/// first `n` orders are computed (n <= 3).
+/// first `n` orders are computed (n <= 3). For n > 1 the reciprocal 1/w is formed once and
+/// multiplied (one division instead of n; every step is an enclosure, so this stays sound).
 #[inline]
-fn rational_derivs<S: Scalar + Copy>(
-    a: [S; ORDERS],
-    w: Option<[S; ORDERS]>,
-    n: usize,
-) -> [S; ORDERS] {
+fn rational_derivs(a: [Ddi; ORDERS], w: Option<[Ddi; ORDERS]>, n: usize) -> [Ddi; ORDERS] {
     let Some(w) = w else { return a };
-    let mut c = [S::zero(); ORDERS];
-    c[0] = a[0] / w[0];
-    if n > 1 {
-        c[1] = (a[1] - w[1] * c[0]) / w[0];
+    let mut c = [Ddi::exact(0.0); ORDERS];
+    if n <= 1 {
+        c[0] = a[0] / w[0];
+        return c;
     }
+    let inv = Ddi::exact(1.0) / w[0];
+    c[0] = a[0] * inv;
+    c[1] = (-w[1]).mul_add(c[0], a[1]) * inv;
     if n > 2 {
-        c[2] = (a[2] - S::from_f64(2.0) * w[1] * c[1] - w[2] * c[0]) / w[0];
+        let t = (-w[2]).mul_add(c[0], a[2]);
+        c[2] = (Ddi::exact(-2.0) * w[1]).mul_add(c[1], t) * inv;
     }
     c
 }
