@@ -8,9 +8,9 @@ use std::hint::black_box;
 use std::time::Instant;
 
 fn time<F: FnMut() -> f64>(name: &str, n: usize, mut f: F) -> f64 {
-    // TIGHT_SPEED=<substring> runs only the matching cases (for profiling).
+    // TIGHT_SPEED=<prefix> runs only the matching cases (for profiling).
     if let Ok(sel) = std::env::var("TIGHT_SPEED") {
-        if !name.contains(sel.as_str()) {
+        if !name.starts_with(sel.as_str()) {
             return 0.0;
         }
     }
@@ -61,6 +61,14 @@ fn main() {
         let t = TightEval::new(black_box(&c));
         t.curve().degree() as f64
     });
+    time(
+        "new + coord_over (cold: builds the span data)",
+        n / 10,
+        || {
+            let t = TightEval::new(black_box(&c));
+            t.coord_over(1, ustar - 1e-12, ustar + 1e-12).sup()
+        },
+    );
     let t = TightEval::new(&c);
     time("coord_at", n, || t.coord_at(1, black_box(0.3)).sup());
     time("coord_over (1e-12 box at a max)", n, || {

@@ -263,6 +263,13 @@ impl Ddi {
         self.rad
     }
 
+    /// An upper bound of |x| over the set (inf for ENTIRE).
+    #[inline]
+    pub fn abs_upper(&self) -> f64 {
+        // A sum of three nonnegative f64: Lemma B (up_sum).
+        up_sum(self.hi.abs() + self.lo.abs() + self.rad)
+    }
+
     /// Whether this is the set of all reals.
     #[inline]
     pub fn is_entire(&self) -> bool {
@@ -427,7 +434,7 @@ impl Ddi {
     /// computed as d = fl(D) <= D (1 + u) (a subtraction is exact near the underflow range), and
     /// fl(d (1 - 2^-50)) <= D (1 + u)^2 (1 - 2^-50) < D for d >= 2^-1000 (no underflow).
     #[inline]
-    fn abs_lower(y: Ddi) -> Option<f64> {
+    pub(crate) fn abs_lower(y: Ddi) -> Option<f64> {
         let s = up_sum(y.lo.abs() + y.rad);
         let d = y.hi.abs() - s;
         if d >= 9.332_636_185_032_189e-302 {

@@ -125,6 +125,31 @@ impl Taylor {
     /// derivative sign `sign` (+1 left, -1 right). `None` if anything overflowed.
     fn from_bezier(q: &[Ddi], p: usize, h: usize, len: Ddi, sign: f64) -> Option<Taylor> {
         let n = p + 1;
+        // scale[k] = binom(p, k) / len^k, with 1/len formed once (exact for a power of two).
+        // The binomials are exact integers in f64 for p <= 55 (binom(55, 27) < 2^53); beyond
+        // that they are formed in Ddi (enclosures).
+        let inv = Ddi::exact(1.0) / len;
+        let mut scale = Vec::with_capacity(n);
+        let mut invk = Ddi::exact(1.0);
+        let mut binom_int: u64 = 1;
+        let mut binom_ddi = Ddi::exact(1.0);
+        for k in 0..=p {
+            if k > 0 {
+                invk = invk * inv;
+                if p <= 55 {
+                    // binom(p, k) = binom(p, k-1) (p - k + 1) / k, exact in u64 (< 2^59)
+                    binom_int = binom_int * (p - k + 1) as u64 / k as u64;
+                } else {
+                    binom_ddi = binom_ddi * Ddi::exact((p - k + 1) as f64) / Ddi::exact(k as f64);
+                }
+            }
+            let b = if p <= 55 {
+                Ddi::exact(binom_int as f64)
+            } else {
+                binom_ddi
+            };
+            scale.push(b * invk);
+        }
         let mut coef = vec![Ddi::exact(0.0); h * ORDERS * n];
         let mut d = vec![Ddi::exact(0.0); n];
         for r in 0..h {
@@ -137,16 +162,9 @@ impl Taylor {
                     d[i] = d[i] - d[i - 1];
                 }
             }
-            // c_k = binom(p, k) Δ^k Q_0 / len^k (binomials formed in Ddi, so always exact or
-            // enclosed).
-            let mut binom = Ddi::exact(1.0);
-            let mut lenk = Ddi::exact(1.0);
+            // c_k = binom(p, k) Δ^k Q_0 / len^k = Δ^k Q_0 * scale[k].
             for k in 0..=p {
-                if k > 0 {
-                    binom = binom * Ddi::exact((p - k + 1) as f64) / Ddi::exact(k as f64);
-                    lenk = lenk * len;
-                }
-                coef[r * ORDERS * n + k] = binom * d[k] / lenk;
+                coef[r * ORDERS * n + k] = d[k] * scale[k];
             }
             // Order l: c^(l)_k = c_{k+l} (k+1) ... (k+l) sign^l.
             for l in 1..ORDERS.min(p + 1) {
@@ -272,6 +290,9 @@ impl TightEval {
     /// ulp wide, except after overflow (then it is what interval de Boor gives, possibly
     /// ENTIRE — never wrong).
     pub fn coord_at(&self, j: usize, u: f64) -> Interval {
+        if !u.is_finite() {
+            return Interval::ENTIRE; // no value to enclose; the safe answer
+        }
         let k = self.curve.find_span(u);
         let v = self.ddi_at(j, k, u);
         if !v.is_entire() {
@@ -303,17 +324,25 @@ impl TightEval {
         if a.is_nan() || b.is_nan() || a > b {
             return Interval::EMPTY;
         }
-        // Common case without allocation: [a, b] inside one span of the domain.
         let (d0, d1) = self.curve.domain();
-        if a >= d0 && b <= d1 {
-            let k = self.curve.find_span(a);
-            if b <= self.curve.knots()[k + 1] {
-                return self.piece_over(j, k, a, b);
-            }
-        }
-        let mut acc = Interval::EMPTY;
-        for (k, lo, hi) in self.curve.spans_straddled(a, b) {
-            acc = acc.convex_hull(self.piece_over(j, k, lo, hi));
+        let kn = self.curve.knots();
+        // Common case without allocation: [a, b] inside one span of the domain.
+        let k = self.curve.find_span(a);
+        let mut acc = if a >= d0 && b <= d1 && b <= kn[k + 1] {
+            self.piece_over(j, k, a, b)
+        } else {
+            self.curve
+                .spans_straddled(a, b)
+                .into_iter()
+                .fold(Interval::EMPTY, |acc, (k, lo, hi)| {
+                    acc.convex_hull(self.piece_over(j, k, lo, hi))
+                })
+        };
+        // If b is an interior knot, C(b) is the value of the next piece (right-continuous basis
+        // functions); at a knot of multiplicity p + 1 that differs from the left piece's limit,
+        // which is all the pieces above cover. Add it (exact point value).
+        if a < b && b > d0 && b < d1 && kn[kn.partition_point(|&x| x < b)] == b {
+            acc = acc.convex_hull(self.coord_at(j, b));
         }
         acc
     }
@@ -349,14 +378,13 @@ impl TightEval {
         }
         // Mean-value form for C' itself: C'(X) ⊆ C'(m) + C''(X) H. No zero: monotone on X, and
         // the range is exactly between C(lo) and C(hi).
-        let c1x = (c1m + c2 * hset).to_interval();
-        if c1x.inf() > 0.0 || c1x.sup() < 0.0 {
+        if Ddi::abs_lower(c2.mul_add(hset, c1m)).is_some() {
             let (f, g) = (self.ddi_at(j, k, lo), self.ddi_at(j, k, hi));
             if !f.is_entire() && !g.is_entire() {
                 return f.to_interval().convex_hull(g.to_interval());
             }
         }
-        let (tl, tu) = taylor_bounds(c1m.to_interval(), c2.to_interval(), r);
+        let (tl, tu) = taylor_bounds(c1m.abs_upper(), c2.to_interval(), r);
         (cm + Ddi::from_bounds(tl, tu)).to_interval()
     }
 
@@ -372,7 +400,8 @@ impl TightEval {
             return c0x;
         }
         let r = dist_up(m, lo).max(dist_up(hi, m));
-        let (tl, tu) = taylor_bounds(c1m, c2x, r);
+        let g = c1m.inf().abs().max(c1m.sup().abs());
+        let (tl, tu) = taylor_bounds(g, c2x, r);
         // Mean-value form: C(u) - C(m) = C'(xi)(u - m), xi in X.
         let mv = c1x * iv::span(-r, r);
         let t = iv::span(tl, tu).intersection(mv);
@@ -380,18 +409,17 @@ impl TightEval {
     }
 }
 
-/// Bounds [L, U] of T(h) = c1 h + c2 h^2 / 2 over |h| <= r, c1 in `c1`, c2 in `c2`: the
+/// Bounds [L, U] of T(h) = c1 h + c2 h^2 / 2 over |h| <= r, |c1| <= `g`, c2 in `c2`: the
 /// second-order Taylor remainder form C(u) - C(m) = C'(m) h + C''(xi) h^2 / 2 with c1 ∋ C'(m),
 /// c2 ∋ C''(X) (Moore 1966; Neumaier 1990 sec. 2.3). NaN/infinite input gives (-inf, inf).
 ///
-/// With G = max|c1|: |c1 h| <= G r and c2 h^2 / 2 lies in [min(inf c2, 0), max(sup c2, 0)] r^2/2.
+/// With G = g >= max|c1|: |c1 h| <= G r and c2 h^2 / 2 lies in [min(inf c2, 0), max(sup c2, 0)] r^2/2.
 /// Completing the square on the extremal side: for fixed h, T <= max(c1 h) + sup(c2) h^2 / 2;
 /// if sup(c2) = -κ < 0, maximising over h >= 0 and h <= 0 separately gives T <= G^2 / (2κ)
 /// (symmetrically T >= -G^2 / (2 inf c2) if inf c2 > 0). This is what makes a box around a
 /// maximum tight even when r is not tiny: the excess is C'(m)^2 / (2|C''|), second order in the
 /// distance of m from the critical point. All arithmetic is `Ddi` (rigorous), rounded outward.
-fn taylor_bounds(c1: Interval, c2: Interval, r: f64) -> (f64, f64) {
-    let g = c1.inf().abs().max(c1.sup().abs());
+fn taylor_bounds(g: f64, c2: Interval, r: f64) -> (f64, f64) {
     let (c2p, c2n) = (c2.sup().max(0.0), (-c2.inf()).max(0.0));
     if !(g.is_finite() && c2p.is_finite() && c2n.is_finite() && r.is_finite()) {
         return (f64::NEG_INFINITY, f64::INFINITY);
@@ -663,9 +691,34 @@ mod tests {
     }
 
     #[test]
+    fn discontinuous_curve_boxes_contain_both_sides() {
+        // Interior knot of multiplicity p + 1 = 3: a jump at u = 0.5 from P2 to P3.
+        let c = NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 0.5, 0.5, 0.5, 1., 1., 1.],
+            vec![vec![0.], vec![1.], vec![1.], vec![5.], vec![6.], vec![7.]],
+            None,
+        )
+        .unwrap();
+        let t = TightEval::new(&c);
+        assert_eq!(t.coord_at(0, 0.5), iv::point(5.0));
+        for (a, b) in [(0.4, 0.5), (0.5 - 1e-12, 0.5), (0.45, 0.55), (0.5, 0.6)] {
+            let e = t.coord_over(0, a, b);
+            assert!(e.contains(5.0), "[{a}, {b}]: {e:?}");
+            if a < 0.5 {
+                // the left piece approaches 1 (not attained at u = 0.5, but enclosed)
+                assert!(
+                    e.inf() <= 1.0 - 0.0 && e.sup() >= 1.0 - 1e-9,
+                    "[{a}, {b}]: {e:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
     fn taylor_bounds_hold_at_every_sampled_point() {
-        // T(h) = c1 h + c2 h^2 / 2 for c1, c2 at their interval ends (T is linear in both) and h
-        // on a grid plus the vertex -c1/c2: every value must lie in the bounds.
+        // T(h) = c1 h + c2 h^2 / 2 for |c1| <= g and c2 at the ends (T is linear in both) and
+        // h on a grid plus the vertex -c1/c2: every value must lie in the bounds.
         let mut rng = ChaCha8Rng::seed_from_u64(4);
         for _ in 0..20000 {
             let mut v = |s: f64| rng.random_range(-1.0..1.0) * 10f64.powf(s);
@@ -674,8 +727,9 @@ mod tests {
             let (p, q) = (v(1.0), v(-1.0));
             let c2 = iv::span(p.min(p + q), p.max(p + q));
             let r = v(0.0).abs();
-            let (l, u) = taylor_bounds(c1, c2, r);
-            for x in [c1.inf(), c1.sup()] {
+            let g = c1.inf().abs().max(c1.sup().abs());
+            let (l, u) = taylor_bounds(g, c2, r);
+            for x in [c1.inf(), c1.sup(), -g, g] {
                 for y in [c2.inf(), c2.sup()] {
                     let mut hs: Vec<f64> =
                         (0..=40).map(|i| -r + 2.0 * r * i as f64 / 40.0).collect();
