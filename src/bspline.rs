@@ -77,33 +77,116 @@ impl<S: Scalar> HSpline<S> {
     /// de Boor corner cutting on span `k` (thesis CurvePntByCornerCut / NURBS Book A5.1-style
     /// triangle), all homogeneous rows, written into `out` (`hdim` values).
     ///
-    /// Each step is the convex combination written as alpha*(R1 - R2) + R2 (thesis sec. 5.1),
-    /// which in interval arithmetic overestimates less than alpha*R1 + (1 - alpha)*R2.
-    /// The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0, so never zero.
+    /// This is [`HSpline::de_boor_column`] run to the end (a column of one point); both use the
+    /// single level step [`HSpline::corner_cut_level`].
     /// For an interval `u` inside [u_k, u_{k+1}] the result encloses the curve over all of `u`
     /// (the polynomial piece is the same there; inclusion isotonicity of interval arithmetic).
     pub fn eval_span(&self, k: usize, u: &S, out: &mut Vec<S>) {
+        self.de_boor_into(k, u, 1, out);
+    }
+
+    /// The de Boor scheme on span `k` stopped early (seed 002, sec. 3.1, method `de_boor(t,
+    /// stop)`): the corner cutting runs until a column holds only `stop` points, and that column
+    /// d^r_{k-p+r} .. d^r_k (r = p + 1 - stop) is returned, row-major, `hdim` values per point.
+    ///
+    /// `stop = p + 1` returns the control points of the span, `stop = 1` the curve point, and
+    /// `stop = 2` the two points whose difference is the tangent direction (thesis listing
+    /// `tang`, lines 2418-2442). `stop` is clamped to `1..=p + 1`.
+    /// The same enclosure property as [`HSpline::eval_span`] holds for interval `u`: each
+    /// intermediate point is a polynomial in u over the span.
+    pub fn de_boor_column(&self, k: usize, u: &S, stop: usize) -> Vec<S> {
+        let mut out = Vec::new();
+        self.de_boor_into(k, u, stop, &mut out);
+        out
+    }
+
+    /// Shared body of [`HSpline::eval_span`] and [`HSpline::de_boor_column`].
+    fn de_boor_into(&self, k: usize, u: &S, stop: usize, out: &mut Vec<S>) {
         let p = self.degree;
         let h = self.hdim();
+        let levels = p + 1 - stop.clamp(1, p + 1);
         out.clear();
         out.extend_from_slice(&self.pts[(k - p) * h..(k + 1) * h]);
+        for r in 1..=levels {
+            self.corner_cut_level(k, r, u, out);
+        }
+        out.drain(..levels * h);
+    }
+
+    /// One level r (1 <= r <= p) of de Boor corner cutting on span `k`, in place on the
+    /// triangle buffer `col` of p + 1 homogeneous points: position j (r <= j <= p, point index
+    /// i = k - p + j) becomes d^r_i = alpha (d^{r-1}_i - d^{r-1}_{i-1}) + d^{r-1}_{i-1} with
+    /// alpha = (u - u_i) / (u_{i+p+1-r} - u_i) (seed 002 eq. for alpha_j^k; NURBS Book A5.1
+    /// triangle). Positions below r are left as they were.
+    ///
+    /// The convex combination is [`Scalar::lerp`] (thesis sec. 5.1 form, intersected with the
+    /// convex form for intervals). The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0.
+    pub fn corner_cut_level(&self, k: usize, r: usize, u: &S, col: &mut [S]) {
+        corner_cut_level(&self.knots, self.degree, k, r, u, self.hdim(), col);
+    }
+
+    /// Point and first derivative (Cartesian, `dim` values each) on span `k` by corner cutting,
+    /// without derivative control points (thesis listing `tang`, lines 2406-2442, made exact):
+    /// the de Boor column with two points R0, R1 gives the homogeneous derivative
+    /// A'(u) = p (R1 - R0) / (u_{k+1} - u_k) (blossoming; Farin, Curves and Surfaces, sec. on
+    /// derivatives of B-splines), the last level gives the point A(u). For a rational curve
+    /// C = A/w and C' = (A' - w' C) / w (thesis eq. 3.10 with k = 1).
+    ///
+    /// For degree 0 the derivative is 0. For an interval `u` inside the closed span both results
+    /// enclose the exact values over all of `u` (every step is a rational function evaluated in
+    /// interval arithmetic).
+    pub fn tangent_span(&self, k: usize, u: &S) -> (Vec<S>, Vec<S>) {
+        let p = self.degree;
+        let h = self.hdim();
+        let d = self.dim;
         if p == 0 {
-            return;
+            let pt = self.pts[k * h..(k + 1) * h].to_vec();
+            return (
+                crate::eval::project(pt, d, self.rational),
+                vec![S::zero(); d],
+            );
         }
-        // alpha for level r, position j (i = k - p + j): (u - u_i) / (u_{i+p+1-r} - u_i)
-        for r in 1..=p {
-            for j in (r..=p).rev() {
-                let i = k - p + j;
-                let a = (u.clone() - S::from_f64(self.knots[i]))
-                    / (S::from_f64(self.knots[i + p + 1 - r]) - S::from_f64(self.knots[i]));
-                for c in 0..h {
-                    let hi = out[j * h + c].clone();
-                    let lo = out[(j - 1) * h + c].clone();
-                    out[j * h + c] = a.clone() * (hi - lo.clone()) + lo;
-                }
-            }
+        let two = self.de_boor_column(k, u, 2);
+        let f = S::from_usize(p) / (S::from_f64(self.knots[k + 1]) - S::from_f64(self.knots[k]));
+        let dh: Vec<S> = (0..h)
+            .map(|c| f.clone() * (two[h + c].clone() - two[c].clone()))
+            .collect();
+        // The last level, on the two-point column placed at positions p-1, p of a triangle.
+        let mut col = vec![S::zero(); (p - 1) * h];
+        col.extend(two);
+        self.corner_cut_level(k, p, u, &mut col);
+        let ph = col[p * h..].to_vec();
+        if !self.rational {
+            return (ph, dh);
         }
-        out.drain(..p * h);
+        let w = ph[d].clone();
+        let wd = dh[d].clone();
+        let pt: Vec<S> = ph[..d].iter().map(|x| x.clone() / w.clone()).collect();
+        let der = (0..d)
+            .map(|j| (dh[j].clone() - wd.clone() * pt[j].clone()) / w.clone())
+            .collect();
+        (pt, der)
+    }
+
+    /// Like [`HSpline::eval_span`] but only for the homogeneous rows listed in `rows` (e.g. one
+    /// coordinate and the weight row), without allocating once `buf` has grown: the values are
+    /// returned as the slice `buf[p * rows.len()..]`, in the order of `rows`.
+    pub fn eval_span_rows<'b>(
+        &self,
+        k: usize,
+        u: &S,
+        rows: &[usize],
+        buf: &'b mut Vec<S>,
+    ) -> &'b [S] {
+        let p = self.degree;
+        let h = self.hdim();
+        let nr = rows.len();
+        buf.clear();
+        for i in k - p..=k {
+            buf.extend(rows.iter().map(|&r| self.pts[i * h + r].clone()));
+        }
+        corner_cut(&self.knots, p, k, u, nr, buf);
+        &buf[p * nr..]
     }
 
     /// Evaluate at an f64 parameter (span found exactly).
@@ -239,30 +322,22 @@ impl<S: Scalar> BezierSeg<S> {
         self.dim + self.rational as usize
     }
 
-    /// de Casteljau evaluation at local t (seed 004; all rows), convex combinations in the
-    /// a*(R1-R2)+R2 form.
+    /// de Casteljau evaluation at local t (seed 004; all rows): the first point of the right
+    /// half of the split at t.
     pub fn eval_local(&self, t: &S) -> Vec<S> {
         let h = self.hdim();
-        let mut b = self.pts.clone();
-        for r in 1..=self.degree {
-            for i in 0..=self.degree - r {
-                for c in 0..h {
-                    let lo = b[i * h + c].clone();
-                    let hi = b[(i + 1) * h + c].clone();
-                    b[i * h + c] = t.clone() * (hi - lo.clone()) + lo;
-                }
-            }
-        }
-        b.truncate(h);
-        b
+        let (_, mut right) = self.split_points(t);
+        right.truncate(h);
+        right
     }
 
-    /// de Casteljau split at local t into the segments over [0, t] and [t, 1]. For intervals
-    /// both halves enclose the exact halves (each new point is a polynomial in the old ones).
-    pub fn split(&self, t: f64) -> (BezierSeg<S>, BezierSeg<S>) {
+    /// de Casteljau subdivision (seed 004) at local t: the control points of the halves over
+    /// [0, t] and [t, 1]. Convex combinations in the a*(R1-R2)+R2 form. For intervals (also an
+    /// interval t) both halves enclose the exact halves for every real t in `t` (each new point
+    /// is a polynomial in t and the old points; inclusion isotonicity).
+    pub fn split_points(&self, t: &S) -> (Vec<S>, Vec<S>) {
         let h = self.hdim();
         let p = self.degree;
-        let ts = S::from_f64(t);
         let mut b = self.pts.clone();
         let mut left = Vec::with_capacity(b.len());
         let mut right = vec![S::zero(); b.len()];
@@ -273,31 +348,60 @@ impl<S: Scalar> BezierSeg<S> {
                 for c in 0..h {
                     let lo = b[i * h + c].clone();
                     let hi = b[(i + 1) * h + c].clone();
-                    b[i * h + c] = ts.clone() * (hi - lo.clone()) + lo;
+                    b[i * h + c] = S::lerp(t, &lo, &hi);
                 }
             }
             left.extend_from_slice(&b[0..h]);
             right[(p - r) * h..(p - r + 1) * h].clone_from_slice(&b[(p - r) * h..(p - r + 1) * h]);
         }
+        (left, right)
+    }
+
+    /// de Casteljau split at local t into the segments over [0, t] and [t, 1] (the parameter
+    /// bounds a, b of the halves are f64 approximations of the split point).
+    pub fn split(&self, t: f64) -> (BezierSeg<S>, BezierSeg<S>) {
+        let (left, right) = self.split_points(&S::from_f64(t));
         let m = self.a + t * (self.b - self.a);
         (
             BezierSeg {
-                a: self.a,
                 b: m,
-                degree: p,
-                dim: self.dim,
-                rational: self.rational,
                 pts: left,
+                ..self.clone_meta()
             },
             BezierSeg {
                 a: m,
-                b: self.b,
-                degree: p,
-                dim: self.dim,
-                rational: self.rational,
                 pts: right,
+                ..self.clone_meta()
             },
         )
+    }
+
+    /// The one-coordinate segment of Cartesian coordinate j: rows (w P_j, w), or (P_j).
+    pub fn coord(&self, j: usize) -> BezierSeg<S> {
+        let h = self.hdim();
+        let mut pts = Vec::with_capacity((self.degree + 1) * (1 + self.rational as usize));
+        for c in self.pts.chunks(h) {
+            pts.push(c[j].clone());
+            if self.rational {
+                pts.push(c[self.dim].clone());
+            }
+        }
+        BezierSeg {
+            dim: 1,
+            pts,
+            ..self.clone_meta()
+        }
+    }
+
+    fn clone_meta(&self) -> BezierSeg<S> {
+        BezierSeg {
+            a: self.a,
+            b: self.b,
+            degree: self.degree,
+            dim: self.dim,
+            rational: self.rational,
+            pts: Vec::new(),
+        }
     }
 }
 
@@ -360,7 +464,7 @@ fn knot_ins<S: Scalar>(
             for c in 0..h {
                 let lo = rw[i * h + c].clone();
                 let hi = rw[(i + 1) * h + c].clone();
-                rw[i * h + c] = alpha.clone() * (hi - lo.clone()) + lo;
+                rw[i * h + c] = S::lerp(&alpha, &lo, &hi);
             }
         }
         qw[l * h..(l + 1) * h].clone_from_slice(&rw[0..h]);
@@ -371,6 +475,45 @@ fn knot_ins<S: Scalar>(
         qw[i * h..(i + 1) * h].clone_from_slice(&rw[(i - l) * h..(i - l + 1) * h]);
     }
     (uq, qw)
+}
+
+/// de Boor corner cutting (thesis CurvePntByCornerCut, NURBS Book A5.1-style triangle) in place
+/// on `buf`, which holds the p + 1 local control points P_{k-p} .. P_k of span k with `h` rows
+/// each; afterwards the value at `u` is in `buf[p * h..(p + 1) * h]`.
+///
+/// Each step is the convex combination written as alpha*(R1 - R2) + R2 (thesis sec. 5.1),
+/// which in interval arithmetic overestimates less than alpha*R1 + (1 - alpha)*R2.
+/// The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0, so never zero.
+/// For an interval `u` inside [u_k, u_{k+1}] the result encloses the piece over all of `u`
+/// (the polynomial piece is the same there; inclusion isotonicity of interval arithmetic).
+pub fn corner_cut<S: Scalar>(knots: &[f64], p: usize, k: usize, u: &S, h: usize, buf: &mut [S]) {
+    for r in 1..=p {
+        corner_cut_level(knots, p, k, r, u, h, buf);
+    }
+}
+
+/// One level r of de Boor corner cutting on span k (see [`HSpline::corner_cut_level`]), on a
+/// buffer of p + 1 points with `h` rows each.
+pub fn corner_cut_level<S: Scalar>(
+    knots: &[f64],
+    p: usize,
+    k: usize,
+    r: usize,
+    u: &S,
+    h: usize,
+    col: &mut [S],
+) {
+    // alpha for level r, position j (i = k - p + j): (u - u_i) / (u_{i+p+1-r} - u_i)
+    for j in (r..=p).rev() {
+        let i = k - p + j;
+        let a = (u.clone() - S::from_f64(knots[i]))
+            / (S::from_f64(knots[i + p + 1 - r]) - S::from_f64(knots[i]));
+        for c in 0..h {
+            let hi = col[j * h + c].clone();
+            let lo = col[(j - 1) * h + c].clone();
+            col[j * h + c] = S::lerp(&a, &lo, &hi);
+        }
+    }
 }
 
 /// All non-zero basis functions N_{k-p,p}(u) .. N_{k,p}(u) on span k (NURBS Book A2.2
@@ -395,4 +538,84 @@ pub fn basis_funs<S: Scalar>(knots: &[f64], k: usize, u: &S, p: usize) -> Vec<S>
         n[j] = saved;
     }
     n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::iv;
+    use inari::Interval;
+
+    fn cubic() -> NurbsCurve {
+        NurbsCurve::new(
+            3,
+            vec![0., 0., 0., 0., 0.3, 0.7, 1., 1., 1., 1.],
+            vec![
+                vec![0., 0.],
+                vec![1., 2.],
+                vec![2., -1.],
+                vec![3., 3.],
+                vec![4., 0.],
+                vec![5., 1.],
+            ],
+            Some(vec![1., 2., 0.5, 1., 3., 1.]),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn de_boor_columns_shrink_to_the_point() {
+        let h = HSpline::<f64>::from_curve(&cubic());
+        let u = 0.45;
+        let k = h.span(u);
+        let hd = h.hdim();
+        assert_eq!(
+            h.de_boor_column(k, &u, 4),
+            h.pts[(k - 3) * hd..(k + 1) * hd].to_vec()
+        );
+        for stop in 1..=4 {
+            assert_eq!(h.de_boor_column(k, &u, stop).len(), stop * hd);
+        }
+        assert_eq!(h.de_boor_column(k, &u, 1), h.eval(u));
+        // stop beyond p + 1 is clamped
+        assert_eq!(h.de_boor_column(k, &u, 9).len(), 4 * hd);
+        // the point lies on the segment between the two points of the stop = 2 column
+        let two = h.de_boor_column(k, &u, 2);
+        let a = (u - h.knots[k]) / (h.knots[k + 1] - h.knots[k]);
+        let pt = h.eval(u);
+        for c in 0..hd {
+            assert!((two[c] + a * (two[hd + c] - two[c]) - pt[c]).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn tangent_by_corner_cutting_matches_derivative_splines() {
+        let c = cubic();
+        let hf = HSpline::<f64>::from_curve(&c);
+        let hi = HSpline::<Interval>::from_curve(&c);
+        for i in 0..=50 {
+            let u = i as f64 / 50.0;
+            let k = hf.span(u);
+            let (p, d) = hf.tangent_span(k, &u);
+            let want: Vec<f64> = c.derivative(u, 1).unwrap();
+            let wp: Vec<f64> = c.point(u).unwrap();
+            let (pi, di) = hi.tangent_span(k, &iv::point(u));
+            for j in 0..2 {
+                assert!(
+                    (d[j] - want[j]).abs() < 1e-11 * (1.0 + want[j].abs()),
+                    "u={u}"
+                );
+                assert!((p[j] - wp[j]).abs() < 1e-13);
+                assert!(di[j].contains(d[j]) && pi[j].contains(p[j]));
+            }
+        }
+        // an interval parameter inside a span encloses the samples
+        let k = hf.span(0.4);
+        let (_, di) = hi.tangent_span(k, &iv::span(0.35, 0.6));
+        for i in 0..=20 {
+            let u = 0.35 + 0.25 * i as f64 / 20.0;
+            let (_, d) = hf.tangent_span(k, &u);
+            assert!(di[0].inf() <= d[0] + 1e-12 && d[0] - 1e-12 <= di[0].sup());
+        }
+    }
 }

@@ -1,0 +1,425 @@
+//! Bézier decomposition with subdivision (issue 3, strategy 3).
+//!
+//! 1. Knot insertion turns every non-empty span into a Bézier segment, in interval arithmetic
+//!    (`HSpline<Interval>::decompose`, NURBS Book A5.6), so the coefficients enclose the exact
+//!    ones.
+//! 2. Per segment and coordinate the Cartesian Bernstein coefficients b_i = (w P_j)_i / w_i
+//!    bound the segment: min b_i <= C_j <= max b_i (convex hull property; for a rational segment
+//!    valid because all w_i > 0, so C_j is a convex combination of the ratios b_i).
+//! 3. If the largest coefficient is an end coefficient, the segment's maximum is that end value
+//!    (b_0 = C(s0), b_p = C(s1)), which is evaluated tightly at the exact f64 end parameter.
+//! 4. Otherwise the segment is subdivided: at an f64 estimate t* of the critical point (then the
+//!    outer pieces have their maximum at the end next to t*, and the tiny middle piece
+//!    [t* - d, t* + d] is bounded by a mean-value form), or by bisection when no estimate is
+//!    found. Sub-segments are defined by *exact f64* global parameters [s0, s1], and their
+//!    coefficients are recomputed from the span's segment by two de Casteljau splits with
+//!    interval local parameters (so rounding does not accumulate over the depth and the end
+//!    values are values of the curve at exact f64 parameters).
+//!
+//! Soundness: every segment that is not fully resolved contributes its coefficient bound (or a
+//! tighter verified enclosure over its parameter range); segments are dropped only when their
+//! coefficient bound is <= a value the curve provably attains.
+//!
+//! The minimum is computed as the maximum of -C_j (negation is exact).
+
+use super::{
+    BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
+};
+use crate::bspline::{BezierSeg, HSpline};
+use crate::curve::NurbsCurve;
+use crate::eval::CurveEval;
+use crate::scalar::iv;
+use crate::tight::TightEval;
+use inari::Interval;
+use std::time::Instant;
+
+/// Settings of the Bézier-subdivision strategy.
+#[derive(Debug, Clone, Copy)]
+pub struct BezierSubdivision {
+    /// Stop refining a piece when its bound exceeds a provably attained value by at most
+    /// `tol * coord_scale` (relative gap tolerance).
+    pub tol: f64,
+    /// Maximum subdivision depth per span.
+    pub max_depth: u32,
+    /// Maximum number of pieces examined per coordinate and side; the rest is bounded by
+    /// coefficient bounds (sound) and reported as [`Termination::BoxLimit`].
+    pub max_pieces: usize,
+}
+
+impl Default for BezierSubdivision {
+    fn default() -> Self {
+        BezierSubdivision {
+            tol: f64::EPSILON,
+            max_depth: 80,
+            max_pieces: 20_000,
+        }
+    }
+}
+
+impl BezierSubdivision {
+    /// Default settings with a given relative tolerance.
+    pub fn with_tol(tol: f64) -> Self {
+        BezierSubdivision {
+            tol: if tol.is_finite() && tol >= 0.0 {
+                tol
+            } else {
+                f64::EPSILON
+            },
+            ..Default::default()
+        }
+    }
+}
+
+/// Tight evaluation of one coordinate at exact parameters and over small parameter boxes
+/// ([`TightEval`]: rigorous double-double, ~1 ulp), and f64 derivatives for critical-point
+/// estimates.
+struct Values<'a> {
+    curve: &'a NurbsCurve,
+    tight: TightEval,
+    fval: CurveEval<f64>,
+}
+
+impl<'a> Values<'a> {
+    fn new(curve: &'a NurbsCurve) -> Self {
+        Values {
+            curve,
+            tight: TightEval::new(curve),
+            fval: CurveEval::new(curve, 2),
+        }
+    }
+    /// Enclosure of C_j(u) at the exact f64 u.
+    fn at(&self, j: usize, u: f64) -> Interval {
+        self.tight.coord_at(j, u)
+    }
+    /// Enclosure of C_j over [a, b].
+    fn over(&self, j: usize, a: f64, b: f64) -> Interval {
+        self.tight.coord_over(j, a, b)
+    }
+    /// f64 Newton on C_j'(u) = 0 in (a, b), started at the midpoint; None if it leaves.
+    fn critical(&self, j: usize, a: f64, b: f64) -> Option<f64> {
+        let mut u = 0.5 * (a + b);
+        for _ in 0..30 {
+            let d = self.fval.derivs_in_span(self.fval.span(u), &u, 2);
+            let (d1, d2) = (d[1][j], d[2][j]);
+            if !(d2.is_finite() && d2 != 0.0 && d1.is_finite()) {
+                return None;
+            }
+            let nu = u - d1 / d2;
+            if !(nu > a && nu < b) {
+                return None;
+            }
+            if nu == u {
+                break;
+            }
+            u = nu;
+        }
+        Some(u)
+    }
+}
+
+/// Sign-adjusted Cartesian coefficient enclosures of `seg` (one coordinate, homogeneous rows)
+/// restricted to the global parameter range [s0, s1] inside [seg.a, seg.b].
+fn sub_coeffs(seg: &BezierSeg<Interval>, s0: f64, s1: f64, sign: f64) -> Vec<Interval> {
+    let (a, b) = (seg.a, seg.b);
+    let mut pts = seg.pts.clone();
+    let tmp = BezierSeg {
+        pts: Vec::new(),
+        ..seg.clone()
+    };
+    if s1 < b {
+        // local t1 = (s1 - a) / (b - a), enclosed; left part is the curve over [a, s1]
+        let t1 = (iv::point(s1) - iv::point(a)) / (iv::point(b) - iv::point(a));
+        pts = BezierSeg { pts, ..tmp.clone() }.split_points(&t1).0;
+    }
+    if s0 > a {
+        // relative to [a, s1]: t0 = (s0 - a) / (s1 - a)
+        let t0 = (iv::point(s0) - iv::point(a)) / (iv::point(s1) - iv::point(a));
+        pts = BezierSeg { pts, ..tmp }.split_points(&t0).1;
+    }
+    let s = iv::point(sign);
+    if seg.rational {
+        pts.chunks(2).map(|c| s * (c[0] / c[1])).collect()
+    } else {
+        pts.into_iter().map(|x| s * x).collect()
+    }
+}
+
+struct Side {
+    /// largest lower end of enclosures of values the curve attains (sign-adjusted)
+    attained: f64,
+    /// upper bound so far (sign-adjusted)
+    upper: f64,
+    cands: Vec<(f64, Extremum)>,
+    stats: Stats,
+    term: Termination,
+}
+
+impl Side {
+    fn attain(&mut self, v: Interval) {
+        if v.inf() > self.attained {
+            self.attained = v.inf();
+        }
+    }
+    fn bound(&mut self, ub: f64, e: Extremum) {
+        if ub > self.upper {
+            self.upper = ub;
+        }
+        self.cands.push((ub, e));
+    }
+}
+
+impl BezierSubdivision {
+    /// Maximum of sign * C_j over the domain: (outer bound, attained value, candidates).
+    fn maximize(&self, vals: &Values, segs: &[BezierSeg<Interval>], j: usize, sign: f64) -> Side {
+        let scale = vals.curve.coord_scale(j);
+        let gap_tol = self.tol * scale;
+        let sg = iv::point(sign);
+        let mut side = Side {
+            attained: f64::NEG_INFINITY,
+            upper: f64::NEG_INFINITY,
+            cands: Vec::new(),
+            stats: Stats::default(),
+            term: Termination::Converged,
+        };
+        // Work list: (segment index, s0, s1, depth, coefficients), by decreasing bound.
+        let mut work: Vec<(usize, f64, f64, u32, Vec<Interval>)> = segs
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (i, s.a, s.b, 0, sub_coeffs(s, s.a, s.b, sign)))
+            .collect();
+        for w in &work {
+            side.attain(w.4[0]);
+            side.attain(*w.4.last().unwrap());
+        }
+        let ub = |c: &[Interval]| c.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.sup()));
+        work.sort_by(|x, y| ub(&x.4).total_cmp(&ub(&y.4)));
+        let mut pieces = 0usize;
+        while let Some((si, s0, s1, depth, co)) = work.pop() {
+            let u = ub(&co);
+            // Pruning is sound: the piece never exceeds u <= a value the curve attains.
+            if u <= side.attained {
+                continue;
+            }
+            pieces += 1;
+            let p = co.len() - 1;
+            let (e0, e1) = (co[0], co[p]);
+            side.attain(e0);
+            side.attain(e1);
+            let inner = co[1..p]
+                .iter()
+                .fold(f64::NEG_INFINITY, |m, x| m.max(x.sup()));
+            let seg_end = |s: f64, e: Interval, side: &mut Side| {
+                if e.sup() > side.attained {
+                    side.stats.point_evaluations += 1;
+                    let v = (sg * vals.at(j, s)).intersection(e);
+                    side.attain(v);
+                    side.bound(
+                        v.sup(),
+                        Extremum {
+                            u_lo: s,
+                            u_hi: s,
+                            unique: false,
+                            kind: end_kind(vals.curve, s),
+                        },
+                    );
+                }
+            };
+            if inner <= e0.inf().max(e1.inf()) {
+                // max over the piece = max(C(s0), C(s1)): both are attained values.
+                seg_end(s0, e0, &mut side);
+                seg_end(s1, e1, &mut side);
+                continue;
+            }
+            let seg = &segs[si];
+            // Half-width of the middle piece around a critical point; pieces this narrow are
+            // bounded by the mean-value form, which is then as tight as point evaluation.
+            let d = (seg.b - seg.a) * 2f64.powi(-26);
+            let close_enough = u - side.attained <= gap_tol || s1 - s0 <= 2.0 * d;
+            if close_enough || depth >= self.max_depth || pieces >= self.max_pieces {
+                if !close_enough {
+                    side.term = if depth >= self.max_depth {
+                        Termination::DepthLimit
+                    } else {
+                        Termination::BoxLimit
+                    };
+                }
+                self.finish(vals, j, sg, s0, s1, u, &mut side);
+                seg_end(s0, e0, &mut side);
+                seg_end(s1, e1, &mut side);
+                continue;
+            }
+            side.stats.subdivisions += 1;
+            let crit = vals
+                .critical(j, s0, s1)
+                .filter(|&t| t - d > s0 && t + d < s1);
+            side.stats.derivative_evaluations += 1;
+            let push = |a: f64, b: f64, work: &mut Vec<_>| {
+                let c = sub_coeffs(seg, a, b, sign);
+                work.push((si, a, b, depth + 1, c));
+            };
+            if let Some(t) = crit {
+                let (m0, m1) = (t - d, t + d);
+                let v = sg * vals.at(j, t);
+                side.stats.point_evaluations += 1;
+                side.attain(v);
+                push(s0, m0, &mut work);
+                push(m1, s1, &mut work);
+                let mid = sub_coeffs(seg, m0, m1, sign);
+                let bm = (sg * vals.over(j, m0, m1)).sup().min(ub(&mid));
+                // Accept the middle piece when its bound is as good as the point evaluation at
+                // t* itself (further splitting cannot beat the evaluation accuracy).
+                if bm - v.sup() <= gap_tol.max(4.0 * f64::EPSILON * scale) {
+                    side.bound(
+                        bm,
+                        Extremum {
+                            u_lo: m0,
+                            u_hi: m1,
+                            unique: false,
+                            kind: CandidateKind::Critical,
+                        },
+                    );
+                } else {
+                    work.push((si, m0, m1, depth + 1, mid));
+                }
+            } else {
+                let m = 0.5 * (s0 + s1);
+                if m <= s0 || m >= s1 {
+                    self.finish(vals, j, sg, s0, s1, u, &mut side);
+                    continue;
+                }
+                push(s0, m, &mut work);
+                push(m, s1, &mut work);
+            }
+        }
+        // Every piece was either bounded (<= upper) or pruned (<= attained <= max C), so
+        // max C <= max(upper, attained).
+        side.upper = side.upper.max(side.attained);
+        side
+    }
+
+    /// Bound an unresolved piece [s0, s1] by the smaller of its coefficient bound `u` and a
+    /// verified mean-value enclosure.
+    #[allow(clippy::too_many_arguments)]
+    fn finish(
+        &self,
+        vals: &Values,
+        j: usize,
+        sg: Interval,
+        s0: f64,
+        s1: f64,
+        u: f64,
+        side: &mut Side,
+    ) {
+        side.stats.point_evaluations += 1;
+        let b = (sg * vals.over(j, s0, s1)).sup().min(u);
+        side.bound(
+            b,
+            Extremum {
+                u_lo: s0,
+                u_hi: s1,
+                unique: false,
+                kind: CandidateKind::Unresolved,
+            },
+        );
+    }
+}
+
+fn end_kind(c: &NurbsCurve, s: f64) -> CandidateKind {
+    let (a, b) = c.domain();
+    if s == a || s == b {
+        CandidateKind::EndPoint
+    } else if c.non_differentiable_knots().contains(&s) {
+        CandidateKind::Knot
+    } else {
+        CandidateKind::Critical
+    }
+}
+
+impl BoxEncloser for BezierSubdivision {
+    fn name(&self) -> &'static str {
+        "bezier"
+    }
+    fn guarantee(&self) -> Guarantee {
+        Guarantee::Verified
+    }
+    fn enclose(&self, c: &NurbsCurve) -> Enclosure {
+        let t0 = Instant::now();
+        let segs = HSpline::<Interval>::from_curve(c).decompose();
+        let vals = Values::new(c);
+        let mut coords = Vec::with_capacity(c.dim());
+        for j in 0..c.dim() {
+            let t1 = Instant::now();
+            let cs: Vec<BezierSeg<Interval>> = segs.iter().map(|s| s.coord(j)).collect();
+            let hi = self.maximize(&vals, &cs, j, 1.0);
+            let lo = self.maximize(&vals, &cs, j, -1.0);
+            let pick = |s: &Side| {
+                s.cands
+                    .iter()
+                    .filter(|(v, _)| *v >= s.attained)
+                    .map(|(_, e)| *e)
+                    .collect::<Vec<_>>()
+            };
+            let mut stats = hi.stats;
+            stats.add(&lo.stats);
+            stats.subdivisions += segs.len() as u64;
+            stats.time_total = t1.elapsed();
+            let term = if hi.term != Termination::Converged {
+                hi.term
+            } else {
+                lo.term
+            };
+            coords.push(CoordBox {
+                lo: -lo.upper,
+                hi: hi.upper,
+                inner_lo: -lo.attained,
+                inner_hi: hi.attained,
+                argmin: pick(&lo),
+                argmax: pick(&hi),
+                stats,
+                termination: term,
+            });
+        }
+        let _ = t0;
+        Enclosure {
+            strategy: self.name(),
+            verified: true,
+            coords,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cubic_bezier_box_contains_samples_and_is_tight() {
+        let c = NurbsCurve::new(
+            3,
+            vec![0., 0., 0., 0., 1., 1., 1., 1.],
+            vec![vec![0., 0.], vec![1., 2.], vec![2., -1.], vec![3., 0.5]],
+            None,
+        )
+        .unwrap();
+        let e = BezierSubdivision::default().enclose(&c);
+        for i in 0..=10000 {
+            let u = i as f64 / 10000.0;
+            let p = c.enclose_point(iv::point(u)).unwrap();
+            for j in 0..2 {
+                // a containment miss is proven when the point's enclosure lies beyond a bound
+                assert!(
+                    e.coords[j].lo <= p[j].sup() && p[j].inf() <= e.coords[j].hi,
+                    "u={u} j={j} [{}, {}] vs box [{}, {}]",
+                    p[j].inf(),
+                    p[j].sup(),
+                    e.coords[j].lo,
+                    e.coords[j].hi
+                );
+            }
+        }
+        for cb in &e.coords {
+            assert!(cb.lo <= cb.inner_lo && cb.inner_hi <= cb.hi);
+            assert!(cb.gap() <= 8.0 * f64::EPSILON * 2.0, "gap {}", cb.gap());
+        }
+    }
+}
