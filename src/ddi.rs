@@ -33,15 +33,15 @@
 //! # Lemma B (rounding of the radius formulas)
 //!
 //! Let `T >= 0` be a real expression that is a sum of at most 8 terms, each term either a
-//! nonnegative f64, a sum of at most 4 nonnegative f64, or a product or quotient of two such sums
+//! nonnegative f64, a sum of at most 8 nonnegative f64, or a product or quotient of two such sums
 //! (a quotient's divisor a positive f64), and let `R` be its value evaluated in binary64
 //! round-to-nearest, with `R` finite. Then [`up`]`(R) = fl(fl(R * INFL) + FLOOR) >= T`, with
 //! `INFL = 1 + 2^-46`, `FLOOR = 2^-1068`.
 //!
 //! *Proof.* All quantities are nonnegative, so each rounding lowers a value by at most a factor
 //! `(1-u)` and, for a product or quotient, an absolute `eta`; no product is multiplied further.
-//! Hence `R >= T (1-u)^14 - 8 eta` (at most 3 + 1 + 7 roundings on any path, at most 8
-//! products). `y = fl(R * INFL) >= R INFL (1-u) - eta >= T (1-u)^15 (1 + 2^-46) - 9 eta
+//! Hence `R >= T (1-u)^15 - 8 eta` (at most 7 + 1 + 7 roundings on any path, at most 8
+//! products). `y = fl(R * INFL) >= R INFL (1-u) - eta >= T (1-u)^16 (1 + 2^-46) - 10 eta
 //! >= T (1 + 100u) - 10 eta` (since `2^-46 = 128u`). Case `y + FLOOR < 2^-1021`: both are
 //! multiples of `2^-1074` below `2^-1021`, so the sum is exact and `y + FLOOR >= T + 118 eta`.
 //! Otherwise `y > 2^-1022`, so `100u y >= 10 eta`, `T <= (y + 10 eta)/(1 + 100u) <= y`, and
@@ -52,7 +52,7 @@
 //! below `2^-1021` and exact, so `R = T`; otherwise `fl(R * INFL) >= R (1 + 2^-46)(1 - u) >=
 //! T (1 - u)^8 (1 + 127u) >= T`.
 
-use crate::scalar::{iv, Scalar};
+use crate::scalar::Scalar;
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -72,7 +72,7 @@ const TWOPROD_SAFE: f64 = 4.008_336_720_017_946e-292; // 2^-968
 
 /// Upper bound of a radius formula (Lemma B in the module docs).
 #[inline(always)]
-fn up(r: f64) -> f64 {
+pub(crate) fn up(r: f64) -> f64 {
     r * INFL + FLOOR
 }
 
@@ -80,6 +80,13 @@ fn up(r: f64) -> f64 {
 #[inline(always)]
 fn up_sum(r: f64) -> f64 {
     r * INFL
+}
+
+/// An upper bound of |a - b| for f64 a, b: RN(|a - b|) has relative error <= u and no
+/// underflow error (subtraction), so up_sum covers it (Lemma B, second part).
+#[inline]
+pub(crate) fn dist_up(a: f64, b: f64) -> f64 {
+    up_sum((a - b).abs())
 }
 
 /// TwoSum (Knuth / Møller; Handbook Alg. 4.4): s + e = a + b exactly (no overflow).
@@ -106,10 +113,12 @@ fn is_pow2(x: f64) -> bool {
     x.is_normal() && x.to_bits() & ((1u64 << 52) - 1) == 0
 }
 
-/// The next f64 below a finite x (-MAX goes to -inf).
+/// The next f64 below a finite x (-MAX goes to -inf; +inf to MAX; NaN and -inf to NaN).
 #[inline]
 fn next_down(x: f64) -> f64 {
-    if x == 0.0 {
+    if x.is_nan() || x == f64::NEG_INFINITY {
+        f64::NAN
+    } else if x == 0.0 {
         -f64::from_bits(1)
     } else if x > 0.0 {
         f64::from_bits(x.to_bits() - 1)
@@ -119,30 +128,38 @@ fn next_down(x: f64) -> f64 {
 }
 
 /// A lower f64 bound of a + b + c (a, b, c finite), as tight as round-downward when c is small
-/// against a + b, else via inari's outward-rounded addition.
+/// against a + b, else at most a few ulps below.
 ///
-/// With (s, e) = TwoSum(a, b), (d, e1) = TwoSum(e, c), (s2, e2) = TwoSum(s, d) we have exactly
-/// a + b + c = s2 + e2 + e1, and f = fl(e2 + e1) has the sign of e2 + e1 (round-to-nearest of a
-/// sum of two floats is zero only if the sum is). If f >= 0, s2 is a lower bound. If f < 0 we
-/// return the predecessor of s2, which is a lower bound if |e1 + e2| <= g, the gap below s2:
-/// e2 < 0 means s + d was rounded up to s2, so |e2| <= g/2; if e2 >= 0 then |e1 + e2| <= |e1|;
-/// and |e1| <= u|d|. We require |d| <= |s2|/4, so u|d| <= u|s2|/4 <= g/2 (g >= ulp(s2)/2 >=
-/// u|s2|/2 for normal s2; in the subnormal range all three sums are exact, e1 = e2 = 0).
+/// Tight case: with (s, e) = TwoSum(a, b), (d, e1) = TwoSum(e, c), (s2, e2) = TwoSum(s, d) we
+/// have exactly a + b + c = s2 + e2 + e1, and f = fl(e2 + e1) has the sign of e2 + e1 (round-to-
+/// nearest of a sum of two floats is zero only if the sum is). If f >= 0, s2 is a lower bound.
+/// If f < 0 we return the predecessor of s2, which is a lower bound if |e1 + e2| <= g, the gap
+/// below s2: e2 < 0 means s + d was rounded up to s2, so |e2| <= g/2; if e2 >= 0 then
+/// |e1 + e2| <= |e1|; and |e1| <= u|d|. We require |d| <= |s2|/4, so u|d| <= u|s2|/4 <= g/2
+/// (g >= ulp(s2)/2 >= u|s2|/2 for normal s2; in the subnormal range all three sums are exact,
+/// e1 = e2 = 0).
+///
+/// General case (c not small): still a + b + c = s2 + E, E = e2 + e1 exactly, and
+/// next_down(fl(E)) <= E (the predecessor of the nearest float of E is <= E), so
+/// next_down(fl(s2 + next_down(f))) <= s2 + E: about two ulps below.
+/// Non-finite intermediates give NaN, which the caller maps to ENTIRE.
 #[inline]
 fn lower_sum3(a: f64, b: f64, c: f64) -> f64 {
     let (s, e) = two_sum(a, b);
     let (d, e1) = two_sum(e, c);
     let (s2, e2) = two_sum(s, d);
     let f = e2 + e1;
-    if s2.is_finite() && f.is_finite() && d.abs() <= s2.abs() * 0.25 {
+    if !(s2.is_finite() && f.is_finite()) {
+        return f64::NAN;
+    }
+    if d.abs() <= s2.abs() * 0.25 {
         if f < 0.0 {
             next_down(s2)
         } else {
             s2
         }
     } else {
-        // General case: inari rounds every addition outward.
-        (iv::point(a) + iv::point(b) + iv::point(c)).inf()
+        next_down(s2 + next_down(f))
     }
 }
 
@@ -184,19 +201,48 @@ impl Ddi {
         Ddi::checked(h, l, rad)
     }
 
+    /// The exact difference `x - y` of two f64 (a double-word, by TwoSum).
+    #[inline]
+    pub fn diff(x: f64, y: f64) -> Ddi {
+        let (s, e) = two_sum(x, -y);
+        Ddi::checked(s, e, 0.0)
+    }
+
+    /// The same centre with the radius enlarged by `extra >= 0` (rounded upward); a negative or
+    /// NaN `extra` gives ENTIRE.
+    #[inline]
+    pub fn widen(self, extra: f64) -> Ddi {
+        if extra == 0.0 {
+            return self;
+        }
+        if extra.is_nan() || extra < 0.0 {
+            return Ddi::ENTIRE; // NaN or negative: no valid radius
+        }
+        // A sum of two nonnegative f64: Lemma B (up_sum).
+        Ddi::checked(self.hi, self.lo, up_sum(self.rad + extra))
+    }
+
     /// A `Ddi` containing the interval `x` (ENTIRE if `x` is empty or unbounded).
     pub fn from_interval(x: Interval) -> Ddi {
-        if x.is_empty() || !x.inf().is_finite() || !x.sup().is_finite() {
+        if x.is_empty() {
             return Ddi::ENTIRE;
         }
-        let (a, b) = (x.inf(), x.sup());
+        Ddi::from_bounds(x.inf(), x.sup())
+    }
+
+    /// A `Ddi` containing the real interval [a, b] (ENTIRE if a > b or either is not finite).
+    #[inline]
+    pub fn from_bounds(a: f64, b: f64) -> Ddi {
+        if !(a.is_finite() && b.is_finite() && a <= b) {
+            return Ddi::ENTIRE;
+        }
         if a == b {
             return Ddi::exact(a);
         }
-        // c in [a, b]; the distances c - a, b - c are rounded with relative error <= u (no
-        // underflow for a subtraction), so up_sum of their maximum bounds both (Lemma B).
-        let c = x.mid();
-        Ddi::checked(c, 0.0, up_sum((c - a).max(b - c)))
+        // Any c in [a, b] will do: a + (b - a)/2 rounded, clamped. The distances are bounded by
+        // dist_up (an overflowing b - a gives an infinite radius, hence ENTIRE).
+        let c = (a + 0.5 * (b - a)).clamp(a, b);
+        Ddi::checked(c, 0.0, dist_up(c, a).max(dist_up(b, c)))
     }
 
     /// High part of the centre.
@@ -215,6 +261,13 @@ impl Ddi {
     #[inline]
     pub fn rad(&self) -> f64 {
         self.rad
+    }
+
+    /// An upper bound of |x| over the set (inf for ENTIRE).
+    #[inline]
+    pub fn abs_upper(&self) -> f64 {
+        // A sum of three nonnegative f64: Lemma B (up_sum).
+        up_sum(self.hi.abs() + self.lo.abs() + self.rad)
     }
 
     /// Whether this is the set of all reals.
@@ -245,24 +298,35 @@ impl Ddi {
         }
     }
 
-    /// Sum (accurate double-word addition, Joldes, Muller, Popescu, "Tight and rigorous error
+    /// Sum. Exact cases first (a zero operand; two f64: TwoSum is error-free). Otherwise the
+    /// double-word addition "SloppyDWPlusDW" (Joldes, Muller, Popescu, "Tight and rigorous error
     /// bounds for basic building blocks of double-word arithmetic", ACM TOMS 44(2), 2017,
-    /// Alg. 6, with every Fast2Sum replaced by TwoSum so no precondition is needed). The two
-    /// plain additions `c` and `w` are the only inexact steps; their errors are computed exactly
-    /// by TwoSum and added to the radius, so an exact sum keeps radius 0.
+    /// Alg. 4; Dekker 1971 add2) with the final Fast2Sum replaced by TwoSum, and a running error
+    /// bound: only the two plain additions `v` and `w` round, each by at most U1 times its
+    /// computed value (additions have no underflow error). The bound is relative to the
+    /// operands, not to the (possibly cancelled) result: about 2^-104 max(|x|, |y|), which is
+    /// all the curve kernels need (their error budget is an ulp of the coordinate scale).
     ///
-    /// Exact sum of the centres: xh + yh + xl + yl = sh + sl + th + tl = sh + c + tl - e1
-    /// = vh + vl + tl - e1 = vh + w - e1 - e2 = zh + zl - e1 - e2.
+    /// Exact sum of the centres: xh + yh + xl + yl = sh + sl + v - e1 = sh + w - e2 - e1
+    /// = zh + zl - e1 - e2, |e1| <= U1 |v|, |e2| <= U1 |w|.
     #[inline]
     fn add_impl(x: Ddi, y: Ddi) -> Ddi {
+        if y.is_zero() {
+            return x;
+        }
+        if x.is_zero() {
+            return y;
+        }
+        if x.is_f64() && y.is_f64() {
+            let (s, e) = two_sum(x.hi, y.hi);
+            return Ddi::checked(s, e, 0.0);
+        }
         let (sh, sl) = two_sum(x.hi, y.hi);
-        let (th, tl) = two_sum(x.lo, y.lo);
-        let (c, e1) = two_sum(sl, th);
-        let (vh, vl) = two_sum(sh, c);
-        let (w, e2) = two_sum(tl, vl);
-        let (zh, zl) = two_sum(vh, w);
-        // rad >= rx + ry + |e1| + |e2|: a sum of nonnegative f64 (Lemma B, up_sum).
-        let r = up_sum(x.rad + y.rad + e1.abs() + e2.abs());
+        let v = x.lo + y.lo;
+        let w = sl + v;
+        let (zh, zl) = two_sum(sh, w);
+        // Two terms plus a product of U1 and a sum of two nonnegative f64: Lemma B.
+        let r = up(x.rad + y.rad + U1 * (v.abs() + w.abs()));
         Ddi::checked(zh, zl, r)
     }
 
@@ -329,6 +393,40 @@ impl Ddi {
         }
     }
 
+    /// `self * y + c` in one step (the Horner step), more accurate and cheaper than a product
+    /// followed by a sum. Exact special case: a zero factor returns `c`.
+    ///
+    /// Centres: XY + C = xh yh + (xh yl + xl yh + xl yl) + ch + cl. With (ph, pl) =
+    /// TwoProd(xh, yh), (sh, sl) = TwoSum(ph, ch), t0 = fl(xl yl), t1 = fl(xh yl + t0),
+    /// t2 = fl(xl yh + t1), t3 = fl(pl + cl), t4 = fl(t2 + t3), t5 = fl(sl + t4),
+    /// (zh, zl) = TwoSum(sh, t5): XY + C = zh + zl up to the six roundings, each at most
+    /// U1 |t_i| (+ 2 eta for the three products/FMAs, eta for TwoProd: <= ETA16 in all).
+    /// Radii as in the product, plus rc.
+    #[inline]
+    pub fn mul_add(self, y: Ddi, c: Ddi) -> Ddi {
+        let x = self;
+        if x.is_zero() || y.is_zero() {
+            return c;
+        }
+        let (ph, pl) = two_prod(x.hi, y.hi);
+        let (sh, sl) = two_sum(ph, c.hi);
+        let t0 = x.lo * y.lo;
+        let t1 = x.hi.mul_add(y.lo, t0);
+        let t2 = x.lo.mul_add(y.hi, t1);
+        let t3 = pl + c.lo;
+        let t4 = t2 + t3;
+        let t5 = sl + t4;
+        let (zh, zl) = two_sum(sh, t5);
+        // Six terms; products of two sums of at most six nonnegative f64: Lemma B.
+        let r = (x.hi.abs() + x.lo.abs()) * y.rad
+            + (y.hi.abs() + y.lo.abs()) * x.rad
+            + x.rad * y.rad
+            + c.rad
+            + U1 * (t0.abs() + t1.abs() + t2.abs() + t3.abs() + t4.abs() + t5.abs())
+            + ETA16;
+        Ddi::checked(zh, zl, up(r))
+    }
+
     /// A lower bound of min |y| over the set y, or `None` if the set may contain 0 (or is so
     /// close to 0 that bounding the quotient is pointless: below 2^-1000).
     ///
@@ -336,7 +434,7 @@ impl Ddi {
     /// computed as d = fl(D) <= D (1 + u) (a subtraction is exact near the underflow range), and
     /// fl(d (1 - 2^-50)) <= D (1 + u)^2 (1 - 2^-50) < D for d >= 2^-1000 (no underflow).
     #[inline]
-    fn abs_lower(y: Ddi) -> Option<f64> {
+    pub(crate) fn abs_lower(y: Ddi) -> Option<f64> {
         let s = up_sum(y.lo.abs() + y.rad);
         let d = y.hi.abs() - s;
         if d >= 9.332_636_185_032_189e-302 {
@@ -361,6 +459,15 @@ impl Ddi {
         };
         if x.is_zero() {
             return Ddi::exact(0.0);
+        }
+        // Division by +-2^k is a scaling by the exact power of two 1/y (if that is normal).
+        if y.is_f64() && is_pow2(y.hi) {
+            let s = 1.0 / y.hi;
+            if is_pow2(s) {
+                if let Some(z) = x.scale_exact(s) {
+                    return z;
+                }
+            }
         }
         let q1 = x.hi / y.hi;
         let (ph, pl) = two_prod(q1, y.hi);
@@ -438,9 +545,35 @@ impl Scalar for Ddi {
         if self.is_entire() {
             return Interval::ENTIRE;
         }
-        let lo = lower_sum3(self.hi, self.lo, -self.rad);
-        // RU(v) = -RD(-v); negation is exact.
-        let hi = -lower_sum3(-self.hi, -self.lo, -self.rad);
+        // Fast path, per end. Lower end v = hi + t with t = lo - rad exactly. RN(lo - rad)
+        // has the sign of t (a rounded difference of two floats is 0 only if they are equal):
+        // if t >= 0, hi <= v is the lower bound. Else, with g = hi - next_down(hi) (exact:
+        // neighbours), |t| <= |fl(t)| / (1 - u) <= fl(|fl(t)| (1 + 2^-50)) (no underflow error:
+        // a tiny difference is exact), so if that is <= g then next_down(hi) <= v. Otherwise
+        // (large radius) the general lower_sum3. The upper end is symmetric.
+        let (h, l, r) = (self.hi, self.lo, self.rad);
+        let t = l - r;
+        let lo = if t >= 0.0 {
+            h
+        } else {
+            let below = next_down(h);
+            if -t * (1.0 + 1.0 / 1_125_899_906_842_624.0) <= h - below {
+                below
+            } else {
+                lower_sum3(h, l, -r)
+            }
+        };
+        let t = l + r;
+        let hi = if t <= 0.0 {
+            h
+        } else {
+            let above = -next_down(-h);
+            if t * (1.0 + 1.0 / 1_125_899_906_842_624.0) <= above - h {
+                above
+            } else {
+                -lower_sum3(-h, -l, -r)
+            }
+        };
         Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
     }
 
@@ -606,6 +739,38 @@ mod tests {
         }
     }
 
+    /// `to_interval` of sets with every radius size (tight path and general path) contains the
+    /// exact ends, computed in MPFR; the general path is at most a few ulps loose.
+    #[cfg(feature = "mpfr")]
+    #[test]
+    fn to_interval_contains_exact_ends() {
+        use rug::Float;
+        let mut rng = ChaCha8Rng::seed_from_u64(21);
+        for _ in 0..50000 {
+            let h = rnd(&mut rng, 300);
+            let l = h * rnd(&mut rng, 2) * 1e-17;
+            let r = (h * 10f64.powf(rng.random_range(-40.0..2.0))).abs();
+            let d = Ddi::new(h, l, r);
+            let i = d.to_interval();
+            let c = Float::with_val(1200, d.hi()) + d.lo();
+            let (lo, hi) = (c.clone() - d.rad(), c + d.rad());
+            assert!(i.inf() <= lo && hi <= i.sup(), "{d:?} -> {i:?}");
+            // at most 4 ulps beyond the exact ends (the general path is about 2)
+            let (a, b) = (
+                lo.to_f64_round(rug::float::Round::Down),
+                hi.to_f64_round(rug::float::Round::Up),
+            );
+            assert!(
+                a.to_bits().abs_diff(i.inf().to_bits()) <= 4 || a.signum() != i.inf().signum(),
+                "{d:?}"
+            );
+            assert!(
+                b.to_bits().abs_diff(i.sup().to_bits()) <= 4 || b.signum() != i.sup().signum(),
+                "{d:?}"
+            );
+        }
+    }
+
     /// Containment against 256-bit MPFR at the centre and both ends of every operand.
     #[cfg(feature = "mpfr")]
     #[test]
@@ -627,7 +792,21 @@ mod tests {
         for _ in 0..20000 {
             let x = rnd_ddi(&mut rng, 60);
             let y = rnd_ddi(&mut rng, 60);
+            let w = rnd_ddi(&mut rng, 60);
             let (ex, ey) = (ends(&x), ends(&y));
+            // x * y + w at every corner and the centre of w as well
+            let fma = x.mul_add(y, w);
+            for a in &ex {
+                for b in &ey {
+                    for c in ends(&w) {
+                        let v = Float::with_val(prec, a * b) + c;
+                        assert!(
+                            inside(&fma, &v),
+                            "mul_add: {x:?} {y:?} {w:?} -> {fma:?} misses {v}"
+                        );
+                    }
+                }
+            }
             for (op, z) in [(0, x + y), (1, x - y), (2, x * y), (3, x / y)] {
                 for a in &ex {
                     for b in &ey {
