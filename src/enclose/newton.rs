@@ -64,6 +64,12 @@ pub struct Newton {
     pub max_iter: u32,
     /// Boxes per coordinate; the rest is enclosed as a whole.
     pub max_boxes: usize,
+    /// Work budget per coordinate, in evaluations times (p + 1)^2 (the cost of one interval
+    /// de Boor evaluation), plus [`WORK_PER_SPAN`] per span (at least 8 evaluations):
+    /// once spent, every box still to search is enclosed as a whole (sound, maybe less tight;
+    /// reported as [`Termination::WorkLimit`]). Bounds the time of high-degree curves, whose
+    /// interval evaluations are expensive and overestimate a lot (issue 6).
+    pub max_work: u64,
     /// Split rule when a step makes too little progress.
     pub split: Split,
     /// Split when a step leaves more than this fraction of the width (1.0: only when it makes
@@ -80,6 +86,14 @@ pub struct Newton {
     pub time_derivatives: bool,
 }
 
+/// Default of [`Newton::max_work`] (about a second of interval evaluations: one unit, a
+/// corner cut of the value and of a derivative level, costs ~100-200 ns).
+pub const DEFAULT_MAX_WORK: u64 = 5_000_000;
+
+/// Work allowed per span on top of [`Newton::max_work`], so that the budget grows with the
+/// size of the input (64 evaluations of a degree-40 span).
+pub const WORK_PER_SPAN: u64 = 64 * 41 * 41;
+
 impl Default for Newton {
     fn default() -> Self {
         Newton {
@@ -87,6 +101,7 @@ impl Default for Newton {
             refine_unique: true,
             max_iter: 40,
             max_boxes: 4000,
+            max_work: DEFAULT_MAX_WORK,
             split: Split::Bisect,
             min_shrink: 0.5,
             form: DerivForm::Numerator,
@@ -109,6 +124,7 @@ impl Newton {
             refine_unique: false,
             max_iter: 20,
             max_boxes: 100_000,
+            max_work: DEFAULT_MAX_WORK,
             split: Split::TwiceDegree,
             min_shrink: 1.0,
             form: DerivForm::Quotient,
@@ -250,6 +266,8 @@ pub(crate) struct Engine<'a> {
     /// coordinate currently worked on
     j: usize,
     stats: Stats,
+    /// evaluations allowed for the current coordinate ([`Newton::max_work`])
+    budget: u64,
 }
 
 impl<'a> Engine<'a> {
@@ -278,6 +296,7 @@ impl<'a> Engine<'a> {
             stack: Vec::new(),
             j: 0,
             stats: Stats::default(),
+            budget: u64::MAX,
         }
     }
 
@@ -463,14 +482,19 @@ impl<'a> Engine<'a> {
         let mut boxes = 0usize;
         while let Some((mut x0, mut x1)) = self.stack.pop() {
             boxes += 1;
-            if boxes > s.max_boxes {
-                // Box limit: keep the box whole (sound).
+            let spent = self.stats.derivative_evaluations + self.stats.point_evaluations;
+            if boxes > s.max_boxes || spent > self.budget {
+                // Box or work limit: keep the box whole (sound).
                 out.push(ZeroBox {
                     lo: x0,
                     hi: x1,
                     unique: false,
                 });
-                term = Termination::BoxLimit;
+                term = if spent > self.budget {
+                    Termination::WorkLimit
+                } else {
+                    Termination::BoxLimit
+                };
                 continue;
             }
             let mut unique = false;
@@ -485,9 +509,15 @@ impl<'a> Engine<'a> {
                     });
                     break;
                 }
-                if it >= s.max_iter {
+                let over =
+                    self.stats.derivative_evaluations + self.stats.point_evaluations > self.budget;
+                if it >= s.max_iter || over {
                     if !(small || unique) && term == Termination::Converged {
-                        term = Termination::IterationLimit;
+                        term = if over {
+                            Termination::WorkLimit
+                        } else {
+                            Termination::IterationLimit
+                        };
                     }
                     out.push(ZeroBox {
                         lo: x0,
@@ -597,6 +627,9 @@ impl<'a> Engine<'a> {
         self.stats = Stats::default();
         let (a, b) = self.c.domain();
         let ns = self.spans.len();
+        let cost = ((self.p + 1) as u64).pow(2);
+        let work = (self.s.max_work).saturating_add(WORK_PER_SPAN.saturating_mul(ns as u64));
+        self.budget = (work / cost).max(8);
         let mut cands: Vec<Cand> = Vec::with_capacity(8);
         cands.push(Cand::point(
             self.spans[0].0,
