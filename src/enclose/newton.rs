@@ -65,7 +65,8 @@ pub struct Newton {
     /// Boxes per coordinate; the rest is enclosed as a whole.
     pub max_boxes: usize,
     /// Work budget per coordinate, in evaluations times (p + 1)^2 (the cost of one interval
-    /// de Boor evaluation), plus [`WORK_PER_SPAN`] per span (at least 8 evaluations):
+    /// de Boor evaluation), plus an allowance per span of [`EVALS_PER_SPAN`] evaluations but
+    /// at most [`WORK_PER_SPAN`] units (and at least 8 evaluations in all):
     /// once spent, every box still to search is enclosed as a whole (sound, maybe less tight;
     /// reported as [`Termination::WorkLimit`]). Bounds the time of high-degree curves, whose
     /// interval evaluations are expensive and overestimate a lot (issue 6).
@@ -86,12 +87,15 @@ pub struct Newton {
     pub time_derivatives: bool,
 }
 
-/// Default of [`Newton::max_work`] (about a second of interval evaluations: one unit, a
+/// Default of [`Newton::max_work`] (a few tenths of a second of interval evaluations: one unit, a
 /// corner cut of the value and of a derivative level, costs ~100-200 ns).
-pub const DEFAULT_MAX_WORK: u64 = 5_000_000;
+pub const DEFAULT_MAX_WORK: u64 = 2_000_000;
 
-/// Work allowed per span on top of [`Newton::max_work`], so that the budget grows with the
-/// size of the input (64 evaluations of a degree-40 span).
+/// Evaluations allowed per span on top of [`Newton::max_work`], so that the budget grows with
+/// the size of the input.
+pub const EVALS_PER_SPAN: u64 = 64;
+
+/// Cap of the per-span allowance in work units (64 evaluations of a degree-40 span).
 pub const WORK_PER_SPAN: u64 = 64 * 41 * 41;
 
 impl Default for Newton {
@@ -628,8 +632,10 @@ impl<'a> Engine<'a> {
         let (a, b) = self.c.domain();
         let ns = self.spans.len();
         let cost = ((self.p + 1) as u64).pow(2);
-        let work = (self.s.max_work).saturating_add(WORK_PER_SPAN.saturating_mul(ns as u64));
-        self.budget = (work / cost).max(8);
+        let per_span = EVALS_PER_SPAN.min(WORK_PER_SPAN / cost);
+        self.budget = (self.s.max_work / cost)
+            .saturating_add(per_span.saturating_mul(ns as u64))
+            .max(8);
         let mut cands: Vec<Cand> = Vec::with_capacity(8);
         cands.push(Cand::point(
             self.spans[0].0,
