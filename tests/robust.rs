@@ -62,6 +62,24 @@ fn extreme_curves() -> Vec<(&'static str, NurbsCurve)> {
             Some(vec![1e6, 1e-6, 3.0, 1e6, 0.5, 1e-6]),
         ),
     ));
+    // one coordinate holding both 1e300 and subnormal values: the exact rescaling rounds the
+    // subnormal ones and widens the box by one subnormal step (of the scaled coordinate)
+    v.push((
+        "huge_and_subnormal_in_one_coordinate",
+        curve(
+            2,
+            clamped(2, 6, 0.0, 1.0),
+            vec![
+                vec![-3e-320, 1.0],
+                vec![1e300, -4e-320],
+                vec![7e-322, 5e-324],
+                vec![-1e-310, 2.0],
+                vec![-2e-323, -1e-300],
+                vec![1e-320, 0.0],
+            ],
+            Some(vec![1.0, 1e-6, 2.0, 1.0, 1e6, 3.0]),
+        ),
+    ));
     // coordinates near the top of the f64 range
     v.push((
         "near_max_coordinates",
@@ -519,6 +537,15 @@ mod mpfr {
                     rb.lo[j],
                     rb.hi[j]
                 );
+                assert!(
+                    rb.lo[j] <= cb.inner_lo && cb.inner_hi <= rb.hi[j],
+                    "{name}: {} coordinate {j}: inner [{:e}, {:e}] not reached, exact [{}, {}]",
+                    e.strategy,
+                    cb.inner_lo,
+                    cb.inner_hi,
+                    rb.lo[j],
+                    rb.hi[j]
+                );
                 if std::env::var("ROBUST_PRINT").is_ok() {
                     eprintln!(
                         "{name} {} j={j} {:?} ulps outside: lo {dlo:.3e} hi {dhi:.3e}",
@@ -554,6 +581,13 @@ fn rescaling_keeps_overflowing_curves_finite() {
         (0..6).map(|i| vec![1.5e308 * wiggle(i, 0) / 1.1]).collect(),
         Some(vec![1e6, 1e-6, 3.0, 1e6, 0.5, 1e-6]),
     );
+    // the mixed-magnitude extreme curve does exercise the rounded (widened) coordinate path
+    let (_, mixed) = extreme_curves()
+        .into_iter()
+        .find(|(n, _)| *n == "huge_and_subnormal_in_one_coordinate")
+        .unwrap();
+    let r = nurbs_box::enclose::Rescaling::of(&mixed).unwrap();
+    assert!(r.coord_rounded[0] && r.coord_exp[0] > 900 && r.coord_exp[1] == 0);
     let raw: [&dyn BoxEncloser; 2] = [&Newton::default(), &BezierSubdivision::default()];
     for s in raw {
         let e = s.enclose(&c);
