@@ -80,6 +80,20 @@ fn extreme_curves() -> Vec<(&'static str, NurbsCurve)> {
             Some(vec![1.0, 1e-6, 2.0, 1.0, 1e6, 3.0]),
         ),
     ));
+    // weight ratio 1e600 with coordinates near the f64 limit
+    v.push((
+        "weight_ratio_1e600",
+        curve(
+            2,
+            clamped(2, 3, 0.0, 1.0),
+            vec![
+                vec![1e308, -1e308],
+                vec![-1.7e308, 1.7e308],
+                vec![1e-320, 0.0],
+            ],
+            Some(vec![1e300, 1e-300, 1.0]),
+        ),
+    ));
     // coordinates near the top of the f64 range
     v.push((
         "near_max_coordinates",
