@@ -725,6 +725,22 @@ fn cli_hostile_lines_between_extreme_curves() {
             "too_few_control_points",
         ),
         (
+            r#"{"degree":1,"knots":[0,0,1],"control_points":[[0],[1]]}"#,
+            "knot_count",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1,1],"control_points":[[0],[1]]}"#,
+            "knot_count",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]],"weights":[1,NaN]}"#,
+            "non_finite_literal",
+        ),
+        (
+            r#"{"knots":[0,0,1,1],"control_points":[[0],[1]]}"#,
+            "missing_field",
+        ),
+        (
             r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]"#,
             "truncated_json",
         ),
