@@ -408,6 +408,23 @@ fn adversarial_curves_finish_quickly() {
         .unwrap()
         .enclose(&c);
     assert_eq!(e.termination(), Termination::WorkLimit);
+
+    // above MAX_SEARCH_DEGREE: the control-point box at once, from every strategy
+    let p = nurbs_box::enclose::MAX_SEARCH_DEGREE + 500;
+    let c = curve(
+        p,
+        clamped(p, p + 1, 0.0, 1.0),
+        (0..=p).map(|i| vec![wiggle(i, 0), wiggle(i, 1)]).collect(),
+        Some((0..=p).map(|i| 1.0 + (i % 3) as f64).collect()),
+    );
+    let params = [0.0, 0.3, 1.0];
+    for s in all_strategies(None) {
+        let t = Instant::now();
+        let e = s.enclose(&c);
+        assert!(t.elapsed() < Duration::from_secs(1), "{}", s.name());
+        assert_eq!(e.termination(), Termination::WorkLimit);
+        check_enclosure(&c, &e, s.guarantee(), &params).unwrap();
+    }
 }
 
 /// An f64 from a mix of hostile bit patterns and nice values.

@@ -16,7 +16,9 @@ mod search_region;
 pub use bezier::BezierSubdivision;
 pub use hull::ControlHull;
 pub use newton::{DerivForm, Newton, Split, DEFAULT_MAX_WORK};
-pub use rescale::{enclose_rescaled, scale_outward, Rescaled, Rescaling};
+pub use rescale::{
+    degree_fallback, enclose_rescaled, scale_outward, Rescaled, Rescaling, MAX_SEARCH_DEGREE,
+};
 pub use search_region::SearchRegion;
 
 /// What a strategy promises about its box.

@@ -34,7 +34,9 @@
 //! subnormal or overflows ([`scale_outward`]). Curves whose magnitudes are moderate (the
 //! common case) are passed through untouched, so their results are bit-for-bit unchanged.
 
-use super::{BoxEncloser, Enclosure, Guarantee};
+use super::{
+    BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
+};
 use crate::curve::NurbsCurve;
 
 /// Values whose binary exponent lies within ±`WINDOW` of 0 are left alone: with coordinates
@@ -213,14 +215,82 @@ impl Rescaling {
     }
 }
 
+/// Above this degree every strategy returns the control-point box ([`degree_fallback`]): one
+/// interval evaluation costs ~(p + 1)^2 corner cuts (a second at p = 3000), so a search would
+/// take minutes per curve, and a small input (a few KB of JSON per thousand degrees) could
+/// stall a batch. The formats allow any degree; issue 6 asks for degrees up to 40.
+pub const MAX_SEARCH_DEGREE: usize = 1000;
+
+/// The control-point box of `c` (convex hull property, thesis prop. 2.1; exact) as the result
+/// of strategy `s`, in O(n d) time: the fallback above [`MAX_SEARCH_DEGREE`], reported as
+/// [`Termination::WorkLimit`].
+///
+/// Inner bounds without evaluating the curve: every u has lo <= C_j(u) <= hi, so the curve
+/// reaches a value <= hi and one >= lo; at a clamped end (p + 1 equal knots) the curve
+/// interpolates the end control point exactly (NURBS Book eq. 2.3 / property P4.1), whose
+/// coordinates are then attained values.
+pub fn degree_fallback(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
+    let (p, n) = (c.degree(), c.num_points() - 1);
+    let kn = c.knots();
+    let (a, b) = c.domain();
+    let mut ends = Vec::new();
+    if kn[..=p].iter().all(|&u| u == a) {
+        ends.push(0);
+    }
+    if kn[n + 1..].iter().all(|&u| u == b) {
+        ends.push(n);
+    }
+    let coords = (0..c.dim())
+        .map(|j| {
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for i in 0..=n {
+                let x = c.control_point(i)[j];
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+            let (mut inner_lo, mut inner_hi) = (hi, lo);
+            for &i in &ends {
+                let x = c.control_point(i)[j];
+                inner_lo = inner_lo.min(x);
+                inner_hi = inner_hi.max(x);
+            }
+            let whole = Extremum {
+                u_lo: a,
+                u_hi: b,
+                unique: false,
+                kind: CandidateKind::Unresolved,
+            };
+            CoordBox {
+                lo,
+                hi,
+                inner_lo,
+                inner_hi,
+                argmin: vec![whole],
+                argmax: vec![whole],
+                stats: Stats::default(),
+                termination: Termination::WorkLimit,
+            }
+        })
+        .collect();
+    Enclosure {
+        strategy: s.name(),
+        verified: s.guarantee() == Guarantee::Verified,
+        coords,
+    }
+}
+
 /// Enclose `c` with `s`, rescaling it first if its magnitudes are extreme (see the module
-/// docs); the result is an enclosure of `c` itself.
+/// docs); the result is an enclosure of `c` itself. Above [`MAX_SEARCH_DEGREE`] the result is
+/// the control-point box ([`degree_fallback`]).
 ///
 /// For a verified strategy the inner bounds are also made consistent with the outer ones:
 /// every u has lo <= C_j(u) <= hi, so the curve reaches a value <= hi and a value >= lo, and
 /// `inner_lo = min(inner_lo, hi)`, `inner_hi = max(inner_hi, lo)` stay valid (a constant
 /// coordinate may otherwise get an inner bound one rounding beyond the exact outer one).
 pub fn enclose_rescaled(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
+    if c.degree() > MAX_SEARCH_DEGREE {
+        return degree_fallback(s, c);
+    }
     let mut e = match Rescaling::of(c) {
         None => s.enclose(c),
         Some(r) => r.restore(s.enclose(&r.apply(c))),
