@@ -871,3 +871,42 @@ fn cli_hostile_lines_between_extreme_curves() {
     }
     assert!(r.next().is_none());
 }
+
+/// Defence in depth: a strategy that panics gives an `internal_error` record for that curve
+/// and strategy; the other strategies' records are still written.
+#[test]
+fn a_panicking_strategy_becomes_an_error_record() {
+    use nurbs_box::enclose::{BoxEncloser, ControlHull};
+    struct Boom;
+    impl BoxEncloser for Boom {
+        fn name(&self) -> &'static str {
+            "boom"
+        }
+        fn guarantee(&self) -> Guarantee {
+            Guarantee::Verified
+        }
+        fn enclose(&self, _: &NurbsCurve) -> Enclosure {
+            panic!("deliberate test panic")
+        }
+    }
+    let c = curve(1, vec![0., 0., 1., 1.], vec![vec![0.], vec![1.]], None);
+    let strategies: Vec<Box<dyn BoxEncloser>> = vec![Box::new(Boom), Box::new(ControlHull)];
+    let mut buf = Vec::new();
+    let ok = nurbs_box::batch::enclose_records(7, Ok(c), &strategies, false, &mut buf);
+    assert!(!ok);
+    let text = String::from_utf8(buf).unwrap();
+    let lines: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 2);
+    assert_eq!(lines[0]["index"], 7);
+    assert_eq!(lines[0]["strategy"], "boom");
+    assert_eq!(lines[0]["error"]["kind"], "internal_error");
+    assert!(lines[0]["error"]["message"]
+        .as_str()
+        .unwrap()
+        .contains("deliberate test panic"));
+    assert_eq!(lines[1]["strategy"], "hull");
+    assert_eq!(lines[1]["hi"][0], 1.0);
+}
