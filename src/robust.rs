@@ -190,7 +190,7 @@ pub struct Violation {
 }
 
 /// Check the guarantees of one enclosure of `c` (see `enclose/mod.rs`): one coordinate box per
-/// dimension, no NaN, for a verified result lo <= inner_lo and inner_hi <= hi, and no proven
+/// dimension; for a verified result no NaN, lo <= inner_lo and inner_hi <= hi, and no proven
 /// containment miss at `params` (interval evaluation, [`check_containment`]).
 pub fn check_enclosure(
     c: &NurbsCurve,
@@ -212,10 +212,14 @@ pub fn check_enclosure(
         return Err("a verified strategy returned verified = false".into());
     }
     for (j, cb) in e.coords.iter().enumerate() {
-        let ok = cb.lo <= cb.inner_lo && cb.inner_lo <= cb.hi && cb.lo <= cb.inner_hi;
-        if !(ok && cb.inner_hi <= cb.hi) {
+        let nan = [cb.lo, cb.hi, cb.inner_lo, cb.inner_hi]
+            .iter()
+            .any(|x| x.is_nan());
+        // inner_lo < lo would claim a value below the lower bound (a contradiction); inner_lo
+        // above hi is merely a weak claim (every value is <= hi), likewise for inner_hi.
+        if nan || cb.inner_lo < cb.lo || cb.inner_hi > cb.hi {
             return Err(format!(
-                "coordinate {j}: bounds out of order: lo {:e} inner_lo {:e} inner_hi {:e} hi {:e}",
+                "coordinate {j}: contradictory bounds: lo {:e} inner_lo {:e} inner_hi {:e} hi {:e}",
                 cb.lo, cb.inner_lo, cb.inner_hi, cb.hi
             ));
         }
