@@ -275,6 +275,17 @@ pub fn check_strategies(
         .collect()
 }
 
+/// The verified strategies as their types define them, without the registry's rescaling
+/// wrapper (their intermediates may overflow; they must stay sound anyway).
+pub fn raw_strategies() -> Vec<Box<dyn BoxEncloser>> {
+    vec![
+        Box::new(ControlHull),
+        Box::new(BezierSubdivision::default()),
+        Box::new(Newton::default()),
+        Box::new(SearchRegion::verified(Newton::default())),
+    ]
+}
+
 /// Every strategy of [`all_strategies`] (rescaled, like the registry), with work limits a
 /// hundred times smaller than the defaults: a fuzzer then runs many more inputs per second
 /// and reaches the limit fallbacks (which must be sound too) far more often.
@@ -339,7 +350,8 @@ pub mod targets {
     }
 
     /// Structured bytes -> curve ([`curve_from_bytes`]) -> every strategy (the first byte
-    /// chooses the default or the [`low_limit_strategies`]), checked against sampled interval
+    /// chooses the registered, the [`raw_strategies`] or the [`low_limit_strategies`]), checked
+    /// against sampled interval
     /// evaluations (dense parameters plus parameters decoded from the tail).
     pub fn structured(data: &[u8]) {
         let Ok(c) = curve_from_bytes(data) else {
@@ -355,10 +367,10 @@ pub mod targets {
             .take(8)
             .map(|&b| f64::from(b) / 255.0)
             .collect();
-        let strategies = if data.first().is_some_and(|b| b % 4 == 0) {
-            all_strategies(None)
-        } else {
-            low_limit_strategies()
+        let strategies = match data.first().map_or(0, |b| b % 4) {
+            0 => all_strategies(None),
+            1 => raw_strategies(),
+            _ => low_limit_strategies(),
         };
         let v = check_strategies(&strategies, &c, 4, &extra);
         assert!(v.is_empty(), "{v:?}\n{}", crate::io::curve_to_json(&c));

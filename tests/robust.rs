@@ -7,7 +7,9 @@
 //! box (`reference::reference_box`).
 
 use nurbs_box::enclose::{all_strategies, Guarantee, Termination};
-use nurbs_box::robust::{check_all_strategies, check_enclosure, check_params, targets};
+use nurbs_box::robust::{
+    check_all_strategies, check_enclosure, check_params, raw_strategies, targets,
+};
 use nurbs_box::{Enclosure, NurbsCurve};
 use proptest::prelude::*;
 use std::time::{Duration, Instant};
@@ -470,17 +472,6 @@ fn raw_curve() -> impl Strategy<Value = (usize, Vec<f64>, Vec<Vec<f64>>, Option<
                 (p, k, pts, w)
             })
     })
-}
-
-/// The strategies as their types define them, without the registry's rescaling wrapper.
-fn raw_strategies() -> Vec<Box<dyn nurbs_box::BoxEncloser>> {
-    use nurbs_box::enclose::{BezierSubdivision, ControlHull, Newton, SearchRegion};
-    vec![
-        Box::new(ControlHull),
-        Box::new(BezierSubdivision::default()),
-        Box::new(Newton::default()),
-        Box::new(SearchRegion::verified(Newton::default())),
-    ]
 }
 
 proptest! {
