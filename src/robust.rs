@@ -146,7 +146,7 @@ pub fn curve_from_bytes(data: &[u8]) -> Result<NurbsCurve, CurveError> {
                 v.push(x);
             }
             let end = x + 1.0;
-            v.extend(std::iter::repeat_n(end, p + 1));
+            v.extend(std::iter::repeat(end).take(p + 1));
             if style == 4 {
                 // unclamped ends: spread the end knots
                 for (k, u) in v.iter_mut().enumerate().take(p) {
@@ -351,8 +351,8 @@ pub mod targets {
 
     /// Structured bytes -> curve ([`curve_from_bytes`]) -> every strategy (the first byte
     /// chooses the registered, the [`raw_strategies`] or the [`low_limit_strategies`]), checked
-    /// against sampled interval
-    /// evaluations (dense parameters plus parameters decoded from the tail).
+    /// against sampled interval evaluations (dense parameters plus parameters decoded from
+    /// the tail).
     pub fn structured(data: &[u8]) {
         let Ok(c) = curve_from_bytes(data) else {
             return;

@@ -449,7 +449,10 @@ fn any_f64() -> impl Strategy<Value = f64> {
 
 /// Raw curve data from arbitrary bit patterns; knots sorted (by total order) most of the time
 /// so that many cases are valid curves.
-fn raw_curve() -> impl Strategy<Value = (usize, Vec<f64>, Vec<Vec<f64>>, Option<Vec<f64>>)> {
+/// (degree, knots, control points, weights) before validation.
+type RawCurve = (usize, Vec<f64>, Vec<Vec<f64>>, Option<Vec<f64>>);
+
+fn raw_curve() -> impl Strategy<Value = RawCurve> {
     (1usize..=4, 0usize..5, 1usize..=3).prop_flat_map(|(p, extra, d)| {
         let np = p + 1 + extra;
         (
@@ -508,7 +511,9 @@ proptest! {
 
 /// Replay every file of the given directories (relative to the crate) through the fuzz
 /// target bodies; returns the number of inputs.
-fn replay(dirs: &[(&str, fn(&[u8]))]) -> usize {
+type Target = fn(&[u8]);
+
+fn replay(dirs: &[(&str, Target)]) -> usize {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut n = 0;
     for (dir, run) in dirs {
