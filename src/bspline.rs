@@ -412,9 +412,7 @@ pub fn corner_cut<S: Scalar>(knots: &[f64], p: usize, k: usize, u: &S, h: usize,
             let a = (u.clone() - S::from_f64(knots[i]))
                 / (S::from_f64(knots[i + p + 1 - r]) - S::from_f64(knots[i]));
             for c in 0..h {
-                let hi = buf[j * h + c].clone();
-                let lo = buf[(j - 1) * h + c].clone();
-                buf[j * h + c] = a.clone() * (hi - lo.clone()) + lo;
+                buf[j * h + c] = S::lerp(&a, &buf[(j - 1) * h + c], &buf[j * h + c]);
             }
         }
     }
