@@ -69,6 +69,12 @@ pub struct Newton {
     /// Split when a step leaves more than this fraction of the width (1.0: only when it makes
     /// no progress at all, as the thesis).
     pub min_shrink: f64,
+    /// Splits per span (the thesis splits once, into 2p pieces; then a box that makes no
+    /// progress just runs out of steps and is enclosed whole).
+    pub max_splits: u32,
+    /// Drop a Newton box whose values provably lie between values the curve attains (branch
+    /// and bound; not in the thesis).
+    pub drop_covered: bool,
     /// Function iterated on.
     pub form: DerivForm,
     /// Skip spans that are provably monotone (local control points monotone, or 0 outside the
@@ -89,6 +95,8 @@ impl Default for Newton {
             max_boxes: 2000,
             split: Split::Bisect,
             min_shrink: 0.5,
+            max_splits: u32::MAX,
+            drop_covered: true,
             form: DerivForm::Numerator,
             pretest: true,
             prune: true,
@@ -99,7 +107,7 @@ impl Default for Newton {
 
 impl Newton {
     /// The thesis's settings (listing `inewtonKNRH`, lines 1766-1850): C' / C'' by the quotient
-    /// rule, split into 2p pieces only when a step makes no progress, at most 20 steps per box,
+    /// rule, split once per span into 2p pieces when a step makes no progress, 20 steps per box,
     /// stop at radius <= tol (the thesis does not state its tol; 1e-6 is assumed), every span
     /// searched (no pre-tests, no pruning), derivative time measured (its tables' columns).
     /// Unlike the thesis, unresolved boxes are kept (enclosed as a whole), so it stays sound.
@@ -108,9 +116,11 @@ impl Newton {
             tol: 1e-6,
             refine_unique: false,
             max_iter: 20,
-            max_boxes: 100_000,
+            max_boxes: 10_000,
             split: Split::TwiceDegree,
             min_shrink: 1.0,
+            max_splits: 1,
+            drop_covered: false,
             form: DerivForm::Quotient,
             pretest: false,
             prune: false,
@@ -459,48 +469,63 @@ impl<'a> Engine<'a> {
     }
 
     /// Interval Newton on f over the closed span k = [a, b] (thesis `inewtonKNRH`): every zero
-    /// of f in [a, b] ends up in a box pushed to `out`. Returns false if a limit was hit.
-    fn search(&mut self, k: usize, a: f64, b: f64, out: &mut Vec<ZeroBox>) -> Termination {
+    /// of f in [a, b] ends up in a box pushed to `out`, or in a box dropped because its values
+    /// provably lie in `covered` (= [inner_lo, inner_hi] so far, values the curve attains on
+    /// both sides, so the box's values are inside the final outer box anyway).
+    fn search(
+        &mut self,
+        k: usize,
+        a: f64,
+        b: f64,
+        covered: (f64, f64),
+        out: &mut Vec<ZeroBox>,
+    ) -> Termination {
         let s = *self.s;
         let (d0, d1) = self.c.domain();
         let tol = s.tol * (d1 - d0);
         let mut term = Termination::Converged;
+        let hull = {
+            let (h0, h1) = self.local_hull(k);
+            iv::span(h0, h1)
+        };
         self.stack.clear();
         self.stack.push((a, b));
         let mut boxes = 0usize;
+        let mut splits = 0u32;
         while let Some((mut x0, mut x1)) = self.stack.pop() {
             boxes += 1;
-            if boxes > s.max_boxes {
-                // Box limit: keep the box whole (sound).
+            let keep = |x0: f64, x1: f64, unique: bool, out: &mut Vec<ZeroBox>| {
                 out.push(ZeroBox {
                     lo: x0,
                     hi: x1,
-                    unique: false,
-                });
+                    unique,
+                })
+            };
+            if boxes > s.max_boxes {
+                // Box limit: keep the box whole (sound).
+                keep(x0, x1, false, out);
                 term = Termination::BoxLimit;
                 continue;
+            }
+            if s.drop_covered && boxes > 1 {
+                let v = self.value(k, iv::span(x0, x1)).intersection(hull);
+                if !v.is_empty() && v.inf() >= covered.0 && v.sup() <= covered.1 {
+                    continue;
+                }
             }
             let mut unique = false;
             let mut it = 0;
             loop {
                 let small = 0.5 * (x1 - x0) <= tol;
                 if small && !(unique && s.refine_unique) {
-                    out.push(ZeroBox {
-                        lo: x0,
-                        hi: x1,
-                        unique,
-                    });
+                    keep(x0, x1, unique, out);
                     break;
                 }
                 if it >= s.max_iter {
                     if !(small || unique) && term == Termination::Converged {
                         term = Termination::IterationLimit;
                     }
-                    out.push(ZeroBox {
-                        lo: x0,
-                        hi: x1,
-                        unique,
-                    });
+                    keep(x0, x1, unique, out);
                     break;
                 }
                 it += 1;
@@ -539,23 +564,24 @@ impl<'a> Engine<'a> {
                     unique = true;
                 }
                 let (n0, n1) = (y1.inf(), y1.sup());
-                if n0 == x0 && n1 == x1 {
-                    // no progress at all
-                    if unique || !can_split(x0, x1) {
-                        out.push(ZeroBox {
-                            lo: x0,
-                            hi: x1,
-                            unique,
-                        });
-                        break;
-                    }
-                    self.split_box(x0, x1);
+                let stalled = n0 == x0 && n1 == x1;
+                if stalled && unique {
+                    // machine precision reached
+                    keep(x0, x1, unique, out);
                     break;
                 }
-                if !unique && n1 - n0 > s.min_shrink * (x1 - x0) && can_split(n0, n1) {
+                let weak = stalled || (!unique && n1 - n0 > s.min_shrink * (x1 - x0));
+                if weak && splits < s.max_splits && can_split(n0, n1) {
+                    splits += 1;
                     self.split_box(n0, n1);
                     break;
                 }
+                if stalled && !can_split(x0, x1) {
+                    // a box of one or two ulps: as resolved as it gets
+                    keep(x0, x1, unique, out);
+                    break;
+                }
+                // otherwise iterate on (the thesis: until its 20 steps are used up)
                 (x0, x1) = (n0, n1);
             }
         }
@@ -649,7 +675,9 @@ impl<'a> Engine<'a> {
             }
             if mode == SpanMode::Prune {
                 let (hmin, hmax) = self.local_hull(k);
-                if hmin >= acc.lo && hmax <= acc.hi {
+                // Values the curve attains on both sides (inner bounds): the span's values lie
+                // between them, so inside the final outer box, and the extremes are elsewhere.
+                if hmin >= acc.inner_lo && hmax <= acc.inner_hi {
                     continue;
                 }
             }
@@ -671,7 +699,7 @@ impl<'a> Engine<'a> {
             }
             status[si] = Status::Searched;
             boxes.clear();
-            let t = self.search(k, sa, sb, &mut boxes);
+            let t = self.search(k, sa, sb, (acc.inner_lo, acc.inner_hi), &mut boxes);
             if term == Termination::Converged {
                 term = t;
             }
