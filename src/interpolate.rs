@@ -10,9 +10,11 @@
 
 use crate::curve::NurbsCurve;
 use crate::error::{CurveError, EvalError};
+use crate::eval::CurveEval;
 use crate::knot_vectors::interpolation_knots;
 use crate::scalar::iv;
 use crate::tridiagonal::{solve_tridiagonal, TridiagonalError};
+use inari::Interval;
 use std::fmt;
 use std::str::FromStr;
 use thiserror::Error;
@@ -415,16 +417,19 @@ pub fn interpolate_cubic_with(
 }
 
 /// A verified upper bound on max_j max_coord |C(t̂_j) - p_j| for the exact curve `curve` (the
-/// f64 data as given): C(t̂_j) is enclosed by [`NurbsCurve::enclose_point`], the difference to
-/// p_j is formed in interval arithmetic (outward rounded) and its magnitude taken.
+/// f64 data as given): C(t̂_j) is enclosed by de Boor corner cutting in interval arithmetic
+/// ([`CurveEval`] with `Interval`, the kernel behind [`NurbsCurve::enclose_point`], set up once
+/// so the whole check is O(m)), the difference to p_j is formed in interval arithmetic
+/// (outward rounded) and its magnitude taken.
 pub fn interpolation_residual(
     curve: &NurbsCurve,
     params: &[f64],
     points: &[Vec<f64>],
 ) -> Result<f64, EvalError> {
+    let ev = CurveEval::<Interval>::new(curve, 0);
     let mut worst: f64 = 0.0;
     for (t, p) in params.iter().zip(points) {
-        let enc = curve.enclose_point(iv::point(*t))?;
+        let enc = ev.derivs(*t, 0)?.swap_remove(0);
         for (e, x) in enc.iter().zip(p) {
             worst = worst.max((*e - iv::point(*x)).mag());
         }
@@ -543,7 +548,6 @@ pub fn run_cli<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
 mod tests {
     use super::*;
     use crate::bspline::basis_funs;
-    use inari::Interval;
 
     fn pts(v: &[[f64; 2]]) -> Vec<Vec<f64>> {
         v.iter().map(|p| p.to_vec()).collect()
