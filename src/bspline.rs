@@ -119,22 +119,10 @@ impl<S: Scalar> HSpline<S> {
     /// alpha = (u - u_i) / (u_{i+p+1-r} - u_i) (seed 002 eq. for alpha_j^k; NURBS Book A5.1
     /// triangle). Positions below r are left as they were.
     ///
-    /// The convex combination is written as alpha*(R1 - R2) + R2 (thesis sec. 5.1), which in
-    /// interval arithmetic overestimates less than alpha*R1 + (1 - alpha)*R2.
-    /// The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0, so never zero.
+    /// The convex combination is [`Scalar::lerp`] (thesis sec. 5.1 form, intersected with the
+    /// convex form for intervals). The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0.
     pub fn corner_cut_level(&self, k: usize, r: usize, u: &S, col: &mut [S]) {
-        let p = self.degree;
-        let h = self.hdim();
-        for j in (r..=p).rev() {
-            let i = k - p + j;
-            let a = (u.clone() - S::from_f64(self.knots[i]))
-                / (S::from_f64(self.knots[i + p + 1 - r]) - S::from_f64(self.knots[i]));
-            for c in 0..h {
-                let hi = col[j * h + c].clone();
-                let lo = col[(j - 1) * h + c].clone();
-                col[j * h + c] = a.clone() * (hi - lo.clone()) + lo;
-            }
-        }
+        corner_cut_level(&self.knots, self.degree, k, r, u, self.hdim(), col);
     }
 
     /// Point and first derivative (Cartesian, `dim` values each) on span `k` by corner cutting,
@@ -178,6 +166,27 @@ impl<S: Scalar> HSpline<S> {
             .map(|j| (dh[j].clone() - wd.clone() * pt[j].clone()) / w.clone())
             .collect();
         (pt, der)
+    }
+
+    /// Like [`HSpline::eval_span`] but only for the homogeneous rows listed in `rows` (e.g. one
+    /// coordinate and the weight row), without allocating once `buf` has grown: the values are
+    /// returned as the slice `buf[p * rows.len()..]`, in the order of `rows`.
+    pub fn eval_span_rows<'b>(
+        &self,
+        k: usize,
+        u: &S,
+        rows: &[usize],
+        buf: &'b mut Vec<S>,
+    ) -> &'b [S] {
+        let p = self.degree;
+        let h = self.hdim();
+        let nr = rows.len();
+        buf.clear();
+        for i in k - p..=k {
+            buf.extend(rows.iter().map(|&r| self.pts[i * h + r].clone()));
+        }
+        corner_cut(&self.knots, p, k, u, nr, buf);
+        &buf[p * nr..]
     }
 
     /// Evaluate at an f64 parameter (span found exactly).
@@ -339,7 +348,7 @@ impl<S: Scalar> BezierSeg<S> {
                 for c in 0..h {
                     let lo = b[i * h + c].clone();
                     let hi = b[(i + 1) * h + c].clone();
-                    b[i * h + c] = t.clone() * (hi - lo.clone()) + lo;
+                    b[i * h + c] = S::lerp(t, &lo, &hi);
                 }
             }
             left.extend_from_slice(&b[0..h]);
@@ -455,7 +464,7 @@ fn knot_ins<S: Scalar>(
             for c in 0..h {
                 let lo = rw[i * h + c].clone();
                 let hi = rw[(i + 1) * h + c].clone();
-                rw[i * h + c] = alpha.clone() * (hi - lo.clone()) + lo;
+                rw[i * h + c] = S::lerp(&alpha, &lo, &hi);
             }
         }
         qw[l * h..(l + 1) * h].clone_from_slice(&rw[0..h]);
@@ -466,6 +475,45 @@ fn knot_ins<S: Scalar>(
         qw[i * h..(i + 1) * h].clone_from_slice(&rw[(i - l) * h..(i - l + 1) * h]);
     }
     (uq, qw)
+}
+
+/// de Boor corner cutting (thesis CurvePntByCornerCut, NURBS Book A5.1-style triangle) in place
+/// on `buf`, which holds the p + 1 local control points P_{k-p} .. P_k of span k with `h` rows
+/// each; afterwards the value at `u` is in `buf[p * h..(p + 1) * h]`.
+///
+/// Each step is the convex combination written as alpha*(R1 - R2) + R2 (thesis sec. 5.1),
+/// which in interval arithmetic overestimates less than alpha*R1 + (1 - alpha)*R2.
+/// The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0, so never zero.
+/// For an interval `u` inside [u_k, u_{k+1}] the result encloses the piece over all of `u`
+/// (the polynomial piece is the same there; inclusion isotonicity of interval arithmetic).
+pub fn corner_cut<S: Scalar>(knots: &[f64], p: usize, k: usize, u: &S, h: usize, buf: &mut [S]) {
+    for r in 1..=p {
+        corner_cut_level(knots, p, k, r, u, h, buf);
+    }
+}
+
+/// One level r of de Boor corner cutting on span k (see [`HSpline::corner_cut_level`]), on a
+/// buffer of p + 1 points with `h` rows each.
+pub fn corner_cut_level<S: Scalar>(
+    knots: &[f64],
+    p: usize,
+    k: usize,
+    r: usize,
+    u: &S,
+    h: usize,
+    col: &mut [S],
+) {
+    // alpha for level r, position j (i = k - p + j): (u - u_i) / (u_{i+p+1-r} - u_i)
+    for j in (r..=p).rev() {
+        let i = k - p + j;
+        let a = (u.clone() - S::from_f64(knots[i]))
+            / (S::from_f64(knots[i + p + 1 - r]) - S::from_f64(knots[i]));
+        for c in 0..h {
+            let hi = col[j * h + c].clone();
+            let lo = col[(j - 1) * h + c].clone();
+            col[j * h + c] = S::lerp(&a, &lo, &hi);
+        }
+    }
 }
 
 /// All non-zero basis functions N_{k-p,p}(u) .. N_{k,p}(u) on span k (NURBS Book A2.2

@@ -552,11 +552,20 @@ pub fn thesis_curve_1d(
 /// i.e. n = 10, 11 control points, p = 2 .. 10): coordinates uniform in [-1, 1], weights
 /// uniform in [0.5, 2], clamped uniform knots on [0, 1].
 pub fn thesis_curve_2d_nurbs(degree: usize, seed: u64) -> Result<NurbsCurve, CurveError> {
-    const NPTS: usize = 11;
+    thesis_curve_2d_nurbs_with(11, degree, seed)
+}
+
+/// As [`thesis_curve_2d_nurbs`] with `npts` control points (the harness continues the degree
+/// sweep beyond p = 10 with 21 points).
+pub fn thesis_curve_2d_nurbs_with(
+    npts: usize,
+    degree: usize,
+    seed: u64,
+) -> Result<NurbsCurve, CurveError> {
     let mut r = rng(seed);
-    let pts: Vec<f64> = (0..2 * NPTS).map(|_| r.random_range(-1.0..=1.0)).collect();
-    let w: Vec<f64> = (0..NPTS).map(|_| r.random_range(0.5..=2.0)).collect();
-    NurbsCurve::from_flat(degree, 2, clamped_uniform(NPTS, degree)?, pts, Some(w))
+    let pts: Vec<f64> = (0..2 * npts).map(|_| r.random_range(-1.0..=1.0)).collect();
+    let w: Vec<f64> = (0..npts).map(|_| r.random_range(0.5..=2.0)).collect();
+    NurbsCurve::from_flat(degree, 2, clamped_uniform(npts, degree)?, pts, Some(w))
 }
 
 /// Clamped uniform knots on [0, 1] for `npts` points of degree p (typed error if npts < p + 1

@@ -15,6 +15,7 @@
 #![doc = include_str!("guarantees.md")]
 #![warn(missing_docs)]
 
+pub mod batch;
 pub mod bezier_tools;
 mod bspline;
 mod curve;
@@ -26,6 +27,7 @@ pub mod families;
 pub mod font;
 pub mod gen;
 pub mod interpolate;
+pub mod io;
 pub mod knot_vectors;
 mod knots;
 #[cfg(feature = "mpfr")]
@@ -46,6 +48,7 @@ pub use enclose::{
 };
 pub use error::{CurveError, EvalError};
 pub use eval::{project, CurveEval};
+pub use io::{curve_to_json, parse_curve, CurveReader, InputError};
 pub use knots::{find_span, multiplicity};
 pub use scalar::Scalar;
 pub use tight::TightEval;

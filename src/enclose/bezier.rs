@@ -29,6 +29,7 @@ use crate::bspline::{BezierSeg, HSpline};
 use crate::curve::NurbsCurve;
 use crate::eval::CurveEval;
 use crate::scalar::iv;
+use crate::tight::TightEval;
 use inari::Interval;
 use std::time::Instant;
 
@@ -69,10 +70,12 @@ impl BezierSubdivision {
     }
 }
 
-/// Tight evaluation of one coordinate at exact parameters and over small parameter boxes.
+/// Tight evaluation of one coordinate at exact parameters and over small parameter boxes
+/// ([`TightEval`]: rigorous double-double, ~1 ulp), and f64 derivatives for critical-point
+/// estimates.
 struct Values<'a> {
     curve: &'a NurbsCurve,
-    ival: CurveEval<Interval>,
+    tight: TightEval,
     fval: CurveEval<f64>,
 }
 
@@ -80,22 +83,17 @@ impl<'a> Values<'a> {
     fn new(curve: &'a NurbsCurve) -> Self {
         Values {
             curve,
-            ival: CurveEval::new(curve, 1),
+            tight: TightEval::new(curve),
             fval: CurveEval::new(curve, 2),
         }
     }
     /// Enclosure of C_j(u) at the exact f64 u.
     fn at(&self, j: usize, u: f64) -> Interval {
-        let k = self.ival.span(u);
-        self.ival.derivs_in_span(k, &iv::point(u), 0)[0][j]
+        self.tight.coord_at(j, u)
     }
-    /// Enclosure of C_j over [a, b]: intersection of the naive enclosure and the mean-value
-    /// form C_j(m) + C_j'([a,b]) ([a,b] - m) (both verified, so their intersection is).
+    /// Enclosure of C_j over [a, b].
     fn over(&self, j: usize, a: f64, b: f64) -> Interval {
-        let e = self.ival.enclose_over(self.curve, a, b, 1);
-        let m = 0.5 * (a + b);
-        let mv = self.at(j, m) + e[1][j] * (iv::span(a, b) - iv::point(m));
-        e[0][j].intersection(mv)
+        self.tight.coord_over(j, a, b)
     }
     /// f64 Newton on C_j'(u) = 0 in (a, b), started at the midpoint; None if it leaves.
     fn critical(&self, j: usize, a: f64, b: f64) -> Option<f64> {

@@ -9,9 +9,13 @@ use std::time::Duration;
 
 mod bezier;
 mod hull;
+mod newton;
+mod search_region;
 
 pub use bezier::BezierSubdivision;
 pub use hull::ControlHull;
+pub use newton::{DerivForm, Newton, Split};
+pub use search_region::SearchRegion;
 
 /// What a strategy promises about its box.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -196,16 +200,26 @@ pub trait BoxEncloser: Send + Sync {
 }
 
 /// Names of all strategies, in the order `--strategy all` uses.
-pub const STRATEGY_NAMES: &[&str] = &["hull", "bezier"];
+pub const STRATEGY_NAMES: &[&str] = &[
+    "hull",
+    "bezier",
+    "newton",
+    "search-region",
+    "search-region-verified",
+];
 
 /// The strategy called `name` (see [`STRATEGY_NAMES`]), with tolerance `tol` where the strategy
 /// has one (`None`: its default). `None` if the name is unknown.
 pub fn strategy_by_name(name: &str, tol: Option<f64>) -> Option<Box<dyn BoxEncloser>> {
+    let newton = tol.map_or_else(Newton::default, Newton::with_tol);
     match name {
         "hull" => Some(Box::new(ControlHull)),
         "bezier" => Some(Box::new(
             tol.map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol),
         )),
+        "newton" => Some(Box::new(newton)),
+        "search-region" => Some(Box::new(SearchRegion::thesis(newton))),
+        "search-region-verified" => Some(Box::new(SearchRegion::verified(newton))),
         _ => None,
     }
 }
