@@ -11,6 +11,7 @@
 use crate::curve::NurbsCurve;
 use crate::error::{CurveError, EvalError};
 use crate::eval::CurveEval;
+use crate::io::{write_curve, write_error_record};
 use crate::knot_vectors::interpolation_knots;
 use crate::scalar::iv;
 use crate::tridiagonal::{solve_tridiagonal, TridiagonalError};
@@ -495,24 +496,10 @@ pub fn parse_point_sets(text: &str) -> Vec<PointSetInput> {
         .collect()
 }
 
-/// A curve as the JSON object of `shared/formats.md` (numbers as shortest round-trip decimals,
-/// which serde_json's f64 formatting produces; a valid curve has only finite values).
-fn curve_json(c: &NurbsCurve) -> serde_json::Value {
-    let mut v = serde_json::json!({
-        "degree": c.degree(),
-        "knots": c.knots(),
-        "control_points": c.control_points(),
-    });
-    if let Some(w) = c.weights() {
-        v["weights"] = serde_json::json!(w);
-    }
-    v
-}
-
 /// The `nurbs-box interpolate` command as a library function: read point sets from `input`,
 /// interpolate each with natural end conditions and the parametrisation `param`, and write one
-/// curve per line (the curve JSON of `shared/formats.md`) to `out`, so the output can be piped
-/// into `nurbs-box enclose`.
+/// curve per line (the curve JSON of `shared/formats.md`, by [`crate::io::write_curve`]) to
+/// `out`, so the output can be piped into `nurbs-box enclose`.
 ///
 /// Input: a JSON array of points (one point set, e.g. `[[0,0],[1,2],[3,1]]`), a JSON array of
 /// such arrays (several sets), or JSON Lines with one point set per line (blank lines skipped).
@@ -531,13 +518,18 @@ pub fn run_cli<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
     for (i, set) in parse_point_sets(&text).into_iter().enumerate() {
         let res = set
             .and_then(|pts| interpolate_cubic(&pts, param).map_err(|e| (e.kind(), e.to_string())));
+        let mut line = Vec::new();
         match res {
-            Ok(c) => writeln!(out, "{}", curve_json(&c))?,
+            Ok(c) => {
+                write_curve(&mut line, &c);
+                line.push(b'\n');
+                out.write_all(&line)?;
+            }
             Err((kind, message)) => {
                 all_ok = false;
-                let rec =
-                    serde_json::json!({"index": i, "error": {"kind": kind, "message": message}});
-                writeln!(err, "{rec}")?;
+                write_error_record(&mut line, i, "", kind, &message);
+                line.push(b'\n');
+                err.write_all(&line)?;
             }
         }
     }
