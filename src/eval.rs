@@ -213,6 +213,34 @@ impl NurbsCurve {
         Ok(e.enclose_over(self, u.inf(), u.sup(), k).pop().unwrap())
     }
 
+    /// Whether each domain end is clamped: C(u_p) = P_0 exactly when u_1 = u_p, and
+    /// C(u_{n+1}) = P_n exactly when u_{n+1} = u_{n+p} (the de Boor triangle collapses to the
+    /// end control point; for rational curves too, the weights cancel).
+    pub fn clamped_ends(&self) -> [bool; 2] {
+        let (p, n, k) = (self.degree(), self.num_points() - 1, self.knots());
+        [k[1] == k[p], k[n + 1] == k[n + p]]
+    }
+
+    /// Verified enclosures of C at the two domain ends: exact point intervals of P_0 / P_n at a
+    /// clamped end (see [`NurbsCurve::clamped_ends`]), interval de Boor otherwise.
+    pub fn end_values(&self) -> [Vec<Interval>; 2] {
+        let (a, b) = self.domain();
+        let cl = self.clamped_ends();
+        let n = self.num_points() - 1;
+        let at = |i: usize, u: f64, clamped: bool| -> Vec<Interval> {
+            if clamped {
+                self.control_point(i)
+                    .iter()
+                    .map(|&x| iv::point(x))
+                    .collect()
+            } else {
+                let h = HSpline::<Interval>::from_curve(self);
+                project(h.eval(u), self.dim(), self.is_rational())
+            }
+        };
+        [at(0, a, cl[0]), at(n, b, cl[1])]
+    }
+
     /// Verified enclosure of C(u) for all u in the interval `u` (see
     /// [`NurbsCurve::enclose_derivative`]).
     pub fn enclose_point(&self, u: Interval) -> Result<Vec<Interval>, EvalError> {

@@ -440,18 +440,58 @@ impl BoxEncloser for BezierSubdivision {
         Guarantee::Verified
     }
     fn enclose(&self, c: &NurbsCurve) -> Enclosure {
-        let hs = HSpline::<Interval>::from_curve(c);
         let (p, n) = (c.degree(), c.num_points() - 1);
-        let spans: Vec<usize> = (p..=n)
-            .filter(|&k| c.knots()[k] < c.knots()[k + 1])
-            .collect();
-        let mut segs: Vec<Option<BezierSeg<Interval>>> = vec![None; n + 1];
-        let vals = Values::new(c);
+        let kn = c.knots();
+        // Clamped ends have exactly known values P_0 / P_n (see `NurbsCurve::clamped_ends`).
+        let (a, b) = c.domain();
+        let cl = c.clamped_ends();
+        let ends = [cl[0].then_some((0, a)), cl[1].then_some((n, b))];
+        // Built only when some coordinate side needs a search.
+        let mut ctx: Option<(
+            HSpline<Interval>,
+            Vec<usize>,
+            Vec<Option<BezierSeg<Interval>>>,
+            Values,
+        )> = None;
         let mut coords = Vec::with_capacity(c.dim());
         for j in 0..c.dim() {
             let t1 = Instant::now();
-            let hi = self.maximize(&vals, &hs, &mut segs, &spans, j, 1.0);
-            let lo = self.maximize(&vals, &hs, &mut segs, &spans, j, -1.0);
+            let mut side = |sign: f64| -> Side {
+                // Fast path: the extreme control coordinate is an exactly attained end value,
+                // so the control-point bound is attained: the exact extremum, no rounding.
+                let m = (0..=n)
+                    .map(|i| sign * c.control_point(i)[j])
+                    .fold(f64::NEG_INFINITY, f64::max);
+                for &(i, u) in ends.iter().flatten() {
+                    if sign * c.control_point(i)[j] == m {
+                        let e = Extremum {
+                            u_lo: u,
+                            u_hi: u,
+                            unique: false,
+                            kind: CandidateKind::EndPoint,
+                        };
+                        return Side {
+                            attained: m,
+                            upper: m,
+                            cands: vec![(m, e)],
+                            stats: Stats::default(),
+                            term: Termination::Converged,
+                        };
+                    }
+                }
+                let (hs, spans, segs, vals) = ctx.get_or_insert_with(|| {
+                    let spans = (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect();
+                    (
+                        HSpline::<Interval>::from_curve(c),
+                        spans,
+                        vec![None; n + 1],
+                        Values::new(c),
+                    )
+                });
+                self.maximize(vals, hs, segs, spans, j, sign)
+            };
+            let hi = side(1.0);
+            let lo = side(-1.0);
             let pick = |s: &Side| {
                 s.cands
                     .iter()
