@@ -539,7 +539,7 @@ impl Scalar for Ddi {
     }
 
     /// `[RD(hi + lo - rad), RU(hi + lo + rad)]`: one ulp wide (or a point) whenever the radius is
-    /// small against the centre; see [`lower_sum3`] for why the bounds hold.
+    /// small against the centre; see the comments in the code (and `lower_sum3`) for why the bounds hold.
     #[inline]
     fn to_interval(&self) -> Interval {
         if self.is_entire() {

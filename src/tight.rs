@@ -4,32 +4,42 @@
 //! # Method
 //!
 //! Per polynomial piece (knot span [a, b]) the homogeneous curve (w_i P_i, w_i) is converted
-//! once, lazily, into *Taylor coefficients* at both span ends, in [`Ddi`] (rigorous
+//! once, lazily, into *Taylor coefficients* at either span end, in [`Ddi`] (rigorous
 //! double-double): the Bézier points of the span come from the generic Boehm knot insertion
-//! ([`HSpline::bezier_segment`], NURBS Book A5.6), and the Bernstein-to-power conversion
-//! `B(t) = sum_k binom(p, k) Δ^k Q_0 t^k` (Farin, *Curves and Surfaces for CAGD*, eq. 5.23;
-//! also thesis sec. 2.1) is followed by the substitution t = s / (b - a). Every coefficient is
-//! an enclosure of the exact one (Ddi is inclusion-isotone), about 2^-100 relative wide.
-//! Evaluation is Horner's rule in `Ddi` at s = u - a (or s = b - u, whichever is smaller; both
-//! are exact double-words), so it costs p multiply-adds and no division (one for rational
-//! curves), and an exact value at a span end (s = 0) stays exact.
+//! ([`HSpline::bezier_segment`], NURBS Book A5.1/A5.6), and the monomial form of a Bézier
+//! curve `B(t) = sum_k binom(p, k) Δ^k Q_0 t^k` (forward differences; Farin, *Curves and
+//! Surfaces for CAGD*, the monomial form in the Bézier chapter) is followed by the
+//! substitution t = s / (b - a). Every coefficient is an enclosure of the exact one (`Ddi` is
+//! inclusion-isotone), about 2^-100 relative wide. Evaluation is Horner's rule with the fused
+//! step [`Ddi::mul_add`] at s = u - a or s = b - u, whichever is smaller (both exact
+//! double-words), so it costs p multiply-adds and no division (one for rational curves), and
+//! an exact value at a span end (s = 0) stays exact.
 //!
 //! * [`TightEval::coord_at`]: `C_j(u)` in `Ddi`, rounded outward once: one ulp wide, or a
 //!   single float when the exact value is one.
-//! * [`TightEval::coord_over`] encloses C_j over a small box X per piece with the second-order
-//!   Taylor form `C(X) ⊆ C(m) + C'(m)(X - m) + C''(X)(X - m)^2 / 2` (Moore 1966; Neumaier,
-//!   *Interval Methods for Systems of Equations*, 1990, sec. 2.3), its extremal side sharpened
-//!   by completing the square. `C(m)`, `C'(m)` are `Ddi` values at the point m; `C''(X)` is the
-//!   `Ddi` Horner value over the set X (which `Ddi` represents as m ± radius). Near a critical
-//!   point the correction is far below an ulp and the bound is `C(m)` rounded outward.
-//!   Boxes wider than 1/256 of their span use the generic kernels instead: interval de Boor
-//!   over X ([`CurveEval::derivs_in_span`]) in the mean-value form
-//!   `C(m) + C'(X)(X - m)` and the Taylor form, intersected with the naive enclosure `C(X)`.
+//! * [`TightEval::coord_over`] encloses C_j over a box X = [lo, hi] per polynomial piece (boxes
+//!   straddling knots are split there; when the box ends at an interior knot the right-continuous
+//!   value there is added, which matters for discontinuous curves). With m the midpoint and
+//!   h = u - m, |h| <= r:
+//!   - the second-order Taylor form `C(X) ⊆ C(m) + C'(m) h + C''(X) h^2 / 2` (Moore 1966;
+//!     Neumaier, *Interval Methods for Systems of Equations*, 1990, sec. 2.3), its extremal
+//!     side sharpened by completing the square ([`taylor_bounds`]). `C(m)`, `C'(m)` are `Ddi`
+//!     values at the point m, `C''(X)` the `Ddi` Horner value over the set m ± r. Near a
+//!     critical point the correction is far below an ulp and the bound is `C(m)` rounded
+//!     outward;
+//!   - if `C'(m) + C''(X) h` excludes 0, C_j is monotone on X and the result is the hull of the
+//!     point enclosures at lo and hi (the best possible);
+//!   - boxes wider than 1/256 of their span use the generic kernels instead: interval de Boor
+//!     over X ([`CurveEval::derivs_in_span`]) in the mean-value form `C(m) + C'(X) h` and the
+//!     Taylor form, intersected with the naive enclosure `C(X)`.
 //!
 //! Rational curves: C = A / w, C' = (A' - w' C) / w, C'' = (A'' - 2 w' C' - w'' C) / w
 //! (thesis eq. 3.10 / NURBS Book eq. 4.8), evaluated in `Ddi`.
 //! Overflow anywhere makes a `Ddi` ENTIRE; then the generic interval kernels are used, so the
 //! result is never wrong (possibly loose, possibly ENTIRE).
+//!
+//! Cost (2-D cubic Bézier, `cargo run --release --example tight_speed`): `coord_at` ~50 ns,
+//! `coord_over` on a small box ~150 ns, the lazily built span data ~600 ns once per curve.
 
 use crate::bspline::HSpline;
 use crate::curve::NurbsCurve;
