@@ -315,6 +315,9 @@ impl TightEval {
     /// computed in [`Ddi`] and rounded outward once, so the interval is a single float or one
     /// ulp wide, except after overflow (then it is what interval de Boor gives, possibly
     /// ENTIRE — never wrong).
+    ///
+    /// # Panics
+    /// If `j >= dim` (as indexing does).
     pub fn coord_at(&self, j: usize, u: f64) -> Interval {
         if !u.is_finite() {
             return Interval::ENTIRE; // no value to enclose; the safe answer
@@ -346,6 +349,9 @@ impl TightEval {
     /// empty or misses the domain). Made for small boxes around critical points (about one ulp
     /// wide then), valid for any box. Boxes straddling knots are split there and the pieces'
     /// enclosures hulled, so discontinuities of C' (or C) are handled.
+    ///
+    /// # Panics
+    /// If `j >= dim` (as indexing does).
     pub fn coord_over(&self, j: usize, a: f64, b: f64) -> Interval {
         if a.is_nan() || b.is_nan() || a > b {
             return Interval::EMPTY;
@@ -528,6 +534,9 @@ fn finish(cm: Ddi, t: Interval, naive: Interval) -> Interval {
 
 impl NurbsCurve {
     /// Coordinate j as a 1-D NURBS curve (same degree, knots and weights).
+    ///
+    /// # Panics
+    /// If `j >= dim`.
     pub fn coordinate_curve(&self, j: usize) -> NurbsCurve {
         let pts: Vec<f64> = (0..self.num_points())
             .map(|i| self.control_point(i)[j])
