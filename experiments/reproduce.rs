@@ -350,6 +350,14 @@ fn fmt_time(d: Duration) -> String {
     }
 }
 
+fn fmt_ulps(x: f64) -> String {
+    if x >= 1e4 {
+        format!("{x:.1e}")
+    } else {
+        format!("{x:.1}")
+    }
+}
+
 fn csv(rows: &[Row], sweep: Sweep, prov: &Provenance) -> String {
     let mut s = prov.csv_comment();
     s.push_str("sweep,n,points,degree,strategy,verified,curves,median_time_s,derivative_time_s,difference_s,newton_iterations_avg,tightness_ulps_median,tightness_ulps_max,tightness_basis,checked_params,misses,thesis_total_s,thesis_derivatives_s,thesis_difference_s,thesis_newton_iterations\n");
@@ -490,10 +498,10 @@ fn strategy_table(rows: &[Row], sweep: Sweep, names: &[&'static str]) -> String 
                 };
                 let _ = write!(
                     s,
-                    " {} | {:.1} / {:.1}{} | {} |",
+                    " {} | {} / {}{} | {} |",
                     fmt_time(r.median_time),
-                    r.ulps_median,
-                    r.ulps_max,
+                    fmt_ulps(r.ulps_median),
+                    fmt_ulps(r.ulps_max),
                     if r.vs_reference { "" } else { " (gap)" },
                     miss
                 );

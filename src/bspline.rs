@@ -74,16 +74,98 @@ impl<S: Scalar> HSpline<S> {
         find_span(&self.knots, self.degree, self.npts() - 1, u)
     }
 
-    /// de Boor corner cutting on span `k` (see [`corner_cut`]), all homogeneous rows, written
-    /// into `out` (`hdim` values). For an interval `u` inside [u_k, u_{k+1}] the result encloses
-    /// the curve over all of `u`.
+    /// de Boor corner cutting on span `k` (thesis CurvePntByCornerCut / NURBS Book A5.1-style
+    /// triangle), all homogeneous rows, written into `out` (`hdim` values).
+    ///
+    /// This is [`HSpline::de_boor_column`] run to the end (a column of one point); both use the
+    /// single level step [`HSpline::corner_cut_level`].
+    /// For an interval `u` inside [u_k, u_{k+1}] the result encloses the curve over all of `u`
+    /// (the polynomial piece is the same there; inclusion isotonicity of interval arithmetic).
     pub fn eval_span(&self, k: usize, u: &S, out: &mut Vec<S>) {
+        self.de_boor_into(k, u, 1, out);
+    }
+
+    /// The de Boor scheme on span `k` stopped early (seed 002, sec. 3.1, method `de_boor(t,
+    /// stop)`): the corner cutting runs until a column holds only `stop` points, and that column
+    /// d^r_{k-p+r} .. d^r_k (r = p + 1 - stop) is returned, row-major, `hdim` values per point.
+    ///
+    /// `stop = p + 1` returns the control points of the span, `stop = 1` the curve point, and
+    /// `stop = 2` the two points whose difference is the tangent direction (thesis listing
+    /// `tang`, lines 2418-2442). `stop` is clamped to `1..=p + 1`.
+    /// The same enclosure property as [`HSpline::eval_span`] holds for interval `u`: each
+    /// intermediate point is a polynomial in u over the span.
+    pub fn de_boor_column(&self, k: usize, u: &S, stop: usize) -> Vec<S> {
+        let mut out = Vec::new();
+        self.de_boor_into(k, u, stop, &mut out);
+        out
+    }
+
+    /// Shared body of [`HSpline::eval_span`] and [`HSpline::de_boor_column`].
+    fn de_boor_into(&self, k: usize, u: &S, stop: usize, out: &mut Vec<S>) {
         let p = self.degree;
         let h = self.hdim();
+        let levels = p + 1 - stop.clamp(1, p + 1);
         out.clear();
         out.extend_from_slice(&self.pts[(k - p) * h..(k + 1) * h]);
-        corner_cut(&self.knots, p, k, u, h, out);
-        out.drain(..p * h);
+        for r in 1..=levels {
+            self.corner_cut_level(k, r, u, out);
+        }
+        out.drain(..levels * h);
+    }
+
+    /// One level r (1 <= r <= p) of de Boor corner cutting on span `k`, in place on the
+    /// triangle buffer `col` of p + 1 homogeneous points: position j (r <= j <= p, point index
+    /// i = k - p + j) becomes d^r_i = alpha (d^{r-1}_i - d^{r-1}_{i-1}) + d^{r-1}_{i-1} with
+    /// alpha = (u - u_i) / (u_{i+p+1-r} - u_i) (seed 002 eq. for alpha_j^k; NURBS Book A5.1
+    /// triangle). Positions below r are left as they were.
+    ///
+    /// The convex combination is [`Scalar::lerp`] (thesis sec. 5.1 form, intersected with the
+    /// convex form for intervals). The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0.
+    pub fn corner_cut_level(&self, k: usize, r: usize, u: &S, col: &mut [S]) {
+        corner_cut_level(&self.knots, self.degree, k, r, u, self.hdim(), col);
+    }
+
+    /// Point and first derivative (Cartesian, `dim` values each) on span `k` by corner cutting,
+    /// without derivative control points (thesis listing `tang`, lines 2406-2442, made exact):
+    /// the de Boor column with two points R0, R1 gives the homogeneous derivative
+    /// A'(u) = p (R1 - R0) / (u_{k+1} - u_k) (blossoming; Farin, Curves and Surfaces, sec. on
+    /// derivatives of B-splines), the last level gives the point A(u). For a rational curve
+    /// C = A/w and C' = (A' - w' C) / w (thesis eq. 3.10 with k = 1).
+    ///
+    /// For degree 0 the derivative is 0. For an interval `u` inside the closed span both results
+    /// enclose the exact values over all of `u` (every step is a rational function evaluated in
+    /// interval arithmetic).
+    pub fn tangent_span(&self, k: usize, u: &S) -> (Vec<S>, Vec<S>) {
+        let p = self.degree;
+        let h = self.hdim();
+        let d = self.dim;
+        if p == 0 {
+            let pt = self.pts[k * h..(k + 1) * h].to_vec();
+            return (
+                crate::eval::project(pt, d, self.rational),
+                vec![S::zero(); d],
+            );
+        }
+        let two = self.de_boor_column(k, u, 2);
+        let f = S::from_usize(p) / (S::from_f64(self.knots[k + 1]) - S::from_f64(self.knots[k]));
+        let dh: Vec<S> = (0..h)
+            .map(|c| f.clone() * (two[h + c].clone() - two[c].clone()))
+            .collect();
+        // The last level, on the two-point column placed at positions p-1, p of a triangle.
+        let mut col = vec![S::zero(); (p - 1) * h];
+        col.extend(two);
+        self.corner_cut_level(k, p, u, &mut col);
+        let ph = col[p * h..].to_vec();
+        if !self.rational {
+            return (ph, dh);
+        }
+        let w = ph[d].clone();
+        let wd = dh[d].clone();
+        let pt: Vec<S> = ph[..d].iter().map(|x| x.clone() / w.clone()).collect();
+        let der = (0..d)
+            .map(|j| (dh[j].clone() - wd.clone() * pt[j].clone()) / w.clone())
+            .collect();
+        (pt, der)
     }
 
     /// Like [`HSpline::eval_span`] but only for the homogeneous rows listed in `rows` (e.g. one
@@ -183,14 +265,20 @@ impl<S: Scalar> HSpline<S> {
     }
 
     /// Insert the knot u `r` times (NURBS Book A5.1 CurveKnotIns; thesis eqs. 4.12, 4.15/4.16).
-    /// Requires u in the domain and r + (current multiplicity) <= p; extra insertions are
-    /// ignored. The new points are convex combinations alpha*(Q_i - Q_{i-1}) + Q_{i-1}.
+    /// Requires u in the domain; insertions beyond multiplicity p are ignored. The new points
+    /// are convex combinations alpha*(Q_i - Q_{i-1}) + Q_{i-1}.
     pub fn insert_knot(&self, u: f64, r: usize) -> HSpline<S> {
         let p = self.degree;
         let h = self.hdim();
         let k = self.span(u);
-        let s = crate::knots::multiplicity(&self.knots, u);
-        let r = r.min(p.saturating_sub(s));
+        let total = crate::knots::multiplicity(&self.knots, u);
+        let r = r.min(p.saturating_sub(total));
+        // A5.1 wants s = the copies of u among u_{k-p} ..= u_k (u in [u_k, u_{k+1})). At the
+        // right end of the domain, u = u_{k+1} lies in the closed last span k and no copy of u
+        // is at or below k (u_k < u_{k+1}): s = 0 there (Boehm's formula holds on the closed
+        // span). Using the total multiplicity instead changed the curve of an unclamped
+        // domain end.
+        let s = if u == self.knots[k + 1] { 0 } else { total };
         if r == 0 {
             return self.clone();
         }
@@ -266,7 +354,7 @@ impl<S: Scalar> BezierSeg<S> {
                 for c in 0..h {
                     let lo = b[i * h + c].clone();
                     let hi = b[(i + 1) * h + c].clone();
-                    b[i * h + c] = t.clone() * (hi - lo.clone()) + lo;
+                    b[i * h + c] = S::lerp(t, &lo, &hi);
                 }
             }
             left.extend_from_slice(&b[0..h]);
@@ -382,7 +470,7 @@ fn knot_ins<S: Scalar>(
             for c in 0..h {
                 let lo = rw[i * h + c].clone();
                 let hi = rw[(i + 1) * h + c].clone();
-                rw[i * h + c] = alpha.clone() * (hi - lo.clone()) + lo;
+                rw[i * h + c] = S::lerp(&alpha, &lo, &hi);
             }
         }
         qw[l * h..(l + 1) * h].clone_from_slice(&rw[0..h]);
@@ -405,15 +493,31 @@ fn knot_ins<S: Scalar>(
 /// For an interval `u` inside [u_k, u_{k+1}] the result encloses the piece over all of `u`
 /// (the polynomial piece is the same there; inclusion isotonicity of interval arithmetic).
 pub fn corner_cut<S: Scalar>(knots: &[f64], p: usize, k: usize, u: &S, h: usize, buf: &mut [S]) {
-    // alpha for level r, position j (i = k - p + j): (u - u_i) / (u_{i+p+1-r} - u_i)
     for r in 1..=p {
-        for j in (r..=p).rev() {
-            let i = k - p + j;
-            let a = (u.clone() - S::from_f64(knots[i]))
-                / (S::from_f64(knots[i + p + 1 - r]) - S::from_f64(knots[i]));
-            for c in 0..h {
-                buf[j * h + c] = S::lerp(&a, &buf[(j - 1) * h + c], &buf[j * h + c]);
-            }
+        corner_cut_level(knots, p, k, r, u, h, buf);
+    }
+}
+
+/// One level r of de Boor corner cutting on span k (see [`HSpline::corner_cut_level`]), on a
+/// buffer of p + 1 points with `h` rows each.
+pub fn corner_cut_level<S: Scalar>(
+    knots: &[f64],
+    p: usize,
+    k: usize,
+    r: usize,
+    u: &S,
+    h: usize,
+    col: &mut [S],
+) {
+    // alpha for level r, position j (i = k - p + j): (u - u_i) / (u_{i+p+1-r} - u_i)
+    for j in (r..=p).rev() {
+        let i = k - p + j;
+        let a = (u.clone() - S::from_f64(knots[i]))
+            / (S::from_f64(knots[i + p + 1 - r]) - S::from_f64(knots[i]));
+        for c in 0..h {
+            let hi = col[j * h + c].clone();
+            let lo = col[(j - 1) * h + c].clone();
+            col[j * h + c] = S::lerp(&a, &lo, &hi);
         }
     }
 }
@@ -440,4 +544,84 @@ pub fn basis_funs<S: Scalar>(knots: &[f64], k: usize, u: &S, p: usize) -> Vec<S>
         n[j] = saved;
     }
     n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::iv;
+    use inari::Interval;
+
+    fn cubic() -> NurbsCurve {
+        NurbsCurve::new(
+            3,
+            vec![0., 0., 0., 0., 0.3, 0.7, 1., 1., 1., 1.],
+            vec![
+                vec![0., 0.],
+                vec![1., 2.],
+                vec![2., -1.],
+                vec![3., 3.],
+                vec![4., 0.],
+                vec![5., 1.],
+            ],
+            Some(vec![1., 2., 0.5, 1., 3., 1.]),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn de_boor_columns_shrink_to_the_point() {
+        let h = HSpline::<f64>::from_curve(&cubic());
+        let u = 0.45;
+        let k = h.span(u);
+        let hd = h.hdim();
+        assert_eq!(
+            h.de_boor_column(k, &u, 4),
+            h.pts[(k - 3) * hd..(k + 1) * hd].to_vec()
+        );
+        for stop in 1..=4 {
+            assert_eq!(h.de_boor_column(k, &u, stop).len(), stop * hd);
+        }
+        assert_eq!(h.de_boor_column(k, &u, 1), h.eval(u));
+        // stop beyond p + 1 is clamped
+        assert_eq!(h.de_boor_column(k, &u, 9).len(), 4 * hd);
+        // the point lies on the segment between the two points of the stop = 2 column
+        let two = h.de_boor_column(k, &u, 2);
+        let a = (u - h.knots[k]) / (h.knots[k + 1] - h.knots[k]);
+        let pt = h.eval(u);
+        for c in 0..hd {
+            assert!((two[c] + a * (two[hd + c] - two[c]) - pt[c]).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn tangent_by_corner_cutting_matches_derivative_splines() {
+        let c = cubic();
+        let hf = HSpline::<f64>::from_curve(&c);
+        let hi = HSpline::<Interval>::from_curve(&c);
+        for i in 0..=50 {
+            let u = i as f64 / 50.0;
+            let k = hf.span(u);
+            let (p, d) = hf.tangent_span(k, &u);
+            let want: Vec<f64> = c.derivative(u, 1).unwrap();
+            let wp: Vec<f64> = c.point(u).unwrap();
+            let (pi, di) = hi.tangent_span(k, &iv::point(u));
+            for j in 0..2 {
+                assert!(
+                    (d[j] - want[j]).abs() < 1e-11 * (1.0 + want[j].abs()),
+                    "u={u}"
+                );
+                assert!((p[j] - wp[j]).abs() < 1e-13);
+                assert!(di[j].contains(d[j]) && pi[j].contains(p[j]));
+            }
+        }
+        // an interval parameter inside a span encloses the samples
+        let k = hf.span(0.4);
+        let (_, di) = hi.tangent_span(k, &iv::span(0.35, 0.6));
+        for i in 0..=20 {
+            let u = 0.35 + 0.25 * i as f64 / 20.0;
+            let (_, d) = hf.tangent_span(k, &u);
+            assert!(di[0].inf() <= d[0] + 1e-12 && d[0] - 1e-12 <= di[0].sup());
+        }
+    }
 }

@@ -8,7 +8,7 @@ use crate::scalar::{iv, Scalar};
 use inari::Interval;
 
 /// Binomial coefficient (small arguments; exact in f64 up to far beyond what is used).
-fn binom(n: usize, k: usize) -> f64 {
+pub(crate) fn binom(n: usize, k: usize) -> f64 {
     (0..k)
         .fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
         .round()
@@ -110,7 +110,18 @@ impl CurveEval<Interval> {
     /// the knots it straddles and hulled (each piece is one polynomial).
     pub fn enclose_over(&self, c: &NurbsCurve, a: f64, b: f64, k: usize) -> Vec<Vec<Interval>> {
         let mut acc: Option<Vec<Vec<Interval>>> = None;
-        for (span, lo, hi) in c.spans_straddled(a, b) {
+        let mut pieces = c.spans_straddled(a, b);
+        // The value at an interior knot b belongs to the span that starts at b (find_span:
+        // u_k <= u < u_{k+1}), which the straddled spans (ending at b) do not include. It
+        // differs from the left piece's limit where some C^(l), l <= k, may jump: at a knot
+        // of multiplicity m with m + k > p (C is C^{p-m} there). Add the point piece [b, b].
+        if let Some(&(last, _, hi)) = pieces.last() {
+            let kb = c.find_span(hi);
+            if kb != last && crate::knots::multiplicity(c.knots(), hi) + k > c.degree() {
+                pieces.push((kb, hi, hi));
+            }
+        }
+        for (span, lo, hi) in pieces {
             let v = self.derivs_in_span(span, &iv::span(lo, hi), k);
             acc = Some(match acc {
                 None => v,
@@ -202,6 +213,34 @@ impl NurbsCurve {
         Ok(e.enclose_over(self, u.inf(), u.sup(), k).pop().unwrap())
     }
 
+    /// Whether each domain end is clamped: C(u_p) = P_0 exactly when u_1 = u_p, and
+    /// C(u_{n+1}) = P_n exactly when u_{n+1} = u_{n+p} (the de Boor triangle collapses to the
+    /// end control point; for rational curves too, the weights cancel).
+    pub fn clamped_ends(&self) -> [bool; 2] {
+        let (p, n, k) = (self.degree(), self.num_points() - 1, self.knots());
+        [k[1] == k[p], k[n + 1] == k[n + p]]
+    }
+
+    /// Verified enclosures of C at the two domain ends: exact point intervals of P_0 / P_n at a
+    /// clamped end (see [`NurbsCurve::clamped_ends`]), interval de Boor otherwise.
+    pub fn end_values(&self) -> [Vec<Interval>; 2] {
+        let (a, b) = self.domain();
+        let cl = self.clamped_ends();
+        let n = self.num_points() - 1;
+        let at = |i: usize, u: f64, clamped: bool| -> Vec<Interval> {
+            if clamped {
+                self.control_point(i)
+                    .iter()
+                    .map(|&x| iv::point(x))
+                    .collect()
+            } else {
+                let h = HSpline::<Interval>::from_curve(self);
+                project(h.eval(u), self.dim(), self.is_rational())
+            }
+        };
+        [at(0, a, cl[0]), at(n, b, cl[1])]
+    }
+
     /// Verified enclosure of C(u) for all u in the interval `u` (see
     /// [`NurbsCurve::enclose_derivative`]).
     pub fn enclose_point(&self, u: Interval) -> Result<Vec<Interval>, EvalError> {
@@ -222,29 +261,12 @@ pub fn project<S: Scalar>(mut v: Vec<S>, dim: usize, rational: bool) -> Vec<S> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// The 9-point rational quadratic unit circle (NURBS Book ex. 7.2).
     pub(crate) fn circle() -> NurbsCurve {
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        NurbsCurve::new(
-            2,
-            vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.],
-            vec![
-                vec![1., 0.],
-                vec![1., 1.],
-                vec![0., 1.],
-                vec![-1., 1.],
-                vec![-1., 0.],
-                vec![-1., -1.],
-                vec![0., -1.],
-                vec![1., -1.],
-                vec![1., 0.],
-            ],
-            Some(vec![1., s, 1., s, 1., s, 1., s, 1.]),
-        )
-        .unwrap()
+        crate::gen::nurbs_circle()
     }
 
     #[test]
@@ -259,9 +281,13 @@ mod tests {
             assert!(r2.inf() <= 1.0 + 1e-15 && r2.sup() >= 1.0 - 1e-15, "u={u}");
             assert!(r2.wid() < 1e-14);
             let f: Vec<f64> = c.point(u).unwrap();
-            // The f64 evaluation has its own rounding errors: near, not necessarily inside.
+            // f64 evaluation has its own rounding errors: it lies within a few ulps of the
+            // (exact-containing) enclosure, not necessarily inside it.
             for j in 0..2 {
-                assert!(f[j] >= p[j].inf() - 1e-15 && f[j] <= p[j].sup() + 1e-15);
+                assert!(
+                    p[j].inf() - 4e-16 <= f[j] && f[j] <= p[j].sup() + 4e-16,
+                    "u={u}"
+                );
             }
             let g: Vec<f64> = c.point_by_basis(u).unwrap();
             assert!((g[0] - f[0]).abs() < 1e-15 && (g[1] - f[1]).abs() < 1e-15);
@@ -338,5 +364,31 @@ mod tests {
         }
         assert!(c.enclose_point(iv::span(0.2, 1.5)).is_err());
         assert!(c.point::<f64>(-0.1).is_err());
+    }
+
+    #[test]
+    fn enclosure_ending_at_a_jump_knot_contains_the_value_there() {
+        // regression: C(b) of a knot b of multiplicity p + 1 comes from the span starting at
+        // b, which the straddled spans of [a, b] did not include
+        let c = NurbsCurve::new(
+            1,
+            vec![0., 0., 0.5, 0.5, 1., 1.],
+            vec![vec![0.], vec![1.], vec![5.], vec![6.]],
+            None,
+        )
+        .unwrap();
+        let e = c.enclose_point(iv::span(0.25, 0.5)).unwrap();
+        assert!(e[0].contains(5.0) && e[0].contains(0.5), "{e:?}");
+        // C' of a quadratic with a double knot (C^0) at 0.5: right derivative at 0.5
+        let q = NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.],
+            vec![vec![0.], vec![1.], vec![0.], vec![3.], vec![0.]],
+            None,
+        )
+        .unwrap();
+        let d: Vec<f64> = q.derivative(0.5, 1).unwrap();
+        let e = q.enclose_derivative(iv::span(0.1, 0.5), 1).unwrap();
+        assert!(e[0].contains(d[0]), "{d:?} {e:?}");
     }
 }

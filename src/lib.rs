@@ -15,23 +15,40 @@
 #![doc = include_str!("guarantees.md")]
 #![warn(missing_docs)]
 
+pub mod batch;
+pub mod bezier_tools;
 mod bspline;
 mod curve;
+mod ddi;
 pub mod enclose;
 mod error;
 mod eval;
+pub mod families;
+pub mod font;
+pub mod gen;
+pub mod interpolate;
+pub mod io;
+pub mod knot_vectors;
 mod knots;
+#[cfg(feature = "mpfr")]
+pub mod reference;
 mod refine;
 pub mod report;
 pub mod scalar;
+mod tight;
+pub mod tridiagonal;
 pub mod validate;
 
 pub use bspline::{basis_funs, BezierSeg, HSpline};
 pub use curve::NurbsCurve;
+pub use ddi::Ddi;
 pub use enclose::{
-    BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
+    all_strategies, strategy_by_name, BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum,
+    Guarantee, Stats, Termination,
 };
 pub use error::{CurveError, EvalError};
 pub use eval::{project, CurveEval};
+pub use io::{curve_to_json, parse_curve, CurveReader, InputError};
 pub use knots::{find_span, multiplicity};
 pub use scalar::Scalar;
+pub use tight::TightEval;

@@ -64,13 +64,22 @@ impl NurbsCurve {
         // after insertion u has multiplicity >= p; the point at u is P_j, j = last(u) - p
         let last = h.knots.partition_point(|&x| x <= u) - 1;
         let j = last - p;
-        let mut lk = h.knots[..=j + p].to_vec();
-        lk.push(u);
+        // Multiplicity p + 1 (the curve jumps at u): the left piece ends with P_{j-1} (its
+        // limit at u) and already has u p + 1 times; with multiplicity p, P_j is shared and
+        // the left knots get one more u.
+        let jump = crate::knots::multiplicity(&h.knots, u) > p;
+        let (lk, lpts) = if jump {
+            (h.knots[..=last].to_vec(), h.pts[..j * hd].to_vec())
+        } else {
+            let mut lk = h.knots[..=j + p].to_vec();
+            lk.push(u);
+            (lk, h.pts[..(j + 1) * hd].to_vec())
+        };
         let mut rk = vec![u];
         rk.extend_from_slice(&h.knots[j + 1..]);
         let left = HSpline {
             knots: lk,
-            pts: h.pts[..(j + 1) * hd].to_vec(),
+            pts: lpts,
             ..h.clone()
         };
         let right = HSpline {
@@ -160,6 +169,50 @@ mod tests {
             for j in 0..2 {
                 assert!(v[j].inf() - 1e-12 <= p[j] && p[j] <= v[j].sup() + 1e-12);
                 assert!(enc[j].contains(p[j]));
+            }
+        }
+    }
+
+    #[test]
+    fn split_at_a_jump_knot_is_valid_and_keeps_the_curve() {
+        // regression: multiplicity p + 1 at u gave a left knot vector with u p + 2 times
+        let c = NurbsCurve::new(
+            1,
+            vec![0., 0., 0.5, 0.5, 1., 1.],
+            vec![vec![0.], vec![1.], vec![5.], vec![6.]],
+            None,
+        )
+        .unwrap();
+        let (l, r) = c.split_at(0.5).unwrap();
+        assert_eq!(l.knots(), &[0., 0., 0.5, 0.5]);
+        assert_eq!(l.control_points(), vec![vec![0.], vec![1.]]);
+        assert_eq!(r.knots(), &[0.5, 0.5, 1., 1.]);
+        assert_eq!(r.point::<f64>(0.5).unwrap(), c.point::<f64>(0.5).unwrap());
+        assert_eq!(l.point::<f64>(0.25).unwrap(), c.point::<f64>(0.25).unwrap());
+    }
+
+    #[test]
+    fn insertion_at_an_unclamped_domain_end_keeps_the_curve() {
+        // regression: A5.1 was given the total multiplicity of u = u_{n+1} as s
+        let c = NurbsCurve::new(
+            2,
+            vec![0., 1., 2., 3., 4., 5., 6.],
+            vec![vec![0.], vec![1.], vec![3.], vec![-2.]],
+            None,
+        )
+        .unwrap();
+        let (a, b) = c.domain();
+        for r in 1..=2 {
+            for u0 in [a, b] {
+                let ins = c.insert_knot(u0, r).unwrap();
+                assert_eq!(ins.domain(), (a, b));
+                for i in 0..=20 {
+                    let u = a + (b - a) * i as f64 / 20.0;
+                    assert!(close(
+                        &c.point::<f64>(u).unwrap(),
+                        &ins.point::<f64>(u).unwrap()
+                    ));
+                }
             }
         }
     }

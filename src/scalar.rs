@@ -46,18 +46,22 @@ pub trait Scalar:
         // Integers up to 2^53 are exact in f64; degrees and binomials used here are far below.
         Self::from_f64(k as f64)
     }
+    /// The corner-cutting step lo + a (hi - lo) of de Boor, de Casteljau and knot insertion.
+    ///
+    /// The default is the thesis's form a*(R1 - R2) + R2 (sec. 5.1), which overestimates less
+    /// than (1 - a) R2 + a R1 when `a` is a wide interval and the R's are (near) points.
+    /// Intervals override this with the intersection of both forms: when the R's are wide and
+    /// `a` is narrow, the thesis form grows widths by up to 3x per step (R2 occurs twice)
+    /// while the convex form does not, and both forms are enclosures, so their intersection is.
+    fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
+        a.clone() * (hi.clone() - lo.clone()) + lo.clone()
+    }
     /// An f64 interval that contains the value (outward rounded for `rug::Float`).
     fn to_interval(&self) -> Interval;
     /// A representative f64 (midpoint for intervals, nearest for MPFR).
     fn to_f64(&self) -> f64;
     /// Whether the value is exactly zero (a point interval `[0, 0]` counts, a wider one does not).
     fn is_exact_zero(&self) -> bool;
-    /// The convex-combination step of de Boor / de Casteljau, lo + a (hi - lo), written as
-    /// a*(hi - lo) + lo (thesis sec. 5.1). Intervals override it to bound the range better.
-    #[inline]
-    fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
-        a.clone() * (hi.clone() - lo.clone()) + lo.clone()
-    }
 }
 
 impl Scalar for f64 {
@@ -81,6 +85,20 @@ impl Scalar for f64 {
 
 impl Scalar for Interval {
     #[inline]
+    fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
+        // [thesis form] ∩ [convex form]; both enclose lo + a (hi - lo) for all reals enclosed.
+        let thesis = *a * (*hi - *lo) + *lo;
+        let convex = (iv::point(1.0) - *a) * *lo + *a * *hi;
+        let m = thesis.intersection(convex);
+        // Both contain the exact set, so the intersection is non-empty unless an operand is
+        // empty or something overflowed to NaN-free ENTIRE; fall back to the thesis form then.
+        if m.is_empty() {
+            thesis
+        } else {
+            m
+        }
+    }
+    #[inline]
     fn from_f64(x: f64) -> Self {
         // A finite f64 is a valid singleton; non-finite data never reach the kernels (the curve
         // constructor rejects them), but stay sound anyway: ENTIRE encloses everything.
@@ -97,22 +115,6 @@ impl Scalar for Interval {
     #[inline]
     fn is_exact_zero(&self) -> bool {
         self.inf() == 0.0 && self.sup() == 0.0
-    }
-    /// Intersection of two enclosures of {l + t (h - l) : t in a, l in lo, h in hi}:
-    /// a*(hi - lo) + lo (thesis sec. 5.1; tight for thin lo, hi far from 0) and
-    /// (1 - a)*lo + a*hi (width ~ wid lo + wid hi instead of 3x for wide lo, hi, and exact
-    /// at a = 0 or 1). Without the second, interval widths can triple per de Boor level, which
-    /// ruins high degrees. Both contain the exact set, so their intersection does (never empty).
-    #[inline]
-    fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
-        let f1 = *a * (*hi - *lo) + *lo;
-        let f2 = (iv::point(1.0) - *a) * *lo + *a * *hi;
-        let r = f1.intersection(f2);
-        if r.is_empty() {
-            f1
-        } else {
-            r
-        }
     }
 }
 
@@ -153,4 +155,16 @@ pub mod iv {
     pub fn span(a: f64, b: f64) -> Interval {
         Interval::try_from((a, b)).unwrap_or(Interval::ENTIRE)
     }
+}
+
+/// The spacing of f64 numbers just above |x| (the ulp of x, used to report widths and
+/// distances "in ulps of a scale"): 2^(e - 52) for a normal |x| with exponent e, 2^-1074 for a
+/// zero or subnormal |x|; for non-finite |x| (and f64::MAX) the spacing below f64::MAX.
+pub fn ulp(x: f64) -> f64 {
+    let s = x.abs();
+    if !s.is_finite() || s == f64::MAX {
+        return f64::MAX - f64::from_bits(f64::MAX.to_bits() - 1);
+    }
+    // next float up minus s: exact (Sterbenz) and equal to the spacing above s.
+    f64::from_bits(s.to_bits() + 1) - s
 }

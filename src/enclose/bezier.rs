@@ -27,8 +27,8 @@ use super::{
 };
 use crate::bspline::{BezierSeg, HSpline};
 use crate::curve::NurbsCurve;
-use crate::eval::CurveEval;
 use crate::scalar::iv;
+use crate::tight::TightEval;
 use inari::Interval;
 use std::time::Instant;
 
@@ -69,54 +69,92 @@ impl BezierSubdivision {
     }
 }
 
-/// Tight evaluation of one coordinate at exact parameters and over small parameter boxes.
+/// Tight evaluation of one coordinate at exact parameters and over small parameter boxes
+/// ([`TightEval`]: rigorous double-double, ~1 ulp; its per-span data are built lazily).
 struct Values<'a> {
     curve: &'a NurbsCurve,
-    ival: CurveEval<Interval>,
-    fval: CurveEval<f64>,
+    tight: TightEval,
 }
 
 impl<'a> Values<'a> {
     fn new(curve: &'a NurbsCurve) -> Self {
         Values {
             curve,
-            ival: CurveEval::new(curve, 1),
-            fval: CurveEval::new(curve, 2),
+            tight: TightEval::new(curve),
         }
     }
     /// Enclosure of C_j(u) at the exact f64 u.
     fn at(&self, j: usize, u: f64) -> Interval {
-        let k = self.ival.span(u);
-        self.ival.derivs_in_span(k, &iv::point(u), 0)[0][j]
+        self.tight.coord_at(j, u)
     }
-    /// Enclosure of C_j over [a, b]: intersection of the naive enclosure and the mean-value
-    /// form C_j(m) + C_j'([a,b]) ([a,b] - m) (both verified, so their intersection is).
+    /// Enclosure of C_j over [a, b].
     fn over(&self, j: usize, a: f64, b: f64) -> Interval {
-        let e = self.ival.enclose_over(self.curve, a, b, 1);
-        let m = 0.5 * (a + b);
-        let mv = self.at(j, m) + e[1][j] * (iv::span(a, b) - iv::point(m));
-        e[0][j].intersection(mv)
+        self.tight.coord_over(j, a, b)
     }
-    /// f64 Newton on C_j'(u) = 0 in (a, b), started at the midpoint; None if it leaves.
-    fn critical(&self, j: usize, a: f64, b: f64) -> Option<f64> {
-        let mut u = 0.5 * (a + b);
-        for _ in 0..30 {
-            let d = self.fval.derivs_in_span(self.fval.span(u), &u, 2);
-            let (d1, d2) = (d[1][j], d[2][j]);
-            if !(d2.is_finite() && d2 != 0.0 && d1.is_finite()) {
-                return None;
-            }
-            let nu = u - d1 / d2;
-            if !(nu > a && nu < b) {
-                return None;
-            }
-            if nu == u {
-                break;
-            }
-            u = nu;
+}
+
+/// f64 Bernstein polynomial value by de Casteljau (only used for estimates).
+fn bern(c: &[f64], t: f64) -> f64 {
+    let mut b: Vec<f64> = c.to_vec();
+    for r in 1..b.len() {
+        for i in 0..b.len() - r {
+            b[i] += t * (b[i + 1] - b[i]);
         }
-        Some(u)
     }
+    b.first().copied().unwrap_or(0.0)
+}
+
+/// Bernstein coefficients of the derivative (degree p - 1) with respect to t.
+fn bern_diff(c: &[f64]) -> Vec<f64> {
+    let p = (c.len() - 1) as f64;
+    c.windows(2).map(|w| p * (w[1] - w[0])).collect()
+}
+
+/// An f64 estimate of a critical point of C_j in (s0, s1) on the coordinate segment `seg`:
+/// Newton's method on the numerator N = A' w - A w' of C_j' (N = A' if non-rational), using
+/// the midpoints of the interval coefficients. `None` if Newton leaves the piece. The estimate
+/// is only a place to split; nothing about soundness depends on it.
+fn critical(seg: &BezierSeg<Interval>, s0: f64, s1: f64) -> Option<f64> {
+    let (a, b) = (seg.a, seg.b);
+    let (av, wv): (Vec<f64>, Vec<f64>) = if seg.rational {
+        seg.pts.chunks(2).map(|c| (c[0].mid(), c[1].mid())).unzip()
+    } else {
+        (
+            seg.pts.iter().map(|x| x.mid()).collect(),
+            vec![1.0; seg.pts.len()],
+        )
+    };
+    if av.len() < 3 {
+        return None; // linear: no interior critical point
+    }
+    let (a1, w1) = (bern_diff(&av), bern_diff(&wv));
+    let (a2, w2) = (bern_diff(&a1), bern_diff(&w1));
+    let (t0, t1) = ((s0 - a) / (b - a), (s1 - a) / (b - a));
+    let mut t = 0.5 * (t0 + t1);
+    for _ in 0..40 {
+        let (aa, ww, da, dw, dda, ddw) = (
+            bern(&av, t),
+            bern(&wv, t),
+            bern(&a1, t),
+            bern(&w1, t),
+            bern(&a2, t),
+            bern(&w2, t),
+        );
+        let n = da * ww - aa * dw;
+        let dn = dda * ww - aa * ddw;
+        if !(dn.is_finite() && dn != 0.0 && n.is_finite()) {
+            return None;
+        }
+        let nt = t - n / dn;
+        if !(nt > t0 && nt < t1) {
+            return None;
+        }
+        if nt == t {
+            break;
+        }
+        t = nt;
+    }
+    Some(a + t * (b - a))
 }
 
 /// Sign-adjusted Cartesian coefficient enclosures of `seg` (one coordinate, homogeneous rows)
@@ -170,10 +208,51 @@ impl Side {
     }
 }
 
+/// A work item of the branch and bound, ordered by its upper bound `pri`.
+struct Item {
+    pri: f64,
+    /// span index in the curve; `piece` is None while the span is only known by its local
+    /// control-point hull (not yet converted to a Bézier segment)
+    span: usize,
+    piece: Option<(f64, f64, u32, Vec<Interval>)>,
+}
+impl PartialEq for Item {
+    fn eq(&self, o: &Self) -> bool {
+        self.pri.total_cmp(&o.pri).is_eq()
+    }
+}
+impl Eq for Item {}
+impl PartialOrd for Item {
+    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Item {
+    fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+        self.pri.total_cmp(&o.pri)
+    }
+}
+
 impl BezierSubdivision {
-    /// Maximum of sign * C_j over the domain: (outer bound, attained value, candidates).
-    fn maximize(&self, vals: &Values, segs: &[BezierSeg<Interval>], j: usize, sign: f64) -> Side {
-        let scale = vals.curve.coord_scale(j);
+    /// Maximum of sign * C_j over the domain, by best-first branch and bound.
+    ///
+    /// Spans enter with the bound max_i sign * P_ij over their p + 1 local control points
+    /// (exact f64; the curve on span k is a convex combination of P_{k-p} .. P_k, weights > 0),
+    /// and are converted to Bézier segments (interval knot insertion) only when that bound
+    /// exceeds the largest value found so far. Once the best remaining bound is <= a value
+    /// the curve provably attains, everything left is pruned (soundly: see `Side`).
+    fn maximize(
+        &self,
+        vals: &Values,
+        hs: &HSpline<Interval>,
+        segs: &mut [Option<BezierSeg<Interval>>],
+        spans: &[usize],
+        j: usize,
+        sign: f64,
+    ) -> Side {
+        let c = vals.curve;
+        let p = c.degree();
+        let scale = c.coord_scale(j);
         let gap_tol = self.tol * scale;
         let sg = iv::point(sign);
         let mut side = Side {
@@ -183,27 +262,38 @@ impl BezierSubdivision {
             stats: Stats::default(),
             term: Termination::Converged,
         };
-        // Work list: (segment index, s0, s1, depth, coefficients), by decreasing bound.
-        let mut work: Vec<(usize, f64, f64, u32, Vec<Interval>)> = segs
+        let mut heap: std::collections::BinaryHeap<Item> = spans
             .iter()
-            .enumerate()
-            .map(|(i, s)| (i, s.a, s.b, 0, sub_coeffs(s, s.a, s.b, sign)))
+            .map(|&k| Item {
+                pri: (k - p..=k)
+                    .map(|i| sign * c.control_point(i)[j])
+                    .fold(f64::NEG_INFINITY, f64::max),
+                span: k,
+                piece: None,
+            })
             .collect();
-        for w in &work {
-            side.attain(w.4[0]);
-            side.attain(*w.4.last().unwrap());
-        }
         let ub = |c: &[Interval]| c.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.sup()));
-        work.sort_by(|x, y| ub(&x.4).total_cmp(&ub(&y.4)));
         let mut pieces = 0usize;
-        while let Some((si, s0, s1, depth, co)) = work.pop() {
-            let u = ub(&co);
-            // Pruning is sound: the piece never exceeds u <= a value the curve attains.
-            if u <= side.attained {
-                continue;
+        while let Some(item) = heap.pop() {
+            // Best-first: every remaining bound is <= item.pri <= a value the curve attains.
+            if item.pri <= side.attained {
+                break;
             }
+            let k = item.span;
+            let seg = segs[k].get_or_insert_with(|| hs.bezier_segment(k)).coord(j);
+            let Some((s0, s1, depth, co)) = item.piece else {
+                let co = sub_coeffs(&seg, seg.a, seg.b, sign);
+                side.attain(co[0]);
+                side.attain(co[co.len() - 1]);
+                heap.push(Item {
+                    pri: ub(&co),
+                    span: k,
+                    piece: Some((seg.a, seg.b, 0, co)),
+                });
+                continue;
+            };
+            let u = item.pri;
             pieces += 1;
-            let p = co.len() - 1;
             let (e0, e1) = (co[0], co[p]);
             side.attain(e0);
             side.attain(e1);
@@ -221,7 +311,7 @@ impl BezierSubdivision {
                             u_lo: s,
                             u_hi: s,
                             unique: false,
-                            kind: end_kind(vals.curve, s),
+                            kind: end_kind(c, s),
                         },
                     );
                 }
@@ -232,7 +322,10 @@ impl BezierSubdivision {
                 seg_end(s1, e1, &mut side);
                 continue;
             }
-            let close_enough = u - side.attained <= gap_tol;
+            // Half-width of the middle piece around a critical point; pieces this narrow are
+            // bounded by the mean-value form, which is then as tight as point evaluation.
+            let d = (seg.b - seg.a) * 2f64.powi(-26);
+            let close_enough = u - side.attained <= gap_tol || s1 - s0 <= 2.0 * d;
             if close_enough || depth >= self.max_depth || pieces >= self.max_pieces {
                 if !close_enough {
                     side.term = if depth >= self.max_depth {
@@ -247,24 +340,24 @@ impl BezierSubdivision {
                 continue;
             }
             side.stats.subdivisions += 1;
-            let seg = &segs[si];
-            let d = (seg.b - seg.a) * 2f64.powi(-26);
-            let crit = vals
-                .critical(j, s0, s1)
-                .filter(|&t| t - d > s0 && t + d < s1);
             side.stats.derivative_evaluations += 1;
-            let push = |a: f64, b: f64, work: &mut Vec<_>| {
-                let c = sub_coeffs(seg, a, b, sign);
-                work.push((si, a, b, depth + 1, c));
+            let crit = critical(&seg, s0, s1).filter(|&t| t - d > s0 && t + d < s1);
+            let push = |a: f64, b: f64, heap: &mut std::collections::BinaryHeap<Item>| {
+                let co = sub_coeffs(&seg, a, b, sign);
+                heap.push(Item {
+                    pri: ub(&co),
+                    span: k,
+                    piece: Some((a, b, depth + 1, co)),
+                });
             };
             if let Some(t) = crit {
                 let (m0, m1) = (t - d, t + d);
                 let v = sg * vals.at(j, t);
                 side.stats.point_evaluations += 1;
                 side.attain(v);
-                push(s0, m0, &mut work);
-                push(m1, s1, &mut work);
-                let mid = sub_coeffs(seg, m0, m1, sign);
+                push(s0, m0, &mut heap);
+                push(m1, s1, &mut heap);
+                let mid = sub_coeffs(&seg, m0, m1, sign);
                 let bm = (sg * vals.over(j, m0, m1)).sup().min(ub(&mid));
                 // Accept the middle piece when its bound is as good as the point evaluation at
                 // t* itself (further splitting cannot beat the evaluation accuracy).
@@ -279,7 +372,11 @@ impl BezierSubdivision {
                         },
                     );
                 } else {
-                    work.push((si, m0, m1, depth + 1, mid));
+                    heap.push(Item {
+                        pri: ub(&mid),
+                        span: k,
+                        piece: Some((m0, m1, depth + 1, mid)),
+                    });
                 }
             } else {
                 let m = 0.5 * (s0 + s1);
@@ -287,8 +384,8 @@ impl BezierSubdivision {
                     self.finish(vals, j, sg, s0, s1, u, &mut side);
                     continue;
                 }
-                push(s0, m, &mut work);
-                push(m, s1, &mut work);
+                push(s0, m, &mut heap);
+                push(m, s1, &mut heap);
             }
         }
         // Every piece was either bounded (<= upper) or pruned (<= attained <= max C), so
@@ -343,15 +440,58 @@ impl BoxEncloser for BezierSubdivision {
         Guarantee::Verified
     }
     fn enclose(&self, c: &NurbsCurve) -> Enclosure {
-        let t0 = Instant::now();
-        let segs = HSpline::<Interval>::from_curve(c).decompose();
-        let vals = Values::new(c);
+        let (p, n) = (c.degree(), c.num_points() - 1);
+        let kn = c.knots();
+        // Clamped ends have exactly known values P_0 / P_n (see `NurbsCurve::clamped_ends`).
+        let (a, b) = c.domain();
+        let cl = c.clamped_ends();
+        let ends = [cl[0].then_some((0, a)), cl[1].then_some((n, b))];
+        // Built only when some coordinate side needs a search.
+        let mut ctx: Option<(
+            HSpline<Interval>,
+            Vec<usize>,
+            Vec<Option<BezierSeg<Interval>>>,
+            Values,
+        )> = None;
         let mut coords = Vec::with_capacity(c.dim());
         for j in 0..c.dim() {
             let t1 = Instant::now();
-            let cs: Vec<BezierSeg<Interval>> = segs.iter().map(|s| s.coord(j)).collect();
-            let hi = self.maximize(&vals, &cs, j, 1.0);
-            let lo = self.maximize(&vals, &cs, j, -1.0);
+            let mut side = |sign: f64| -> Side {
+                // Fast path: the extreme control coordinate is an exactly attained end value,
+                // so the control-point bound is attained: the exact extremum, no rounding.
+                let m = (0..=n)
+                    .map(|i| sign * c.control_point(i)[j])
+                    .fold(f64::NEG_INFINITY, f64::max);
+                for &(i, u) in ends.iter().flatten() {
+                    if sign * c.control_point(i)[j] == m {
+                        let e = Extremum {
+                            u_lo: u,
+                            u_hi: u,
+                            unique: false,
+                            kind: CandidateKind::EndPoint,
+                        };
+                        return Side {
+                            attained: m,
+                            upper: m,
+                            cands: vec![(m, e)],
+                            stats: Stats::default(),
+                            term: Termination::Converged,
+                        };
+                    }
+                }
+                let (hs, spans, segs, vals) = ctx.get_or_insert_with(|| {
+                    let spans = (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect();
+                    (
+                        HSpline::<Interval>::from_curve(c),
+                        spans,
+                        vec![None; n + 1],
+                        Values::new(c),
+                    )
+                });
+                self.maximize(vals, hs, segs, spans, j, sign)
+            };
+            let hi = side(1.0);
+            let lo = side(-1.0);
             let pick = |s: &Side| {
                 s.cands
                     .iter()
@@ -361,25 +501,30 @@ impl BoxEncloser for BezierSubdivision {
             };
             let mut stats = hi.stats;
             stats.add(&lo.stats);
-            stats.subdivisions += segs.len() as u64;
             stats.time_total = t1.elapsed();
             let term = if hi.term != Termination::Converged {
                 hi.term
             } else {
                 lo.term
             };
+            // The control-point box is verified too, so intersecting with it stays sound and
+            // guarantees the sandwich hull ⊇ bezier.
+            let (plo, phi) = (0..=n)
+                .map(|i| c.control_point(i)[j])
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                    (a.min(x), b.max(x))
+                });
             coords.push(CoordBox {
-                lo: -lo.upper,
-                hi: hi.upper,
-                inner_lo: -lo.attained,
-                inner_hi: hi.attained,
+                lo: (-lo.upper).max(plo),
+                hi: hi.upper.min(phi),
+                inner_lo: (-lo.attained).max(plo),
+                inner_hi: hi.attained.min(phi),
                 argmin: pick(&lo),
                 argmax: pick(&hi),
                 stats,
                 termination: term,
             });
         }
-        let _ = t0;
         Enclosure {
             strategy: self.name(),
             verified: true,
