@@ -93,9 +93,18 @@ impl<'a> Values<'a> {
     }
 }
 
-/// f64 Bernstein polynomial value by de Casteljau (only used for estimates).
+/// f64 Bernstein polynomial value by de Casteljau (only used for estimates; no allocation
+/// up to degree 63).
 fn bern(c: &[f64], t: f64) -> f64 {
-    let mut b: Vec<f64> = c.to_vec();
+    let mut stack = [0.0f64; 64];
+    let mut heap;
+    let b: &mut [f64] = if c.len() <= 64 {
+        stack[..c.len()].copy_from_slice(c);
+        &mut stack[..c.len()]
+    } else {
+        heap = c.to_vec();
+        &mut heap
+    };
     for r in 1..b.len() {
         for i in 0..b.len() - r {
             b[i] += t * (b[i + 1] - b[i]);
@@ -132,16 +141,12 @@ fn critical(seg: &BezierSeg<Interval>, s0: f64, s1: f64) -> Option<f64> {
     let (t0, t1) = ((s0 - a) / (b - a), (s1 - a) / (b - a));
     let mut t = 0.5 * (t0 + t1);
     for _ in 0..40 {
-        let (aa, ww, da, dw, dda, ddw) = (
-            bern(&av, t),
-            bern(&wv, t),
-            bern(&a1, t),
-            bern(&w1, t),
-            bern(&a2, t),
-            bern(&w2, t),
-        );
-        let n = da * ww - aa * dw;
-        let dn = dda * ww - aa * ddw;
+        let (n, dn) = if seg.rational {
+            let (aa, ww, da, dw) = (bern(&av, t), bern(&wv, t), bern(&a1, t), bern(&w1, t));
+            (da * ww - aa * dw, bern(&a2, t) * ww - aa * bern(&w2, t))
+        } else {
+            (bern(&a1, t), bern(&a2, t))
+        };
         if !(dn.is_finite() && dn != 0.0 && n.is_finite()) {
             return None;
         }
@@ -149,10 +154,11 @@ fn critical(seg: &BezierSeg<Interval>, s0: f64, s1: f64) -> Option<f64> {
         if !(nt > t0 && nt < t1) {
             return None;
         }
-        if nt == t {
+        let done = (nt - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
+        t = nt;
+        if done {
             break;
         }
-        t = nt;
     }
     Some(a + t * (b - a))
 }
