@@ -202,7 +202,8 @@ struct Side {
 
 impl Side {
     fn attain(&mut self, v: Interval) {
-        if v.inf() > self.attained {
+        // (an empty interval has inf = +inf and must never count as attained)
+        if !v.is_empty() && v.inf() > self.attained {
             self.attained = v.inf();
         }
     }
@@ -309,7 +310,11 @@ impl BezierSubdivision {
             let seg_end = |s: f64, e: Interval, side: &mut Side| {
                 if e.sup() > side.attained {
                     side.stats.point_evaluations += 1;
+                    // At a discontinuity (knot of multiplicity p + 1) C(s) belongs to the next
+                    // piece and this piece only approaches its end coefficient: then the
+                    // intersection is empty and the (closure) value e itself is used.
                     let v = (sg * vals.at(j, s)).intersection(e);
+                    let v = if v.is_empty() { e } else { v };
                     side.attain(v);
                     side.bound(
                         v.sup(),
@@ -572,5 +577,21 @@ mod tests {
             assert!(cb.lo <= cb.inner_lo && cb.inner_hi <= cb.hi);
             assert!(cb.gap() <= 8.0 * f64::EPSILON * 2.0, "gap {}", cb.gap());
         }
+    }
+
+    #[test]
+    fn discontinuity_uses_the_left_limit_not_an_empty_intersection() {
+        // Knot 0.5 of multiplicity p + 1: the left piece approaches 3 at 0.5, C(0.5) = 1.
+        let c = NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 0.5, 0.5, 0.5, 1., 1., 1.],
+            vec![vec![0.], vec![2.], vec![3.], vec![1.], vec![0.5], vec![0.]],
+            None,
+        )
+        .unwrap();
+        let e = BezierSubdivision::default().enclose(&c);
+        let cb = &e.coords[0];
+        assert!(cb.hi >= 3.0 && cb.inner_hi <= 3.0, "{cb:?}");
+        assert!(cb.lo <= 0.0 && cb.inner_lo >= 0.0, "{cb:?}");
     }
 }
