@@ -28,6 +28,7 @@ use crate::curve::NurbsCurve;
 use crate::eval::CurveEval;
 use crate::knots::multiplicity;
 use crate::scalar::iv;
+use crate::tight::TightEval;
 use inari::Interval;
 use std::time::Instant;
 
@@ -54,8 +55,9 @@ pub enum DerivForm {
 /// Settings of the interval Newton strategy.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Newton {
-    /// Stop refining a box when its radius is <= `tol` times the domain length (thesis: `tol`
-    /// on the radius, the thesis's domains being [0, 1]).
+    /// Stop refining a box when its radius is <= `tol` times the length of its knot span
+    /// (thesis: `tol` on the radius, absolute, with domains [0, 1]; relative to the span, tiny
+    /// spans, where C' is huge, still get small boxes).
     pub tol: f64,
     /// Keep iterating on a box with a uniqueness proof until the Newton step makes no progress
     /// (machine precision; costs one or two quadratically convergent steps).
@@ -255,6 +257,8 @@ pub(crate) struct Engine<'a> {
     pub(crate) spans: Vec<(usize, f64, f64)>,
     /// `nd[i]`: the knot between spans i and i + 1 is non-differentiable (multiplicity >= p)
     nd: Vec<bool>,
+    /// tight candidate evaluation
+    tight: TightEval,
     /// scratch for de Boor
     buf: Vec<Interval>,
     /// Newton box stack
@@ -286,6 +290,7 @@ impl<'a> Engine<'a> {
             rational: c.is_rational(),
             spans,
             nd,
+            tight: TightEval::new(c),
             buf: Vec::with_capacity(2 * (p + 1)),
             stack: Vec::new(),
             j: 0,
@@ -409,28 +414,36 @@ impl<'a> Engine<'a> {
         let k = cd.k;
         // Convex hull of the local control points (thesis prop. 2.1): exact and always sound
         // for every value of span k's piece on the closed span (also the limit at its end);
-        // it also caps interval evaluations that overflowed or overestimate.
+        // it also caps evaluations that overflowed.
         let (hmin, hmax) = self.local_hull(k);
         let hull = iv::span(hmin, hmax);
-        let (enc, at) = if cd.lo == cd.hi {
-            let v = self.value(k, iv::point(cd.lo));
+        self.stats.point_evaluations += 1;
+        let (enc, at) = if cd.lo == cd.hi && !cd.attained {
+            // Left limit at a discontinuity q: span k's piece on [q-, q] (q- the float below
+            // q, still in span k) contains it; TightEval adds the curve's value C(q) there,
+            // itself a candidate, so the outer box does not grow from it.
+            let q = cd.lo;
+            let v = self.tight.coord_over(self.j, prev_float(q), q);
+            (v, v)
+        } else if cd.lo == cd.hi {
+            // C(q) about one ulp wide (TightEval, double-double Horner); the curve's value at q
+            // is span k's piece there (k is q's span, or the curve is continuous at q)
+            let v = self.tight.coord_at(self.j, cd.lo);
             (v, v)
         } else {
-            // Mean-value form (Moore): for u in X, C(u) = C(m) + C'(xi)(u - m) with xi in X,
-            // so C(X) is inside C(m) + C'(X)(X - m). Intersected with the direct enclosure
-            // C(X) (both contain the range). m lies in [lo, hi) inside span k, where the curve
-            // is this piece, so C(m) is attained.
-            let m = midpoint(cd.lo, cd.hi);
-            let x = iv::span(cd.lo, cd.hi);
-            let cm = self.value(k, iv::point(m));
+            // C over the box (TightEval: second-order Taylor form around the midpoint m,
+            // about one ulp wide near a critical point); m is in [lo, hi) inside span k, where
+            // the curve is this piece, so C(m) is attained.
             self.stats.point_evaluations += 1;
-            let (cx, dx) = self.value_and_slope(k, x);
-            let mv = cm + dx * (x - iv::point(m));
-            (mv.intersection(cx), cm)
+            let m = midpoint(cd.lo, cd.hi);
+            let cm = self.tight.coord_at(self.j, m);
+            (self.tight.coord_over(self.j, cd.lo, cd.hi), cm)
         };
+        // Both are enclosures of span k's values on the candidate (coord_over may also contain
+        // the next piece's value at an interior knot ending the box, a curve value as well).
         let mut enc = enc.intersection(hull);
         if enc.is_empty() {
-            // cannot happen mathematically (all contain the range); stay sound anyway
+            // cannot happen mathematically (both contain the range); stay sound anyway
             enc = hull;
         }
         let at = at.intersection(hull);
@@ -481,8 +494,8 @@ impl<'a> Engine<'a> {
         out: &mut Vec<ZeroBox>,
     ) -> Termination {
         let s = *self.s;
-        let (d0, d1) = self.c.domain();
-        let tol = s.tol * (d1 - d0);
+        // relative to the span: a span of 1e-12 needs boxes far below 1e-12 of the domain
+        let tol = s.tol * (b - a);
         let mut term = Termination::Converged;
         let hull = {
             let (h0, h1) = self.local_hull(k);
@@ -744,6 +757,17 @@ fn midpoint(x0: f64, x1: f64) -> f64 {
     (0.5 * x0 + 0.5 * x1).clamp(x0, x1)
 }
 
+/// The largest f64 below a finite x (`f64::next_down`, stable only since Rust 1.86).
+fn prev_float(x: f64) -> f64 {
+    if x == 0.0 {
+        -f64::from_bits(1)
+    } else if x > 0.0 {
+        f64::from_bits(x.to_bits() - 1)
+    } else {
+        f64::from_bits(x.to_bits() + 1)
+    }
+}
+
 /// Whether [x0, x1] has an f64 strictly inside.
 #[inline]
 fn can_split(x0: f64, x1: f64) -> bool {
@@ -924,7 +948,7 @@ mod tests {
                     assert!((cb.hi - (ctr + hw[j])).abs() < eps, "{j} {cb:?} {}", hw[j]);
                     assert!((cb.lo - (ctr - hw[j])).abs() < eps, "{j} {cb:?}");
                     if n.tol < 1e-9 {
-                        assert!(cb.gap() <= 16.0 * ulp(c.coord_scale(j)), "{cb:?}");
+                        assert!(cb.gap() <= 4.0 * ulp(c.coord_scale(j)), "{cb:?}");
                     }
                     assert!(cb.termination == Termination::Converged);
                 }
@@ -953,7 +977,7 @@ mod tests {
             // >= the other's inner bound
             assert!(cb.hi >= bz.coords[0].inner_hi && bz.coords[0].hi >= cb.inner_hi);
             if n.tol < 1e-9 {
-                assert!(cb.gap() <= 16.0 * ulp(10.0), "{cb:?}");
+                assert!(cb.gap() <= 4.0 * ulp(10.0), "{cb:?}");
             }
             assert!(cb.hi > 1.0);
         }
