@@ -218,7 +218,11 @@ impl NurbsCurve {
     /// end control point; for rational curves too, the weights cancel).
     pub fn clamped_ends(&self) -> [bool; 2] {
         let (p, n, k) = (self.degree(), self.num_points() - 1, self.knots());
-        [k[1] == k[p], k[n + 1] == k[n + p]]
+        // (and the end span must be the one of P_0 / P_n: u_p < u_{p+1}, u_n < u_{n+1})
+        [
+            k[1] == k[p] && k[p] < k[p + 1],
+            k[n + 1] == k[n + p] && k[n] < k[n + 1],
+        ]
     }
 
     /// Verified enclosures of C at the two domain ends: exact point intervals of P_0 / P_n at a

@@ -200,7 +200,6 @@ proptest! {
     /// the sandwich of issue 3. E.g. `flat_coordinate_on_a_span`: hi 1.0000000000000009 vs
     /// hull 1.
     #[test]
-    #[ignore = "newton is not intersected with the hull box: see the doc comment for numbers"]
     fn sandwich_newton(seed in any::<u64>()) {
         if let Err(m) = sandwich("newton", seed) {
             prop_assert!(false, "{m}");
@@ -212,7 +211,6 @@ proptest! {
     /// FAILS at the time of writing, with the same numbers as [`sandwich_newton`] (it shares
     /// newton's engine).
     #[test]
-    #[ignore = "search-region-verified is not intersected with the hull box (as newton)"]
     fn sandwich_search_region_verified(seed in any::<u64>()) {
         if let Err(m) = sandwich("search-region-verified", seed) {
             prop_assert!(false, "{m}");
@@ -472,7 +470,6 @@ fn constant_coordinate() {
 /// The coefficient ratios w_i y / w_i are not exactly y in interval arithmetic, so the gap
 /// never closes below tol = eps * scale. newton takes a handful of evaluations on both.
 #[test]
-#[ignore = "bezier runs to its box limit on flat rational coordinates (0.1-0.3 s)"]
 fn flat_rational_coordinates_terminate_quickly_bezier() {
     assert_quick(&constant_curve(true), &["bezier"]);
     assert_quick(&flat_span_curve(true), &["bezier"]);
@@ -794,7 +791,7 @@ mod mpfr {
     /// Strategies whose inner bounds are known to be wrong on some curves (see
     /// [`bezier_inner_bound_at_a_rational_jump`]); their inner bounds are checked by the ignored
     /// [`bezier_inner_bounds_are_reached`] only, so the default suite does not fail at random.
-    const INNER_KNOWN_BAD: [&str; 1] = ["bezier"];
+    const INNER_KNOWN_BAD: [&str; 0] = [];
 
     /// The reference box is that of the closure; at a jump knot (multiplicity p + 1) the left
     /// limit is not attained, but every strategy encloses it (closed spans), so the outer check
@@ -836,7 +833,6 @@ mod mpfr {
         /// p + 1): 2 of 20 `multiple_knots` curves in `examples/tightness` (seed 1), see
         /// [`bezier_inner_bound_at_a_rational_jump`].
         #[test]
-        #[ignore = "bezier claims unreached inner bounds on rational curves with a jump knot"]
         fn bezier_inner_bounds_are_reached(seed in any::<u64>()) {
             let c = Family::MultipleKnots.curve(&mut gen::rng(seed));
             if let Err(m) = check_curve(&c, &|n| n == "bezier") {
@@ -859,7 +855,6 @@ mod mpfr {
     /// result is exact; non-rational and jump-free variants are fine. newton: [-0.6, 0],
     /// inner_lo -0.5.
     #[test]
-    #[ignore = "bezier: wrong inner bound (claims -1 is reached; exact min -0.6) at a rational jump"]
     fn bezier_inner_bound_at_a_rational_jump() {
         let c = NurbsCurve::new(
             2,
@@ -902,7 +897,6 @@ mod mpfr {
     /// rational cubic with its extremum at a knot; 8.9 ulps on the shifted rational unclamped
     /// cubic.
     #[test]
-    #[ignore = "newton misses the 4-ulp target on 4 known curves (6.0, 6.6, 6.5, 8.9 ulps)"]
     fn known_curves_within_target_newton() {
         known_curves_within_target("newton");
     }
@@ -910,7 +904,6 @@ mod mpfr {
     /// FAILS at the time of writing with the numbers of [`known_curves_within_target_newton`]
     /// (same engine).
     #[test]
-    #[ignore = "search-region-verified misses the 4-ulp target as newton does"]
     fn known_curves_within_target_search_region_verified() {
         known_curves_within_target("search-region-verified");
     }
@@ -971,7 +964,6 @@ mod mpfr {
     /// 2.13 ulps, max 21.5 ulps (a rational quintic, clamped uniform knots; the worst curve is
     /// printed by the assertion). Target: max 4, median 1.
     #[test]
-    #[ignore = "newton misses the tightness target: median 2.13, max 21.5 ulps (target 1, 4)"]
     fn tightness_newton() {
         tightness_on_moderate("newton", moderate_curves());
     }
@@ -983,7 +975,6 @@ mod mpfr {
 
     /// FAILS at the time of writing with the numbers of [`tightness_newton`] (same engine).
     #[test]
-    #[ignore = "search-region-verified misses the tightness target: median 2.13, max 21.5 ulps"]
     fn tightness_search_region_verified() {
         tightness_on_moderate("search-region-verified", moderate_curves());
     }

@@ -336,7 +336,9 @@ impl BezierSubdivision {
             // Half-width of the middle piece around a critical point; pieces this narrow are
             // bounded by the mean-value form, which is then as tight as point evaluation.
             let d = (seg.b - seg.a) * 2f64.powi(-26);
-            let close_enough = u - side.attained <= gap_tol || s1 - s0 <= 2.0 * d;
+            // (A gap of two ulps of the scale is accepted whatever `tol` says.)
+            let close_enough =
+                u - side.attained <= gap_tol.max(2.0 * f64::EPSILON * scale) || s1 - s0 <= 2.0 * d;
             if close_enough || depth >= self.max_depth || pieces >= self.max_pieces {
                 if !close_enough {
                     side.term = if depth >= self.max_depth {
@@ -391,7 +393,17 @@ impl BezierSubdivision {
                 }
             } else {
                 let m = 0.5 * (s0 + s1);
-                if m <= s0 || m >= s1 {
+                // No critical point estimate and a numerically flat piece (the coefficients
+                // differ by no more than their enclosure widths, e.g. a constant rational
+                // coordinate): splitting cannot shrink rounding-dominated widths, so bound the
+                // piece as it is.
+                let wmax = co.iter().fold(0.0f64, |m, x| m.max(x.wid()));
+                let (mlo, mhi) = co
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                        (a.min(x.mid()), b.max(x.mid()))
+                    });
+                if m <= s0 || m >= s1 || mhi - mlo <= 2.0 * wmax {
                     self.finish(vals, j, sg, s0, s1, u, &mut side);
                     continue;
                 }
