@@ -141,7 +141,7 @@ impl CurveEval<Interval> {
     }
 }
 
-fn check_domain((a, b): (f64, f64), u: f64) -> Result<(), EvalError> {
+pub(crate) fn check_domain((a, b): (f64, f64), u: f64) -> Result<(), EvalError> {
     if u >= a && u <= b {
         Ok(())
     } else {

@@ -423,7 +423,7 @@ impl<'a> Engine<'a> {
             // q, still in span k) contains it; TightEval adds the curve's value C(q) there,
             // itself a candidate, so the outer box does not grow from it.
             let q = cd.lo;
-            let v = self.tight.coord_over(self.j, prev_float(q), q);
+            let v = self.tight.coord_over(self.j, f64::next_down(q), q);
             (v, v)
         } else if cd.lo == cd.hi {
             // C(q) about one ulp wide (TightEval, double-double Horner); the curve's value at q
@@ -755,17 +755,6 @@ impl<'a> Engine<'a> {
 #[inline]
 fn midpoint(x0: f64, x1: f64) -> f64 {
     (0.5 * x0 + 0.5 * x1).clamp(x0, x1)
-}
-
-/// The largest f64 below a finite x (`f64::next_down`, stable only since Rust 1.86).
-fn prev_float(x: f64) -> f64 {
-    if x == 0.0 {
-        -f64::from_bits(1)
-    } else if x > 0.0 {
-        f64::from_bits(x.to_bits() - 1)
-    } else {
-        f64::from_bits(x.to_bits() + 1)
-    }
 }
 
 /// Whether [x0, x1] has an f64 strictly inside.
