@@ -204,6 +204,7 @@ pub const STRATEGY_NAMES: &[&str] = &[
     "hull",
     "bezier",
     "newton",
+    "newton-thesis",
     "search-region",
     "search-region-verified",
 ];
@@ -218,9 +219,29 @@ pub fn strategy_by_name(name: &str, tol: Option<f64>) -> Option<Box<dyn BoxEnclo
             tol.map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol),
         )),
         "newton" => Some(Box::new(newton)),
+        // The thesis's own settings (inewtonKNRH: quotient-rule derivatives, split once into
+        // 2p pieces, 20 steps per box; derivative time measured), for reproducing its tables.
+        "newton-thesis" => Some(Box::new(Renamed("newton-thesis", Newton::thesis()))),
         "search-region" => Some(Box::new(SearchRegion::thesis(newton))),
         "search-region-verified" => Some(Box::new(SearchRegion::verified(newton))),
         _ => None,
+    }
+}
+
+/// A strategy under another name (a preset of a configurable strategy).
+struct Renamed<E>(&'static str, E);
+
+impl<E: BoxEncloser> BoxEncloser for Renamed<E> {
+    fn name(&self) -> &'static str {
+        self.0
+    }
+    fn guarantee(&self) -> Guarantee {
+        self.1.guarantee()
+    }
+    fn enclose(&self, curve: &NurbsCurve) -> Enclosure {
+        let mut e = self.1.enclose(curve);
+        e.strategy = self.0;
+        e
     }
 }
 
