@@ -197,7 +197,8 @@ fn progress_bar(opts: &StreamOptions) -> Option<indicatif::ProgressBar> {
 }
 
 /// The output lines of `enclose` for one curve: one record per strategy (in the order of
-/// `strategies`), or one error record for an invalid curve. Returns whether the curve was valid.
+/// `strategies`), or one error record for an invalid curve (or for a strategy that panicked,
+/// kind `internal_error`). Returns whether every record is a box.
 /// `timings` adds times to the stats (non-reproducible).
 pub fn enclose_records(
     index: usize,
@@ -208,11 +209,30 @@ pub fn enclose_records(
 ) -> bool {
     match curve {
         Ok(c) => {
+            let mut ok = true;
             for s in strategies {
-                write_enclosure_record(buf, index, &s.enclose(&c), timings);
+                // Defence in depth (issue 6): a strategy must never panic, but if one does, this
+                // curve gets an error record and every other curve still gets its boxes.
+                match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| s.enclose(&c))) {
+                    Ok(e) => write_enclosure_record(buf, index, &e, timings),
+                    Err(p) => {
+                        ok = false;
+                        let msg = p
+                            .downcast_ref::<&str>()
+                            .map(|s| s.to_string())
+                            .or_else(|| p.downcast_ref::<String>().cloned())
+                            .unwrap_or_default();
+                        let extra = format!("\"strategy\":\"{}\"", s.name());
+                        let text = format!(
+                            "internal error: strategy {} failed on this curve ({msg}); please report it with the curve",
+                            s.name()
+                        );
+                        write_error_record(buf, index, &extra, "internal_error", &text);
+                    }
+                }
                 buf.push(b'\n');
             }
-            true
+            ok
         }
         Err(e) => {
             input_error_line(index, &e, buf);

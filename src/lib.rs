@@ -34,6 +34,7 @@ mod knots;
 pub mod reference;
 mod refine;
 pub mod report;
+pub mod robust;
 pub mod scalar;
 mod tight;
 pub mod tridiagonal;

@@ -43,6 +43,11 @@ pub struct BezierSubdivision {
     /// Maximum number of pieces examined per coordinate and side; the rest is bounded by
     /// coefficient bounds (sound) and reported as [`Termination::BoxLimit`].
     pub max_pieces: usize,
+    /// Work budget per coordinate and side, in pieces times (p + 1)^2 (the cost of one
+    /// piece's de Casteljau splits); pieces beyond it (and beyond 64 + the number of spans)
+    /// are bounded as a whole and reported as [`Termination::WorkLimit`]. Bounds the time of
+    /// high-degree curves (issue 6).
+    pub max_work: u64,
 }
 
 impl Default for BezierSubdivision {
@@ -51,6 +56,7 @@ impl Default for BezierSubdivision {
             tol: f64::EPSILON,
             max_depth: 80,
             max_pieces: 20_000,
+            max_work: super::DEFAULT_MAX_WORK,
         }
     }
 }
@@ -281,6 +287,10 @@ impl BezierSubdivision {
             .collect();
         let ub = |c: &[Interval]| c.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.sup()));
         let mut pieces = 0usize;
+        let cost = ((p + 1) as u64).pow(2);
+        let work_pieces = (self.max_work / cost)
+            .saturating_add(64 + spans.len() as u64)
+            .min(usize::MAX as u64) as usize;
         while let Some(item) = heap.pop() {
             // Best-first: every remaining bound is <= item.pri <= a value the curve attains.
             if item.pri <= side.attained {
@@ -339,12 +349,18 @@ impl BezierSubdivision {
             // (A gap of two ulps of the scale is accepted whatever `tol` says.)
             let close_enough =
                 u - side.attained <= gap_tol.max(2.0 * f64::EPSILON * scale) || s1 - s0 <= 2.0 * d;
-            if close_enough || depth >= self.max_depth || pieces >= self.max_pieces {
+            if close_enough
+                || depth >= self.max_depth
+                || pieces >= self.max_pieces
+                || pieces >= work_pieces
+            {
                 if !close_enough {
                     side.term = if depth >= self.max_depth {
                         Termination::DepthLimit
-                    } else {
+                    } else if pieces >= self.max_pieces {
                         Termination::BoxLimit
+                    } else {
+                        Termination::WorkLimit
                     };
                 }
                 self.finish(vals, j, sg, s0, s1, u, &mut side);

@@ -10,11 +10,13 @@ use std::time::Duration;
 mod bezier;
 mod hull;
 mod newton;
+mod rescale;
 mod search_region;
 
 pub use bezier::BezierSubdivision;
 pub use hull::ControlHull;
-pub use newton::{DerivForm, Newton, Split};
+pub use newton::{DerivForm, Newton, Split, DEFAULT_MAX_WORK};
+pub use rescale::{enclose_rescaled, scale_outward, Rescaled, Rescaling};
 pub use search_region::SearchRegion;
 
 /// What a strategy promises about its box.
@@ -41,6 +43,9 @@ pub enum Termination {
     BoxLimit,
     /// The subdivision depth limit was reached (sound, maybe less tight).
     DepthLimit,
+    /// The work budget (evaluations weighted by their cost, which grows with the degree) was
+    /// spent; what was left was enclosed as a whole (sound, maybe less tight).
+    WorkLimit,
     /// Nothing to iterate (e.g. the control hull needs no search).
     Direct,
 }
@@ -212,18 +217,21 @@ pub const STRATEGY_NAMES: &[&str] = &[
 /// The strategy called `name` (see [`STRATEGY_NAMES`]), with tolerance `tol` where the strategy
 /// has one (`None`: its default). `None` if the name is unknown.
 pub fn strategy_by_name(name: &str, tol: Option<f64>) -> Option<Box<dyn BoxEncloser>> {
+    // Every strategy is wrapped in `Rescaled`: curves with extreme magnitudes are enclosed
+    // after an exact power-of-two rescaling (see rescale.rs), moderate ones untouched.
+    fn boxed<S: BoxEncloser + 'static>(s: S) -> Option<Box<dyn BoxEncloser>> {
+        Some(Box::new(Rescaled(s)))
+    }
     let newton = tol.map_or_else(Newton::default, Newton::with_tol);
     match name {
-        "hull" => Some(Box::new(ControlHull)),
-        "bezier" => Some(Box::new(
-            tol.map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol),
-        )),
-        "newton" => Some(Box::new(newton)),
+        "hull" => boxed(ControlHull),
+        "bezier" => boxed(tol.map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol)),
+        "newton" => boxed(newton),
         // The thesis's own settings (inewtonKNRH: quotient-rule derivatives, split once into
         // 2p pieces, 20 steps per box; derivative time measured), for reproducing its tables.
-        "newton-thesis" => Some(Box::new(Renamed("newton-thesis", Newton::thesis()))),
-        "search-region" => Some(Box::new(SearchRegion::thesis(newton))),
-        "search-region-verified" => Some(Box::new(SearchRegion::verified(newton))),
+        "newton-thesis" => boxed(Renamed("newton-thesis", Newton::thesis())),
+        "search-region" => boxed(SearchRegion::thesis(newton)),
+        "search-region-verified" => boxed(SearchRegion::verified(newton)),
         _ => None,
     }
 }

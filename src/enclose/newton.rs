@@ -66,6 +66,13 @@ pub struct Newton {
     pub max_iter: u32,
     /// Boxes per coordinate; the rest is enclosed as a whole.
     pub max_boxes: usize,
+    /// Work budget per coordinate, in evaluations times (p + 1)^2 (the cost of one interval
+    /// de Boor evaluation), plus an allowance per span of [`EVALS_PER_SPAN`] evaluations but
+    /// at most [`WORK_PER_SPAN`] units (and at least 8 evaluations in all):
+    /// once spent, every box still to search is enclosed as a whole (sound, maybe less tight;
+    /// reported as [`Termination::WorkLimit`]). Bounds the time of high-degree curves, whose
+    /// interval evaluations are expensive and overestimate a lot (issue 6).
+    pub max_work: u64,
     /// Split rule when a step makes too little progress.
     pub split: Split,
     /// Split when a step leaves more than this fraction of the width (1.0: only when it makes
@@ -88,6 +95,17 @@ pub struct Newton {
     pub time_derivatives: bool,
 }
 
+/// Default of [`Newton::max_work`] (a few tenths of a second of interval evaluations: one unit, a
+/// corner cut of the value and of a derivative level, costs ~100-200 ns).
+pub const DEFAULT_MAX_WORK: u64 = 2_000_000;
+
+/// Evaluations allowed per span on top of [`Newton::max_work`], so that the budget grows with
+/// the size of the input.
+pub const EVALS_PER_SPAN: u64 = 64;
+
+/// Cap of the per-span allowance in work units (64 evaluations of a degree-40 span).
+pub const WORK_PER_SPAN: u64 = 64 * 41 * 41;
+
 impl Default for Newton {
     fn default() -> Self {
         Newton {
@@ -95,6 +113,7 @@ impl Default for Newton {
             refine_unique: true,
             max_iter: 40,
             max_boxes: 2000,
+            max_work: DEFAULT_MAX_WORK,
             split: Split::Bisect,
             min_shrink: 0.5,
             max_splits: u32::MAX,
@@ -119,6 +138,7 @@ impl Newton {
             refine_unique: false,
             max_iter: 20,
             max_boxes: 10_000,
+            max_work: DEFAULT_MAX_WORK,
             split: Split::TwiceDegree,
             min_shrink: 1.0,
             max_splits: 1,
@@ -266,6 +286,8 @@ pub(crate) struct Engine<'a> {
     /// coordinate currently worked on
     j: usize,
     stats: Stats,
+    /// evaluations allowed for the current coordinate ([`Newton::max_work`])
+    budget: u64,
 }
 
 impl<'a> Engine<'a> {
@@ -295,6 +317,7 @@ impl<'a> Engine<'a> {
             stack: Vec::new(),
             j: 0,
             stats: Stats::default(),
+            budget: u64::MAX,
         }
     }
 
@@ -514,10 +537,15 @@ impl<'a> Engine<'a> {
                     unique,
                 })
             };
-            if boxes > s.max_boxes {
-                // Box limit: keep the box whole (sound).
+            let spent = self.stats.derivative_evaluations + self.stats.point_evaluations;
+            if boxes > s.max_boxes || spent > self.budget {
+                // Box or work limit: keep the box whole (sound).
                 keep(x0, x1, false, out);
-                term = Termination::BoxLimit;
+                term = if spent > self.budget {
+                    Termination::WorkLimit
+                } else {
+                    Termination::BoxLimit
+                };
                 continue;
             }
             if s.drop_covered && boxes > 1 {
@@ -534,9 +562,15 @@ impl<'a> Engine<'a> {
                     keep(x0, x1, unique, out);
                     break;
                 }
-                if it >= s.max_iter {
+                let over =
+                    self.stats.derivative_evaluations + self.stats.point_evaluations > self.budget;
+                if it >= s.max_iter || over {
                     if !(small || unique) && term == Termination::Converged {
-                        term = Termination::IterationLimit;
+                        term = if over {
+                            Termination::WorkLimit
+                        } else {
+                            Termination::IterationLimit
+                        };
                     }
                     keep(x0, x1, unique, out);
                     break;
@@ -643,6 +677,11 @@ impl<'a> Engine<'a> {
         self.stats = Stats::default();
         let (a, b) = self.c.domain();
         let ns = self.spans.len();
+        let cost = ((self.p + 1) as u64).pow(2);
+        let per_span = EVALS_PER_SPAN.min(WORK_PER_SPAN / cost);
+        self.budget = (self.s.max_work / cost)
+            .saturating_add(per_span.saturating_mul(ns as u64))
+            .max(8);
         let mut cands: Vec<Cand> = Vec::with_capacity(8);
         cands.push(Cand::point(
             self.spans[0].0,

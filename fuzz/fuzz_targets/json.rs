@@ -1,0 +1,7 @@
+//! JSON text -> parse (both stream forms) -> every strategy, with a containment check.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    nurbs_box::robust::targets::json(data);
+});

@@ -1,0 +1,559 @@
+//! Robustness (issue 6): extreme valid curves get sound, finite boxes from every strategy in
+//! bounded time; arbitrary f64 bit patterns give a sound box or a typed error, never a panic;
+//! the fuzz corpus and every fuzz finding replay as regression tests.
+//!
+//! Containment is checked with interval evaluation at dense parameters
+//! (`validate::check_containment`) and, with `--features mpfr`, against the 256-bit reference
+//! box (`reference::reference_box`).
+
+use nurbs_box::enclose::{all_strategies, Guarantee, Termination};
+use nurbs_box::robust::{check_all_strategies, check_enclosure, check_params, targets};
+use nurbs_box::{Enclosure, NurbsCurve};
+use proptest::prelude::*;
+use std::time::{Duration, Instant};
+
+fn config(default_cases: u32) -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default_cases);
+    ProptestConfig {
+        cases,
+        ..ProptestConfig::default()
+    }
+}
+
+/// Clamped uniform knots for `npts` points of degree p on [a, b].
+fn clamped(p: usize, npts: usize, a: f64, b: f64) -> Vec<f64> {
+    let ni = npts - p - 1;
+    (0..npts + p + 1)
+        .map(|i| {
+            let t = i.saturating_sub(p).min(ni + 1) as f64 / (ni + 1) as f64;
+            if t == 1.0 {
+                b
+            } else {
+                a + t * (b - a)
+            }
+        })
+        .collect()
+}
+
+/// Deterministic wiggly values in [-1, 1].
+fn wiggle(i: usize, j: usize) -> f64 {
+    ((i * 7 + j * 3) % 11) as f64 / 5.0 - 1.0 + 0.1 * ((i + j) as f64 * 0.37).sin()
+}
+
+fn curve(p: usize, knots: Vec<f64>, pts: Vec<Vec<f64>>, w: Option<Vec<f64>>) -> NurbsCurve {
+    NurbsCurve::new(p, knots, pts, w).expect("valid test curve")
+}
+
+/// The extreme valid curves of issue 6 (name, curve).
+fn extreme_curves() -> Vec<(&'static str, NurbsCurve)> {
+    let mut v = Vec::new();
+    // coordinates 1e300 .. 1e-300 with weights 1e6 .. 1e-6: w P overflows without rescaling
+    v.push((
+        "huge_and_tiny_coordinates_extreme_weights",
+        curve(
+            3,
+            clamped(3, 6, 0.0, 1.0),
+            (0..6)
+                .map(|i| vec![1e300 * wiggle(i, 0), 1e-300 * wiggle(i, 1), wiggle(i, 2)])
+                .collect(),
+            Some(vec![1e6, 1e-6, 3.0, 1e6, 0.5, 1e-6]),
+        ),
+    ));
+    // coordinates near the top of the f64 range
+    v.push((
+        "near_max_coordinates",
+        curve(
+            2,
+            clamped(2, 5, 0.0, 1.0),
+            (0..5).map(|i| vec![1.5e308 * wiggle(i, 0)]).collect(),
+            Some(vec![1.0, 2.0, 0.5, 4.0, 1.0]),
+        ),
+    ));
+    // subnormal coordinates
+    v.push((
+        "subnormal_coordinates",
+        curve(
+            2,
+            clamped(2, 4, 0.0, 1.0),
+            vec![
+                vec![5e-324, 0.0],
+                vec![-3e-320, 1e-310],
+                vec![7e-323, -2e-315],
+                vec![0.0, 4e-324],
+            ],
+            Some(vec![1.0, 3.0, 1.0, 2.0]),
+        ),
+    ));
+    // knot spans of 1e-12 between ordinary ones
+    v.push((
+        "narrow_spans",
+        curve(
+            3,
+            vec![
+                0.,
+                0.,
+                0.,
+                0.,
+                0.3,
+                0.3 + 1e-12,
+                0.3 + 2e-12,
+                0.7,
+                0.7 + 1e-12,
+                1.,
+                1.,
+                1.,
+                1.,
+            ],
+            (0..9).map(|i| vec![wiggle(i, 0), wiggle(i, 1)]).collect(),
+            Some((0..9).map(|i| 1.0 + (i % 3) as f64).collect()),
+        ),
+    ));
+    // weights 1e-6 .. 1e6
+    v.push((
+        "extreme_weights",
+        curve(
+            3,
+            clamped(3, 8, 0.0, 1.0),
+            (0..8).map(|i| vec![wiggle(i, 0), wiggle(i, 1)]).collect(),
+            Some(vec![1e-6, 1e6, 1e-6, 1e6, 1.0, 1e-3, 1e3, 1e-6]),
+        ),
+    ));
+    // degree 40, rational
+    v.push((
+        "degree_40",
+        curve(
+            40,
+            clamped(40, 45, 0.0, 1.0),
+            (0..45).map(|i| vec![wiggle(i, 0), wiggle(i, 1)]).collect(),
+            Some((0..45).map(|i| 1.0 + (i % 4) as f64 * 0.5).collect()),
+        ),
+    ));
+    // flat coordinates: constant everywhere / on whole spans
+    v.push((
+        "flat_coordinates",
+        curve(
+            3,
+            clamped(3, 9, 0.0, 1.0),
+            (0..9)
+                .map(|i| {
+                    vec![
+                        0.25,
+                        if (2..7).contains(&i) {
+                            -1.5
+                        } else {
+                            wiggle(i, 1)
+                        },
+                    ]
+                })
+                .collect(),
+            Some((0..9).map(|i| 1.0 + (i % 2) as f64).collect()),
+        ),
+    ));
+    // symmetric: the maximum of coordinate 0 is exactly at the middle knot 0; coordinate 1
+    // is monotone (extrema at the end points)
+    v.push((
+        "extrema_at_knot_and_ends",
+        curve(
+            2,
+            vec![-1., -1., -1., -0.5, 0., 0.5, 1., 1., 1.],
+            vec![
+                vec![0., -2.],
+                vec![1., -1.],
+                vec![3., 0.],
+                vec![3., 1.],
+                vec![1., 2.],
+                vec![0., 3.],
+            ],
+            None,
+        ),
+    ));
+    // unclamped, shifted domain
+    v.push((
+        "unclamped",
+        curve(
+            3,
+            (0..11).map(|i| 1e4 + i as f64 * 0.75).collect(),
+            (0..7).map(|i| vec![wiggle(i, 0)]).collect(),
+            Some((0..7).map(|i| 0.5 + (i % 3) as f64).collect()),
+        ),
+    ));
+    // discontinuous (interior multiplicity p + 1)
+    v.push((
+        "discontinuous",
+        curve(
+            2,
+            vec![0., 0., 0., 0.5, 0.5, 0.5, 1., 1., 1.],
+            vec![
+                vec![0.],
+                vec![2.],
+                vec![1.],
+                vec![-1.],
+                vec![-3.],
+                vec![0.5],
+            ],
+            None,
+        ),
+    ));
+    // 10-D with mixed magnitudes
+    v.push((
+        "ten_dimensional",
+        curve(
+            4,
+            clamped(4, 12, -2.0, 3.0),
+            (0..12)
+                .map(|i| {
+                    (0..10)
+                        .map(|j| wiggle(i, j) * 10f64.powi(60 * j as i32 - 270))
+                        .collect()
+                })
+                .collect(),
+            Some((0..12).map(|i| 1.0 + (i % 5) as f64).collect()),
+        ),
+    ));
+    // tiny and huge parameter domains
+    v.push((
+        "tiny_domain",
+        curve(
+            3,
+            clamped(3, 7, 0.0, 1e-300),
+            (0..7).map(|i| vec![wiggle(i, 0), wiggle(i, 1)]).collect(),
+            Some((0..7).map(|i| 1.0 + (i % 3) as f64).collect()),
+        ),
+    ));
+    v.push((
+        "huge_domain",
+        curve(
+            3,
+            clamped(3, 7, -1e300, 1e300),
+            (0..7).map(|i| vec![wiggle(i, 0), wiggle(i, 1)]).collect(),
+            None,
+        ),
+    ));
+    // large common offset (cancellation) in a coordinate
+    v.push((
+        "offset_coordinates",
+        curve(
+            3,
+            clamped(3, 8, 0.0, 1.0),
+            (0..8)
+                .map(|i| vec![1e12 + wiggle(i, 0), -7e15 + wiggle(i, 1)])
+                .collect(),
+            None,
+        ),
+    ));
+    v
+}
+
+/// Run every strategy on `c`: no panic, the checks of `check_enclosure` at dense parameters,
+/// finite boxes from every verified strategy, within `limit`. Returns the verified results.
+fn check_curve(name: &str, c: &NurbsCurve, per_span: usize, limit: Duration) -> Vec<Enclosure> {
+    let params = check_params(c, per_span, &[]);
+    let mut out = Vec::new();
+    for s in all_strategies(None) {
+        let t = Instant::now();
+        let e = s.enclose(c);
+        let dt = t.elapsed();
+        assert!(dt < limit, "{name}: {} took {dt:?}", s.name());
+        if let Err(m) = check_enclosure(c, &e, s.guarantee(), &params) {
+            panic!("{name}: {}: {m}", s.name());
+        }
+        if s.guarantee() == Guarantee::Verified {
+            for (j, cb) in e.coords.iter().enumerate() {
+                assert!(
+                    cb.lo.is_finite() && cb.hi.is_finite(),
+                    "{name}: {} coordinate {j}: box [{:e}, {:e}] is not finite",
+                    s.name(),
+                    cb.lo,
+                    cb.hi
+                );
+            }
+            out.push(e);
+        }
+    }
+    out
+}
+
+#[test]
+fn extreme_curves_get_sound_finite_boxes() {
+    for (name, c) in extreme_curves() {
+        let encs = check_curve(name, &c, 40, Duration::from_secs(30));
+        #[cfg(feature = "mpfr")]
+        mpfr::check_reference(name, &c, &encs);
+        let _ = encs;
+    }
+}
+
+#[test]
+fn hundred_thousand_control_points() {
+    let n = 100_000;
+    let c = curve(
+        3,
+        clamped(3, n, 0.0, 1.0),
+        (0..n).map(|i| vec![wiggle(i, 0)]).collect(),
+        None,
+    );
+    let encs = check_curve("1e5_points", &c, 1, Duration::from_secs(60));
+    // every verified strategy but the hull finds the exact extremes here (the curve passes
+    // close to the control points) within a few ulps
+    for e in &encs[1..] {
+        assert!(
+            e.coords[0].gap() < 1e-12,
+            "{}: gap {:e}",
+            e.strategy,
+            e.coords[0].gap()
+        );
+    }
+}
+
+/// Adversarial curves for the work limits: each enclose call finishes quickly (generous
+/// bound for a loaded machine) with a sound box, and a limit reached is reported.
+#[test]
+fn adversarial_curves_finish_quickly() {
+    let mut cases: Vec<(&str, NurbsCurve)> = Vec::new();
+    // many near-double roots of C': a constant plus alternating perturbations of an ulp
+    let n = 400;
+    cases.push((
+        "near_double_roots",
+        curve(
+            3,
+            clamped(3, n, 0.0, 1.0),
+            (0..n)
+                .map(|i| vec![1.0 + if i % 2 == 0 { 0.0 } else { f64::EPSILON }])
+                .collect(),
+            Some(
+                (0..n)
+                    .map(|i| 1.0 + (i % 3) as f64 * f64::EPSILON)
+                    .collect(),
+            ),
+        ),
+    ));
+    // high degree with ulp noise: C' is tiny and sign-changing everywhere
+    cases.push((
+        "degree_40_ulp_noise",
+        curve(
+            40,
+            clamped(40, 60, 0.0, 1.0),
+            (0..60)
+                .map(|i| vec![1.0 + (i % 3) as f64 * f64::EPSILON, wiggle(i, 1)])
+                .collect(),
+            None,
+        ),
+    ));
+    // beyond the issue's degree range: degree 150, one span (expensive evaluations)
+    cases.push((
+        "degree_150",
+        curve(
+            150,
+            clamped(150, 151, 0.0, 1.0),
+            (0..151).map(|i| vec![wiggle(i, 0)]).collect(),
+            None,
+        ),
+    ));
+    // flat coordinate with sub-ulp-sized weight variation
+    cases.push((
+        "flat_with_weights",
+        curve(
+            5,
+            clamped(5, 200, 0.0, 1.0),
+            (0..200).map(|i| vec![0.1, wiggle(i, 1)]).collect(),
+            Some((0..200).map(|i| 1.0 + (i % 7) as f64 * 1e-3).collect()),
+        ),
+    ));
+    for (name, c) in cases {
+        check_curve(name, &c, 3, Duration::from_secs(20));
+    }
+    // the budget is reported: degree 150 exhausts newton's work budget
+    let c = curve(
+        150,
+        clamped(150, 151, 0.0, 1.0),
+        (0..151).map(|i| vec![wiggle(i, 0)]).collect(),
+        None,
+    );
+    let e = nurbs_box::strategy_by_name("newton", None)
+        .unwrap()
+        .enclose(&c);
+    assert_eq!(e.termination(), Termination::WorkLimit);
+}
+
+/// An f64 from a mix of hostile bit patterns and nice values.
+fn any_f64() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        3 => any::<u64>().prop_map(f64::from_bits),
+        1 => prop::sample::select(vec![
+            0.0, -0.0, 1.0, -1.0, 0.5, 5e-324, -5e-324, f64::MIN_POSITIVE, f64::MAX, -f64::MAX,
+            1e300, -1e300, 1e-300, f64::EPSILON, 1.0 + f64::EPSILON, f64::NAN, f64::INFINITY,
+        ]),
+        2 => -4.0..4.0f64,
+    ]
+}
+
+/// Raw curve data from arbitrary bit patterns; knots sorted (by total order) most of the time
+/// so that many cases are valid curves.
+fn raw_curve() -> impl Strategy<Value = (usize, Vec<f64>, Vec<Vec<f64>>, Option<Vec<f64>>)> {
+    (1usize..=4, 0usize..5, 1usize..=3).prop_flat_map(|(p, extra, d)| {
+        let np = p + 1 + extra;
+        (
+            Just(p),
+            prop::collection::vec(any_f64(), np + p + 1),
+            any::<u8>(),
+            prop::collection::vec(prop::collection::vec(any_f64(), d), np),
+            prop::option::of(prop::collection::vec(any_f64(), np)),
+        )
+            .prop_map(|(p, mut k, sort, pts, w)| {
+                if sort % 4 != 0 {
+                    k.sort_by(f64::total_cmp);
+                }
+                // positive weights most of the time (abs keeps NaN / 0 / inf: still invalid)
+                let w = w.map(|w| {
+                    w.into_iter()
+                        .map(|x| if sort % 8 == 1 { x } else { x.abs() })
+                        .collect()
+                });
+                (p, k, pts, w)
+            })
+    })
+}
+
+proptest! {
+    #![proptest_config(config(64))]
+
+    /// Every strategy returns a sound box (or the curve is a typed error); never a panic.
+    #[test]
+    fn arbitrary_bit_patterns_give_a_sound_box_or_a_typed_error((p, k, pts, w) in raw_curve()) {
+        match NurbsCurve::new(p, k, pts, w) {
+            Err(e) => {
+                prop_assert!(!e.kind().is_empty());
+                prop_assert!(!e.to_string().is_empty());
+            }
+            Ok(c) => {
+                let v = check_all_strategies(&c, 6, &[]);
+                prop_assert!(v.is_empty(), "{:?}\n{}", v, nurbs_box::curve_to_json(&c));
+                // and through the JSON format
+                let back = nurbs_box::parse_curve(nurbs_box::curve_to_json(&c).as_bytes());
+                prop_assert_eq!(back.as_ref(), Ok(&c));
+            }
+        }
+    }
+
+    /// Structured fuzz decoder on random bytes (the fuzz target's body, in a plain test).
+    #[test]
+    fn structured_decoder_on_random_bytes(bytes in prop::collection::vec(any::<u8>(), 0..200)) {
+        targets::structured(&bytes);
+    }
+}
+
+/// Every committed fuzz input (corpus and regression findings) replays without a violation.
+#[test]
+fn fuzz_corpus_and_findings_replay() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut n = 0;
+    for (dir, run) in [
+        ("fuzz/corpus/json", targets::json as fn(&[u8])),
+        ("fuzz/corpus/structured", targets::structured),
+        ("tests/data/fuzz/json", targets::json),
+        ("tests/data/fuzz/structured", targets::structured),
+    ] {
+        let Ok(rd) = std::fs::read_dir(root.join(dir)) else {
+            continue;
+        };
+        for f in rd.flatten() {
+            // (a fuzzer running meanwhile may remove files)
+            let Ok(bytes) = std::fs::read(f.path()) else {
+                continue;
+            };
+            run(&bytes);
+            n += 1;
+        }
+    }
+    assert!(n > 0, "no fuzz inputs found");
+}
+
+#[cfg(feature = "mpfr")]
+mod mpfr {
+    use super::*;
+    use nurbs_box::reference::{reference_box, ulps_outside};
+
+    /// Every verified box contains the 256-bit reference box, and is close to it (see
+    /// `allowed`). `ROBUST_PRINT=1` prints the distances.
+    pub fn check_reference(name: &str, c: &NurbsCurve, encs: &[Enclosure]) {
+        let rb = reference_box(c);
+        for e in encs {
+            for j in 0..c.dim() {
+                let scale = c.coord_scale(j);
+                let cb = &e.coords[j];
+                let dlo = ulps_outside(cb.lo, &rb.lo[j], scale, false);
+                let dhi = ulps_outside(cb.hi, &rb.hi[j], scale, true);
+                assert!(
+                    dlo >= 0.0 && dhi >= 0.0,
+                    "{name}: {} coordinate {j}: box [{:e}, {:e}] misses the exact [{}, {}]",
+                    e.strategy,
+                    cb.lo,
+                    cb.hi,
+                    rb.lo[j],
+                    rb.hi[j]
+                );
+                if std::env::var("ROBUST_PRINT").is_ok() {
+                    eprintln!(
+                        "{name} {} j={j} {:?} ulps outside: lo {dlo:.3e} hi {dhi:.3e}",
+                        e.strategy, cb.termination
+                    );
+                }
+                // Tightness: the Bézier strategy is within a few ulps of the coordinate scale;
+                // the Newton-based ones lose digits with extreme weight ratios and 1e-12 spans
+                // (up to ~1e10 ulps = 2e-6 relative here), the hull is not tight at all.
+                let allowed = match e.strategy {
+                    "hull" => f64::INFINITY,
+                    "bezier" => 64.0,
+                    _ => 1e11,
+                };
+                assert!(
+                    dlo <= allowed && dhi <= allowed,
+                    "{name}: {} coordinate {j}: {dlo} / {dhi} ulps outside the exact box",
+                    e.strategy
+                );
+            }
+        }
+    }
+}
+
+/// The exact rescaling is what makes overflowing curves finite: the raw strategies overflow
+/// (soundly, to infinite bounds) on w P ~ 1e306, the registered (rescaled) ones do not.
+#[test]
+fn rescaling_keeps_overflowing_curves_finite() {
+    use nurbs_box::enclose::{BezierSubdivision, BoxEncloser, Newton};
+    let c = curve(
+        3,
+        clamped(3, 6, 0.0, 1.0),
+        (0..6).map(|i| vec![1.5e308 * wiggle(i, 0) / 1.1]).collect(),
+        Some(vec![1e6, 1e-6, 3.0, 1e6, 0.5, 1e-6]),
+    );
+    let raw: [&dyn BoxEncloser; 2] = [&Newton::default(), &BezierSubdivision::default()];
+    for s in raw {
+        let e = s.enclose(&c);
+        eprintln!(
+            "raw {}: [{:e}, {:e}]",
+            s.name(),
+            e.coords[0].lo,
+            e.coords[0].hi
+        );
+    }
+    for name in ["newton", "bezier"] {
+        let e = nurbs_box::strategy_by_name(name, None).unwrap().enclose(&c);
+        let cb = &e.coords[0];
+        assert!(
+            cb.lo.is_finite() && cb.hi.is_finite(),
+            "{name}: [{:e}, {:e}]",
+            cb.lo,
+            cb.hi
+        );
+        // (the weight ratio 1e12 costs the Newton-based strategies ~6 digits; see above)
+        assert!(
+            cb.gap() <= 1e-5 * c.coord_scale(0),
+            "{name}: gap {:e}",
+            cb.gap()
+        );
+    }
+}
