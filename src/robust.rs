@@ -10,7 +10,10 @@
 //! counts) are typed [`CurveError`]s, which is part of what is tested.
 
 use crate::curve::NurbsCurve;
-use crate::enclose::{all_strategies, BoxEncloser, Enclosure, Guarantee};
+use crate::enclose::{
+    all_strategies, BezierSubdivision, BoxEncloser, ControlHull, Enclosure, Guarantee, Newton,
+    Rescaled, SearchRegion,
+};
 use crate::error::CurveError;
 use crate::validate::{check_containment, dense_params};
 
@@ -251,11 +254,44 @@ pub fn check_strategy(
 /// Run every registered strategy ([`all_strategies`], default tolerance) on `c` and check each
 /// result at [`check_params`]`(c, per_span, extra)`. Returns every violation found.
 pub fn check_all_strategies(c: &NurbsCurve, per_span: usize, extra: &[f64]) -> Vec<Violation> {
+    check_strategies(&all_strategies(None), c, per_span, extra)
+}
+
+/// [`check_all_strategies`] with the given strategies.
+pub fn check_strategies(
+    strategies: &[Box<dyn BoxEncloser>],
+    c: &NurbsCurve,
+    per_span: usize,
+    extra: &[f64],
+) -> Vec<Violation> {
     let params = check_params(c, per_span, extra);
-    all_strategies(None)
+    strategies
         .iter()
         .filter_map(|s| check_strategy(s.as_ref(), c, &params).err())
         .collect()
+}
+
+/// Every strategy of [`all_strategies`] (rescaled, like the registry), with work limits a
+/// hundred times smaller than the defaults: a fuzzer then runs many more inputs per second
+/// and reaches the limit fallbacks (which must be sound too) far more often.
+pub fn low_limit_strategies() -> Vec<Box<dyn BoxEncloser>> {
+    let newton = Newton {
+        max_boxes: 40,
+        max_work: crate::enclose::DEFAULT_MAX_WORK / 100,
+        ..Newton::default()
+    };
+    let bezier = BezierSubdivision {
+        max_pieces: 200,
+        max_work: crate::enclose::DEFAULT_MAX_WORK / 100,
+        ..BezierSubdivision::default()
+    };
+    vec![
+        Box::new(Rescaled(ControlHull)),
+        Box::new(Rescaled(bezier)),
+        Box::new(Rescaled(newton)),
+        Box::new(Rescaled(SearchRegion::thesis(newton))),
+        Box::new(Rescaled(SearchRegion::verified(newton))),
+    ]
 }
 
 /// The fuzz target bodies, as plain functions (they panic on a violation, which is what a
@@ -298,8 +334,9 @@ pub mod targets {
         }
     }
 
-    /// Structured bytes -> curve ([`curve_from_bytes`]) -> every strategy, checked against
-    /// sampled interval evaluations (dense parameters plus parameters decoded from the tail).
+    /// Structured bytes -> curve ([`curve_from_bytes`]) -> every strategy (the first byte
+    /// chooses the default or the [`low_limit_strategies`]), checked against sampled interval
+    /// evaluations (dense parameters plus parameters decoded from the tail).
     pub fn structured(data: &[u8]) {
         let Ok(c) = curve_from_bytes(data) else {
             return;
@@ -314,7 +351,12 @@ pub mod targets {
             .take(8)
             .map(|&b| f64::from(b) / 255.0)
             .collect();
-        let v = check_all_strategies(&c, 4, &extra);
+        let strategies = if data.first().is_some_and(|b| b % 4 == 0) {
+            all_strategies(None)
+        } else {
+            low_limit_strategies()
+        };
+        let v = check_strategies(&strategies, &c, 4, &extra);
         assert!(v.is_empty(), "{v:?}\n{}", crate::io::curve_to_json(&c));
     }
 }

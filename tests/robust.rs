@@ -62,6 +62,38 @@ fn extreme_curves() -> Vec<(&'static str, NurbsCurve)> {
             Some(vec![1e6, 1e-6, 3.0, 1e6, 0.5, 1e-6]),
         ),
     ));
+    // one coordinate holding both 1e300 and subnormal values: the exact rescaling rounds the
+    // subnormal ones and widens the box by one subnormal step (of the scaled coordinate)
+    v.push((
+        "huge_and_subnormal_in_one_coordinate",
+        curve(
+            2,
+            clamped(2, 6, 0.0, 1.0),
+            vec![
+                vec![-3e-320, 1.0],
+                vec![1e300, -4e-320],
+                vec![7e-322, 5e-324],
+                vec![-1e-310, 2.0],
+                vec![-2e-323, -1e-300],
+                vec![1e-320, 0.0],
+            ],
+            Some(vec![1.0, 1e-6, 2.0, 1.0, 1e6, 3.0]),
+        ),
+    ));
+    // weight ratio 1e600 with coordinates near the f64 limit
+    v.push((
+        "weight_ratio_1e600",
+        curve(
+            2,
+            clamped(2, 3, 0.0, 1.0),
+            vec![
+                vec![1e308, -1e308],
+                vec![-1.7e308, 1.7e308],
+                vec![1e-320, 0.0],
+            ],
+            Some(vec![1e300, 1e-300, 1.0]),
+        ),
+    ));
     // coordinates near the top of the f64 range
     v.push((
         "near_max_coordinates",
@@ -279,7 +311,7 @@ fn check_curve(name: &str, c: &NurbsCurve, per_span: usize, limit: Duration) -> 
 #[test]
 fn extreme_curves_get_sound_finite_boxes() {
     for (name, c) in extreme_curves() {
-        let encs = check_curve(name, &c, 40, Duration::from_secs(30));
+        let encs = check_curve(name, &c, 20, Duration::from_secs(30));
         #[cfg(feature = "mpfr")]
         mpfr::check_reference(name, &c, &encs);
         let _ = encs;
@@ -445,17 +477,12 @@ proptest! {
     }
 }
 
-/// Every committed fuzz input (corpus and regression findings) replays without a violation.
-#[test]
-fn fuzz_corpus_and_findings_replay() {
+/// Replay every file of the given directories (relative to the crate) through the fuzz
+/// target bodies; returns the number of inputs.
+fn replay(dirs: &[(&str, fn(&[u8]))]) -> usize {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut n = 0;
-    for (dir, run) in [
-        ("fuzz/corpus/json", targets::json as fn(&[u8])),
-        ("fuzz/corpus/structured", targets::structured),
-        ("tests/data/fuzz/json", targets::json),
-        ("tests/data/fuzz/structured", targets::structured),
-    ] {
+    for (dir, run) in dirs {
         let Ok(rd) = std::fs::read_dir(root.join(dir)) else {
             continue;
         };
@@ -464,11 +491,40 @@ fn fuzz_corpus_and_findings_replay() {
             let Ok(bytes) = std::fs::read(f.path()) else {
                 continue;
             };
+            let t = Instant::now();
             run(&bytes);
+            assert!(
+                t.elapsed() < Duration::from_secs(30),
+                "{}: {:?}",
+                f.path().display(),
+                t.elapsed()
+            );
             n += 1;
         }
     }
-    assert!(n > 0, "no fuzz inputs found");
+    n
+}
+
+/// Every fuzz finding (crash, timeout, slow unit) replays without a violation, in bounded time.
+#[test]
+fn fuzz_findings_replay() {
+    let n = replay(&[
+        ("tests/data/fuzz/json", targets::json),
+        ("tests/data/fuzz/structured", targets::structured),
+    ]);
+    assert!(n > 0, "no fuzz findings found");
+}
+
+/// The whole committed fuzz corpus (`fuzz/corpus`) replays without a violation. Slow (a
+/// minute or two): `cargo test --test robust -- --ignored`.
+#[test]
+#[ignore]
+fn fuzz_corpus_replays() {
+    let n = replay(&[
+        ("fuzz/corpus/json", targets::json),
+        ("fuzz/corpus/structured", targets::structured),
+    ]);
+    assert!(n > 0, "no fuzz corpus found");
 }
 
 #[cfg(feature = "mpfr")]
@@ -492,6 +548,15 @@ mod mpfr {
                     e.strategy,
                     cb.lo,
                     cb.hi,
+                    rb.lo[j],
+                    rb.hi[j]
+                );
+                assert!(
+                    rb.lo[j] <= cb.inner_lo && cb.inner_hi <= rb.hi[j],
+                    "{name}: {} coordinate {j}: inner [{:e}, {:e}] not reached, exact [{}, {}]",
+                    e.strategy,
+                    cb.inner_lo,
+                    cb.inner_hi,
                     rb.lo[j],
                     rb.hi[j]
                 );
@@ -530,6 +595,13 @@ fn rescaling_keeps_overflowing_curves_finite() {
         (0..6).map(|i| vec![1.5e308 * wiggle(i, 0) / 1.1]).collect(),
         Some(vec![1e6, 1e-6, 3.0, 1e6, 0.5, 1e-6]),
     );
+    // the mixed-magnitude extreme curve does exercise the rounded (widened) coordinate path
+    let (_, mixed) = extreme_curves()
+        .into_iter()
+        .find(|(n, _)| *n == "huge_and_subnormal_in_one_coordinate")
+        .unwrap();
+    let r = nurbs_box::enclose::Rescaling::of(&mixed).unwrap();
+    assert!(r.coord_rounded[0] && r.coord_exp[0] > 900 && r.coord_exp[1] == 0);
     let raw: [&dyn BoxEncloser; 2] = [&Newton::default(), &BezierSubdivision::default()];
     for s in raw {
         let e = s.enclose(&c);
@@ -556,4 +628,213 @@ fn rescaling_keeps_overflowing_curves_finite() {
             cb.gap()
         );
     }
+}
+
+/// The command line on hostile lines interleaved with extreme valid curves: one error record
+/// of the expected kind per invalid line, a finite sound box from every verified strategy for
+/// every valid curve, exit status 1, nothing on stderr about panics.
+#[test]
+fn cli_hostile_lines_between_extreme_curves() {
+    use serde_json::Value;
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let ok = r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]]}"#;
+    let hostile: &[(&str, &str)] = &[
+        (
+            r#"{"degree":18446744073709551616,"knots":[0,0,1,1],"control_points":[[0],[1]]}"#,
+            "invalid_degree",
+        ),
+        (
+            r#"{"degree":1e400,"knots":[0,0,1,1],"control_points":[[0],[1]]}"#,
+            "number_out_of_range",
+        ),
+        (
+            r#"{"degree":0,"knots":[0,1],"control_points":[[0]]}"#,
+            "invalid_degree",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]],"weights":[1,0]}"#,
+            "invalid_weight",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]],"weights":[1,-1e-300]}"#,
+            "invalid_weight",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]],"weights":[1]}"#,
+            "weight_count",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,1,0.5,1],"control_points":[[0],[1]]}"#,
+            "decreasing_knots",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,0,1,1],"control_points":[[0],[1],[2]]}"#,
+            "knot_multiplicity",
+        ),
+        (
+            r#"{"degree":2,"knots":[0,0,1,1,2,2],"control_points":[[0],[1],[2]]}"#,
+            "empty_domain",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[],[]]}"#,
+            "zero_dimension",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[1,2],[3]]}"#,
+            "dimension_mismatch",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[[1]],[2]]}"#,
+            "wrong_type",
+        ),
+        (
+            r#"{"degree":1,"knots":"0,0,1,1","control_points":[[0],[1]]}"#,
+            "wrong_type",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]],"weight":[1,2]}"#,
+            "unknown_field",
+        ),
+        (
+            r#"{"degree":1,"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]]}"#,
+            "duplicate_field",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]]} x"#,
+            "invalid_json",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1e309]]}"#,
+            "number_out_of_range",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[-Infinity]]}"#,
+            "non_finite_literal",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]],"weights":{}}"#,
+            "wrong_type",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]],"weights":[1,"2"]}"#,
+            "wrong_type",
+        ),
+        (
+            r#"{"degree":3,"knots":[],"control_points":[]}"#,
+            "too_few_control_points",
+        ),
+        (
+            r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1]"#,
+            "truncated_json",
+        ),
+        ("\u{0}\u{1}\u{7f}\u{fffd}", "invalid_json"),
+        ("\"a string\"", "wrong_type"),
+        ("12345", "wrong_type"),
+    ];
+    let big_literal = format!(
+        r#"{{"degree":1,"knots":[0,0,1,1],"control_points":[[0],[1{}]]}}"#,
+        "0".repeat(400)
+    );
+    let mut input = String::new();
+    let mut expect: Vec<Option<&str>> = Vec::new();
+    let extreme = extreme_curves();
+    for (k, (line, kind)) in hostile.iter().enumerate() {
+        let (_, c) = &extreme[k % extreme.len()];
+        input.push_str(&nurbs_box::curve_to_json(c));
+        input.push_str("\r\n"); // CRLF is whitespace
+        expect.push(None);
+        input.push_str(line);
+        input.push('\n');
+        expect.push(Some(kind));
+    }
+    input.push_str(&big_literal);
+    input.push('\n');
+    expect.push(Some("number_out_of_range"));
+    input.push_str(ok);
+    input.push('\n');
+    expect.push(None);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_nurbs-box"))
+        .args(["enclose", "--strategy", "all", "--threads", "2"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut sin = child.stdin.take().unwrap();
+    let bytes = input.clone().into_bytes();
+    let w = std::thread::spawn(move || sin.write_all(&bytes));
+    let out = child.wait_with_output().unwrap();
+    w.join().unwrap().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    let recs: Vec<Value> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let curves: Vec<_> = nurbs_box::io::read_curves(input.as_bytes());
+    let n_strat = all_strategies(None).len();
+    let mut r = recs.iter();
+    for (i, want) in expect.iter().enumerate() {
+        match want {
+            Some(kind) => {
+                let rec = r.next().unwrap();
+                assert_eq!(rec["index"], i);
+                assert_eq!(rec["error"]["kind"], *kind, "line {i}: {rec}");
+                assert!(rec["error"]["message"].as_str().unwrap().len() > 10);
+            }
+            None => {
+                let c = curves[i].1.as_ref().unwrap();
+                for _ in 0..n_strat {
+                    let rec = r.next().unwrap();
+                    assert_eq!(rec["index"], i);
+                    if rec["verified"] != true {
+                        continue;
+                    }
+                    let lo: Vec<f64> = rec["lo"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|v| v.as_f64().unwrap())
+                        .collect();
+                    let hi: Vec<f64> = rec["hi"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|v| v.as_f64().unwrap())
+                        .collect();
+                    // as_f64 fails on the strings "inf" / "-inf": boxes are finite
+                    let e = Enclosure {
+                        strategy: "cli",
+                        verified: true,
+                        coords: lo
+                            .iter()
+                            .zip(&hi)
+                            .map(|(&lo, &hi)| nurbs_box::CoordBox {
+                                lo,
+                                hi,
+                                inner_lo: hi,
+                                inner_hi: lo,
+                                argmin: vec![],
+                                argmax: vec![],
+                                stats: Default::default(),
+                                termination: Termination::Converged,
+                            })
+                            .collect(),
+                    };
+                    let m =
+                        nurbs_box::validate::check_containment(c, &e, &check_params(c, 20, &[]));
+                    assert!(
+                        m.misses.is_empty(),
+                        "line {i} {}: {:?}",
+                        rec["strategy"],
+                        m.misses[0]
+                    );
+                }
+            }
+        }
+    }
+    assert!(r.next().is_none());
 }

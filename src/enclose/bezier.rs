@@ -288,7 +288,8 @@ impl BezierSubdivision {
         let ub = |c: &[Interval]| c.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.sup()));
         let mut pieces = 0usize;
         let cost = ((p + 1) as u64).pow(2);
-        let work_pieces = (self.max_work / cost)
+        // a piece costs about four de Casteljau passes of (p + 1)^2 / 2 steps plus evaluations
+        let work_pieces = (self.max_work / (4 * cost))
             .saturating_add(64 + spans.len() as u64)
             .min(usize::MAX as u64) as usize;
         while let Some(item) = heap.pop() {
@@ -297,6 +298,26 @@ impl BezierSubdivision {
                 break;
             }
             let k = item.span;
+            if item.piece.is_none() {
+                // A coordinate equal at the span's p + 1 local control points is exactly that
+                // constant on the span (a convex combination, weights > 0): its value is
+                // attained and bounds the span. (Interval Bézier coefficients of a rational
+                // span are a few ulps wide there, so subdivision could never resolve it.)
+                let x = c.control_point(k - p)[j];
+                if (k - p..=k).all(|i| c.control_point(i)[j] == x) {
+                    side.attain(iv::point(sign * x));
+                    side.bound(
+                        sign * x,
+                        Extremum {
+                            u_lo: c.knots()[k],
+                            u_hi: c.knots()[k + 1],
+                            unique: false,
+                            kind: CandidateKind::Critical,
+                        },
+                    );
+                    continue;
+                }
+            }
             let seg = segs[k].get_or_insert_with(|| hs.bezier_segment(k)).coord(j);
             let Some((s0, s1, depth, co)) = item.piece else {
                 let co = sub_coeffs(&seg, seg.a, seg.b, sign);
