@@ -57,6 +57,12 @@ fn main() {
         let b = black_box(&cb).bounding_box();
         b.x1 + b.y1
     });
+    for name in ["bezier", "newton"] {
+        let st = nurbs_box::enclose::strategy_by_name(name, None).unwrap();
+        time(&format!("strategy {name}: verified box"), n / 20, || {
+            st.enclose(black_box(&c)).hi()[1]
+        });
+    }
     time("TightEval::new (2-D cubic)", n / 10, || {
         let t = TightEval::new(black_box(&c));
         t.curve().degree() as f64

@@ -539,7 +539,8 @@ impl Scalar for Ddi {
     }
 
     /// `[RD(hi + lo - rad), RU(hi + lo + rad)]`: one ulp wide (or a point) whenever the radius is
-    /// small against the centre; see [`lower_sum3`] for why the bounds hold.
+    /// small against the centre; the comments in the code (and on `lower_sum3`) say why the
+    /// bounds hold.
     #[inline]
     fn to_interval(&self) -> Interval {
         if self.is_entire() {
@@ -735,6 +736,69 @@ mod tests {
             if x.hi() * y.hi() > 0.0 {
                 let z = x + y;
                 assert!(z.rad() <= 1e-30 * z.hi().abs(), "{x:?} {y:?} {z:?}");
+            }
+        }
+    }
+
+    /// Containment across the whole exponent range (subnormals, underflowing products,
+    /// overflow): every result either contains the exact value (MPFR with enough bits to hold
+    /// any double-word exactly) or is ENTIRE.
+    #[cfg(feature = "mpfr")]
+    #[test]
+    fn contains_mpfr_values_at_extreme_exponents() {
+        use rug::Float;
+        let prec = 4400;
+        let mut rng = ChaCha8Rng::seed_from_u64(33);
+        let any = |rng: &mut ChaCha8Rng| -> Ddi {
+            let e = rng.random_range(-1074..1024);
+            let m: f64 = rng.random_range(1.0..2.0);
+            let h = (if rng.random_bool(0.5) { -m } else { m }) * 2f64.powi(e);
+            let h = if h.is_finite() { h } else { f64::MAX };
+            match rng.random_range(0..5) {
+                0 => Ddi::exact(h),
+                1 => Ddi::exact(f64::from_bits(rng.random_range(1..1u64 << 52))), // subnormal
+                2 => Ddi::new(h, h * 1e-17, (h * 1e-30).abs()),
+                3 => Ddi::exact(0.0),
+                _ => Ddi::exact(h) / Ddi::exact(3.0),
+            }
+        };
+        let exact = |d: &Ddi, t: i32| -> Float {
+            Float::with_val(prec, d.hi()) + d.lo() + Float::with_val(prec, d.rad()) * t
+        };
+        let inside = |z: &Ddi, v: &Float| -> bool {
+            if z.is_entire() {
+                return true;
+            }
+            let c = Float::with_val(prec, z.hi()) + z.lo();
+            (c.clone() - z.rad()) <= *v && *v <= (c + z.rad())
+        };
+        for _ in 0..20000 {
+            let (x, y, w) = (any(&mut rng), any(&mut rng), any(&mut rng));
+            for tx in [-1, 0, 1] {
+                for ty in [-1, 0, 1] {
+                    let (a, b) = (exact(&x, tx), exact(&y, ty));
+                    let c = exact(&w, 0);
+                    let s = Float::with_val(prec, &a + &b);
+                    assert!(inside(&(x + y), &s), "{x:?} + {y:?} = {:?}", x + y);
+                    let p = Float::with_val(prec, &a * &b);
+                    assert!(inside(&(x * y), &p), "{x:?} * {y:?} = {:?}", x * y);
+                    let f = Float::with_val(prec, &p + &c);
+                    assert!(inside(&x.mul_add(y, w), &f), "{x:?} * {y:?} + {w:?}");
+                    if !b.is_zero() {
+                        let q = Float::with_val(prec, &a / &b);
+                        assert!(inside(&(x / y), &q), "{x:?} / {y:?} = {:?}", x / y);
+                    }
+                }
+            }
+            for z in [x + y, x * y, x / y, x.mul_add(y, w)] {
+                let i = z.to_interval();
+                if !z.is_entire() {
+                    let c = Float::with_val(prec, z.hi()) + z.lo();
+                    assert!(
+                        i.inf() <= c.clone() - z.rad() && c + z.rad() <= i.sup(),
+                        "{z:?} -> {i:?}"
+                    );
+                }
             }
         }
     }

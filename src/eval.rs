@@ -141,7 +141,7 @@ impl CurveEval<Interval> {
     }
 }
 
-fn check_domain((a, b): (f64, f64), u: f64) -> Result<(), EvalError> {
+pub(crate) fn check_domain((a, b): (f64, f64), u: f64) -> Result<(), EvalError> {
     if u >= a && u <= b {
         Ok(())
     } else {
@@ -211,6 +211,38 @@ impl NurbsCurve {
         }
         let e = CurveEval::<Interval>::new(self, k);
         Ok(e.enclose_over(self, u.inf(), u.sup(), k).pop().unwrap())
+    }
+
+    /// Whether each domain end is clamped: C(u_p) = P_0 exactly when u_1 = u_p, and
+    /// C(u_{n+1}) = P_n exactly when u_{n+1} = u_{n+p} (the de Boor triangle collapses to the
+    /// end control point; for rational curves too, the weights cancel).
+    pub fn clamped_ends(&self) -> [bool; 2] {
+        let (p, n, k) = (self.degree(), self.num_points() - 1, self.knots());
+        // (and the end span must be the one of P_0 / P_n: u_p < u_{p+1}, u_n < u_{n+1})
+        [
+            k[1] == k[p] && k[p] < k[p + 1],
+            k[n + 1] == k[n + p] && k[n] < k[n + 1],
+        ]
+    }
+
+    /// Verified enclosures of C at the two domain ends: exact point intervals of P_0 / P_n at a
+    /// clamped end (see [`NurbsCurve::clamped_ends`]), interval de Boor otherwise.
+    pub fn end_values(&self) -> [Vec<Interval>; 2] {
+        let (a, b) = self.domain();
+        let cl = self.clamped_ends();
+        let n = self.num_points() - 1;
+        let at = |i: usize, u: f64, clamped: bool| -> Vec<Interval> {
+            if clamped {
+                self.control_point(i)
+                    .iter()
+                    .map(|&x| iv::point(x))
+                    .collect()
+            } else {
+                let h = HSpline::<Interval>::from_curve(self);
+                project(h.eval(u), self.dim(), self.is_rational())
+            }
+        };
+        [at(0, a, cl[0]), at(n, b, cl[1])]
     }
 
     /// Verified enclosure of C(u) for all u in the interval `u` (see

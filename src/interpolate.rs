@@ -10,9 +10,12 @@
 
 use crate::curve::NurbsCurve;
 use crate::error::{CurveError, EvalError};
+use crate::eval::CurveEval;
+use crate::io::{write_curve, write_error_record};
 use crate::knot_vectors::interpolation_knots;
 use crate::scalar::iv;
 use crate::tridiagonal::{solve_tridiagonal, TridiagonalError};
+use inari::Interval;
 use std::fmt;
 use std::str::FromStr;
 use thiserror::Error;
@@ -415,16 +418,19 @@ pub fn interpolate_cubic_with(
 }
 
 /// A verified upper bound on max_j max_coord |C(t̂_j) - p_j| for the exact curve `curve` (the
-/// f64 data as given): C(t̂_j) is enclosed by [`NurbsCurve::enclose_point`], the difference to
-/// p_j is formed in interval arithmetic (outward rounded) and its magnitude taken.
+/// f64 data as given): C(t̂_j) is enclosed by de Boor corner cutting in interval arithmetic
+/// ([`CurveEval`] with `Interval`, the kernel behind [`NurbsCurve::enclose_point`], set up once
+/// so the whole check is O(m)), the difference to p_j is formed in interval arithmetic
+/// (outward rounded) and its magnitude taken.
 pub fn interpolation_residual(
     curve: &NurbsCurve,
     params: &[f64],
     points: &[Vec<f64>],
 ) -> Result<f64, EvalError> {
+    let ev = CurveEval::<Interval>::new(curve, 0);
     let mut worst: f64 = 0.0;
     for (t, p) in params.iter().zip(points) {
-        let enc = curve.enclose_point(iv::point(*t))?;
+        let enc = ev.derivs(*t, 0)?.swap_remove(0);
         for (e, x) in enc.iter().zip(p) {
             worst = worst.max((*e - iv::point(*x)).mag());
         }
@@ -490,24 +496,10 @@ pub fn parse_point_sets(text: &str) -> Vec<PointSetInput> {
         .collect()
 }
 
-/// A curve as the JSON object of `shared/formats.md` (numbers as shortest round-trip decimals,
-/// which serde_json's f64 formatting produces; a valid curve has only finite values).
-fn curve_json(c: &NurbsCurve) -> serde_json::Value {
-    let mut v = serde_json::json!({
-        "degree": c.degree(),
-        "knots": c.knots(),
-        "control_points": c.control_points(),
-    });
-    if let Some(w) = c.weights() {
-        v["weights"] = serde_json::json!(w);
-    }
-    v
-}
-
 /// The `nurbs-box interpolate` command as a library function: read point sets from `input`,
 /// interpolate each with natural end conditions and the parametrisation `param`, and write one
-/// curve per line (the curve JSON of `shared/formats.md`) to `out`, so the output can be piped
-/// into `nurbs-box enclose`.
+/// curve per line (the curve JSON of `shared/formats.md`, by [`crate::io::write_curve`]) to
+/// `out`, so the output can be piped into `nurbs-box enclose`.
 ///
 /// Input: a JSON array of points (one point set, e.g. `[[0,0],[1,2],[3,1]]`), a JSON array of
 /// such arrays (several sets), or JSON Lines with one point set per line (blank lines skipped).
@@ -526,13 +518,18 @@ pub fn run_cli<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
     for (i, set) in parse_point_sets(&text).into_iter().enumerate() {
         let res = set
             .and_then(|pts| interpolate_cubic(&pts, param).map_err(|e| (e.kind(), e.to_string())));
+        let mut line = Vec::new();
         match res {
-            Ok(c) => writeln!(out, "{}", curve_json(&c))?,
+            Ok(c) => {
+                write_curve(&mut line, &c);
+                line.push(b'\n');
+                out.write_all(&line)?;
+            }
             Err((kind, message)) => {
                 all_ok = false;
-                let rec =
-                    serde_json::json!({"index": i, "error": {"kind": kind, "message": message}});
-                writeln!(err, "{rec}")?;
+                write_error_record(&mut line, i, "", kind, &message);
+                line.push(b'\n');
+                err.write_all(&line)?;
             }
         }
     }
@@ -543,7 +540,6 @@ pub fn run_cli<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
 mod tests {
     use super::*;
     use crate::bspline::basis_funs;
-    use inari::Interval;
 
     fn pts(v: &[[f64; 2]]) -> Vec<Vec<f64>> {
         v.iter().map(|p| p.to_vec()).collect()

@@ -1286,7 +1286,9 @@ pub fn read_curves(bytes: &[u8]) -> Vec<(usize, Result<NurbsCurve, InputError>)>
 
 /// Append a finite f64 as the shortest decimal that round-trips (serde_json uses ryu), and a
 /// non-finite one as the string "inf" / "-inf" (callers never pass NaN; see `write_bound`).
-fn write_num(out: &mut Vec<u8>, x: f64) {
+/// Append a number as the shortest round-trip decimal; a non-finite value as the string
+/// "inf" / "-inf" (or "nan") as `shared/formats.md` prescribes.
+pub fn write_num(out: &mut Vec<u8>, x: f64) {
     if x.is_finite() {
         // Writing into a Vec cannot fail.
         let _ = serde_json::to_writer(&mut *out, &x);
@@ -1299,11 +1301,13 @@ fn write_num(out: &mut Vec<u8>, x: f64) {
     }
 }
 
-fn write_str(out: &mut Vec<u8>, s: &str) {
+/// Append a JSON string.
+pub fn write_str(out: &mut Vec<u8>, s: &str) {
     let _ = serde_json::to_writer(&mut *out, s);
 }
 
-fn write_nums(out: &mut Vec<u8>, xs: impl IntoIterator<Item = f64>) {
+/// Append a JSON array of numbers (see [`write_num`]).
+pub fn write_nums(out: &mut Vec<u8>, xs: impl IntoIterator<Item = f64>) {
     out.push(b'[');
     for (i, x) in xs.into_iter().enumerate() {
         if i > 0 {

@@ -25,16 +25,7 @@ fn from_hspline(h: &HSpline<f64>) -> NurbsCurve {
 
 impl NurbsCurve {
     fn check(&self, u: f64) -> Result<(), EvalError> {
-        let (a, b) = self.domain();
-        if u >= a && u <= b {
-            Ok(())
-        } else {
-            Err(EvalError::ParamOutOfDomain {
-                param: u,
-                start: a,
-                end: b,
-            })
-        }
+        crate::eval::check_domain(self.domain(), u)
     }
 
     /// Insert the knot u r times (NURBS Book A5.1; thesis eq. 4.12, 4.15/4.16). Insertions

@@ -80,15 +80,7 @@ pub fn check_containment(c: &NurbsCurve, enc: &Enclosure, params: &[f64]) -> Con
     out
 }
 
-/// The unit in the last place of |x| (for x = 0: the smallest subnormal).
-pub fn ulp(x: f64) -> f64 {
-    let x = x.abs();
-    if !x.is_finite() {
-        return f64::NAN;
-    }
-    let next = f64::from_bits(x.to_bits() + 1);
-    next - x
-}
+pub use crate::scalar::ulp;
 
 /// Certified gap of each coordinate (outer minus inner, the larger side) in ulps of the
 /// coordinate scale (largest |control point coordinate|).

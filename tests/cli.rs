@@ -400,3 +400,50 @@ fn input_file_argument() {
     std::fs::remove_dir_all(&dir).unwrap();
     assert_eq!((code, recs.len()), (0, 2));
 }
+
+// ---- `interpolate` and `font` (helper "build") ----
+
+#[test]
+fn interpolate_pipes_into_enclose() {
+    let input = b"[[0,0],[1,2],[3,1],[4,4]]\n[[0,0,0],[1,0,1],[2,1,0]]\n";
+    for param in ["uniform", "chordal", "centripetal", "foley"] {
+        let (code, curves, err) = run(&["interpolate", "--param", param], input);
+        if param == "foley" {
+            // the 3-D set cannot use Foley's rule: an error record with its index on stderr
+            assert_eq!(code, 1);
+            let e: Value = serde_json::from_str(err.trim()).unwrap();
+            assert_eq!(e["index"], 1);
+            assert_eq!(e["error"]["kind"], "foley_needs_2d");
+            assert_eq!(curves.len(), 1);
+            continue;
+        }
+        assert_eq!(code, 0, "{err}");
+        assert_eq!(curves.len(), 2);
+        let text: String = curves.iter().map(|c| format!("{c}\n")).collect();
+        let (code, b, err) = run(&["enclose", "--strategy", "bezier"], text.as_bytes());
+        assert_eq!(code, 0, "{err}");
+        assert_eq!(b.len(), 2);
+        // the interpolant passes through the data, so its box contains every data point
+        let lo: Vec<f64> = serde_json::from_value(b[0]["lo"].clone()).unwrap();
+        let hi: Vec<f64> = serde_json::from_value(b[0]["hi"].clone()).unwrap();
+        assert!(lo[0] <= 0.0 && lo[1] <= 0.0 && hi[0] >= 4.0 && hi[1] >= 4.0);
+    }
+    let (code, _, err) = run(&["interpolate", "--param", "bogus"], b"");
+    assert_eq!(code, 2);
+    assert!(err.contains("uniform"), "{err}");
+    let (code, _, _) = run(&["interpolate", "/nonexistent/points.json"], b"");
+    assert_eq!(code, 2);
+}
+
+#[test]
+fn font_writes_one_record_per_glyph() {
+    let font = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/Inconsolata.otf");
+    let (code, r, err) = run(&["font", font, "--strategy", "bezier"], b"");
+    assert_eq!(code, 0, "{err}");
+    assert!(r.len() > 100);
+    assert!(r
+        .iter()
+        .all(|g| g["verified"] == true && g["stored_bbox"].is_null()));
+    let (code, _, err) = run(&["font", env!("CARGO_MANIFEST_DIR")], b"");
+    assert_eq!(code, 2, "{err}");
+}

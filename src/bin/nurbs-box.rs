@@ -38,6 +38,33 @@ enum Command {
     Eval(EvalArgs),
     /// Box enclosures of whole curves.
     Enclose(EncloseArgs),
+    /// Cubic spline interpolants of point sets, written as curves (pipe into `enclose`).
+    Interpolate(InterpolateArgs),
+    /// Verified glyph boxes of a TrueType/OpenType font vs the boxes the font stores.
+    Font(FontArgs),
+}
+
+#[derive(Args, Debug)]
+struct InterpolateArgs {
+    /// Parametrisation: uniform, chordal, centripetal or foley (2-D only).
+    #[arg(long, default_value = "chordal")]
+    param: String,
+    /// Point sets: a JSON array of points, a JSON array of point sets, or JSON Lines with one
+    /// point set per line; `-` for stdin. Errors go to stderr as records with the set's index.
+    #[arg(default_value = "-")]
+    input: PathBuf,
+}
+
+#[derive(Args, Debug)]
+struct FontArgs {
+    /// The font file (.ttf / .otf).
+    file: PathBuf,
+    /// Strategy name (default as for `enclose`).
+    #[arg(long)]
+    strategy: Option<String>,
+    /// Tolerance of the iterative strategies.
+    #[arg(long, allow_negative_numbers = true)]
+    tol: Option<f64>,
 }
 
 /// Flags shared by the subcommands that read a stream of curves.
@@ -108,6 +135,8 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Eval(a) => run_eval(a),
         Command::Enclose(a) => run_enclose(a),
+        Command::Interpolate(a) => run_interpolate(a),
+        Command::Font(a) => run_font(a),
     };
     match result {
         Ok(Outcome::AllOk) => ExitCode::SUCCESS,
@@ -246,4 +275,36 @@ fn run_enclose(a: EncloseArgs) -> Result<Outcome, Fatal> {
     run_stream(&a.input, |index, curve, buf| {
         enclose_records(index, curve, &strategies, timings, buf)
     })
+}
+
+fn run_interpolate(a: InterpolateArgs) -> Result<Outcome, Fatal> {
+    let param: nurbs_box::interpolate::Parametrization =
+        a.param.parse().map_err(|e| Fatal(format!("--{e}")))?;
+    let (input, _) = open_input(&a.input)?;
+    match nurbs_box::interpolate::run_cli(input, param, &mut io::stdout().lock(), &mut io::stderr())
+    {
+        Ok(true) => Ok(Outcome::AllOk),
+        Ok(false) => Ok(Outcome::SomeErrors),
+        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => Err(Fatal(String::new())),
+        Err(e) => Err(Fatal(e.to_string())),
+    }
+}
+
+fn run_font(a: FontArgs) -> Result<Outcome, Fatal> {
+    let name = a.strategy.as_deref().unwrap_or_else(|| default_strategy());
+    let strategy = strategy_by_name(name, a.tol).ok_or_else(|| {
+        Fatal(format!(
+            "unknown strategy {name:?}; known strategies: {}",
+            STRATEGY_NAMES.join(", ")
+        ))
+    })?;
+    let bytes = std::fs::read(&a.file)
+        .map_err(|e| Fatal(format!("cannot read {}: {e}", a.file.display())))?;
+    nurbs_box::font::run_cli(&bytes, strategy.as_ref(), &mut io::stdout().lock())
+        .map(|()| Outcome::AllOk)
+        .map_err(|e| match e.downcast_ref::<io::Error>() {
+            // the reader of our output went away (`| head`): stop quietly
+            Some(io) if io.kind() == io::ErrorKind::BrokenPipe => Fatal(String::new()),
+            _ => Fatal(e.to_string()),
+        })
 }

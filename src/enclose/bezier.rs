@@ -99,9 +99,18 @@ impl<'a> Values<'a> {
     }
 }
 
-/// f64 Bernstein polynomial value by de Casteljau (only used for estimates).
+/// f64 Bernstein polynomial value by de Casteljau (only used for estimates; no allocation
+/// up to degree 63).
 fn bern(c: &[f64], t: f64) -> f64 {
-    let mut b: Vec<f64> = c.to_vec();
+    let mut stack = [0.0f64; 64];
+    let mut heap;
+    let b: &mut [f64] = if c.len() <= 64 {
+        stack[..c.len()].copy_from_slice(c);
+        &mut stack[..c.len()]
+    } else {
+        heap = c.to_vec();
+        &mut heap
+    };
     for r in 1..b.len() {
         for i in 0..b.len() - r {
             b[i] += t * (b[i + 1] - b[i]);
@@ -138,16 +147,12 @@ fn critical(seg: &BezierSeg<Interval>, s0: f64, s1: f64) -> Option<f64> {
     let (t0, t1) = ((s0 - a) / (b - a), (s1 - a) / (b - a));
     let mut t = 0.5 * (t0 + t1);
     for _ in 0..40 {
-        let (aa, ww, da, dw, dda, ddw) = (
-            bern(&av, t),
-            bern(&wv, t),
-            bern(&a1, t),
-            bern(&w1, t),
-            bern(&a2, t),
-            bern(&w2, t),
-        );
-        let n = da * ww - aa * dw;
-        let dn = dda * ww - aa * ddw;
+        let (n, dn) = if seg.rational {
+            let (aa, ww, da, dw) = (bern(&av, t), bern(&wv, t), bern(&a1, t), bern(&w1, t));
+            (da * ww - aa * dw, bern(&a2, t) * ww - aa * bern(&w2, t))
+        } else {
+            (bern(&a1, t), bern(&a2, t))
+        };
         if !(dn.is_finite() && dn != 0.0 && n.is_finite()) {
             return None;
         }
@@ -155,10 +160,11 @@ fn critical(seg: &BezierSeg<Interval>, s0: f64, s1: f64) -> Option<f64> {
         if !(nt > t0 && nt < t1) {
             return None;
         }
-        if nt == t {
+        let done = (nt - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
+        t = nt;
+        if done {
             break;
         }
-        t = nt;
     }
     Some(a + t * (b - a))
 }
@@ -202,7 +208,8 @@ struct Side {
 
 impl Side {
     fn attain(&mut self, v: Interval) {
-        if v.inf() > self.attained {
+        // (an empty interval has inf = +inf and must never count as attained)
+        if !v.is_empty() && v.inf() > self.attained {
             self.attained = v.inf();
         }
     }
@@ -334,7 +341,11 @@ impl BezierSubdivision {
             let seg_end = |s: f64, e: Interval, side: &mut Side| {
                 if e.sup() > side.attained {
                     side.stats.point_evaluations += 1;
+                    // At a discontinuity (knot of multiplicity p + 1) C(s) belongs to the next
+                    // piece and this piece only approaches its end coefficient: then the
+                    // intersection is empty and the (closure) value e itself is used.
                     let v = (sg * vals.at(j, s)).intersection(e);
+                    let v = if v.is_empty() { e } else { v };
                     side.attain(v);
                     side.bound(
                         v.sup(),
@@ -356,7 +367,9 @@ impl BezierSubdivision {
             // Half-width of the middle piece around a critical point; pieces this narrow are
             // bounded by the mean-value form, which is then as tight as point evaluation.
             let d = (seg.b - seg.a) * 2f64.powi(-26);
-            let close_enough = u - side.attained <= gap_tol || s1 - s0 <= 2.0 * d;
+            // (A gap of two ulps of the scale is accepted whatever `tol` says.)
+            let close_enough =
+                u - side.attained <= gap_tol.max(2.0 * f64::EPSILON * scale) || s1 - s0 <= 2.0 * d;
             if close_enough
                 || depth >= self.max_depth
                 || pieces >= self.max_pieces
@@ -417,7 +430,17 @@ impl BezierSubdivision {
                 }
             } else {
                 let m = 0.5 * (s0 + s1);
-                if m <= s0 || m >= s1 {
+                // No critical point estimate and a numerically flat piece (the coefficients
+                // differ by no more than their enclosure widths, e.g. a constant rational
+                // coordinate): splitting cannot shrink rounding-dominated widths, so bound the
+                // piece as it is.
+                let wmax = co.iter().fold(0.0f64, |m, x| m.max(x.wid()));
+                let (mlo, mhi) = co
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                        (a.min(x.mid()), b.max(x.mid()))
+                    });
+                if m <= s0 || m >= s1 || mhi - mlo <= 2.0 * wmax {
                     self.finish(vals, j, sg, s0, s1, u, &mut side);
                     continue;
                 }
@@ -477,18 +500,58 @@ impl BoxEncloser for BezierSubdivision {
         Guarantee::Verified
     }
     fn enclose(&self, c: &NurbsCurve) -> Enclosure {
-        let hs = HSpline::<Interval>::from_curve(c);
         let (p, n) = (c.degree(), c.num_points() - 1);
-        let spans: Vec<usize> = (p..=n)
-            .filter(|&k| c.knots()[k] < c.knots()[k + 1])
-            .collect();
-        let mut segs: Vec<Option<BezierSeg<Interval>>> = vec![None; n + 1];
-        let vals = Values::new(c);
+        let kn = c.knots();
+        // Clamped ends have exactly known values P_0 / P_n (see `NurbsCurve::clamped_ends`).
+        let (a, b) = c.domain();
+        let cl = c.clamped_ends();
+        let ends = [cl[0].then_some((0, a)), cl[1].then_some((n, b))];
+        // Built only when some coordinate side needs a search.
+        let mut ctx: Option<(
+            HSpline<Interval>,
+            Vec<usize>,
+            Vec<Option<BezierSeg<Interval>>>,
+            Values,
+        )> = None;
         let mut coords = Vec::with_capacity(c.dim());
         for j in 0..c.dim() {
             let t1 = Instant::now();
-            let hi = self.maximize(&vals, &hs, &mut segs, &spans, j, 1.0);
-            let lo = self.maximize(&vals, &hs, &mut segs, &spans, j, -1.0);
+            let mut side = |sign: f64| -> Side {
+                // Fast path: the extreme control coordinate is an exactly attained end value,
+                // so the control-point bound is attained: the exact extremum, no rounding.
+                let m = (0..=n)
+                    .map(|i| sign * c.control_point(i)[j])
+                    .fold(f64::NEG_INFINITY, f64::max);
+                for &(i, u) in ends.iter().flatten() {
+                    if sign * c.control_point(i)[j] == m {
+                        let e = Extremum {
+                            u_lo: u,
+                            u_hi: u,
+                            unique: false,
+                            kind: CandidateKind::EndPoint,
+                        };
+                        return Side {
+                            attained: m,
+                            upper: m,
+                            cands: vec![(m, e)],
+                            stats: Stats::default(),
+                            term: Termination::Converged,
+                        };
+                    }
+                }
+                let (hs, spans, segs, vals) = ctx.get_or_insert_with(|| {
+                    let spans = (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect();
+                    (
+                        HSpline::<Interval>::from_curve(c),
+                        spans,
+                        vec![None; n + 1],
+                        Values::new(c),
+                    )
+                });
+                self.maximize(vals, hs, segs, spans, j, sign)
+            };
+            let hi = side(1.0);
+            let lo = side(-1.0);
             let pick = |s: &Side| {
                 s.cands
                     .iter()
@@ -563,5 +626,21 @@ mod tests {
             assert!(cb.lo <= cb.inner_lo && cb.inner_hi <= cb.hi);
             assert!(cb.gap() <= 8.0 * f64::EPSILON * 2.0, "gap {}", cb.gap());
         }
+    }
+
+    #[test]
+    fn discontinuity_uses_the_left_limit_not_an_empty_intersection() {
+        // Knot 0.5 of multiplicity p + 1: the left piece approaches 3 at 0.5, C(0.5) = 1.
+        let c = NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 0.5, 0.5, 0.5, 1., 1., 1.],
+            vec![vec![0.], vec![2.], vec![3.], vec![1.], vec![0.5], vec![0.]],
+            None,
+        )
+        .unwrap();
+        let e = BezierSubdivision::default().enclose(&c);
+        let cb = &e.coords[0];
+        assert!(cb.hi >= 3.0 && cb.inner_hi <= 3.0, "{cb:?}");
+        assert!(cb.lo <= 0.0 && cb.inner_lo >= 0.0, "{cb:?}");
     }
 }

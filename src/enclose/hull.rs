@@ -6,7 +6,6 @@ use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
 use crate::curve::NurbsCurve;
-use inari::Interval;
 use std::time::Instant;
 
 /// Box of the control points; inner bound: the curve's end points (enclosed with intervals).
@@ -25,8 +24,7 @@ impl BoxEncloser for ControlHull {
         let (a, b) = c.domain();
         // Only the control points whose basis functions are non-zero somewhere on the domain
         // matter: all of them for a valid curve (each N_{i,p} has support meeting [u_p, u_{n+1}]).
-        let ea: Vec<Interval> = c.point(a).expect("domain end");
-        let eb: Vec<Interval> = c.point(b).expect("domain end");
+        let [ea, eb] = c.end_values();
         let mut coords = Vec::with_capacity(c.dim());
         for j in 0..c.dim() {
             let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);

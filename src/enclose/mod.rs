@@ -211,6 +211,7 @@ pub const STRATEGY_NAMES: &[&str] = &[
     "hull",
     "bezier",
     "newton",
+    "newton-thesis",
     "search-region",
     "search-region-verified",
 ];
@@ -228,9 +229,29 @@ pub fn strategy_by_name(name: &str, tol: Option<f64>) -> Option<Box<dyn BoxEnclo
         "hull" => boxed(ControlHull),
         "bezier" => boxed(tol.map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol)),
         "newton" => boxed(newton),
+        // The thesis's own settings (inewtonKNRH: quotient-rule derivatives, split once into
+        // 2p pieces, 20 steps per box; derivative time measured), for reproducing its tables.
+        "newton-thesis" => boxed(Renamed("newton-thesis", Newton::thesis())),
         "search-region" => boxed(SearchRegion::thesis(newton)),
         "search-region-verified" => boxed(SearchRegion::verified(newton)),
         _ => None,
+    }
+}
+
+/// A strategy under another name (a preset of a configurable strategy).
+struct Renamed<E>(&'static str, E);
+
+impl<E: BoxEncloser> BoxEncloser for Renamed<E> {
+    fn name(&self) -> &'static str {
+        self.0
+    }
+    fn guarantee(&self) -> Guarantee {
+        self.1.guarantee()
+    }
+    fn enclose(&self, curve: &NurbsCurve) -> Enclosure {
+        let mut e = self.1.enclose(curve);
+        e.strategy = self.0;
+        e
     }
 }
 

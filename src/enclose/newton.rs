@@ -28,6 +28,7 @@ use crate::curve::NurbsCurve;
 use crate::eval::CurveEval;
 use crate::knots::multiplicity;
 use crate::scalar::iv;
+use crate::tight::TightEval;
 use inari::Interval;
 use std::time::Instant;
 
@@ -54,8 +55,9 @@ pub enum DerivForm {
 /// Settings of the interval Newton strategy.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Newton {
-    /// Stop refining a box when its radius is <= `tol` times the domain length (thesis: `tol`
-    /// on the radius, the thesis's domains being [0, 1]).
+    /// Stop refining a box when its radius is <= `tol` times the length of its knot span
+    /// (thesis: `tol` on the radius, absolute, with domains [0, 1]; relative to the span, tiny
+    /// spans, where C' is huge, still get small boxes).
     pub tol: f64,
     /// Keep iterating on a box with a uniqueness proof until the Newton step makes no progress
     /// (machine precision; costs one or two quadratically convergent steps).
@@ -76,6 +78,12 @@ pub struct Newton {
     /// Split when a step leaves more than this fraction of the width (1.0: only when it makes
     /// no progress at all, as the thesis).
     pub min_shrink: f64,
+    /// Splits per span (the thesis splits once, into 2p pieces; then a box that makes no
+    /// progress just runs out of steps and is enclosed whole).
+    pub max_splits: u32,
+    /// Drop a Newton box whose values provably lie between values the curve attains (branch
+    /// and bound; not in the thesis).
+    pub drop_covered: bool,
     /// Function iterated on.
     pub form: DerivForm,
     /// Skip spans that are provably monotone (local control points monotone, or 0 outside the
@@ -104,10 +112,12 @@ impl Default for Newton {
             tol: 1e-12,
             refine_unique: true,
             max_iter: 40,
-            max_boxes: 4000,
+            max_boxes: 2000,
             max_work: DEFAULT_MAX_WORK,
             split: Split::Bisect,
             min_shrink: 0.5,
+            max_splits: u32::MAX,
+            drop_covered: true,
             form: DerivForm::Numerator,
             pretest: true,
             prune: true,
@@ -118,7 +128,7 @@ impl Default for Newton {
 
 impl Newton {
     /// The thesis's settings (listing `inewtonKNRH`, lines 1766-1850): C' / C'' by the quotient
-    /// rule, split into 2p pieces only when a step makes no progress, at most 20 steps per box,
+    /// rule, split once per span into 2p pieces when a step makes no progress, 20 steps per box,
     /// stop at radius <= tol (the thesis does not state its tol; 1e-6 is assumed), every span
     /// searched (no pre-tests, no pruning), derivative time measured (its tables' columns).
     /// Unlike the thesis, unresolved boxes are kept (enclosed as a whole), so it stays sound.
@@ -127,10 +137,12 @@ impl Newton {
             tol: 1e-6,
             refine_unique: false,
             max_iter: 20,
-            max_boxes: 100_000,
+            max_boxes: 10_000,
             max_work: DEFAULT_MAX_WORK,
             split: Split::TwiceDegree,
             min_shrink: 1.0,
+            max_splits: 1,
+            drop_covered: false,
             form: DerivForm::Quotient,
             pretest: false,
             prune: false,
@@ -139,10 +151,12 @@ impl Newton {
     }
 
     /// Default settings with another tolerance.
+    /// A negative or NaN `tol` is replaced by the default.
     pub fn with_tol(tol: f64) -> Self {
+        let d = Newton::default();
         Newton {
-            tol,
-            ..Default::default()
+            tol: if tol >= 0.0 { tol } else { d.tol },
+            ..d
         }
     }
 }
@@ -263,6 +277,8 @@ pub(crate) struct Engine<'a> {
     pub(crate) spans: Vec<(usize, f64, f64)>,
     /// `nd[i]`: the knot between spans i and i + 1 is non-differentiable (multiplicity >= p)
     nd: Vec<bool>,
+    /// tight candidate evaluation
+    tight: TightEval,
     /// scratch for de Boor
     buf: Vec<Interval>,
     /// Newton box stack
@@ -296,6 +312,7 @@ impl<'a> Engine<'a> {
             rational: c.is_rational(),
             spans,
             nd,
+            tight: TightEval::new(c),
             buf: Vec::with_capacity(2 * (p + 1)),
             stack: Vec::new(),
             j: 0,
@@ -418,29 +435,42 @@ impl<'a> Engine<'a> {
     /// attains (if `attained`).
     fn eval_cand(&mut self, cd: &Cand) -> (Interval, Option<Interval>) {
         let k = cd.k;
-        if cd.lo == cd.hi {
-            let v = self.value(k, iv::point(cd.lo));
-            return (v, cd.attained.then_some(v));
-        }
-        // Mean-value form (Moore): for u in X, C(u) = C(m) + C'(xi)(u - m) with xi in X, so
-        // C(X) is inside C(m) + C'(X)(X - m). Intersected with the direct enclosure C(X) (both
-        // contain the range). m lies in [lo, hi) inside span k, where the curve is this piece.
-        let m = midpoint(cd.lo, cd.hi);
-        let x = iv::span(cd.lo, cd.hi);
-        let cm = self.value(k, iv::point(m));
-        self.stats.point_evaluations += 1;
-        let (cx, dx) = self.value_and_slope(k, x);
-        let mv = cm + dx * (x - iv::point(m));
-        let mut enc = mv.intersection(cx);
-        // Convex hull of the local control points (thesis prop. 2.1): exact and always sound;
-        // guards against overflowed (infinite) interval evaluations.
+        // Convex hull of the local control points (thesis prop. 2.1): exact and always sound
+        // for every value of span k's piece on the closed span (also the limit at its end);
+        // it also caps evaluations that overflowed.
         let (hmin, hmax) = self.local_hull(k);
-        enc = enc.intersection(iv::span(hmin, hmax));
+        let hull = iv::span(hmin, hmax);
+        self.stats.point_evaluations += 1;
+        let (enc, at) = if cd.lo == cd.hi && !cd.attained {
+            // Left limit at a discontinuity q: span k's piece on [q-, q] (q- the float below
+            // q, still in span k) contains it; TightEval adds the curve's value C(q) there,
+            // itself a candidate, so the outer box does not grow from it.
+            let q = cd.lo;
+            let v = self.tight.coord_over(self.j, f64::next_down(q), q);
+            (v, v)
+        } else if cd.lo == cd.hi {
+            // C(q) about one ulp wide (TightEval, double-double Horner); the curve's value at q
+            // is span k's piece there (k is q's span, or the curve is continuous at q)
+            let v = self.tight.coord_at(self.j, cd.lo);
+            (v, v)
+        } else {
+            // C over the box (TightEval: second-order Taylor form around the midpoint m,
+            // about one ulp wide near a critical point); m is in [lo, hi) inside span k, where
+            // the curve is this piece, so C(m) is attained.
+            self.stats.point_evaluations += 1;
+            let m = midpoint(cd.lo, cd.hi);
+            let cm = self.tight.coord_at(self.j, m);
+            (self.tight.coord_over(self.j, cd.lo, cd.hi), cm)
+        };
+        // Both are enclosures of span k's values on the candidate (coord_over may also contain
+        // the next piece's value at an interior knot ending the box, a curve value as well).
+        let mut enc = enc.intersection(hull);
         if enc.is_empty() {
-            // cannot happen mathematically (all three contain the range); stay sound anyway
-            enc = iv::span(hmin, hmax);
+            // cannot happen mathematically (both contain the range); stay sound anyway
+            enc = hull;
         }
-        (enc, cd.attained.then_some(cm))
+        let at = at.intersection(hull);
+        (enc, (cd.attained && !at.is_empty()).then_some(at))
     }
 
     /// min / max of coordinate j of the local control points P_{k-p} .. P_k (exact).
@@ -475,25 +505,42 @@ impl<'a> Engine<'a> {
     }
 
     /// Interval Newton on f over the closed span k = [a, b] (thesis `inewtonKNRH`): every zero
-    /// of f in [a, b] ends up in a box pushed to `out`. Returns false if a limit was hit.
-    fn search(&mut self, k: usize, a: f64, b: f64, out: &mut Vec<ZeroBox>) -> Termination {
+    /// of f in [a, b] ends up in a box pushed to `out`, or in a box dropped because its values
+    /// provably lie in `covered` (= [inner_lo, inner_hi] so far, values the curve attains on
+    /// both sides, so the box's values are inside the final outer box anyway).
+    fn search(
+        &mut self,
+        k: usize,
+        a: f64,
+        b: f64,
+        covered: (f64, f64),
+        out: &mut Vec<ZeroBox>,
+    ) -> Termination {
         let s = *self.s;
-        let (d0, d1) = self.c.domain();
-        let tol = s.tol * (d1 - d0);
+        // relative to the span: a span of 1e-12 needs boxes far below 1e-12 of the domain
+        let tol = s.tol * (b - a);
         let mut term = Termination::Converged;
+        let hull = {
+            let (h0, h1) = self.local_hull(k);
+            iv::span(h0, h1)
+        };
         self.stack.clear();
         self.stack.push((a, b));
         let mut boxes = 0usize;
+        let mut splits = 0u32;
         while let Some((mut x0, mut x1)) = self.stack.pop() {
             boxes += 1;
-            let spent = self.stats.derivative_evaluations + self.stats.point_evaluations;
-            if boxes > s.max_boxes || spent > self.budget {
-                // Box or work limit: keep the box whole (sound).
+            let keep = |x0: f64, x1: f64, unique: bool, out: &mut Vec<ZeroBox>| {
                 out.push(ZeroBox {
                     lo: x0,
                     hi: x1,
-                    unique: false,
-                });
+                    unique,
+                })
+            };
+            let spent = self.stats.derivative_evaluations + self.stats.point_evaluations;
+            if boxes > s.max_boxes || spent > self.budget {
+                // Box or work limit: keep the box whole (sound).
+                keep(x0, x1, false, out);
                 term = if spent > self.budget {
                     Termination::WorkLimit
                 } else {
@@ -501,16 +548,18 @@ impl<'a> Engine<'a> {
                 };
                 continue;
             }
+            if s.drop_covered && boxes > 1 {
+                let v = self.value(k, iv::span(x0, x1)).intersection(hull);
+                if !v.is_empty() && v.inf() >= covered.0 && v.sup() <= covered.1 {
+                    continue;
+                }
+            }
             let mut unique = false;
             let mut it = 0;
             loop {
                 let small = 0.5 * (x1 - x0) <= tol;
                 if small && !(unique && s.refine_unique) {
-                    out.push(ZeroBox {
-                        lo: x0,
-                        hi: x1,
-                        unique,
-                    });
+                    keep(x0, x1, unique, out);
                     break;
                 }
                 let over =
@@ -523,11 +572,7 @@ impl<'a> Engine<'a> {
                             Termination::IterationLimit
                         };
                     }
-                    out.push(ZeroBox {
-                        lo: x0,
-                        hi: x1,
-                        unique,
-                    });
+                    keep(x0, x1, unique, out);
                     break;
                 }
                 it += 1;
@@ -566,23 +611,24 @@ impl<'a> Engine<'a> {
                     unique = true;
                 }
                 let (n0, n1) = (y1.inf(), y1.sup());
-                if n0 == x0 && n1 == x1 {
-                    // no progress at all
-                    if unique || !can_split(x0, x1) {
-                        out.push(ZeroBox {
-                            lo: x0,
-                            hi: x1,
-                            unique,
-                        });
-                        break;
-                    }
-                    self.split_box(x0, x1);
+                let stalled = n0 == x0 && n1 == x1;
+                if stalled && unique {
+                    // machine precision reached
+                    keep(x0, x1, unique, out);
                     break;
                 }
-                if !unique && n1 - n0 > s.min_shrink * (x1 - x0) && can_split(n0, n1) {
+                let weak = stalled || (!unique && n1 - n0 > s.min_shrink * (x1 - x0));
+                if weak && splits < s.max_splits && can_split(n0, n1) {
+                    splits += 1;
                     self.split_box(n0, n1);
                     break;
                 }
+                if stalled && !can_split(x0, x1) {
+                    // a box of one or two ulps: as resolved as it gets
+                    keep(x0, x1, unique, out);
+                    break;
+                }
+                // otherwise iterate on (the thesis: until its 20 steps are used up)
                 (x0, x1) = (n0, n1);
             }
         }
@@ -681,7 +727,9 @@ impl<'a> Engine<'a> {
             }
             if mode == SpanMode::Prune {
                 let (hmin, hmax) = self.local_hull(k);
-                if hmin >= acc.lo && hmax <= acc.hi {
+                // Values the curve attains on both sides (inner bounds): the span's values lie
+                // between them, so inside the final outer box, and the extremes are elsewhere.
+                if hmin >= acc.inner_lo && hmax <= acc.inner_hi {
                     continue;
                 }
             }
@@ -703,7 +751,7 @@ impl<'a> Engine<'a> {
             }
             status[si] = Status::Searched;
             boxes.clear();
-            let t = self.search(k, sa, sb, &mut boxes);
+            let t = self.search(k, sa, sb, (acc.inner_lo, acc.inner_hi), &mut boxes);
             if term == Termination::Converged {
                 term = t;
             }
@@ -820,6 +868,275 @@ impl Acc {
             argmax,
             stats,
             termination,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::enclose::{BezierSubdivision, ControlHull};
+    use crate::validate::{check_containment, dense_params, ulp};
+
+    fn curve1(p: usize, knots: Vec<f64>, x: &[f64], w: Option<Vec<f64>>) -> NurbsCurve {
+        NurbsCurve::new(p, knots, x.iter().map(|&v| vec![v]).collect(), w).unwrap()
+    }
+
+    /// The 9-point rational quadratic unit circle (NURBS Book ex. 7.2), affinely mapped.
+    fn ellipse(m: [[f64; 2]; 2], t: [f64; 2]) -> NurbsCurve {
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let pts = [
+            [1., 0.],
+            [1., 1.],
+            [0., 1.],
+            [-1., 1.],
+            [-1., 0.],
+            [-1., -1.],
+            [0., -1.],
+            [1., -1.],
+            [1., 0.],
+        ];
+        NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.],
+            pts.iter()
+                .map(|q| {
+                    (0..2)
+                        .map(|r| m[r][0] * q[0] + m[r][1] * q[1] + t[r])
+                        .collect()
+                })
+                .collect(),
+            Some(vec![1., s, 1., s, 1., s, 1., s, 1.]),
+        )
+        .unwrap()
+    }
+
+    /// Soundness checks shared by the tests: dense containment, inner inside outer, inside
+    /// the control hull.
+    fn sound(c: &NurbsCurve, e: &Enclosure) {
+        let ch = check_containment(c, e, &dense_params(c, 200));
+        assert!(ch.misses.is_empty(), "{:?}", &ch.misses[..1]);
+        let hull = ControlHull.enclose(c);
+        for (j, cb) in e.coords.iter().enumerate() {
+            assert!(cb.lo <= cb.inner_lo && cb.inner_hi <= cb.hi, "{cb:?}");
+            assert!(hull.coords[j].lo <= cb.lo && cb.hi <= hull.coords[j].hi);
+        }
+    }
+
+    fn all() -> Vec<Newton> {
+        vec![
+            Newton::default(),
+            Newton::thesis(),
+            Newton {
+                form: DerivForm::Quotient,
+                ..Default::default()
+            },
+            Newton {
+                pretest: false,
+                prune: false,
+                ..Default::default()
+            },
+        ]
+    }
+
+    #[test]
+    fn circle_box_is_unit_square() {
+        let c = ellipse([[1., 0.], [0., 1.]], [0., 0.]);
+        for n in all() {
+            let e = n.enclose(&c);
+            sound(&c, &e);
+            // the extremes are at the knots 0, 0.25, 0.5, 0.75 where C is a control point
+            for cb in &e.coords {
+                assert!(cb.lo <= -1.0 && cb.hi >= 1.0);
+                assert!(cb.gap() <= 4.0 * ulp(1.0), "{cb:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn rotated_ellipses_match_closed_form() {
+        for k in 0..24 {
+            let phi = 0.1 + k as f64 * 0.37;
+            let (a, b) = (3.0, 0.5 + 0.1 * k as f64);
+            let (cs, sn) = (phi.cos(), phi.sin());
+            // x = a cos(phi) cos t - b sin(phi) sin t, y = a sin(phi) cos t + b cos(phi) sin t
+            let c = ellipse([[a * cs, -b * sn], [a * sn, b * cs]], [1.0, -2.0]);
+            let hw = [
+                (a * a * cs * cs + b * b * sn * sn).sqrt(),
+                (a * a * sn * sn + b * b * cs * cs).sqrt(),
+            ];
+            for n in all() {
+                let e = n.enclose(&c);
+                sound(&c, &e);
+                for (j, cb) in e.coords.iter().enumerate() {
+                    let ctr = [1.0, -2.0][j];
+                    // the data (weight 1/sqrt 2, rotated points) are rounded: the curve is an
+                    // ellipse only up to ~1e-15 relative
+                    let eps = if n.tol > 1e-9 { 1e-9 } else { 1e-14 } * a;
+                    assert!((cb.hi - (ctr + hw[j])).abs() < eps, "{j} {cb:?} {}", hw[j]);
+                    assert!((cb.lo - (ctr - hw[j])).abs() < eps, "{j} {cb:?}");
+                    if n.tol < 1e-9 {
+                        assert!(cb.gap() <= 4.0 * ulp(c.coord_scale(j)), "{cb:?}");
+                    }
+                    assert!(cb.termination == Termination::Converged);
+                }
+                if n == Newton::default() {
+                    let cb = &e.coords[0];
+                    assert!(cb.argmax.iter().any(|x| x.unique), "{cb:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn spike_between_close_knots() {
+        let c = curve1(
+            3,
+            vec![0., 0., 0., 0., 0.5, 0.5 + 1e-5, 0.5 + 2e-5, 1., 1., 1., 1.],
+            &[0., 0., 0., 10., 0., 0., 0.],
+            None,
+        );
+        let bz = BezierSubdivision::default().enclose(&c);
+        for n in all() {
+            let e = n.enclose(&c);
+            sound(&c, &e);
+            let cb = &e.coords[0];
+            // sandwich against the Bézier strategy (both verified): each one's outer bound is
+            // >= the other's inner bound
+            assert!(cb.hi >= bz.coords[0].inner_hi && bz.coords[0].hi >= cb.inner_hi);
+            if n.tol < 1e-9 {
+                assert!(cb.gap() <= 4.0 * ulp(10.0), "{cb:?}");
+            }
+            assert!(cb.hi > 1.0);
+        }
+    }
+
+    #[test]
+    fn flat_coordinate_is_exact_and_quick() {
+        for w in [None, Some(vec![1., 5., 0.5, 2., 1e-3])] {
+            let c = NurbsCurve::new(
+                3,
+                vec![0., 0., 0., 0., 0.3, 1., 1., 1., 1.],
+                (0..5).map(|i| vec![i as f64, 3.0]).collect(),
+                w,
+            )
+            .unwrap();
+            let e = Newton::default().enclose(&c);
+            sound(&c, &e);
+            let cb = &e.coords[1];
+            assert_eq!((cb.lo, cb.hi), (3.0, 3.0));
+            assert_eq!(cb.stats.newton_iterations, 0);
+            // also without pre-tests (Newton on f = 0 exactly: N(X) = X ∩ ENTIRE, splits)
+            let n = Newton {
+                pretest: false,
+                prune: false,
+                ..Default::default()
+            };
+            let e = n.enclose(&c);
+            sound(&c, &e);
+            assert!(e.coords[1].lo <= 3.0 && e.coords[1].hi >= 3.0);
+            assert!(e.coords[1].hi - e.coords[1].lo <= 4.0 * ulp(3.0));
+        }
+    }
+
+    #[test]
+    fn extremum_exactly_at_a_smooth_knot() {
+        // both spans monotone; the max 1 is at the knot 0.5 (C^1 there, C'(0.5) = 0)
+        let c = curve1(
+            2,
+            vec![0., 0., 0., 0.5, 1., 1., 1.],
+            &[0., 1., 1., 0.],
+            None,
+        );
+        for n in all() {
+            let e = n.enclose(&c);
+            sound(&c, &e);
+            assert_eq!(e.coords[0].hi, 1.0);
+            assert_eq!(e.coords[0].inner_hi, 1.0);
+        }
+    }
+
+    #[test]
+    fn c0_corner_and_discontinuity() {
+        let c = curve1(
+            2,
+            vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.],
+            &[0., 1., 2., 1., 0.],
+            None,
+        );
+        let e = Newton::default().enclose(&c);
+        sound(&c, &e);
+        assert_eq!((e.coords[0].hi, e.coords[0].inner_hi), (2.0, 2.0));
+        // interior multiplicity p + 1: the left piece tends to 3 (not attained), the right one
+        // starts at -5
+        let c = curve1(
+            2,
+            vec![0., 0., 0., 0.5, 0.5, 0.5, 1., 1., 1.],
+            &[0., 1., 3., -5., 0., 0.],
+            None,
+        );
+        for n in all() {
+            let e = n.enclose(&c);
+            sound(&c, &e);
+            let cb = &e.coords[0];
+            assert!(cb.hi >= 3.0 && cb.lo <= -5.0, "{cb:?}");
+            assert!(
+                cb.inner_hi < 3.0,
+                "the left limit 3 is not attained: {cb:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn high_degree_and_extreme_scales() {
+        // degree 30 Bézier with scattered points and weights 1e-6 .. 1e6
+        let p = 30;
+        let x: Vec<f64> = (0..=p)
+            .map(|i| ((i * 7919) % 31) as f64 / 15.0 - 1.0)
+            .collect();
+        let mut kn = vec![0.0; p + 1];
+        kn.extend(vec![1.0; p + 1]);
+        let w: Vec<f64> = (0..=p).map(|i| 10f64.powi((i % 13) as i32 - 6)).collect();
+        for wt in [None, Some(w)] {
+            let c = curve1(p, kn.clone(), &x, wt);
+            let e = Newton::default().enclose(&c);
+            sound(&c, &e);
+            for cb in &e.coords {
+                assert_eq!(cb.termination, Termination::Converged);
+                assert!(cb.gap() < 1e-13, "{cb:?}");
+            }
+        }
+        // huge coordinates: may overflow inside, must stay sound
+        let c = curve1(
+            3,
+            vec![0., 0., 0., 0., 1e-12, 1., 1., 1., 1.],
+            &[1e300, -1e300, 1e300, -1e300, 1e300],
+            None,
+        );
+        let e = Newton::default().enclose(&c);
+        sound(&c, &e);
+    }
+
+    #[test]
+    fn search_region_finds_what_it_searches() {
+        use crate::enclose::SearchRegion;
+        // extremes near the extreme control points: heuristic = verified = newton
+        let c = curve1(
+            3,
+            vec![0., 0., 0., 0., 0.2, 0.4, 0.6, 0.8, 1., 1., 1., 1.],
+            &[0., 1., 5., 1., 0., -4., 0., 1.],
+            None,
+        );
+        let nb = Newton::default().enclose(&c);
+        for s in [
+            SearchRegion::thesis(Newton::default()),
+            SearchRegion::verified(Newton::default()),
+        ] {
+            let e = s.enclose(&c);
+            assert_eq!(e.verified, s.verified);
+            sound(&c, &e);
+            assert_eq!(e.lo(), nb.lo());
+            assert_eq!(e.hi(), nb.hi());
         }
     }
 }

@@ -1,0 +1,28 @@
+//! Quick per-curve timing of the verified strategies on random 2-D cubic Béziers (the bench
+//! `cargo bench --bench enclose` has the full comparison with kurbo).
+use nurbs_box::enclose::strategy_by_name;
+use nurbs_box::NurbsCurve;
+use rand::{Rng, SeedableRng};
+use std::time::Instant;
+fn main() {
+    let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+    let cs: Vec<NurbsCurve> = (0..1000)
+        .map(|_| {
+            let p: Vec<Vec<f64>> = (0..4)
+                .map(|_| vec![r.random_range(-100.0..100.0), r.random_range(-100.0..100.0)])
+                .collect();
+            NurbsCurve::new(3, vec![0., 0., 0., 0., 1., 1., 1., 1.], p, None).unwrap()
+        })
+        .collect();
+    for name in ["hull", "bezier", "newton"] {
+        let s = strategy_by_name(name, None).unwrap();
+        let mut best = f64::INFINITY;
+        for _ in 0..5 {
+            let t = Instant::now();
+            let x: f64 = cs.iter().map(|c| s.enclose(c).coords[0].hi).sum();
+            std::hint::black_box(x);
+            best = best.min(t.elapsed().as_secs_f64() / cs.len() as f64);
+        }
+        println!("{name}: {:.0} ns per cubic", best * 1e9);
+    }
+}

@@ -1,0 +1,986 @@
+//! Strategy properties (issue 3, "How we will know"): for every *verified* strategy, over random
+//! 1-D/2-D/3-D curves from the nasty families of `nurbs_box::gen` and over known boxes:
+//!
+//! * soundness: the box is never proven to miss the curve (`check_containment` at dense
+//!   parameters, knots and their f64 neighbours: a miss means the verified interval enclosure
+//!   of C_j(u) lies entirely outside the box; a tight box may be narrower than a point
+//!   enclosure, so overlap is all that can be demanded of f64 checks);
+//! * lo <= inner_lo and inner_hi <= hi;
+//! * sandwich: the exact strategies (newton, bezier, search-region-verified) lie inside the
+//!   control-hull box;
+//! * with feature `mpfr`: the box contains the 256-bit reference extrema (`ulps_outside >= 0`),
+//!   the inner bounds are reached (exact min <= inner_lo, inner_hi <= exact max), and the
+//!   tightness target of issue 3 (every bound within 4 ulps of the coordinate scale of the
+//!   exact extremum, median <= 1 ulp) on moderate families.
+//!
+//! Known boxes (each verified strategy): the NURBS circle, rotated ellipses, a spike on knots
+//! 1e-5 apart, flat coordinates, an extremum at a knot, a C0 corner, a discontinuity, unclamped
+//! knots; and the search-region heuristic on a curve built to defeat it.
+//!
+//! Case counts: `PROPTEST_CASES` when set, else a per-test default that keeps the binary within
+//! seconds.
+
+use nurbs_box::enclose::{all_strategies, strategy_by_name};
+use nurbs_box::gen::{self, Family, GenParams};
+use nurbs_box::scalar::{iv, ulp};
+use nurbs_box::validate::{check_containment, dense_params};
+use nurbs_box::{BoxEncloser, Enclosure, Guarantee, NurbsCurve, Termination};
+use proptest::prelude::*;
+
+/// The strategies that must lie within an ulp or so of the exact box (and so inside the hull).
+const EXACT: [&str; 3] = ["newton", "bezier", "search-region-verified"];
+
+/// Tightness target of issue 3, in ulps of the coordinate scale.
+const TARGET_MAX_ULPS: f64 = 4.0;
+
+/// The exact strategies that meet the tightness target against the 256-bit reference on the
+/// known curves (checked in every known-box test with `mpfr`). newton and
+/// search-region-verified do not yet: see `mpfr::known_curves_within_target_newton`.
+#[cfg(feature = "mpfr")]
+const MEETS_TARGET: [&str; 1] = ["bezier"];
+
+/// The reference tightness demanded of strategy `name` in the known-box tests.
+#[cfg(feature = "mpfr")]
+fn tight_for(name: &str) -> Option<f64> {
+    MEETS_TARGET.contains(&name).then_some(TARGET_MAX_ULPS)
+}
+
+fn config(default_cases: u32) -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default_cases);
+    ProptestConfig {
+        cases,
+        ..ProptestConfig::default()
+    }
+}
+
+fn verified() -> Vec<Box<dyn BoxEncloser>> {
+    let v: Vec<_> = all_strategies(None)
+        .into_iter()
+        .filter(|s| s.guarantee() == Guarantee::Verified)
+        .collect();
+    assert!(
+        v.len() >= 4,
+        "expected hull, bezier, newton, search-region-verified"
+    );
+    v
+}
+
+/// Dense parameters: `dense_params`, plus every distinct knot's f64 neighbours in the domain
+/// (where a span-by-span method could be off by one span).
+fn params(c: &NurbsCurve, per_span: usize, extra: &[f64]) -> Vec<f64> {
+    let (a, b) = c.domain();
+    let mut v = dense_params(c, per_span);
+    for &k in &c.breakpoints() {
+        v.push(k.next_down());
+        v.push(k.next_up());
+    }
+    v.extend_from_slice(extra);
+    v.retain(|u| *u >= a && *u <= b);
+    v
+}
+
+/// Soundness of one enclosure: shape, no NaN, lo <= inner_lo, inner_hi <= hi, no proven miss.
+fn check_sound(c: &NurbsCurve, e: &Enclosure, pts: &[f64]) -> Result<(), String> {
+    if !e.verified || e.coords.len() != c.dim() {
+        return Err(format!(
+            "{}: verified={} with {} coords for dim {}",
+            e.strategy,
+            e.verified,
+            e.coords.len(),
+            c.dim()
+        ));
+    }
+    for (j, cb) in e.coords.iter().enumerate() {
+        let ok = cb.lo <= cb.inner_lo && cb.inner_hi <= cb.hi && cb.lo <= cb.hi;
+        if !ok {
+            return Err(format!(
+                "{}: coord {j}: lo {} inner_lo {} inner_hi {} hi {} (want lo <= inner_lo, inner_hi <= hi)",
+                e.strategy, cb.lo, cb.inner_lo, cb.inner_hi, cb.hi
+            ));
+        }
+    }
+    let chk = check_containment(c, e, pts);
+    if let Some(m) = chk.misses.first() {
+        return Err(format!(
+            "{}: PROVEN MISS ({} of {} params): {m:?}\ncurve: {}",
+            e.strategy,
+            chk.misses.len(),
+            chk.checked,
+            nurbs_box::curve_to_json(c)
+        ));
+    }
+    Ok(())
+}
+
+/// The exact strategies' boxes lie inside the hull box.
+fn check_sandwich(hull: &Enclosure, e: &Enclosure) -> Result<(), String> {
+    for (j, (h, cb)) in hull.coords.iter().zip(&e.coords).enumerate() {
+        if !(h.lo <= cb.lo && cb.hi <= h.hi) {
+            return Err(format!(
+                "{}: coord {j}: [{}, {}] not inside the hull box [{}, {}]",
+                e.strategy, cb.lo, cb.hi, h.lo, h.hi
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Soundness of every verified strategy on one curve. Returns the enclosures (strategy order).
+fn check_all(c: &NurbsCurve, pts: &[f64]) -> Result<Vec<Enclosure>, String> {
+    let mut out = Vec::new();
+    for s in verified() {
+        let e = s.enclose(c);
+        check_sound(c, &e, pts)?;
+        out.push(e);
+    }
+    Ok(out)
+}
+
+/// Sandwich of one exact strategy on a nasty curve from `seed`.
+fn sandwich(name: &str, seed: u64) -> Result<(), String> {
+    let (f, c) = seeded(seed);
+    let hull = strategy_by_name("hull", None).unwrap().enclose(&c);
+    let e = strategy_by_name(name, None).unwrap().enclose(&c);
+    check_sandwich(&hull, &e).map_err(|m| {
+        format!(
+            "family {}: {m}\ncurve: {}",
+            f.name(),
+            nurbs_box::curve_to_json(&c)
+        )
+    })
+}
+
+/// A curve of the nasty families from a seed.
+fn seeded(seed: u64) -> (Family, NurbsCurve) {
+    gen::nasty_curve(&mut gen::rng(seed))
+}
+
+proptest! {
+    #![proptest_config(config(48))]
+
+    /// Every verified strategy on every nasty family: sound (no proven miss at dense
+    /// parameters), inner <= outer, exact strategies inside the hull box.
+    #[test]
+    fn verified_strategies_are_sound_on_nasty_curves(seed in any::<u64>()) {
+        let (f, c) = seeded(seed);
+        let pts = params(&c, 24, &[]);
+        if let Err(m) = check_all(&c, &pts) {
+            prop_assert!(false, "family {}: {m}", f.name());
+        }
+    }
+
+    /// The same on moderate random curves (1-D to 3-D, p <= 5, half rational).
+    #[test]
+    fn verified_strategies_are_sound_on_moderate_curves(seed in any::<u64>()) {
+        let c = gen::random_curve(&mut gen::rng(seed), &GenParams::default());
+        let pts = params(&c, 24, &[]);
+        if let Err(m) = check_all(&c, &pts) {
+            prop_assert!(false, "{m}");
+        }
+    }
+
+    /// Sandwich: bezier's box lies inside the control-hull box.
+    #[test]
+    fn sandwich_bezier(seed in any::<u64>()) {
+        if let Err(m) = sandwich("bezier", seed) {
+            prop_assert!(false, "{m}");
+        }
+    }
+
+    /// Sandwich: newton's box lies inside the control-hull box.
+    ///
+    /// FAILS at the time of writing (measured over 3000 nasty curves, seeds 0..3000): newton's
+    /// box leaves the hull box on ~35% of the curves, by 2 ulps (clamped uniform, unclamped,
+    /// multiple knots, high degree: an end point / interpolated control point rounded outward
+    /// instead of being intersected with the exact hull), up to 25-199 ulps (clustered knots,
+    /// extrema at knots, flat coordinates) and 9.4e8 ulps (extreme weights). Sound, but not
+    /// the sandwich of issue 3. E.g. `flat_coordinate_on_a_span`: hi 1.0000000000000009 vs
+    /// hull 1.
+    #[test]
+    fn sandwich_newton(seed in any::<u64>()) {
+        if let Err(m) = sandwich("newton", seed) {
+            prop_assert!(false, "{m}");
+        }
+    }
+
+    /// Sandwich: search-region-verified's box lies inside the control-hull box.
+    ///
+    /// FAILS at the time of writing, with the same numbers as [`sandwich_newton`] (it shares
+    /// newton's engine).
+    #[test]
+    fn sandwich_search_region_verified(seed in any::<u64>()) {
+        if let Err(m) = sandwich("search-region-verified", seed) {
+            prop_assert!(false, "{m}");
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Known boxes
+
+/// What a known-box test expects of coordinate j: the exact extremes `lo`, `hi` (f64) and how
+/// exact they are: `Exact` means the curve attains (or approaches, at a jump) exactly these
+/// f64 values; `Approx(t)` means they are the closed form of an ideal curve which the f64 data
+/// represent only up to `t` ulps of the coordinate scale.
+#[derive(Clone, Copy, Debug)]
+enum Known {
+    Exact,
+    Approx(f64),
+}
+
+/// Check every verified strategy on `c` against the known box: sound, and for the exact
+/// strategies the bounds lie within [`TARGET_MAX_ULPS`] of the known extremes (on the safe side
+/// when they are exact); the hull only has to contain them. With `mpfr`, the reference check.
+fn expect_box(c: &NurbsCurve, lo: &[f64], hi: &[f64], known: Known, extra: &[f64]) {
+    let pts = params(c, 64, extra);
+    let encs = check_all(c, &pts).unwrap_or_else(|m| panic!("{m}"));
+    for e in &encs {
+        let exact = EXACT.contains(&e.strategy);
+        for (j, cb) in e.coords.iter().enumerate() {
+            let u = ulp(c.coord_scale(j));
+            let (dl, dh) = ((lo[j] - cb.lo) / u, (cb.hi - hi[j]) / u);
+            let (min_ok, max_ok) = match known {
+                Known::Exact => (0.0, TARGET_MAX_ULPS),
+                Known::Approx(t) => (-t, TARGET_MAX_ULPS + t),
+            };
+            assert!(
+                dl >= min_ok && dh >= min_ok,
+                "{}: coord {j}: box [{}, {}] does not contain the known [{}, {}] ({dl}, {dh} ulps)",
+                e.strategy,
+                cb.lo,
+                cb.hi,
+                lo[j],
+                hi[j]
+            );
+            if exact {
+                assert!(
+                    dl <= max_ok && dh <= max_ok,
+                    "{}: coord {j}: box [{}, {}] is {dl}, {dh} ulps outside the known [{}, {}]",
+                    e.strategy,
+                    cb.lo,
+                    cb.hi,
+                    lo[j],
+                    hi[j]
+                );
+            }
+        }
+        #[cfg(feature = "mpfr")]
+        mpfr::check_reference(c, e, tight_for(e.strategy)).unwrap_or_else(|m| panic!("{m}"));
+    }
+}
+
+/// Verified enclosure of C_j(u) (interval de Boor).
+fn value(c: &NurbsCurve, u: f64, j: usize) -> inari::Interval {
+    c.enclose_point(iv::point(u)).unwrap()[j]
+}
+
+fn circle_like(pts: Vec<Vec<f64>>) -> NurbsCurve {
+    let c = gen::nurbs_circle();
+    NurbsCurve::new(2, c.knots().to_vec(), pts, c.weights().map(|w| w.to_vec())).unwrap()
+}
+
+#[test]
+fn circle() {
+    // Extremes at the weight-1 control points, interpolated at the double knots: exactly +-1.
+    let c = gen::nurbs_circle();
+    expect_box(&c, &[-1.0, -1.0], &[1.0, 1.0], Known::Exact, &[]);
+}
+
+/// 3 (x, y) + (10, -7): extremes 7, 13 and -10, -4, attained exactly at control points.
+fn scaled_circle() -> NurbsCurve {
+    let c = gen::nurbs_circle();
+    let pts = c
+        .control_points()
+        .iter()
+        .map(|p| vec![3.0 * p[0] + 10.0, 3.0 * p[1] - 7.0])
+        .collect();
+    circle_like(pts)
+}
+
+#[test]
+fn circle_scaled_and_shifted() {
+    expect_box(
+        &scaled_circle(),
+        &[7.0, -10.0],
+        &[13.0, -4.0],
+        Known::Exact,
+        &[],
+    );
+}
+
+/// Rotated ellipses x = c + R(theta) diag(a, b) (cos t, sin t) as rational quadratics (affine
+/// image of the 9-point circle, NURBS Book ex. 7.2; rational B-splines are affinely invariant).
+/// Closed-form box: half-widths sqrt(a^2 cos^2 + b^2 sin^2), sqrt(a^2 sin^2 + b^2 cos^2). The
+/// extremes are now interior critical points of the rational pieces.
+/// The ellipses with their closed-form boxes (lo, hi).
+fn ellipses() -> Vec<(NurbsCurve, [f64; 2], [f64; 2])> {
+    let c0 = gen::nurbs_circle();
+    let mut out = Vec::new();
+    for (a, b, th, cx, cy) in [
+        (1.0, 1.0, 0.3, 0.0, 0.0),
+        (2.0, 0.5, 0.3, 0.0, 0.0),
+        (3.0, 1.0, 1.0, 1.5, -2.0),
+        (1.0, 0.01, 0.7, 0.0, 0.0),
+        (5.0, 4.0, 2.5, -3.0, 0.25),
+        (1.0, 2.0, std::f64::consts::FRAC_PI_4, 0.0, 0.0),
+    ] {
+        let (s, co) = (f64::sin(th), f64::cos(th));
+        let pts: Vec<Vec<f64>> = c0
+            .control_points()
+            .iter()
+            .map(|p| {
+                let (x, y) = (a * p[0], b * p[1]);
+                vec![cx + co * x - s * y, cy + s * x + co * y]
+            })
+            .collect();
+        let c = circle_like(pts);
+        let hw = (a * a * co * co + b * b * s * s).sqrt();
+        let hh = (a * a * s * s + b * b * co * co).sqrt();
+        out.push((c, [cx - hw, cy - hh], [cx + hw, cy + hh]));
+    }
+    out
+}
+
+#[test]
+fn rotated_ellipses() {
+    for (c, lo, hi) in ellipses() {
+        // The data (sqrt(2)/2, sin, cos, products) are rounded: the f64 curve is the ellipse
+        // only to a few ulps of its scale (the corner points have |coordinate| up to a + b).
+        expect_box(&c, &lo, &hi, Known::Approx(16.0), &[]);
+    }
+}
+
+/// A cubic whose narrow spike sits on knots 1e-5 apart: N_8 has support [0.5, 0.50004], the
+/// only non-zero y control point is P_8 = 1, so y peaks at ~2/3 inside a window of 4e-5.
+fn spike_curve() -> NurbsCurve {
+    let mut knots = vec![0.0; 4];
+    knots.extend([0.1, 0.2, 0.3, 0.4]);
+    knots.extend([0.5, 0.50001, 0.50002, 0.50003, 0.50004]);
+    knots.extend([0.6, 0.7, 0.8, 0.9]);
+    knots.extend([1.0; 4]);
+    let n = knots.len() - 4;
+    let pts = (0..n)
+        .map(|i| vec![i as f64 / (n - 1) as f64, if i == 8 { 1.0 } else { 0.0 }])
+        .collect();
+    NurbsCurve::new(3, knots, pts, None).unwrap()
+}
+
+#[test]
+fn spike_on_close_knots() {
+    let c = spike_curve();
+    // A sampling box (1000 uniform samples, like Open CASCADE's AddOptimal) misses the spike.
+    let sampled = (0..=1000)
+        .map(|i| c.point::<f64>(i as f64 / 1000.0).unwrap()[1])
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!(sampled < 1e-3, "sampling found the spike: {sampled}");
+    let peak = value(&c, 0.50002, 1);
+    assert!(peak.inf() > 0.6, "spike peak {peak:?}");
+    let pts = params(&c, 64, &[0.50002]);
+    for e in check_all(&c, &pts).unwrap_or_else(|m| panic!("{m}")) {
+        assert!(
+            e.coords[1].hi >= peak.inf(),
+            "{}: {:?}",
+            e.strategy,
+            e.coords[1]
+        );
+        #[cfg(feature = "mpfr")]
+        mpfr::check_reference(&c, &e, tight_for(e.strategy)).unwrap_or_else(|m| panic!("{m}"));
+    }
+}
+
+/// Run the verified strategies named (all when `only` is empty) and check the work is bounded:
+/// a flat coordinate must not make a search run to its limits.
+fn assert_quick(c: &NurbsCurve, only: &[&str]) {
+    for s in verified() {
+        if !only.is_empty() && !only.contains(&s.name()) {
+            continue;
+        }
+        // The thesis preset keeps the thesis's 20-step limit per box on purpose (it reproduces
+        // the tables); it stays sound when the limit is hit, which the other tests check.
+        if s.name() == "newton-thesis" {
+            continue;
+        }
+        let e = s.enclose(c);
+        let st = e.stats();
+        let work = st.newton_iterations + st.subdivisions + st.derivative_evaluations;
+        assert!(work < 5_000, "{}: {st:?}", s.name());
+        assert!(
+            !matches!(
+                e.termination(),
+                Termination::IterationLimit | Termination::BoxLimit | Termination::DepthLimit
+            ),
+            "{}: {:?}",
+            s.name(),
+            e.termination()
+        );
+    }
+}
+
+/// y is constant 1 on the span [1/3, 2/3] (its four control points are all 1): C_y' = 0
+/// there identically. Max exactly 1 (attained on the whole span), min 0 at the ends. Rational:
+/// still exactly flat (a convex combination of equal values).
+fn flat_span_curve(rational: bool) -> NurbsCurve {
+    let knots = vec![0., 0., 0., 0., 1. / 3., 2. / 3., 1., 1., 1., 1.];
+    let y = [0.0, 1.0, 1.0, 1.0, 1.0, 0.0];
+    let pts: Vec<Vec<f64>> = (0..6).map(|i| vec![i as f64, y[i]]).collect();
+    let w = rational.then(|| vec![1.0, 3.0, 0.2, 7.0, 0.5, 1.0]);
+    NurbsCurve::new(3, knots, pts, w).unwrap()
+}
+
+/// y = 0.3 everywhere (rational: C_y = sum w N 0.3 / sum w N is 0.3 only mathematically; the
+/// box must contain the f64 value 0.3 and be within a few ulps of it); z = -2.
+fn constant_curve(rational: bool) -> NurbsCurve {
+    let knots = vec![0., 0., 0., 0.3, 0.6, 1., 1., 1.];
+    let pts: Vec<Vec<f64>> = (0..5).map(|i| vec![(i * i) as f64, 0.3, -2.0]).collect();
+    let w = rational.then(|| vec![1.0, 1e-3, 5.0, 2.0, 1.0]);
+    NurbsCurve::new(2, knots, pts, w).unwrap()
+}
+
+#[test]
+fn flat_coordinate_on_a_span() {
+    let c = flat_span_curve(false);
+    expect_box(&c, &[0.0, 0.0], &[5.0, 1.0], Known::Exact, &[]);
+    assert_quick(&c, &[]);
+    let c = flat_span_curve(true);
+    expect_box(&c, &[0.0, 0.0], &[5.0, 1.0], Known::Exact, &[]);
+    // bezier: see flat_rational_coordinates_terminate_quickly_bezier
+    assert_quick(&c, &["hull", "newton", "search-region-verified"]);
+}
+
+#[test]
+fn constant_coordinate() {
+    for rational in [false, true] {
+        let c = constant_curve(rational);
+        expect_box(&c, &[0.0, 0.3, -2.0], &[16.0, 0.3, -2.0], Known::Exact, &[]);
+        if rational {
+            // bezier: see flat_rational_coordinates_terminate_quickly_bezier
+            assert_quick(&c, &["hull", "newton", "search-region-verified"]);
+        } else {
+            assert_quick(&c, &[]);
+        }
+    }
+}
+
+/// FAILS at the time of writing: bezier subdivides until its piece limit on flat rational
+/// coordinates whose value is attained on whole spans (the box itself is exact):
+/// * the rational constant y = 0.3 of [`constant_coordinate`] (weights 1, 1e-3, 5, 2, 1):
+///   25478 subdivisions, 82390 point evaluations, `Termination::BoxLimit`, 0.29 s in release
+///   (1.3 s in the test profile);
+/// * y = 1 on the span [1/3, 2/3] of [`flat_coordinate_on_a_span`] (rational): 10993
+///   subdivisions, 32876 point evaluations, 0.10 s in the test profile.
+///
+/// The coefficient ratios w_i y / w_i are not exactly y in interval arithmetic, so the gap
+/// never closes below tol = eps * scale. newton takes a handful of evaluations on both.
+#[test]
+fn flat_rational_coordinates_terminate_quickly_bezier() {
+    assert_quick(&constant_curve(true), &["bezier"]);
+    assert_quick(&flat_span_curve(true), &["bezier"]);
+}
+
+/// Quadratic, points 0, 0.7, 0.7, 0: C'(0.5) ~ P2 - P1 = 0 at the knot 0.5, where the curve
+/// is (P1 + P2) / 2 = 0.7 exactly; max 0.7, min 0.
+fn knot_quadratic() -> NurbsCurve {
+    NurbsCurve::new(
+        2,
+        vec![0., 0., 0., 0.5, 1., 1., 1.],
+        vec![vec![0.0], vec![0.7], vec![0.7], vec![0.0]],
+        None,
+    )
+    .unwrap()
+}
+
+/// Symmetric rational cubic with a knot in the middle: C_y' = 0 exactly at the knot u = 0.5
+/// (value not representable).
+fn knot_cubic() -> NurbsCurve {
+    NurbsCurve::new(
+        3,
+        vec![0., 0., 0., 0., 0.25, 0.5, 0.75, 1., 1., 1., 1.],
+        vec![
+            vec![0.0, 0.0],
+            vec![1.0, 1.0],
+            vec![2.0, 0.5],
+            vec![3.0, 3.0],
+            vec![4.0, 0.5],
+            vec![5.0, 1.0],
+            vec![6.0, 0.0],
+        ],
+        Some(vec![1.0, 2.0, 0.5, 3.0, 0.5, 2.0, 1.0]),
+    )
+    .unwrap()
+}
+
+#[test]
+fn extremum_exactly_at_a_knot() {
+    expect_box(&knot_quadratic(), &[0.0], &[0.7], Known::Exact, &[]);
+    // cubic: checked against the point enclosure at the knot and, with mpfr, the reference
+    let c = knot_cubic();
+    let pts = params(&c, 64, &[0.5]);
+    let top = value(&c, 0.5, 1);
+    for e in check_all(&c, &pts).unwrap_or_else(|m| panic!("{m}")) {
+        let cb = &e.coords[1];
+        assert!(
+            cb.hi >= top.inf(),
+            "{}: {cb:?} vs C_y(0.5) {top:?}",
+            e.strategy
+        );
+        if EXACT.contains(&e.strategy) {
+            assert!(
+                cb.hi <= top.sup() + TARGET_MAX_ULPS * ulp(3.0),
+                "{}: {cb:?} vs C_y(0.5) {top:?}",
+                e.strategy
+            );
+        }
+        #[cfg(feature = "mpfr")]
+        mpfr::check_reference(&c, &e, tight_for(e.strategy)).unwrap_or_else(|m| panic!("{m}"));
+    }
+}
+
+/// Cubic with a triple interior knot at 0.4: C0 there, interpolating P3 = (1, 1.3), the
+/// maximum of y (left derivative > 0, right < 0: not a zero of C'); min of x at P0.
+/// Rational: the corner point lightly weighted, its neighbours heavily.
+fn corner_curve(rational: bool) -> NurbsCurve {
+    NurbsCurve::new(
+        3,
+        vec![0., 0., 0., 0., 0.4, 0.4, 0.4, 1., 1., 1., 1.],
+        vec![
+            vec![0.0, 0.0],
+            vec![0.3, 0.5],
+            vec![0.7, 0.9],
+            vec![1.0, 1.3],
+            vec![1.6, 0.9],
+            vec![2.1, 0.5],
+            vec![2.5, 0.1],
+        ],
+        rational.then(|| vec![1.0, 0.5, 2.0, 0.1, 3.0, 1.0, 1.0]),
+    )
+    .unwrap()
+}
+
+#[test]
+fn c0_corner() {
+    for rational in [false, true] {
+        expect_box(
+            &corner_curve(rational),
+            &[0.0, 0.0],
+            &[2.5, 1.3],
+            Known::Exact,
+            &[],
+        );
+    }
+}
+
+/// Quadratic with a knot of multiplicity p + 1 = 3 at 0.5: the curve jumps from P2 (left
+/// limit, approached but not attained) to P3. sup y = 2 (left limit), min y = -1 (P3).
+fn jump_curve() -> NurbsCurve {
+    NurbsCurve::new(
+        2,
+        vec![0., 0., 0., 0.5, 0.5, 0.5, 1., 1., 1.],
+        vec![
+            vec![0.0, 0.0],
+            vec![1.0, 1.0],
+            vec![2.0, 2.0],
+            vec![3.0, -1.0],
+            vec![4.0, 0.0],
+            vec![5.0, 0.5],
+        ],
+        None,
+    )
+    .unwrap()
+}
+
+#[test]
+fn discontinuity() {
+    let c = jump_curve();
+    // The mpfr reference check is the closure box, which is what every span-wise strategy
+    // encloses; exact values here are the f64 control points.
+    expect_box(
+        &c,
+        &[0.0, -1.0],
+        &[5.0, 2.0],
+        Known::Exact,
+        &[0.5f64.next_down()],
+    );
+}
+
+/// Uniform unclamped cubic, knots 0..=10, domain [3, 7]; y = 6 at P3 only: at the knot 5,
+/// C = (P2 + 4 P3 + P4) / 6 = 4 and C' ~ P4 - P2 = 0: max 4 exactly; min 0 at the domain
+/// start, C(3) = (P0 + 4 P1 + P2) / 6 = 0. x: linear data reproduce x(u) = (u - 2) / 2 on the
+/// domain: [0.5, 2.5]. `shifted`: knots 0.1 k - 0.37 and rational (no closed form).
+fn unclamped_curve(shifted: bool) -> NurbsCurve {
+    let knots: Vec<f64> = if shifted {
+        (0..=10).map(|k| 0.1 * k as f64 - 0.37).collect()
+    } else {
+        (0..=10).map(|k| k as f64).collect()
+    };
+    let y = [0.0, 0.0, 0.0, 6.0, 0.0, 0.0, 0.0];
+    let pts: Vec<Vec<f64>> = (0..7).map(|i| vec![i as f64 * 0.5, y[i]]).collect();
+    let w = shifted.then(|| vec![0.5, 2.0, 1.0, 4.0, 1.0, 0.3, 1.0]);
+    NurbsCurve::new(3, knots, pts, w).unwrap()
+}
+
+#[test]
+fn unclamped_knots() {
+    let c = unclamped_curve(false);
+    assert_eq!(c.domain(), (3.0, 7.0));
+    expect_box(&c, &[0.5, 0.0], &[2.5, 4.0], Known::Exact, &[5.0]);
+    // shifted non-integer knots and rational: checked by soundness (and mpfr reference)
+    let c = unclamped_curve(true);
+    let pts = params(&c, 64, &[]);
+    for e in check_all(&c, &pts).unwrap_or_else(|m| panic!("{m}")) {
+        #[cfg(feature = "mpfr")]
+        mpfr::check_reference(&c, &e, tight_for(e.strategy)).unwrap_or_else(|m| panic!("{m}"));
+        let _ = e;
+    }
+}
+
+/// Every curve of the known-box tests, named.
+#[cfg(feature = "mpfr")]
+fn known_curves() -> Vec<(String, NurbsCurve)> {
+    let mut v: Vec<(String, NurbsCurve)> = vec![
+        ("circle".into(), gen::nurbs_circle()),
+        ("scaled circle".into(), scaled_circle()),
+        ("spike".into(), spike_curve()),
+        ("flat span".into(), flat_span_curve(false)),
+        ("flat span rational".into(), flat_span_curve(true)),
+        ("constant".into(), constant_curve(false)),
+        ("constant rational".into(), constant_curve(true)),
+        ("extremum at knot, quadratic".into(), knot_quadratic()),
+        ("extremum at knot, cubic".into(), knot_cubic()),
+        ("C0 corner".into(), corner_curve(false)),
+        ("C0 corner rational".into(), corner_curve(true)),
+        ("jump".into(), jump_curve()),
+        ("unclamped".into(), unclamped_curve(false)),
+        ("unclamped shifted rational".into(), unclamped_curve(true)),
+    ];
+    for (i, (c, _, _)) in ellipses().into_iter().enumerate() {
+        v.push((format!("ellipse {i}"), c));
+    }
+    v
+}
+
+// ---------------------------------------------------------------------------------------------
+// The search-region heuristic (not verified; allowed to miss)
+
+/// A curve built to defeat `suchbereich`: the two largest y control points (10, 9.9) are
+/// isolated spikes (the curve only reaches ~2/3 of them), the two smallest sit next to them,
+/// so the region is the first part of the domain; the true maximum (~9.1, a plateau of
+/// 9.0-9.2 control points) lies outside it.
+fn search_region_trap() -> NurbsCurve {
+    let y = [
+        1.0, 10.0, 1.5, 9.9, 1.2, -1.0, -2.0, 1.1, 3.0, 3.0, 9.0, 9.1, 9.2, 9.1, 9.0, 3.0, 3.0,
+    ];
+    let n = y.len();
+    let mut knots = vec![0.0; 4];
+    let ni = n - 4;
+    knots.extend((1..=ni).map(|i| i as f64 / (ni + 1) as f64));
+    knots.extend([1.0; 4]);
+    let pts = y
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| vec![i as f64, v])
+        .collect();
+    NurbsCurve::new(3, knots, pts, None).unwrap()
+}
+
+#[test]
+fn search_region_heuristic_can_miss_and_verified_variant_does_not() {
+    let c = search_region_trap();
+    let heur = strategy_by_name("search-region", None).unwrap();
+    assert_eq!(heur.guarantee(), Guarantee::Heuristic);
+    let e = heur.enclose(&c);
+    assert!(!e.verified);
+    let pts = params(&c, 64, &[]);
+    let chk = check_containment(&c, &e, &pts);
+    assert!(
+        !chk.misses.is_empty() && chk.misses.iter().all(|m| m.coord == 1),
+        "the trap should make the heuristic miss the y maximum: {:?} {:?}",
+        e.coords[1],
+        chk.misses.first()
+    );
+    // the verified variant finds it
+    let v = strategy_by_name("search-region-verified", None)
+        .unwrap()
+        .enclose(&c);
+    check_sound(&c, &v, &pts).unwrap();
+    let newton = strategy_by_name("newton", None).unwrap().enclose(&c);
+    assert!(v.coords[1].hi >= newton.coords[1].inner_hi);
+    assert!(v.coords[1].hi > e.coords[1].hi + 1.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The 256-bit reference (feature mpfr)
+
+#[cfg(feature = "mpfr")]
+mod mpfr {
+    use super::*;
+    use nurbs_box::reference::{reference_box, ulps_outside, ReferenceBox};
+
+    /// Median part of the tightness target of issue 3.
+    const TARGET_MEDIAN_ULPS: f64 = 1.0;
+
+    /// Signed distances (ulps of the coordinate scale, positive = safe side) of every outer
+    /// bound of `e` from the reference extremum, [lo_0, hi_0, lo_1, hi_1, ...].
+    pub fn distances(c: &NurbsCurve, e: &Enclosure, rb: &ReferenceBox) -> Vec<f64> {
+        let mut v = Vec::with_capacity(2 * c.dim());
+        for (j, cb) in e.coords.iter().enumerate() {
+            let sc = c.coord_scale(j);
+            v.push(ulps_outside(cb.lo, &rb.lo[j], sc, false));
+            v.push(ulps_outside(cb.hi, &rb.hi[j], sc, true));
+        }
+        v
+    }
+
+    /// Check `e` against the reference: outer bounds contain the exact extrema, the inner
+    /// bounds are reached, and (`tight = Some(t)`) every bound is within t ulps.
+    pub fn check_against(
+        c: &NurbsCurve,
+        e: &Enclosure,
+        rb: &ReferenceBox,
+        tight: Option<f64>,
+    ) -> Result<Vec<f64>, String> {
+        check_against_with(c, e, rb, tight, true)
+    }
+
+    /// [`check_against`], with the inner-bound check optional.
+    pub fn check_against_with(
+        c: &NurbsCurve,
+        e: &Enclosure,
+        rb: &ReferenceBox,
+        tight: Option<f64>,
+        inner: bool,
+    ) -> Result<Vec<f64>, String> {
+        let d = distances(c, e, rb);
+        for (j, cb) in e.coords.iter().enumerate() {
+            let (dl, dh) = (d[2 * j], d[2 * j + 1]);
+            if !(dl >= 0.0 && dh >= 0.0) {
+                return Err(format!(
+                    "{}: REFERENCE MISS coord {j}: lo {} ({dl} ulps) hi {} ({dh} ulps), exact [{}, {}] at u = {}, {}\ncurve: {}",
+                    e.strategy, cb.lo, cb.hi, rb.lo[j], rb.hi[j], rb.argmin[j], rb.argmax[j],
+                    nurbs_box::curve_to_json(c)
+                ));
+            }
+            if inner && !(rb.lo[j] <= cb.inner_lo && cb.inner_hi <= rb.hi[j]) {
+                return Err(format!(
+                    "{}: coord {j}: inner [{}, {}] not reached, exact [{}, {}]\ncurve: {}",
+                    e.strategy,
+                    cb.inner_lo,
+                    cb.inner_hi,
+                    rb.lo[j],
+                    rb.hi[j],
+                    nurbs_box::curve_to_json(c)
+                ));
+            }
+            if let Some(t) = tight {
+                if !(dl <= t && dh <= t) {
+                    return Err(format!(
+                        "{}: coord {j}: [{}, {}] is {dl}, {dh} ulps outside the exact [{}, {}] (target {t})\ncurve: {}",
+                        e.strategy, cb.lo, cb.hi, rb.lo[j], rb.hi[j], nurbs_box::curve_to_json(c)
+                    ));
+                }
+            }
+        }
+        Ok(d)
+    }
+
+    pub fn check_reference(
+        c: &NurbsCurve,
+        e: &Enclosure,
+        tight: Option<f64>,
+    ) -> Result<(), String> {
+        check_against(c, e, &reference_box(c), tight).map(|_| ())
+    }
+
+    /// Strategies whose inner bounds are known to be wrong on some curves (see
+    /// [`bezier_inner_bound_at_a_rational_jump`]); their inner bounds are checked by the ignored
+    /// [`bezier_inner_bounds_are_reached`] only, so the default suite does not fail at random.
+    const INNER_KNOWN_BAD: [&str; 0] = [];
+
+    /// The reference box is that of the closure; at a jump knot (multiplicity p + 1) the left
+    /// limit is not attained, but every strategy encloses it (closed spans), so the outer check
+    /// applies to all curves. `inner_of`: the strategies whose inner bounds are checked.
+    fn check_curve(c: &NurbsCurve, inner_of: &dyn Fn(&str) -> bool) -> Result<(), String> {
+        let rb = reference_box(c);
+        let extra: Vec<f64> = rb.argmin.iter().chain(&rb.argmax).copied().collect();
+        let pts = params(c, 8, &extra);
+        for s in verified() {
+            let e = s.enclose(c);
+            check_sound(c, &e, &pts)?;
+            check_against_with(c, &e, &rb, None, inner_of(s.name()))?;
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(config(32))]
+
+        /// Every verified strategy contains the 256-bit reference extrema and reaches its
+        /// inner bounds (except [`INNER_KNOWN_BAD`]), on every nasty family.
+        #[test]
+        fn verified_strategies_contain_the_exact_extrema(seed in any::<u64>()) {
+            let (f, c) = seeded(seed);
+            if let Err(m) = check_curve(&c, &|n| !INNER_KNOWN_BAD.contains(&n)) {
+                prop_assert!(false, "family {}: {m}", f.name());
+            }
+        }
+
+    }
+
+    proptest! {
+        #![proptest_config(config(128))]
+
+        /// bezier's inner bounds are reached (exact min <= inner_lo, inner_hi <= exact max), on
+        /// the `multiple_knots` family (interior multiplicities up to p + 1, half rational).
+        ///
+        /// FAILS at the time of writing on rational curves with a jump knot (multiplicity
+        /// p + 1): 2 of 20 `multiple_knots` curves in `examples/tightness` (seed 1), see
+        /// [`bezier_inner_bound_at_a_rational_jump`].
+        #[test]
+        fn bezier_inner_bounds_are_reached(seed in any::<u64>()) {
+            let c = Family::MultipleKnots.curve(&mut gen::rng(seed));
+            if let Err(m) = check_curve(&c, &|n| n == "bezier") {
+                prop_assert!(false, "{m}");
+            }
+        }
+    }
+
+    /// Minimal reproducer (found by `examples/tightness` on `multiple_knots`, then shrunk):
+    /// ```json
+    /// {"degree":2,"knots":[0,0,0,0.5,0.5,0.5,1,1,1],
+    ///  "control_points":[[0],[0],[-0.6],[0],[-1],[0]],"weights":[0.1,0.1,0.1,0.1,0.1,0.1]}
+    /// ```
+    /// The curve is C(u) for u < 0.5 a parabola ending at the left limit P2 = -0.6 (not
+    /// attained), then jumps to P3 = 0 and the second piece has min -0.5 at u = 0.75. Exact
+    /// (closure) box: [-0.6, 0]. bezier returns lo = inner_lo = -1 (= P4, the middle Bézier
+    /// coefficient of the second piece), i.e. it *claims the curve reaches -1*: the inner-bound
+    /// certificate is wrong (the outer box [-1, 0] still contains the curve, so no containment
+    /// miss, but it is also 0.4 = 1.8e15 ulps loose). With all weights 2.0 instead of 0.1 the
+    /// result is exact; non-rational and jump-free variants are fine. newton: [-0.6, 0],
+    /// inner_lo -0.5.
+    #[test]
+    fn bezier_inner_bound_at_a_rational_jump() {
+        let c = NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 0.5, 0.5, 0.5, 1., 1., 1.],
+            [0.0, 0.0, -0.6, 0.0, -1.0, 0.0]
+                .iter()
+                .map(|&x| vec![x])
+                .collect(),
+            Some(vec![0.1; 6]),
+        )
+        .unwrap();
+        let rb = reference_box(&c);
+        assert_eq!(rb.lo[0], -0.6);
+        let e = strategy_by_name("bezier", None).unwrap().enclose(&c);
+        check_against(&c, &e, &rb, Some(TARGET_MAX_ULPS)).unwrap_or_else(|m| panic!("{m}"));
+    }
+
+    /// The known-box curves against the reference, with the tightness target, for one exact
+    /// strategy.
+    fn known_curves_within_target(name: &str) {
+        let s = strategy_by_name(name, None).unwrap();
+        let mut fails = Vec::new();
+        for (label, c) in known_curves() {
+            let e = s.enclose(&c);
+            if let Err(m) = check_reference(&c, &e, Some(TARGET_MAX_ULPS)) {
+                fails.push(format!("{label}: {m}"));
+            }
+        }
+        assert!(fails.is_empty(), "{}", fails.join("\n"));
+    }
+
+    #[test]
+    fn known_curves_within_target_bezier() {
+        known_curves_within_target("bezier");
+    }
+
+    /// FAILS at the time of writing (target 4 ulps): newton's upper bound is 6.0 ulps above the
+    /// exact max of x on ellipse 2 (a = 3, b = 1, theta = 1, centre (1.5, -2)); 4.6 / 6.6 ulps
+    /// (lo / hi of x) on ellipse 3 (a = 1, b = 0.01, theta = 0.7); 6.5 ulps on the symmetric
+    /// rational cubic with its extremum at a knot; 8.9 ulps on the shifted rational unclamped
+    /// cubic.
+    #[test]
+    fn known_curves_within_target_newton() {
+        known_curves_within_target("newton");
+    }
+
+    /// FAILS at the time of writing with the numbers of [`known_curves_within_target_newton`]
+    /// (same engine).
+    #[test]
+    fn known_curves_within_target_search_region_verified() {
+        known_curves_within_target("search-region-verified");
+    }
+
+    /// Median of a non-empty slice.
+    fn median(v: &mut [f64]) -> f64 {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    }
+
+    /// Tightness target of issue 3 on moderate curves: clamped uniform / random and unclamped
+    /// knots, rational with weights in [0.1, 10], p <= 5, 1-D to 3-D (`GenParams::default`,
+    /// plus the `clamped_uniform` and `unclamped` families). For each exact strategy: every
+    /// bound within 4 ulps of the coordinate scale of the exact extremum, median <= 1.
+    fn tightness_on_moderate(name: &str, curves: usize) {
+        let s = strategy_by_name(name, None).unwrap();
+        let mut r = gen::rng(0x7157_3e55);
+        let mut all = Vec::new();
+        let mut worst = (0.0f64, String::new());
+        for i in 0..curves {
+            let c = match i % 3 {
+                0 => gen::random_curve(&mut r, &GenParams::default()),
+                1 => Family::ClampedUniform.curve(&mut r),
+                _ => Family::Unclamped.curve(&mut r),
+            };
+            let rb = reference_box(&c);
+            let e = s.enclose(&c);
+            let d = check_against(&c, &e, &rb, None).unwrap_or_else(|m| panic!("{m}"));
+            for x in d {
+                if x > worst.0 {
+                    worst = (x, nurbs_box::curve_to_json(&c));
+                }
+                all.push(x);
+            }
+        }
+        let med = median(&mut all);
+        eprintln!(
+            "{name}: {} bounds, median {med} ulps, max {} ulps",
+            all.len(),
+            worst.0
+        );
+        assert!(
+            worst.0 <= TARGET_MAX_ULPS && med <= TARGET_MEDIAN_ULPS,
+            "{name}: median {med}, max {} ulps (target {TARGET_MAX_ULPS}, median {TARGET_MEDIAN_ULPS}); worst curve {}",
+            worst.0,
+            worst.1
+        );
+    }
+
+    fn moderate_curves() -> usize {
+        std::env::var("TIGHTNESS_CURVES")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(60)
+    }
+
+    /// FAILS at the time of writing (60 curves, 252 bounds, `TIGHTNESS_CURVES` unset): median
+    /// 2.13 ulps, max 21.5 ulps (a rational quintic, clamped uniform knots; the worst curve is
+    /// printed by the assertion). Target: max 4, median 1.
+    #[test]
+    fn tightness_newton() {
+        tightness_on_moderate("newton", moderate_curves());
+    }
+
+    #[test]
+    fn tightness_bezier() {
+        tightness_on_moderate("bezier", moderate_curves());
+    }
+
+    /// FAILS at the time of writing with the numbers of [`tightness_newton`] (same engine).
+    #[test]
+    fn tightness_search_region_verified() {
+        tightness_on_moderate("search-region-verified", moderate_curves());
+    }
+}
