@@ -146,7 +146,7 @@ pub fn curve_from_bytes(data: &[u8]) -> Result<NurbsCurve, CurveError> {
                 v.push(x);
             }
             let end = x + 1.0;
-            v.extend(std::iter::repeat(end).take(p + 1));
+            v.extend(std::iter::repeat_n(end, p + 1));
             if style == 4 {
                 // unclamped ends: spread the end knots
                 for (k, u) in v.iter_mut().enumerate().take(p) {

@@ -61,24 +61,6 @@ fn exponent(x: f64) -> i32 {
     ((m.to_bits() >> 52) & 0x7ff) as i32 - 1022 - bias
 }
 
-/// The next f64 above x (x for NaN and +inf). (`f64::next_up` needs Rust 1.86.)
-fn next_up(x: f64) -> f64 {
-    if x.is_nan() || x == f64::INFINITY {
-        x
-    } else if x == 0.0 {
-        f64::from_bits(1)
-    } else if x > 0.0 {
-        f64::from_bits(x.to_bits() + 1)
-    } else {
-        f64::from_bits(x.to_bits() - 1)
-    }
-}
-
-/// The next f64 below x.
-fn next_down(x: f64) -> f64 {
-    -next_up(-x)
-}
-
 /// x * 2^k (round to nearest; two steps so that 2^k itself never over/underflows).
 fn ldexp(x: f64, k: i32) -> f64 {
     if (-1022..=1023).contains(&k) {
@@ -118,9 +100,9 @@ pub fn scale_outward(x: f64, k: i32, up: bool) -> f64 {
         return y; // normal (so exact), or checked exact
     }
     if up {
-        next_up(y)
+        y.next_up()
     } else {
-        next_down(y)
+        y.next_down()
     }
 }
 
@@ -213,10 +195,10 @@ impl Rescaling {
             let k = self.coord_exp[j];
             if self.coord_rounded[j] {
                 // one subnormal step covers the <= 2^-1075 rounding of the scaled points
-                cb.lo = next_down(cb.lo);
-                cb.hi = next_up(cb.hi);
-                cb.inner_lo = next_up(cb.inner_lo);
-                cb.inner_hi = next_down(cb.inner_hi);
+                cb.lo = cb.lo.next_down();
+                cb.hi = cb.hi.next_up();
+                cb.inner_lo = cb.inner_lo.next_up();
+                cb.inner_hi = cb.inner_hi.next_down();
             }
             cb.lo = scale_outward(cb.lo, k, false);
             cb.hi = scale_outward(cb.hi, k, true);
@@ -346,15 +328,6 @@ mod tests {
 
     #[test]
     fn exponent_and_outward_scaling() {
-        assert_eq!(next_up(1.0), 1.0 + f64::EPSILON);
-        assert_eq!(next_down(1.0), 1.0 - f64::EPSILON / 2.0);
-        assert_eq!(next_down(0.0), -f64::from_bits(1));
-        assert_eq!(next_up(-0.0), f64::from_bits(1));
-        assert_eq!(
-            next_up(-f64::MIN_POSITIVE),
-            -f64::from_bits((1u64 << 52) - 1)
-        );
-        assert_eq!(next_up(f64::MAX), f64::INFINITY);
         assert_eq!(exponent(1.0), 1);
         assert_eq!(exponent(0.75), 0);
         assert_eq!(exponent(f64::MAX), 1024);
