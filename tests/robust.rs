@@ -501,6 +501,10 @@ proptest! {
             }
         }
     }
+}
+
+proptest! {
+    #![proptest_config(config(24))]
 
     /// Structured fuzz decoder on random bytes (the fuzz target's body, in a plain test).
     #[test]
@@ -509,10 +513,11 @@ proptest! {
     }
 }
 
-/// Replay every file of the given directories (relative to the crate) through the fuzz
-/// target bodies; returns the number of inputs.
+/// A fuzz target body.
 type Target = fn(&[u8]);
 
+/// Replay every file of the given directories (relative to the crate) through the fuzz
+/// target bodies; returns the number of inputs.
 fn replay(dirs: &[(&str, Target)]) -> usize {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut n = 0;
