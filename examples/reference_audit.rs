@@ -8,7 +8,7 @@
 //! the extremum itself, which sampling can miss by a hair.
 //!
 //! Run: `cargo run --release --features mpfr --example reference_audit [-- --cases N --seed S
-//! --seconds T]` (defaults: 2000 cases, seed 1, no time limit). Prints a summary per strategy
+//! --seconds T --show-worst 1]` (defaults: 2000 cases, seed 1, no time limit). Prints a summary per strategy
 //! (worst and median distance in ulps of the coordinate scale, terminations) and, for every
 //! violation, the curve as JSON; exits 1 if there was one.
 
@@ -45,6 +45,8 @@ mod imp {
         dists: Vec<f64>,
         terminations: BTreeMap<String, usize>,
         violations: usize,
+        /// the loosest bound so far: (ulps, coordinate, curve JSON)
+        worst: Option<(f64, usize, String)>,
     }
 
     pub fn main() {
@@ -86,7 +88,11 @@ mod imp {
                     *t.terminations
                         .entry(format!("{:?}", cb.termination))
                         .or_default() += 1;
-                    t.dists.push(dlo.max(dhi));
+                    let d = dlo.max(dhi);
+                    t.dists.push(d);
+                    if t.worst.as_ref().is_none_or(|w| d > w.0) {
+                        t.worst = Some((d, j, nurbs_box::io::curve_to_json(&c)));
+                    }
                     if !(dlo >= 0.0 && dhi >= 0.0 && inner_ok) {
                         t.violations += 1;
                         println!(
@@ -130,6 +136,13 @@ mod imp {
                 t.terminations
             );
             bad += t.violations;
+        }
+        if arg("--show-worst").is_some() {
+            for (name, t) in &tally {
+                if let Some((d, j, json)) = &t.worst {
+                    println!("worst {name}: {d:.3e} ulps, coordinate {j}: {json}");
+                }
+            }
         }
         if bad > 0 {
             std::process::exit(1);
