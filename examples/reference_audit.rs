@@ -115,7 +115,9 @@ mod imp {
             "{done} byte strings, {valid} valid curves, {invalid} typed errors, {:.1} s (seed {seed})",
             t0.elapsed().as_secs_f64()
         );
-        println!("| strategy | bounds | violations | median ulps | p99 ulps | max ulps | terminations |");
+        println!(
+            "| strategy | bounds | violations | median ulps | p99 ulps | max ulps | terminations |"
+        );
         println!("|---|---:|---:|---:|---:|---:|---|");
         let mut bad = 0;
         for (name, t) in &mut tally {

@@ -1,4 +1,5 @@
-//! Ground-truth box extrema at [`MPFR_PREC`] = 256 bits, independent of the enclosure
+//! Ground-truth box extrema at [`MPFR_PREC`] = 256 bits or more ([`working_prec`]: extra bits
+//! for extreme weight ratios), independent of the enclosure
 //! strategies (feature `mpfr`).
 //!
 //! Method, per coordinate j:
@@ -34,7 +35,7 @@
 
 use crate::bspline::{BezierSeg, HSpline};
 use crate::curve::NurbsCurve;
-use crate::scalar::{ulp, MPFR_PREC};
+use crate::scalar::{mpfr_prec, ulp, with_mpfr_prec, MPFR_PREC};
 use rug::{Assign, Float};
 use std::cmp::Ordering;
 
@@ -71,7 +72,7 @@ impl ReferenceBox {
 }
 
 fn fl(x: f64) -> Float {
-    Float::with_val(MPFR_PREC, x)
+    Float::with_val(mpfr_prec(), x)
 }
 
 /// Binomial coefficients C(n, 0..=n) as exact MPFR values (integers < 2^256 for n <= 200).
@@ -81,7 +82,7 @@ fn binomials(n: usize) -> Vec<Float> {
     v.push(c.clone());
     for k in 1..=n {
         // C(n,k) = C(n,k-1) (n-k+1) / k: every intermediate is an integer, so exact.
-        c = c * Float::with_val(MPFR_PREC, n - k + 1) / Float::with_val(MPFR_PREC, k);
+        c = c * Float::with_val(mpfr_prec(), n - k + 1) / Float::with_val(mpfr_prec(), k);
         v.push(c.clone());
     }
     v
@@ -109,7 +110,7 @@ fn bern_deriv(a: &[Float]) -> Vec<Float> {
     if n == 0 {
         return vec![fl(0.0)];
     }
-    let nf = Float::with_val(MPFR_PREC, n);
+    let nf = Float::with_val(mpfr_prec(), n);
     a.windows(2)
         .map(|w| nf.clone() * (w[1].clone() - &w[0]))
         .collect()
@@ -180,8 +181,8 @@ fn refine_root(c: &[Float]) -> Float {
     let mut x = fl(0.5);
     let mut dx_old = fl(1.0);
     let mut dx = fl(1.0);
-    let tol = Float::with_val(MPFR_PREC, Float::i_exp(1, -(MPFR_PREC as i32) + 6));
-    for _ in 0..4 * MPFR_PREC {
+    let tol = Float::with_val(mpfr_prec(), Float::i_exp(1, -(mpfr_prec() as i32) + 6));
+    for _ in 0..4 * mpfr_prec() {
         let fx = bern_eval(c, &x);
         let s = sign(&fx);
         if s == Ordering::Equal {
@@ -233,7 +234,7 @@ fn critical_points(n: &[Float]) -> Vec<Float> {
         if v == 0 {
             continue;
         }
-        let width = Float::with_val(MPFR_PREC, Float::i_exp(1, -(depth as i32)));
+        let width = Float::with_val(mpfr_prec(), Float::i_exp(1, -(depth as i32)));
         let ends_nonzero = !c[0].is_zero() && !c[c.len() - 1].is_zero();
         if v == 1 && ends_nonzero {
             let s = refine_root(&c);
@@ -261,8 +262,36 @@ fn row(seg: &BezierSeg<Float>, c: usize) -> Vec<Float> {
     seg.pts.iter().skip(c).step_by(h).cloned().collect()
 }
 
-/// The reference box of a curve (see the module documentation for the method).
+/// The working precision for `curve`: [`MPFR_PREC`] plus what its weights can cost.
+///
+/// Why: every step of the decomposition is a convex combination, so the absolute error of a
+/// homogeneous coordinate is ~k 2^-prec max_i |w_i P_ij| <= k 2^-prec w_max scale_j; dividing by
+/// w >= w_min (a convex combination of the weights) gives an error ~2^-prec (w_max / w_min)
+/// scale_j in C_j, and the derivative numerator N = A' w - A w' multiplies two such factors.
+/// With prec = 256 + 2 log2(w_max / w_min) + log2(p + 1) + 16 the error stays below ~2^-240 of
+/// the scale whatever the weights (a weight ratio of 1e293 at plain 256 bits gave a "reference"
+/// maximum above every control point, found by `examples/reference_audit.rs`). Knots need no
+/// extra bits: they enter only through differences of f64 values (one rounding each, a
+/// relative perturbation of the convex-combination factors).
+pub fn working_prec(curve: &NurbsCurve) -> u32 {
+    let ratio_bits = curve.weights().map_or(0.0, |w| {
+        let (mn, mx) = w
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+        // exact exponents: log2 of a ratio of positive finite f64s is at most ~2100
+        (mx.log2() - mn.log2()).max(0.0)
+    });
+    let p_bits = (curve.degree() as f64 + 1.0).log2();
+    MPFR_PREC + (2.0 * ratio_bits + p_bits).ceil() as u32 + 16
+}
+
+/// The reference box of a curve (see the module documentation for the method), computed at
+/// [`working_prec`] bits.
 pub fn reference_box(curve: &NurbsCurve) -> ReferenceBox {
+    with_mpfr_prec(working_prec(curve), || reference_box_at_prec(curve))
+}
+
+fn reference_box_at_prec(curve: &NurbsCurve) -> ReferenceBox {
     let d = curve.dim();
     let segs = HSpline::<Float>::from_curve(curve).decompose();
     let mut lo: Vec<Option<(Float, f64)>> = vec![None; d];
@@ -370,7 +399,7 @@ pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f6
     // max(scale, |exact|) are not resolvable and count as 0 (an f64 bound equal to an exact
     // f64 extremum, e.g. a control point interpolated at a knot, is then not a false miss).
     let res = fl(scale.abs()).max(&exact.clone().abs())
-        * Float::with_val(MPFR_PREC, Float::i_exp(1, -160));
+        * Float::with_val(mpfr_prec(), Float::i_exp(1, -160));
     if diff.clone().abs() <= res {
         return 0.0;
     }
@@ -384,6 +413,51 @@ mod tests {
 
     fn circle() -> NurbsCurve {
         gen::nurbs_circle()
+    }
+
+    /// Weight ratio ~1e293 (found by `examples/reference_audit.rs`): at a fixed 256 bits the
+    /// "reference" maximum exceeded every control point; at [`working_prec`] it lies inside the
+    /// control-point range and agrees with a computation at 1024 more bits.
+    #[test]
+    fn extreme_weight_ratio_gets_enough_bits() {
+        let ys = [
+            1.5582268398357774e-291,
+            1.558296080530762e-291,
+            1.5582580361928584e-291,
+            1.5583615167919561e-291,
+            1.5583676038860207e-291,
+            1.5582922760969715e-291,
+            1.5583523861508593e-291,
+        ];
+        let w = vec![29.1, 6710.8, 1.7, 1.5e-6, 3.69, 6.5e287, 0.0025];
+        let c = NurbsCurve::new(
+            3,
+            vec![0., 0., 0., 0., 0.25, 0.5, 0.75, 1., 1., 1., 1.],
+            ys.iter().map(|&y| vec![y]).collect(),
+            Some(w),
+        )
+        .unwrap();
+        let (mn, mx) = (
+            ys.iter().copied().fold(f64::INFINITY, f64::min),
+            ys.iter().copied().fold(0.0, f64::max),
+        );
+        let r = reference_box(&c);
+        assert!(
+            r.lo[0] >= mn && r.hi[0] <= mx,
+            "[{}, {}] outside [{mn:e}, {mx:e}]",
+            r.lo[0],
+            r.hi[0]
+        );
+        let fine = with_mpfr_prec(working_prec(&c) + 1024, || reference_box_at_prec(&c));
+        let tol = fl(mx) * Float::with_val(mpfr_prec(), Float::i_exp(1, -200));
+        assert!((r.lo[0].clone() - &fine.lo[0]).abs() <= tol);
+        assert!((r.hi[0].clone() - &fine.hi[0]).abs() <= tol);
+        // and the fixed 256 bits really were not enough (so this test can fail)
+        let coarse = with_mpfr_prec(MPFR_PREC, || reference_box_at_prec(&c));
+        let err = (coarse.hi[0].clone() - &fine.hi[0])
+            .abs()
+            .max(&(coarse.lo[0].clone() - &fine.lo[0]).abs());
+        assert!(err > tol, "256 bits sufficed: error {err}");
     }
 
     #[test]
@@ -500,7 +574,7 @@ mod tests {
             .unwrap();
             let r = reference_box(&curve);
             let (mn, mx) = cubic_closed_form(c);
-            let tol = Float::with_val(MPFR_PREC, Float::i_exp(1, -200));
+            let tol = Float::with_val(mpfr_prec(), Float::i_exp(1, -200));
             assert!(
                 (r.lo[0].clone() - &mn).abs() <= tol,
                 "{c:?}: {} vs {}",
@@ -527,7 +601,7 @@ mod tests {
 
     /// Golden-section search for the max of sgn * C_j on [a, b] (unimodal near the start).
     fn golden_max(h: &HSpline<Float>, k: usize, j: usize, a: Float, b: Float, sgn: f64) -> Float {
-        let g = (Float::with_val(MPFR_PREC, 5u32).sqrt() - 1u32) / 2u32;
+        let g = (Float::with_val(mpfr_prec(), 5u32).sqrt() - 1u32) / 2u32;
         let f = |u: &Float| eval_at(h, k, u, j) * sgn;
         // the original ends count too (the search may wander off a maximum at an end)
         let ends = if f(&a) > f(&b) { f(&a) } else { f(&b) };
@@ -570,7 +644,7 @@ mod tests {
         let kn = c.knots();
         for j in 0..d {
             let scale = c.coord_scale(j);
-            let tiny = fl(scale) * Float::with_val(MPFR_PREC, Float::i_exp(1, -200));
+            let tiny = fl(scale) * Float::with_val(mpfr_prec(), Float::i_exp(1, -200));
             let attain = fl(scale) * fl(1e-30);
             for (sgn, bound) in [(1.0, &r.hi[j]), (-1.0, &r.lo[j])] {
                 let mut samples: Vec<(Float, usize, Float)> = Vec::new();
@@ -680,7 +754,7 @@ mod tests {
         let x = fl(1.0) - fl(f64::EPSILON) / 3u32;
         assert!((ulps_outside(1.0, &x, 1.0, true) - 1.0 / 3.0).abs() < 1e-12);
         // below the reference's resolution: 0, not a miss
-        let y = fl(1.0) + Float::with_val(MPFR_PREC, Float::i_exp(1, -250));
+        let y = fl(1.0) + Float::with_val(mpfr_prec(), Float::i_exp(1, -250));
         assert_eq!(ulps_outside(1.0, &y, 1.0, true), 0.0);
     }
 }

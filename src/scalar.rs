@@ -5,7 +5,7 @@
 //!
 //! * `f64` — fast floating-point values (no guarantee),
 //! * [`inari::Interval`] — verified enclosures with outward rounding,
-//! * `rug::Float` at [`MPFR_PREC`] bits (feature `mpfr`) — high-precision reference values.
+//! * `rug::Float` at [`MPFR_PREC`] bits (or more, `with_mpfr_prec`) (feature `mpfr`) — high-precision reference values.
 //!
 //! We deliberately do not use `num_traits::Float`: intervals are not totally ordered, and the
 //! kernels need nothing but the field operations and exact embedding of f64 data.
@@ -14,8 +14,36 @@ use inari::Interval;
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// Precision (bits) of the `rug::Float` instance used for reference values.
+/// Default precision (bits) of the `rug::Float` instance used for reference values; see
+/// [`mpfr_prec`] for the precision actually in effect.
 pub const MPFR_PREC: u32 = 256;
+
+#[cfg(feature = "mpfr")]
+thread_local! {
+    static PREC: std::cell::Cell<u32> = const { std::cell::Cell::new(MPFR_PREC) };
+}
+
+/// The precision (bits) at which `rug::Float` values are created on this thread:
+/// [`MPFR_PREC`] unless raised by [`with_mpfr_prec`] (the reference raises it for
+/// ill-conditioned curves, e.g. weight ratios of 1e300, see `reference::working_prec`).
+#[cfg(feature = "mpfr")]
+pub fn mpfr_prec() -> u32 {
+    PREC.with(std::cell::Cell::get)
+}
+
+/// Run `f` with `rug::Float` values created at `prec` bits on this thread (restored after,
+/// also when `f` panics).
+#[cfg(feature = "mpfr")]
+pub fn with_mpfr_prec<R>(prec: u32, f: impl FnOnce() -> R) -> R {
+    struct Restore(u32);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            PREC.with(|p| p.set(self.0));
+        }
+    }
+    let _restore = Restore(PREC.with(|p| p.replace(prec)));
+    f()
+}
 
 /// A number type the NURBS kernels can run on.
 ///
@@ -121,10 +149,10 @@ impl Scalar for Interval {
 #[cfg(feature = "mpfr")]
 impl Scalar for rug::Float {
     fn from_f64(x: f64) -> Self {
-        rug::Float::with_val(MPFR_PREC, x)
+        rug::Float::with_val(mpfr_prec(), x)
     }
     fn from_usize(k: usize) -> Self {
-        rug::Float::with_val(MPFR_PREC, k)
+        rug::Float::with_val(mpfr_prec(), k)
     }
     fn to_interval(&self) -> Interval {
         // Round the MPFR value down and up to f64: the pair encloses it.
