@@ -8,7 +8,7 @@
 //! the extremum itself, which sampling can miss by a hair.
 //!
 //! Run: `cargo run --release --features mpfr --example reference_audit [-- --cases N --seed S
-//! --seconds T --show-worst 1]` (defaults: 2000 cases, seed 1, no time limit). Prints a summary per strategy
+//! --seconds T --show-worst 1]`, or as in the README `... > results/reference_audit.md` (defaults: 2000 cases, seed 1, no time limit). Prints a summary per strategy
 //! (worst and median distance in ulps of the coordinate scale, terminations) and, for every
 //! violation, the curve as JSON; exits 1 if there was one.
 
@@ -111,8 +111,16 @@ mod imp {
                 }
             }
         }
+        let prov = nurbs_box::report::Provenance::collect();
+        println!("# Reference audit: random extreme curves vs the exact box\n");
         println!(
-            "{done} byte strings, {valid} valid curves, {invalid} typed errors, {:.1} s (seed {seed})",
+            "command: `{}`, commit {}, {} ({} cores)\n",
+            prov.command, prov.commit, prov.cpu, prov.cores
+        );
+        println!(
+            "{done} byte strings, {valid} valid curves, {invalid} typed errors, {:.1} s (seed {seed}); \
+             distances in ulps of the coordinate scale (outer bound minus exact extremum, \
+             positive = safe side)\n",
             t0.elapsed().as_secs_f64()
         );
         println!(
