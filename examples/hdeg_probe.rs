@@ -11,14 +11,21 @@ fn main() {
     if let (Some(a), Some(b)) = (args.get(3), args.get(4)) {
         let t = nurbs_box::TightEval::new(&c);
         let j: usize = args[2].parse().unwrap();
-        println!("{:?}", t.coord_over(j, a.parse().unwrap(), b.parse().unwrap()));
+        println!(
+            "{:?}",
+            t.coord_over(j, a.parse().unwrap(), b.parse().unwrap())
+        );
         return;
     }
     if args.get(2).map(String::as_str) == Some("seg") {
         let hs = nurbs_box::HSpline::<nurbs_box::Ddi>::from_curve(&c);
         for k in [c.degree(), c.degree() + 5, c.num_points() - 1] {
             let s = hs.bezier_segment(k);
-            let m = s.pts.iter().map(|x| x.rad() / x.hi().abs().max(1e-300)).fold(0.0, f64::max);
+            let m = s
+                .pts
+                .iter()
+                .map(|x| x.rad() / x.hi().abs().max(1e-300))
+                .fold(0.0, f64::max);
             println!("span {k}: max rel rad {m:e}");
         }
         return;
@@ -29,9 +36,13 @@ fn main() {
         for k in c.degree()..c.num_points() {
             let s = hs.bezier_segment(k);
             let h = s.hdim();
-            let d: Vec<_> = (0..s.degree).map(|i| s.pts[(i + 1) * h] - s.pts[i * h]).collect();
+            let d: Vec<_> = (0..s.degree)
+                .map(|i| s.pts[(i + 1) * h] - s.pts[i * h])
+                .collect();
             n += 1;
-            if d.iter().all(|x| x.inf() > 0.0) || d.iter().all(|x| x.sup() < 0.0) { m += 1; }
+            if d.iter().all(|x| x.inf() > 0.0) || d.iter().all(|x| x.sup() < 0.0) {
+                m += 1;
+            }
         }
         println!("{m} of {n} spans monotone by Bezier points");
         return;
@@ -40,15 +51,21 @@ fn main() {
         let hs = nurbs_box::HSpline::<inari::Interval>::from_curve(&c);
         let t0 = Instant::now();
         let mut acc = 0.0;
-        for k in c.degree()..c.num_points() { acc += hs.bezier_segment(k).pts[3].inf(); }
+        for k in c.degree()..c.num_points() {
+            acc += hs.bezier_segment(k).pts[3].inf();
+        }
         println!("interval {:?} {acc}", t0.elapsed());
         let hs = nurbs_box::HSpline::<nurbs_box::Ddi>::from_curve(&c);
         let t0 = Instant::now();
-        for k in c.degree()..c.num_points() { acc += hs.bezier_segment(k).pts[3].hi(); }
+        for k in c.degree()..c.num_points() {
+            acc += hs.bezier_segment(k).pts[3].hi();
+        }
         println!("ddi {:?} {acc}", t0.elapsed());
         let hs = nurbs_box::HSpline::<f64>::from_curve(&c);
         let t0 = Instant::now();
-        for k in c.degree()..c.num_points() { acc += hs.bezier_segment(k).pts[3]; }
+        for k in c.degree()..c.num_points() {
+            acc += hs.bezier_segment(k).pts[3];
+        }
         println!("f64 {:?} {acc}", t0.elapsed());
         return;
     }
@@ -60,7 +77,12 @@ fn main() {
     for (j, cb) in e.coords.iter().enumerate() {
         println!(
             "coord {j}: lo {:e} inner_lo {:e} hi {:e} inner_hi {:e} gap {:e} {:?}",
-            cb.lo, cb.inner_lo, cb.hi, cb.inner_hi, cb.gap(), cb.termination
+            cb.lo,
+            cb.inner_lo,
+            cb.hi,
+            cb.inner_hi,
+            cb.gap(),
+            cb.termination
         );
         println!("  stats {:?}", cb.stats);
         println!("  argmin {:?}", cb.argmin);

@@ -30,13 +30,13 @@ pub mod interpolate;
 pub mod io;
 pub mod knot_vectors;
 mod knots;
+mod mr;
 #[cfg(feature = "mpfr")]
 pub mod reference;
 mod refine;
 pub mod report;
 pub mod robust;
 pub mod scalar;
-mod mr;
 mod tight;
 pub mod tridiagonal;
 pub mod validate;
