@@ -456,9 +456,6 @@ impl TightEval {
                 .convex_hull(self.piece_over_depth(j, k, m, hi, depth + 1));
         }
         let (tl, tu) = taylor_bounds(c1m.abs_upper(), c2i, r);
-        if std::env::var("TDBG").is_ok() {
-            eprintln!("piece k={k} [{lo:e},{hi:e}] d={depth} r={r:e} cm={cm:?} c1m={c1m:?} c2={c2:?} c2i={c2i:?} t=({tl:e},{tu:e})");
-        }
         (cm + Ddi::from_bounds(tl, tu)).to_interval()
     }
 
