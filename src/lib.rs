@@ -30,6 +30,7 @@ pub mod interpolate;
 pub mod io;
 pub mod knot_vectors;
 mod knots;
+mod mr;
 #[cfg(feature = "mpfr")]
 pub mod reference;
 mod refine;
@@ -51,5 +52,6 @@ pub use error::{CurveError, EvalError};
 pub use eval::{project, CurveEval};
 pub use io::{curve_to_json, parse_curve, CurveReader, InputError};
 pub use knots::{find_span, multiplicity};
+pub use mr::Mr;
 pub use scalar::Scalar;
 pub use tight::TightEval;

@@ -264,3 +264,39 @@ fn tightness_against_reference() {
     assert!(med <= 1.0);
     assert!(within4 >= 0.95, "{within4}");
 }
+
+/// High degree (p = 20..40), rational, several spans: every bound of the default `newton`
+/// within 4 ulps of the coordinate scale of the 256-bit reference box (and on the safe side).
+/// Before the `Ddi` corner-cutting fix the Bézier points under `TightEval` were ~1e-13
+/// relative wide at p = 40 (radius doubling per Boehm step), and the bound at a critical
+/// point came out ~1e7 ulps loose.
+#[cfg(feature = "mpfr")]
+#[test]
+fn high_degree_rational_tightness_against_reference() {
+    use nurbs_box::reference::{reference_box, ulps_outside};
+    for (case, p) in [20usize, 27, 33, 40].into_iter().enumerate() {
+        let n = p + 8 + 4 * case;
+        let inner = n - p - 1;
+        let mut kn = vec![0.0; p + 1];
+        kn.extend((1..=inner).map(|i| i as f64 / (inner + 1) as f64));
+        kn.extend(vec![1.0; p + 1]);
+        let f = 0.37 + 0.05 * case as f64;
+        let pts = (0..n)
+            .map(|i| vec![(i as f64 * f).sin(), (i as f64 * 1.1).cos()])
+            .collect();
+        let w = (0..n).map(|i| 1.0 + 0.5 * (i as f64).sin()).collect();
+        let c = NurbsCurve::new(p, kn, pts, Some(w)).unwrap();
+        let r = reference_box(&c);
+        let e = Newton::default().enclose(&c);
+        check_sound(&c, &e).unwrap();
+        for (j, cb) in e.coords.iter().enumerate() {
+            let s = c.coord_scale(j);
+            let a = ulps_outside(cb.lo, &r.lo[j], s, false);
+            let b = ulps_outside(cb.hi, &r.hi[j], s, true);
+            assert!(
+                (0.0..=4.0).contains(&a) && (0.0..=4.0).contains(&b),
+                "p {p} coord {j}: {a} {b} ulps {cb:?}"
+            );
+        }
+    }
+}

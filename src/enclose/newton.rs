@@ -24,10 +24,12 @@
 use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
+use crate::bspline::HSpline;
 use crate::curve::NurbsCurve;
 use crate::eval::CurveEval;
 use crate::knots::multiplicity;
-use crate::scalar::iv;
+use crate::mr::Mr;
+use crate::scalar::{iv, Scalar};
 use crate::tight::TightEval;
 use inari::Interval;
 use std::time::Instant;
@@ -91,6 +93,12 @@ pub struct Newton {
     pub pretest: bool,
     /// Skip spans whose local control points lie inside the box found so far.
     pub prune: bool,
+    /// Per span, before the Newton search, extract the Bézier points (Boehm knot insertion in
+    /// fast midpoint-radius arithmetic, [`crate::Mr`]) and skip the span if they are monotone
+    /// (with `pretest`) or lie inside the box found so far (with `prune`): far sharper than the
+    /// B-spline control points at high degree, where p + 1 local control points spread over
+    /// p + 1 spans (not in the thesis).
+    pub bezier_pretest: bool,
     /// Measure the time spent in derivative evaluations (two clock reads per evaluation).
     pub time_derivatives: bool,
 }
@@ -121,6 +129,7 @@ impl Default for Newton {
             form: DerivForm::Numerator,
             pretest: true,
             prune: true,
+            bezier_pretest: true,
             time_derivatives: false,
         }
     }
@@ -146,6 +155,7 @@ impl Newton {
             form: DerivForm::Quotient,
             pretest: false,
             prune: false,
+            bezier_pretest: false,
             time_derivatives: true,
         }
     }
@@ -285,6 +295,9 @@ pub(crate) struct Engine<'a> {
     stack: Vec<(f64, f64)>,
     /// coordinate currently worked on
     j: usize,
+    /// homogeneous rows (C_j w, w) of coordinate j for the Bézier pre-test
+    /// ([`Newton::bezier_pretest`]), built per coordinate
+    bez: Option<HSpline<Mr>>,
     stats: Stats,
     /// evaluations allowed for the current coordinate ([`Newton::max_work`])
     budget: u64,
@@ -316,6 +329,7 @@ impl<'a> Engine<'a> {
             buf: Vec::with_capacity(2 * (p + 1)),
             stack: Vec::new(),
             j: 0,
+            bez: None,
             stats: Stats::default(),
             budget: u64::MAX,
         }
@@ -389,14 +403,12 @@ impl<'a> Engine<'a> {
         self.stats.derivative_evaluations += 1;
         let r = match self.s.form {
             DerivForm::Quotient => self.value_and_slope(k, u).1,
+            // (non-rational: f = A_j', no level-0 evaluation)
+            DerivForm::Numerator if !self.rational => self.level(1, k, u).0,
             DerivForm::Numerator => {
                 let (a, w) = self.level(0, k, u);
                 let (a1, w1) = self.level(1, k, u);
-                if self.rational {
-                    a1 * w - a * w1
-                } else {
-                    a1
-                }
+                a1 * w - a * w1
             }
         };
         if let Some(t) = t {
@@ -409,11 +421,11 @@ impl<'a> Engine<'a> {
     fn df(&mut self, k: usize, u: Interval) -> Interval {
         let t = self.s.time_derivatives.then(Instant::now);
         self.stats.derivative_evaluations += 1;
-        let (a, w) = self.level(0, k, u);
-        let (a2, w2) = self.level(2, k, u);
         let r = if !self.rational {
-            a2
+            self.level(2, k, u).0
         } else {
+            let (a, w) = self.level(0, k, u);
+            let (a2, w2) = self.level(2, k, u);
             match self.s.form {
                 DerivForm::Numerator => a2 * w - a * w2,
                 DerivForm::Quotient => {
@@ -483,6 +495,42 @@ impl<'a> Engine<'a> {
             hi = hi.max(x);
         }
         (lo, hi)
+    }
+
+    /// Coordinate j of the Bézier points of span k (rational: the Cartesian points A_i / w_i of
+    /// the homogeneous Bézier points), enclosed: their hull [lo, hi] and whether they are
+    /// non-decreasing / non-increasing (for every choice of the exact points in the
+    /// enclosures: each upper bound <= the next lower bound).
+    ///
+    /// Why this is sound: the exact Bézier points of the span come from Boehm knot insertion
+    /// (NURBS Book A5.1; thesis eq. 4.12), which [`Mr`] encloses; the new weights are convex
+    /// combinations of positive weights, so positive. A rational Bézier curve with positive
+    /// weights lies in the convex hull of its points (thesis prop. 2.1, on the closed span,
+    /// the right-end limit included), and is monotone if its points are (the argument of
+    /// [`Engine::monotone`]).
+    fn bezier_points(&self, k: usize) -> (f64, f64, bool, bool) {
+        let Some(hs) = &self.bez else {
+            return (f64::NEG_INFINITY, f64::INFINITY, false, false);
+        };
+        let seg = hs.bezier_segment(k);
+        let h = seg.hdim();
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut inc, mut dec) = (true, true);
+        let mut prev = Interval::EMPTY;
+        for q in seg.pts.chunks_exact(h) {
+            let x = if self.rational { q[0] / q[1] } else { q[0] }.to_interval();
+            if x.is_empty() || x.is_entire() {
+                return (f64::NEG_INFINITY, f64::INFINITY, false, false);
+            }
+            lo = lo.min(x.inf());
+            hi = hi.max(x.sup());
+            if !prev.is_empty() {
+                inc &= x.inf() >= prev.sup();
+                dec &= x.sup() <= prev.inf();
+            }
+            prev = x;
+        }
+        (lo, hi, inc, dec)
     }
 
     /// Whether coordinate j of the local control points of span k is non-decreasing /
@@ -675,6 +723,9 @@ impl<'a> Engine<'a> {
         let t0 = Instant::now();
         self.j = j;
         self.stats = Stats::default();
+        if self.s.bezier_pretest && (self.s.pretest || self.s.prune) {
+            self.bez = Some(HSpline::from_curve(&self.c.coordinate_curve(j)));
+        }
         let (a, b) = self.c.domain();
         let ns = self.spans.len();
         let cost = ((self.p + 1) as u64).pow(2);
@@ -739,6 +790,19 @@ impl<'a> Engine<'a> {
                     status[si] = Status::Mono { inc, dec };
                     continue;
                 }
+            }
+            if self.bez.is_some() {
+                let (blo, bhi, inc, dec) = self.bezier_points(k);
+                if mode == SpanMode::Prune && blo >= acc.inner_lo && bhi <= acc.inner_hi {
+                    // as the local-hull prune above, with the span's own Bézier hull
+                    continue;
+                }
+                if self.s.pretest && (inc || dec) {
+                    status[si] = Status::Mono { inc, dec };
+                    continue;
+                }
+            }
+            if self.s.pretest {
                 let fx = self.f(k, iv::span(sa, sb));
                 if !fx.is_empty() && !fx.contains(0.0) {
                     // f has one sign on the closed span, and sign f = sign C_j'.
