@@ -1,0 +1,320 @@
+//! Fast path of the `bezier` strategy for a single polynomial Bézier segment of degree 2 or 3
+//! (a clamped curve with p + 1 control points and no weights: the common 2-D cubic Bézier).
+//!
+//! For one coordinate x(t) = sum_i c_i B_i^p(t), t in [0, 1] (the curve's image does not
+//! depend on the parametrisation, so the local parameter is used throughout), with exact f64
+//! control values c_i:
+//!
+//! 1. Power form x(t) = a_0 + a_1 t + a_2 t^2 + a_3 t^3 from the forward differences
+//!    a_k = binom(p, k) Δ^k c_0 (Farin, *Curves and Surfaces for CAGD*, monomial form of a
+//!    Bézier curve), in [`Ddi`]: the first differences Δc_i are exact double-words (TwoSum),
+//!    so every coefficient encloses the exact one about 2^-100 relative wide.
+//! 2. f64 estimates of the roots of x' (quadratic formula in the cancellation-free form).
+//!    Nothing about soundness depends on them: they only choose test points.
+//! 3. Test points 0 = z_0 < z_1 < ... < z_k = 1: both ends and r ± h around each estimate r
+//!    (h = 2^-40). The sign of x'(z_i) is *proven* at each point (`Ddi` Horner enclosure
+//!    excluding 0); if any sign is not proven the fast path gives up.
+//! 4. Root counting. x' is a non-zero polynomial (it has a proven non-zero value) of degree
+//!    p - 1, so it has at most R = p - 1 real roots, counted with multiplicity; R = 0 when the
+//!    discriminant Δc_1^2 - Δc_0 Δc_2 of the cubic's x'/3 (Bernstein form d_0 (1-t)^2 +
+//!    2 d_1 t (1-t) + d_2 t^2, roots real iff d_1^2 - d_0 d_2 >= 0) is proven negative. By
+//!    the intermediate value theorem an interval (z_i, z_{i+1}) whose end signs differ holds
+//!    an odd number of roots, one whose end signs agree an even number. If c intervals show a
+//!    sign change and c >= R - 1, each of them holds exactly one root and every other
+//!    interval none (the c odd counts use up at least c of the R roots; at most R - c <= 1
+//!    remain, and an even number <= 1 is 0). Otherwise the fast path gives up.
+//! 5. So on every maximal run of intervals without sign change x' has one constant non-zero
+//!    sign except at isolated points: x is strictly monotone there and its extrema over the
+//!    run are at the run's ends, which are 0, 1 or ends of sign-change intervals. Hence
+//!    max x = max(x(0), x(1), max over the sign-change intervals), the same for min.
+//!    x(0) = c_0 and x(1) = c_p exactly (clamped ends). Over a sign-change interval B with
+//!    midpoint m the second-order Taylor form (Moore 1966; Neumaier 1990, sec. 2.3)
+//!    x(B) ⊆ x(m) + x'(m) (B - m) + (x''(B) / 2) (B - m)^2 is evaluated in `Ddi` and rounded
+//!    outward; x(m) is a value the curve attains (inner bound). With h = 2^-40 the correction
+//!    terms are ~2^-75 of the coordinate scale, so the bound is that of x(m), about one ulp.
+//! 6. The result is used only if each side's certified gap (bound minus attained value) is at
+//!    most `max_gap` (two ulps of the scale by default); otherwise — a root estimate too poor
+//!    for its bracket, a (near) double root, a flat coordinate — the caller runs the general
+//!    branch and bound. The fast path is thus never looser than the general one's stopping
+//!    rule, and never wrong: every step above is proven, rounding included.
+
+use super::{CandidateKind, Extremum, Side, Stats, Termination};
+use crate::ddi::{dist_up, up, Ddi};
+use crate::scalar::Scalar;
+use crate::tight::horner;
+
+/// Half-width (in the local parameter t in [0, 1]) of the test-point pairs around root
+/// estimates. The Taylor correction over such a bracket is about |x''| h^2 / 2, far below an
+/// ulp; f64 root estimates of simple roots are far more accurate than h unless x' has a near
+/// double root (then the fast path gives up).
+const H: f64 = 1.0 / 1_099_511_627_776.0; // 2^-40
+
+/// The proven sign of an enclosure: `Some(true)` if every value is > 0, `Some(false)` if every
+/// value is < 0, `None` if it may contain 0.
+#[inline]
+fn sign(x: Ddi) -> Option<bool> {
+    // abs_lower is Some only if |hi| exceeds |lo| + rad (rounded up), so all values share the
+    // sign of hi.
+    Ddi::abs_lower(x).map(|_| x.hi() > 0.0)
+}
+
+/// Up to 4 power coefficients of x, enclosed.
+struct Poly {
+    /// degree p (2 or 3)
+    p: usize,
+    /// x: a_0 .. a_p (a_3 = 0 for p = 2)
+    x: [Ddi; 4],
+}
+
+impl Poly {
+    /// Power form of sum_i c_i B_i^p(t) (p = 2 or 3) from exact forward differences.
+    fn new(c: &[f64]) -> Poly {
+        let p = c.len() - 1;
+        let z = Ddi::exact(0.0);
+        // Δc_i exact (TwoSum); higher differences enclosed by Ddi sums.
+        let d: [Ddi; 3] =
+            std::array::from_fn(|i| if i < p { Ddi::diff(c[i + 1], c[i]) } else { z });
+        let dd0 = d[1] - d[0];
+        let x = if p == 3 {
+            // a_1 = 3 Δc_0, a_2 = 3 Δ^2 c_0, a_3 = Δ^3 c_0 = Δc_2 - 2 Δc_1 + Δc_0
+            let three = Ddi::exact(3.0);
+            let a3 = (d[2] - d[1]) - dd0;
+            [Ddi::exact(c[0]), three * d[0], three * dd0, a3]
+        } else {
+            // a_1 = 2 Δc_0, a_2 = Δ^2 c_0
+            [Ddi::exact(c[0]), Ddi::exact(2.0) * d[0], dd0, z]
+        };
+        Poly { p, x }
+    }
+    fn x(&self, t: Ddi) -> Ddi {
+        horner(&self.x[..=self.p], t)
+    }
+    /// x'(t) enclosed (the slow, sharp sign test behind [`Deriv::sign`]).
+    fn dx(&self, t: Ddi) -> Ddi {
+        let a = &self.x;
+        let d1 = [a[1], Ddi::exact(2.0) * a[2], Ddi::exact(3.0) * a[3]];
+        horner(&d1[..self.p], t)
+    }
+}
+
+/// x'(t) = b_0 + b_1 t + b_2 t^2 in f64 with an a-priori error bound valid for all t in [0, 1]
+/// (a floating-point filter: one FMA Horner step per coefficient and a comparison).
+///
+/// Error bound. Let α_k be the exact power coefficients of x, enclosed by the `Ddi` a_k
+/// (|α_k - (hi_k + lo_k)| <= rad_k), and β_k = k α_k those of x'. We use b̂_k = fl(k hi_k):
+/// exact for k = 1, 2 (powers of two), and |3 hi_3 - b̂_2| <= u |3 hi_3| + η <= U1 |b̂_2| + η
+/// for k = 3 (u = 2^-53, U1 = u (1 + 2^-50) >= u / (1 - u), η = 2^-1075 the underflow error of
+/// a product). So |β_k - b̂_{k-1}| <= k (|lo_k| + rad_k) + U1 |b̂_{k-1}| + η.
+/// Horner with FMA, y = fl(fl(b̂_2 t + b̂_1) t + b̂_0), t in [0, 1]: each FMA is one rounding,
+/// s_1 = (b̂_2 t + b̂_1)(1 + δ_1) + η_1, y = (s_1 t + b̂_0)(1 + δ_2) + η_2 with |δ_i| <= u,
+/// |η_i| <= η, hence (Higham, *Accuracy and Stability of Numerical Algorithms*, sec. 5.1,
+/// specialised) |y - sum b̂_k t^k| <= u (|b̂_2| t^2 + |b̂_1| t) + u |s_1 t + b̂_0| + 2 η
+/// <= (2u + u^2) (|b̂_0| + |b̂_1| + |b̂_2|) + 3 η, using |s_1| <= (|b̂_2| t + |b̂_1|)(1 + u) + η
+/// and t <= 1. Altogether, with 4u >= U1 + 2u + u^2 and 4η = 2^-1073,
+///
+///   |x'(t) - y| <= T = sum_k k (|lo_k| + rad_k) + 4u (|b̂_0| + |b̂_1| + |b̂_2|) + 2^-1073,
+///
+/// a sum of five terms, each a product of an f64 with a sum of nonnegative f64: Lemma B of
+/// [`crate::ddi`] gives `err = up(fl(T)) >= T`. A non-finite value anywhere makes every test
+/// fail (comparisons with NaN or inf are false), never pass.
+struct Deriv {
+    b: [f64; 3],
+    err: f64,
+}
+
+impl Deriv {
+    fn new(poly: &Poly) -> Deriv {
+        let a = &poly.x;
+        let b = [a[1].hi(), 2.0 * a[2].hi(), 3.0 * a[3].hi()];
+        let e = |k: f64, x: &Ddi| k * (x.lo().abs() + x.rad());
+        let t = e(1.0, &a[1])
+            + e(2.0, &a[2])
+            + e(3.0, &a[3])
+            + 4.0 * f64::EPSILON / 2.0 * (b[0].abs() + b[1].abs() + b[2].abs())
+            + f64::from_bits(2);
+        Deriv { b, err: up(t) }
+    }
+    /// The f64 value y with |x'(t) - y| <= err (t in [0, 1]).
+    #[inline]
+    fn approx(&self, t: f64) -> f64 {
+        self.b[2].mul_add(t, self.b[1]).mul_add(t, self.b[0])
+    }
+    /// The proven sign of x'(t), t in [0, 1]: by the filter, else by a `Ddi` evaluation.
+    fn sign(&self, poly: &Poly, t: f64) -> Option<bool> {
+        let y = self.approx(t);
+        if y.abs() > self.err {
+            // |x'(t) - y| <= err < |y|: x'(t) has the sign of y
+            return Some(y > 0.0);
+        }
+        sign(poly.dx(Ddi::exact(t)))
+    }
+}
+
+/// f64 estimates of the real roots of b_0 + b_1 t + b_2 t^2 (at most two, unordered).
+fn root_estimates(b0: f64, b1: f64, b2: f64) -> ([f64; 2], usize) {
+    let mut r = [0.0; 2];
+    let mut n = 0;
+    let mut push = |x: f64| {
+        if x.is_finite() {
+            r[n] = x;
+            n += 1;
+        }
+    };
+    if b2 == 0.0 {
+        push(-b0 / b1);
+        return (r, n);
+    }
+    // q = -(b1 + sign(b1) sqrt(disc)) / 2, roots q / b2 and b0 / q (no cancellation).
+    let disc = (b1 * b1 - 4.0 * b0 * b2).max(0.0);
+    let q = -0.5 * (b1 + disc.sqrt().copysign(b1));
+    push(q / b2);
+    if q != 0.0 {
+        push(b0 / q);
+    }
+    (r, n)
+}
+
+/// Extremum record for the parameter interval [t0, t1] of the local parameter, mapped to the
+/// segment's [a, b] outward (u = a + t (b - a) enclosed in `Ddi`).
+fn extremum(a: f64, b: f64, t0: f64, t1: f64, unique: bool, kind: CandidateKind) -> Extremum {
+    let map = |t: f64| -> (f64, f64) {
+        if a == 0.0 && b == 1.0 {
+            return (t, t);
+        }
+        let u = (Ddi::exact(a) + Ddi::exact(t) * Ddi::diff(b, a)).to_interval();
+        (u.inf().max(a), u.sup().min(b))
+    };
+    Extremum {
+        u_lo: map(t0).0,
+        u_hi: map(t1).1,
+        unique,
+        kind,
+    }
+}
+
+/// Both sides of coordinate `c` (the p + 1 control values of a single polynomial Bézier
+/// segment over [a, b], p = 2 or 3): `[max side, min side]` as sign-adjusted [`Side`]s (see
+/// the module docs), or `None` when the fast path cannot prove a result whose gap is at most
+/// `max_gap` on both sides.
+pub(super) fn coord_sides(c: &[f64], a: f64, b: f64, max_gap: f64) -> Option<[Side; 2]> {
+    let p = c.len().checked_sub(1)?;
+    if !(2..=3).contains(&p) {
+        return None;
+    }
+    let poly = Poly::new(c);
+    let deriv = Deriv::new(&poly);
+    let mut stats = Stats::default();
+    // Test points and proven signs of x' there.
+    let mut z = [0.0f64; 6];
+    let mut k = 0;
+    z[k] = 0.0;
+    k += 1;
+    {
+        let (mut r, nr) = root_estimates(deriv.b[0], deriv.b[1], deriv.b[2]);
+        r[..nr].sort_by(f64::total_cmp);
+        for &ri in &r[..nr] {
+            for t in [ri - H, ri + H] {
+                if t > z[k - 1] && t < 1.0 {
+                    z[k] = t;
+                    k += 1;
+                }
+            }
+        }
+    }
+    z[k] = 1.0;
+    k += 1;
+    let mut s = [false; 6];
+    for i in 0..k {
+        stats.derivative_evaluations += 1;
+        s[i] = deriv.sign(&poly, z[i])?;
+    }
+    let changes = (1..k).filter(|&i| s[i] != s[i - 1]).count();
+    // Upper bound R of the number of real roots of x' (module docs, step 4): p - 1, or 0 for a
+    // cubic whose discriminant is proven negative (only needed when there are few changes).
+    if changes + 1 < p - 1 {
+        let d: [Ddi; 3] = std::array::from_fn(|i| Ddi::diff(c[i + 1], c[i]));
+        if sign(d[1] * d[1] - d[0] * d[2]) != Some(false) {
+            return None;
+        }
+    }
+    // Candidates: the exact end values and the enclosures over the sign-change intervals.
+    let mut hi = Side::new();
+    let mut lo = Side::new();
+    for (t, v) in [(0.0, c[0]), (1.0, c[p])] {
+        let e = extremum(a, b, t, t, false, CandidateKind::EndPoint);
+        hi.attain_f64(v);
+        hi.bound(v, e);
+        lo.attain_f64(-v);
+        lo.bound(-v, e);
+    }
+    // max |x''(ξ) / 2| over [0, 1] <= |α_2| + 3 |α_3| <= m2 (Lemma B: a term and a product).
+    let m2 = up(poly.x[2].abs_upper() + 3.0 * poly.x[3].abs_upper());
+    for i in 1..k {
+        if s[i] == s[i - 1] {
+            continue;
+        }
+        let (t0, t1) = (z[i - 1], z[i]);
+        // Taylor form around an f64 m in [t0, t1], |t - m| <= r for t in [t0, t1]:
+        // x(t) = x(m) + x'(m) (t - m) + x''(ξ) / 2 (t - m)^2 (Lagrange remainder), so
+        // |x(t) - x(m)| <= (|y| + err) r + m2 r^2 <= corr (Lemma B, with r2 >= r^2).
+        let m = (t0 + 0.5 * (t1 - t0)).clamp(t0, t1);
+        let r = dist_up(m, t0).max(dist_up(t1, m));
+        let r2 = up(r * r);
+        stats.derivative_evaluations += 1;
+        let corr = up((deriv.approx(m).abs() + deriv.err) * r + m2 * r2);
+        stats.point_evaluations += 1;
+        let xm = poly.x(Ddi::exact(m));
+        let (vm, vb) = (xm.to_interval(), xm.widen(corr).to_interval());
+        let e = extremum(a, b, t0, t1, true, CandidateKind::Critical);
+        hi.attain_f64(vm.inf());
+        hi.bound(vb.sup(), e);
+        lo.attain_f64(-vm.sup());
+        lo.bound(-vb.inf(), e);
+    }
+    hi.stats = stats;
+    for sd in [&hi, &lo] {
+        if !(sd.upper - sd.attained <= max_gap) {
+            return None;
+        }
+    }
+    hi.term = Termination::Converged;
+    lo.term = Termination::Converged;
+    Some([hi, lo])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn power_form_matches_bernstein() {
+        let c = [1.0, -2.0, 4.0, 0.5];
+        let poly = Poly::new(&c);
+        for i in 0..=8 {
+            let t = i as f64 / 8.0;
+            let bern = (1.0 - t).powi(3) * c[0]
+                + 3.0 * t * (1.0 - t).powi(2) * c[1]
+                + 3.0 * t * t * (1.0 - t) * c[2]
+                + t.powi(3) * c[3];
+            let v = poly.x(Ddi::exact(t)).to_interval();
+            assert!((v.mid() - bern).abs() < 1e-14, "{t}: {v:?} {bern}");
+        }
+    }
+
+    #[test]
+    fn interior_extrema_and_give_ups() {
+        // x = 3 t (1 - t)^2 * 2 - ... : max of a symmetric bump
+        let [hi, lo] = coord_sides(&[0.0, 1.0, 1.0, 0.0], 0.0, 1.0, 1e-15).unwrap();
+        // exact max 0.75 at t = 0.5, min 0 at the ends
+        assert!(hi.upper >= 0.75 && hi.attained <= 0.75 && hi.upper - 0.75 < 1e-15);
+        assert_eq!(-lo.upper, 0.0);
+        // a double root of x' (x = t^3 shape around 1/2): not provable, gives up
+        assert!(coord_sides(&[0.0, 1.0, 0.0, 1.0], 0.0, 1.0, 1e-15).is_none());
+        let flat = coord_sides(&[2.0, 2.0, 2.0, 2.0], 0.0, 1.0, 1e-15);
+        assert!(flat.is_none());
+        // a monotone cubic with an interior control maximum: exact ends
+        let [hi, lo] = coord_sides(&[0.0, 1.0, 0.9, 0.95], 0.0, 1.0, 1e-15).unwrap();
+        assert_eq!((hi.upper, hi.attained), (0.95, 0.95));
+        assert_eq!((lo.upper, lo.attained), (0.0, 0.0));
+    }
+}
