@@ -50,6 +50,10 @@ pub struct BezierSubdivision {
     /// are bounded as a whole and reported as [`Termination::WorkLimit`]. Bounds the time of
     /// high-degree curves (issue 6).
     pub max_work: u64,
+    /// Use the root-isolating fast path for a single polynomial Bézier segment of degree 2
+    /// or 3 (module `single`; default true). It falls back to the branch and bound by itself
+    /// whenever it cannot prove a tight result; switching it off is for comparisons.
+    pub fast_path: bool,
 }
 
 impl Default for BezierSubdivision {
@@ -59,6 +63,7 @@ impl Default for BezierSubdivision {
             max_depth: 80,
             max_pieces: 20_000,
             max_work: super::DEFAULT_MAX_WORK,
+            fast_path: true,
         }
     }
 }
@@ -562,7 +567,8 @@ impl BoxEncloser for BezierSubdivision {
                             *x = c.control_point(i)[j];
                         }
                         let scale = c.coord_scale(j);
-                        let max_gap = (self.tol * scale).max(2.0 * f64::EPSILON * scale);
+                        // (two ulps of the scale, the resolution the reference tests use)
+                        let max_gap = (self.tol * scale).max(2.0 * crate::scalar::ulp(scale));
                         single::coord_sides(&v[..=p], a, b, max_gap)
                     });
                     if let Some(sides) = sides {
@@ -584,13 +590,25 @@ impl BoxEncloser for BezierSubdivision {
             let mut hi = side(1.0);
             let mut lo = side(-1.0);
             // (consumes the candidate list: the collect can reuse its allocation in place)
+            // If no recorded candidate reaches the attained value (it came from an end
+            // coefficient of a piece pruned right away), the whole domain is reported: it
+            // certainly contains the argument of the extremum.
             let pick = |s: &mut Side| {
-                let a = s.attained;
-                std::mem::take(&mut s.cands)
+                let at = s.attained;
+                let mut v = std::mem::take(&mut s.cands)
                     .into_iter()
-                    .filter(|(v, _)| *v >= a)
+                    .filter(|(x, _)| *x >= at)
                     .map(|(_, e)| e)
-                    .collect::<Vec<_>>()
+                    .collect::<Vec<_>>();
+                if v.is_empty() {
+                    v.push(Extremum {
+                        u_lo: a,
+                        u_hi: b,
+                        unique: false,
+                        kind: CandidateKind::Unresolved,
+                    });
+                }
+                v
             };
             let mut stats = hi.stats;
             stats.add(&lo.stats);

@@ -223,15 +223,35 @@ pub(super) fn coord_sides(c: &[f64], a: f64, b: f64, max_gap: f64) -> Option<[Si
     }
     z[k] = 1.0;
     k += 1;
+    // Signs at the ends are exact comparisons: x'(0) = p (c_1 - c_0), x'(1) = p (c_p - c_{p-1}).
+    // If x'(0) = 0 exactly, x' = t q(t) with q of degree p - 2 and q(0) = (p - 1)(c_2 - c_1)
+    // (Bernstein coefficients of x' / p: Δc_0 = 0, Δc_1, ...; divide out t), so x' has the sign
+    // of c_2 - c_1 just right of 0 and the roots of x' in (0, 1] are those of q: one fewer.
+    // The same at t = 1 with c_{p-1} - c_{p-2}. The sign of q at the end replaces that of x'
+    // there, and the counting of step 4 runs on q (x' = t q or (1 - t) q or t (1 - t) q has
+    // the sign of q inside (0, 1)).
+    let cmp = |x: f64, y: f64| -> Option<bool> { (x != y).then_some(x > y) };
+    let mut max_roots = p - 1;
+    let mut end_sign = |i: usize, j: usize, k: usize| -> Option<bool> {
+        cmp(c[j], c[i]).or_else(|| {
+            max_roots -= 1;
+            cmp(c[k], c[j])
+        })
+    };
+    let s0 = end_sign(0, 1, 2)?;
+    let s1 = end_sign(p, p - 1, p - 2).map(|up| !up)?;
     let mut s = [false; 6];
-    for i in 0..k {
+    s[0] = s0;
+    s[k - 1] = s1;
+    for i in 1..k - 1 {
         stats.derivative_evaluations += 1;
         s[i] = deriv.sign(&poly, z[i])?;
     }
     let changes = (1..k).filter(|&i| s[i] != s[i - 1]).count();
-    // Upper bound R of the number of real roots of x' (module docs, step 4): p - 1, or 0 for a
-    // cubic whose discriminant is proven negative (only needed when there are few changes).
-    if changes + 1 < p - 1 {
+    // Upper bound R of the number of real roots (module docs, step 4): p - 1 less the exact
+    // zeros at the ends, or 0 for a cubic whose discriminant is proven negative (only needed
+    // when there are few changes).
+    if changes + 1 < max_roots {
         let d: [Ddi; 3] = std::array::from_fn(|i| Ddi::diff(c[i + 1], c[i]));
         if sign(d[1] * d[1] - d[0] * d[2]) != Some(false) {
             return None;
