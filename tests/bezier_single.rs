@@ -9,17 +9,6 @@ use nurbs_box::{BoxEncloser, Enclosure, NurbsCurve};
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 
-fn config(default_cases: u32) -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default_cases);
-    ProptestConfig {
-        cases,
-        ..ProptestConfig::default()
-    }
-}
-
 /// The registered strategy (`Rescaled(BezierSubdivision::default())`) and the same without
 /// the fast path.
 fn strategies() -> [Box<dyn BoxEncloser>; 2] {
@@ -211,9 +200,8 @@ mod mpfr {
         Ok(dist.swap_remove(0))
     }
 
+    // (default proptest config: 256 cases, or PROPTEST_CASES)
     proptest! {
-        #![proptest_config(config(256))]
-
         /// Random and structured quadratics / cubics (see [`random_single`]).
         #[test]
         fn single_segments_against_the_reference(seed in any::<u64>()) {
