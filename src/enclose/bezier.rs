@@ -539,42 +539,49 @@ impl BoxEncloser for BezierSubdivision {
         for j in 0..c.dim() {
             // (time per coordinate: one clock read per coordinate boundary, ~35 ns each)
             let t1 = clock;
-            let mut fast: Option<Option<[Side; 2]>> = None;
-            let mut side = |sign: f64| -> Side {
-                // Fast path: the extreme control coordinate is an exactly attained end value,
-                // so the control-point bound is attained: the exact extremum, no rounding.
+            // Shortcut: the extreme control coordinate is an exactly attained end value, so the
+            // control-point bound is attained: the exact extremum, no rounding.
+            let shortcut = |sign: f64| -> Option<Side> {
                 let m = (0..=n)
                     .map(|i| sign * c.control_point(i)[j])
                     .fold(f64::NEG_INFINITY, f64::max);
-                for &(i, u) in ends.iter().flatten() {
-                    if sign * c.control_point(i)[j] == m {
-                        let e = Extremum {
-                            u_lo: u,
-                            u_hi: u,
-                            unique: false,
-                            kind: CandidateKind::EndPoint,
-                        };
-                        let mut s = Side::new();
-                        s.attain_f64(m);
-                        s.bound(m, e);
-                        return s;
-                    }
+                let &(_, u) = ends
+                    .iter()
+                    .flatten()
+                    .find(|&&(i, _)| sign * c.control_point(i)[j] == m)?;
+                let mut s = Side::new();
+                s.attain_f64(m);
+                let kind = CandidateKind::EndPoint;
+                s.bound(
+                    m,
+                    Extremum {
+                        u_lo: u,
+                        u_hi: u,
+                        unique: false,
+                        kind,
+                    },
+                );
+                Some(s)
+            };
+            let mut short = [shortcut(1.0), shortcut(-1.0)];
+            let need = [short[0].is_none(), short[1].is_none()];
+            let mut fast = None;
+            if single_segment && need.contains(&true) {
+                let mut v = [0.0; 4];
+                for (i, x) in v.iter_mut().enumerate().take(p + 1) {
+                    *x = c.control_point(i)[j];
                 }
-                if single_segment {
-                    let sides = fast.get_or_insert_with(|| {
-                        let mut v = [0.0; 4];
-                        for (i, x) in v.iter_mut().enumerate().take(p + 1) {
-                            *x = c.control_point(i)[j];
-                        }
-                        let scale = c.coord_scale(j);
-                        // (two ulps of the scale, the resolution the reference tests use)
-                        let max_gap = (self.tol * scale).max(2.0 * crate::scalar::ulp(scale));
-                        single::coord_sides(&v[..=p], a, b, max_gap)
-                    });
-                    if let Some(sides) = sides {
-                        let k = if sign > 0.0 { 0 } else { 1 };
-                        return std::mem::replace(&mut sides[k], Side::new());
-                    }
+                let scale = c.coord_scale(j);
+                // (two ulps of the scale, the resolution the reference tests use)
+                let max_gap = (self.tol * scale).max(2.0 * crate::scalar::ulp(scale));
+                fast = single::coord_sides(&v[..=p], a, b, max_gap, need);
+            }
+            let mut side = |k: usize, sign: f64| -> Side {
+                if let Some(s) = short[k].take() {
+                    return s;
+                }
+                if let Some(sides) = &mut fast {
+                    return std::mem::replace(&mut sides[k], Side::new());
                 }
                 let (hs, spans, segs, vals) = ctx.get_or_insert_with(|| {
                     let spans = (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect();
@@ -587,8 +594,8 @@ impl BoxEncloser for BezierSubdivision {
                 });
                 self.maximize(vals, hs, segs, spans, j, sign)
             };
-            let mut hi = side(1.0);
-            let mut lo = side(-1.0);
+            let mut hi = side(0, 1.0);
+            let mut lo = side(1, -1.0);
             // (consumes the candidate list: the collect can reuse its allocation in place)
             // If no recorded candidate reaches the attained value (it came from an end
             // coefficient of a piece pruned right away), the whole domain is reported: it

@@ -26,7 +26,10 @@
 //! 5. So on every maximal run of intervals without sign change x' has one constant non-zero
 //!    sign except at isolated points: x is strictly monotone there and its extrema over the
 //!    run are at the run's ends, which are 0, 1 or ends of sign-change intervals. Hence
-//!    max x = max(x(0), x(1), max over the sign-change intervals), the same for min.
+//!    max x = max(x(0), x(1), max over the sign-change intervals), the same for min. More
+//!    sharply, a global maximiser inside (0, 1) is a root of x' where x' does not change from
+//!    - to + (that root would be a strict local minimum, and x is not constant): so only the
+//!    intervals where x' changes from + to - count for the maximum, - to + for the minimum.
 //!    x(0) = c_0 and x(1) = c_p exactly (clamped ends). Over a sign-change interval B with
 //!    midpoint m the second-order Taylor form (Moore 1966; Neumaier 1990, sec. 2.3)
 //!    x(B) ⊆ x(m) + x'(m) (B - m) + (x''(B) / 2) (B - m)^2 is evaluated in `Ddi` and rounded
@@ -195,8 +198,15 @@ fn extremum(a: f64, b: f64, t0: f64, t1: f64, unique: bool, kind: CandidateKind)
 /// Both sides of coordinate `c` (the p + 1 control values of a single polynomial Bézier
 /// segment over [a, b], p = 2 or 3): `[max side, min side]` as sign-adjusted [`Side`]s (see
 /// the module docs), or `None` when the fast path cannot prove a result whose gap is at most
-/// `max_gap` on both sides.
-pub(super) fn coord_sides(c: &[f64], a: f64, b: f64, max_gap: f64) -> Option<[Side; 2]> {
+/// `max_gap` on every side it is asked for (`need`: [max, min]; a side not needed comes
+/// back incomplete and must not be used).
+pub(super) fn coord_sides(
+    c: &[f64],
+    a: f64,
+    b: f64,
+    max_gap: f64,
+    need: [bool; 2],
+) -> Option<[Side; 2]> {
     let p = c.len().checked_sub(1)?;
     if !(2..=3).contains(&p) {
         return None;
@@ -270,7 +280,11 @@ pub(super) fn coord_sides(c: &[f64], a: f64, b: f64, max_gap: f64) -> Option<[Si
     // max |x''(ξ) / 2| over [0, 1] <= |α_2| + 3 |α_3| <= m2 (Lemma B: a term and a product).
     let m2 = up(poly.x[2].abs_upper() + 3.0 * poly.x[3].abs_upper());
     for i in 1..k {
-        if s[i] == s[i - 1] {
+        // A sign change from + to - brackets a strict local maximum, which is not a global
+        // minimum (x is not constant), so it matters for the max side only; - to + likewise
+        // for the min side (module docs, step 5).
+        let is_max = s[i - 1] && !s[i];
+        if s[i] == s[i - 1] || !need[if is_max { 0 } else { 1 }] {
             continue;
         }
         let (t0, t1) = (z[i - 1], z[i]);
@@ -286,14 +300,17 @@ pub(super) fn coord_sides(c: &[f64], a: f64, b: f64, max_gap: f64) -> Option<[Si
         let xm = poly.x(Ddi::exact(m));
         let (vm, vb) = (xm.to_interval(), xm.widen(corr).to_interval());
         let e = extremum(a, b, t0, t1, true, CandidateKind::Critical);
-        hi.attain_f64(vm.inf());
-        hi.bound(vb.sup(), e);
-        lo.attain_f64(-vm.sup());
-        lo.bound(-vb.inf(), e);
+        if is_max {
+            hi.attain_f64(vm.inf());
+            hi.bound(vb.sup(), e);
+        } else {
+            lo.attain_f64(-vm.sup());
+            lo.bound(-vb.inf(), e);
+        }
     }
     hi.stats = stats;
-    for sd in [&hi, &lo] {
-        if !(sd.upper - sd.attained <= max_gap) {
+    for (sd, &nd) in [&hi, &lo].into_iter().zip(&need) {
+        if nd && !(sd.upper - sd.attained <= max_gap) {
             return None;
         }
     }
@@ -324,16 +341,16 @@ mod tests {
     #[test]
     fn interior_extrema_and_give_ups() {
         // x = 3 t (1 - t)^2 * 2 - ... : max of a symmetric bump
-        let [hi, lo] = coord_sides(&[0.0, 1.0, 1.0, 0.0], 0.0, 1.0, 1e-15).unwrap();
+        let [hi, lo] = coord_sides(&[0.0, 1.0, 1.0, 0.0], 0.0, 1.0, 1e-15, [true; 2]).unwrap();
         // exact max 0.75 at t = 0.5, min 0 at the ends
         assert!(hi.upper >= 0.75 && hi.attained <= 0.75 && hi.upper - 0.75 < 1e-15);
         assert_eq!(-lo.upper, 0.0);
         // a double root of x' (x = t^3 shape around 1/2): not provable, gives up
-        assert!(coord_sides(&[0.0, 1.0, 0.0, 1.0], 0.0, 1.0, 1e-15).is_none());
-        let flat = coord_sides(&[2.0, 2.0, 2.0, 2.0], 0.0, 1.0, 1e-15);
+        assert!(coord_sides(&[0.0, 1.0, 0.0, 1.0], 0.0, 1.0, 1e-15, [true; 2]).is_none());
+        let flat = coord_sides(&[2.0, 2.0, 2.0, 2.0], 0.0, 1.0, 1e-15, [true; 2]);
         assert!(flat.is_none());
         // a monotone cubic with an interior control maximum: exact ends
-        let [hi, lo] = coord_sides(&[0.0, 1.0, 0.9, 0.95], 0.0, 1.0, 1e-15).unwrap();
+        let [hi, lo] = coord_sides(&[0.0, 1.0, 0.9, 0.95], 0.0, 1.0, 1e-15, [true; 2]).unwrap();
         assert_eq!((hi.upper, hi.attained), (0.95, 0.95));
         assert_eq!((lo.upper, lo.attained), (0.0, 0.0));
     }
