@@ -32,5 +32,14 @@ fn main() {
             best = best.min(t.elapsed().as_secs_f64() / cs.len() as f64);
         }
         println!("{name}: {:.0} ns per cubic", best * 1e9);
+        // the thesis's largest case: p = 3, 101 control points, 1-D
+        let big = nurbs_box::gen::thesis_curve_1d(101, 3, 101).unwrap();
+        let mut best = f64::INFINITY;
+        for _ in 0..reps * 20 {
+            let t = Instant::now();
+            std::hint::black_box(s.enclose(std::hint::black_box(&big)));
+            best = best.min(t.elapsed().as_secs_f64());
+        }
+        println!("{name}: {:.1} µs on p = 3, 101 points", best * 1e6);
     }
 }

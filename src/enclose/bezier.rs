@@ -250,6 +250,36 @@ struct Item {
     /// control-point hull (not yet converted to a Bézier segment)
     span: usize,
     piece: Option<(f64, f64, u32, Vec<Interval>)>,
+    /// whether `pri` of a span item (piece None) is already the f64 filter bound
+    filtered: bool,
+}
+
+/// The per-curve data of the branch and bound, built when some coordinate side needs it.
+struct Ctx<'a> {
+    vals: Values<'a>,
+    /// homogeneous spline in interval arithmetic (Bézier segments for the search)
+    hs: HSpline<Interval>,
+    /// the same in f64 for the span filter (non-rational curves only)
+    hf: Option<HSpline<f64>>,
+    /// non-empty spans
+    spans: Vec<usize>,
+    segs: Vec<Option<BezierSeg<Interval>>>,
+    fsegs: Vec<Option<BezierSeg<f64>>>,
+}
+
+impl<'a> Ctx<'a> {
+    fn new(c: &'a NurbsCurve) -> Ctx<'a> {
+        let (p, n) = (c.degree(), c.num_points() - 1);
+        let kn = c.knots();
+        Ctx {
+            vals: Values::new(c),
+            hs: HSpline::<Interval>::from_curve(c),
+            hf: (!c.is_rational()).then(|| HSpline::<f64>::from_curve(c)),
+            spans: (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect(),
+            segs: vec![None; n + 1],
+            fsegs: vec![None; n + 1],
+        }
+    }
 }
 impl PartialEq for Item {
     fn eq(&self, o: &Self) -> bool {
@@ -276,15 +306,15 @@ impl BezierSubdivision {
     /// and are converted to Bézier segments (interval knot insertion) only when that bound
     /// exceeds the largest value found so far. Once the best remaining bound is <= a value
     /// the curve provably attains, everything left is pruned (soundly: see `Side`).
-    fn maximize(
-        &self,
-        vals: &Values,
-        hs: &HSpline<Interval>,
-        segs: &mut [Option<BezierSeg<Interval>>],
-        spans: &[usize],
-        j: usize,
-        sign: f64,
-    ) -> Side {
+    fn maximize(&self, ctx: &mut Ctx, j: usize, sign: f64) -> Side {
+        let Ctx {
+            vals,
+            hs,
+            hf,
+            spans,
+            segs,
+            fsegs,
+        } = ctx;
         let c = vals.curve;
         let p = c.degree();
         let scale = c.coord_scale(j);
@@ -299,6 +329,7 @@ impl BezierSubdivision {
                     .fold(f64::NEG_INFINITY, f64::max),
                 span: k,
                 piece: None,
+                filtered: false,
             })
             .collect();
         let ub = |c: &[Interval]| c.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.sup()));
@@ -333,6 +364,22 @@ impl BezierSubdivision {
                     );
                     continue;
                 }
+                // f64 filter (non-rational curves): a cheap upper bound of the span from its
+                // f64 Bézier coefficients, before the interval conversion (`span_filter`).
+                if let (false, Some(hf)) = (item.filtered, hf.as_ref()) {
+                    let q = fsegs[k].get_or_insert_with(|| hf.bezier_segment(k));
+                    let last = k == spans[spans.len() - 1];
+                    if let Some((pri, at)) = span_filter(c, q, k, j, sign, last) {
+                        side.attain_f64(at);
+                        heap.push(Item {
+                            pri: pri.min(item.pri),
+                            span: k,
+                            piece: None,
+                            filtered: true,
+                        });
+                        continue;
+                    }
+                }
             }
             let seg = segs[k].get_or_insert_with(|| hs.bezier_segment(k)).coord(j);
             let Some((s0, s1, depth, co)) = item.piece else {
@@ -343,6 +390,7 @@ impl BezierSubdivision {
                     pri: ub(&co),
                     span: k,
                     piece: Some((seg.a, seg.b, 0, co)),
+                    filtered: true,
                 });
                 continue;
             };
@@ -414,6 +462,7 @@ impl BezierSubdivision {
                     pri: ub(&co),
                     span: k,
                     piece: Some((a, b, depth + 1, co)),
+                    filtered: true,
                 });
             };
             if let Some(t) = crit {
@@ -442,6 +491,7 @@ impl BezierSubdivision {
                         pri: ub(&mid),
                         span: k,
                         piece: Some((m0, m1, depth + 1, mid)),
+                        filtered: true,
                     });
                 }
             } else {
@@ -497,6 +547,50 @@ impl BezierSubdivision {
     }
 }
 
+/// The f64 span filter: `(upper bound, attained value)` of sign * C_j on span k from the f64
+/// Bézier segment `q` of the span (`HSpline::<f64>::bezier_segment`, the same Boehm knot
+/// insertion as the interval version), or `None` if something is not finite. Non-rational
+/// curves only (the homogeneous rows are the coordinates).
+///
+/// Error bound. Let M = max |P_ij| over the span's p + 1 local control points (exact data).
+/// Every exact intermediate point of the knot insertion is a convex combination of them, so
+/// |exact| <= M. One step computes α̂ = fl(fl(u - t_a) / fl(t_b - t_a)) with exact α in
+/// [0, 1] (u between the knots), |α̂ - α| <= 3.01u + η (two exact-or-relative subtractions
+/// and a quotient; η = 2^-1075 the underflow error of a product or quotient, which times
+/// |h - l| <= 2M is far below the u M terms and covered by the margin below), and
+/// r̂ = fl(fl(α̂ fl(ĥ - l̂)) + l̂) from inputs within e of exact l, h. With
+/// R = l + α (h - l): r̂ - R = (ĥ - l̂)(α̂ (1 + δ1)(1 + δ2) - α) + α (ĥ - h) + (1 - α)(l̂ - l)
+/// plus η + δ3 (m̂ + l̂), |δi| <= u, so |r̂ - R| is at most e + 2 (M + e) 5.03u plus
+/// 1.0001u (M + e) + 2η, hence at most e + 12u M + 2η while e <= M / 1000.
+/// A point passes through at most 2 (p - 1) < 2p such steps (each clamp inserts at most
+/// p - 1 knots: the span's own knot already has multiplicity >= 1), so every computed
+/// coefficient is within E = 2p (12u M + 2η) of the exact one (and e <= 24 p u M <= M / 1000
+/// for any p < 10^11). We use 2p 16u M + MIN_POSITIVE >= E (the margin covers the three
+/// roundings of computing it). The span's values lie in the hull of its exact Bézier
+/// coefficients (NURBS Book P5.x, convex hull property), so max v_i + E bounds it, and
+/// C(u_k) = b_0 (right-continuous; b_p = C(u_{k+1}) only on the last span, elsewhere it may
+/// be a left limit at a jump) is attained. Results are rounded outward by one step.
+fn span_filter(
+    c: &NurbsCurve,
+    q: &BezierSeg<f64>,
+    k: usize,
+    j: usize,
+    sign: f64,
+    last: bool,
+) -> Option<(f64, f64)> {
+    let p = c.degree();
+    let h = q.hdim();
+    let m = (k - p..=k).fold(0.0f64, |m, i| m.max(c.control_point(i)[j].abs()));
+    let e = (2 * p) as f64 * (8.0 * f64::EPSILON) * m + f64::MIN_POSITIVE;
+    let v = |i: usize| sign * q.pts[i * h + j];
+    let vmax = (0..=p).map(v).fold(f64::NEG_INFINITY, f64::max);
+    let at = if last { v(0).max(v(p)) } else { v(0) };
+    if !(vmax.is_finite() && e.is_finite() && at.is_finite()) {
+        return None;
+    }
+    Some(((vmax + e).next_up(), (at - e).next_down()))
+}
+
 fn end_kind(c: &NurbsCurve, s: f64) -> CandidateKind {
     let (a, b) = c.domain();
     if s == a || s == b {
@@ -517,18 +611,12 @@ impl BoxEncloser for BezierSubdivision {
     }
     fn enclose(&self, c: &NurbsCurve) -> Enclosure {
         let (p, n) = (c.degree(), c.num_points() - 1);
-        let kn = c.knots();
         // Clamped ends have exactly known values P_0 / P_n (see `NurbsCurve::clamped_ends`).
         let (a, b) = c.domain();
         let cl = c.clamped_ends();
         let ends = [cl[0].then_some((0, a)), cl[1].then_some((n, b))];
         // Built only when some coordinate side needs a search.
-        let mut ctx: Option<(
-            HSpline<Interval>,
-            Vec<usize>,
-            Vec<Option<BezierSeg<Interval>>>,
-            Values,
-        )> = None;
+        let mut ctx: Option<Ctx> = None;
         // A single polynomial Bézier segment of degree 2 or 3 (e.g. a 2-D cubic Bézier) goes
         // through the root-isolating fast path first (`single`), which falls back here when it
         // cannot prove a tight result.
@@ -583,16 +671,8 @@ impl BoxEncloser for BezierSubdivision {
                 if let Some(sides) = &mut fast {
                     return std::mem::replace(&mut sides[k], Side::new());
                 }
-                let (hs, spans, segs, vals) = ctx.get_or_insert_with(|| {
-                    let spans = (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect();
-                    (
-                        HSpline::<Interval>::from_curve(c),
-                        spans,
-                        vec![None; n + 1],
-                        Values::new(c),
-                    )
-                });
-                self.maximize(vals, hs, segs, spans, j, sign)
+                let ctx = ctx.get_or_insert_with(|| Ctx::new(c));
+                self.maximize(ctx, j, sign)
             };
             let mut hi = side(0, 1.0);
             let mut lo = side(1, -1.0);
@@ -685,6 +765,61 @@ mod tests {
             assert!(cb.lo <= cb.inner_lo && cb.inner_hi <= cb.hi);
             assert!(cb.gap() <= 8.0 * f64::EPSILON * 2.0, "gap {}", cb.gap());
         }
+    }
+
+    /// The f64 span filter's bounds against 256-bit Bézier segments (the same Boehm knot
+    /// insertion in MPFR: accurate to far below the filter's margin), on the families with
+    /// the hardest knot vectors and degrees up to 40.
+    #[cfg(feature = "mpfr")]
+    #[test]
+    fn span_filter_bounds_hold_against_mpfr_segments() {
+        use crate::gen::{self, Family};
+        use crate::scalar::MPFR_PREC;
+        use rug::Float;
+        let mut r = gen::rng(5);
+        let mut checked = 0;
+        for fam in [
+            Family::ClusteredKnots,
+            Family::HighDegree,
+            Family::MultipleKnots,
+            Family::Unclamped,
+            Family::ExtremeMagnitudes,
+            Family::Mixed,
+        ] {
+            for _ in 0..30 {
+                let c = fam.curve(&mut r);
+                if c.is_rational() {
+                    continue;
+                }
+                let (p, n) = (c.degree(), c.num_points() - 1);
+                let hf = HSpline::<f64>::from_curve(&c);
+                let hm = HSpline::<Float>::from_curve(&c);
+                let spans: Vec<usize> = (p..=n)
+                    .filter(|&k| c.knots()[k] < c.knots()[k + 1])
+                    .collect();
+                for &k in &spans {
+                    let (q, qm) = (hf.bezier_segment(k), hm.bezier_segment(k));
+                    let last = k == spans[spans.len() - 1];
+                    let h = q.hdim();
+                    for j in 0..c.dim() {
+                        for sign in [1.0, -1.0] {
+                            let Some((ub, at)) = span_filter(&c, &q, k, j, sign, last) else {
+                                continue;
+                            };
+                            let ex =
+                                |i: usize| Float::with_val(MPFR_PREC, &qm.pts[i * h + j] * sign);
+                            // every exact coefficient <= ub; the exact C(u_k) = b_0 >= at
+                            for i in 0..=p {
+                                assert!(ex(i) <= ub, "span {k} coord {j}: {ub} < {}", ex(i));
+                            }
+                            assert!(ex(0) >= at || (last && ex(p) >= at), "{k} {j} {at}");
+                            checked += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 500, "{checked}");
     }
 
     #[test]

@@ -28,8 +28,9 @@
 //!    run are at the run's ends, which are 0, 1 or ends of sign-change intervals. Hence
 //!    max x = max(x(0), x(1), max over the sign-change intervals), the same for min. More
 //!    sharply, a global maximiser inside (0, 1) is a root of x' where x' does not change from
-//!    - to + (that root would be a strict local minimum, and x is not constant): so only the
-//!    intervals where x' changes from + to - count for the maximum, - to + for the minimum.
+//!    negative to positive (that root would be a strict local minimum, and x is not
+//!    constant): so only the intervals where x' changes from positive to negative count for
+//!    the maximum, and those from negative to positive for the minimum.
 //!    x(0) = c_0 and x(1) = c_p exactly (clamped ends). Over a sign-change interval B with
 //!    midpoint m the second-order Taylor form (Moore 1966; Neumaier 1990, sec. 2.3)
 //!    x(B) ⊆ x(m) + x'(m) (B - m) + (x''(B) / 2) (B - m)^2 is evaluated in `Ddi` and rounded
@@ -310,7 +311,8 @@ pub(super) fn coord_sides(
     }
     hi.stats = stats;
     for (sd, &nd) in [&hi, &lo].into_iter().zip(&need) {
-        if nd && !(sd.upper - sd.attained <= max_gap) {
+        let tight = sd.upper - sd.attained <= max_gap; // (false for a NaN gap)
+        if nd && !tight {
             return None;
         }
     }
