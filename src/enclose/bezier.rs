@@ -20,6 +20,17 @@
 //! tighter verified enclosure over its parameter range); segments are dropped only when their
 //! coefficient bound is <= a value the curve provably attains.
 //!
+//! Two shortcuts in front of the interval work (speed; same guarantees):
+//!
+//! * A single polynomial Bézier segment of degree 2 or 3 (a plain quadratic / cubic Bézier
+//!   curve) goes through [`single`]: f64 root estimates of C_j', proven derivative signs at a
+//!   few test points (an f64 filter with an a-priori error bound, `Ddi` where it is unsure),
+//!   root counting, and a `Ddi` Taylor enclosure over each tiny bracket. It hands the curve to
+//!   the branch and bound below when it cannot prove a result within two ulps.
+//! * Before a span is converted in interval arithmetic, its f64 Bézier coefficients with an
+//!   a-priori knot-insertion error bound ([`span_filter`]) give a cheap, sound upper bound and
+//!   an attained value, which prune most spans of long splines without interval work.
+//!
 //! The minimum is computed as the maximum of -C_j (negation is exact).
 
 use super::{
