@@ -38,6 +38,7 @@ use super::{
 };
 use crate::bspline::{BezierSeg, HSpline};
 use crate::curve::NurbsCurve;
+use crate::ddi::Ddi;
 use crate::scalar::iv;
 use crate::tight::TightEval;
 use inari::Interval;
@@ -61,9 +62,10 @@ pub struct BezierSubdivision {
     /// are bounded as a whole and reported as [`Termination::WorkLimit`]. Bounds the time of
     /// high-degree curves (issue 6).
     pub max_work: u64,
-    /// Use the root-isolating fast path for a single polynomial Bézier segment of degree 2
-    /// or 3 (module `single`; default true). It falls back to the branch and bound by itself
-    /// whenever it cannot prove a tight result; switching it off is for comparisons.
+    /// Use the root-isolating fast path (module `single`; default true) for a single
+    /// polynomial Bézier segment of degree 2 or 3, and on the spans of non-rational curves of
+    /// degree 2 or 3. It falls back to the branch and bound by itself whenever it cannot prove
+    /// a tight result; switching it off is for comparisons.
     pub fast_path: bool,
 }
 
@@ -80,6 +82,13 @@ impl Default for BezierSubdivision {
 }
 
 impl BezierSubdivision {
+    /// The largest certified gap the `single` fast path may return for coordinate j: the
+    /// tolerance, but at least two ulps of the scale (the resolution the reference tests use).
+    fn max_gap(&self, c: &NurbsCurve, j: usize) -> f64 {
+        let scale = c.coord_scale(j);
+        (self.tol * scale).max(2.0 * crate::scalar::ulp(scale))
+    }
+
     /// Default settings with a given relative tolerance.
     pub fn with_tol(tol: f64) -> Self {
         BezierSubdivision {
@@ -272,23 +281,31 @@ struct Ctx<'a> {
     hs: HSpline<Interval>,
     /// the same in f64 for the span filter (non-rational curves only)
     hf: Option<HSpline<f64>>,
+    /// the same in double-double for the `single` fast path on spans (non-rational curves of
+    /// degree 2 or 3 only)
+    hd: Option<HSpline<Ddi>>,
     /// non-empty spans
     spans: Vec<usize>,
     segs: Vec<Option<BezierSeg<Interval>>>,
     fsegs: Vec<Option<BezierSeg<f64>>>,
+    dsegs: Vec<Option<BezierSeg<Ddi>>>,
 }
 
 impl<'a> Ctx<'a> {
-    fn new(c: &'a NurbsCurve) -> Ctx<'a> {
+    /// `fast`: whether to use the `single` fast path on spans.
+    fn new(c: &'a NurbsCurve, fast: bool) -> Ctx<'a> {
         let (p, n) = (c.degree(), c.num_points() - 1);
         let kn = c.knots();
         Ctx {
             vals: Values::new(c),
             hs: HSpline::<Interval>::from_curve(c),
             hf: (!c.is_rational()).then(|| HSpline::<f64>::from_curve(c)),
+            hd: (fast && !c.is_rational() && (2..=3).contains(&p))
+                .then(|| HSpline::<Ddi>::from_curve(c)),
             spans: (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect(),
             segs: vec![None; n + 1],
             fsegs: vec![None; n + 1],
+            dsegs: vec![None; n + 1],
         }
     }
 }
@@ -322,9 +339,11 @@ impl BezierSubdivision {
             vals,
             hs,
             hf,
+            hd,
             spans,
             segs,
             fsegs,
+            dsegs,
         } = ctx;
         let c = vals.curve;
         let p = c.degree();
@@ -388,6 +407,39 @@ impl BezierSubdivision {
                             piece: None,
                             filtered: true,
                         });
+                        continue;
+                    }
+                }
+                // The root-isolating fast path on the span's double-double Bézier segment
+                // (non-rational, p = 2 or 3): a proven result for the whole span, or nothing.
+                if let Some(hd) = hd.as_ref() {
+                    let q = dsegs[k].get_or_insert_with(|| hd.bezier_segment(k));
+                    let h = q.hdim();
+                    let mut v = [Ddi::exact(0.0); 4];
+                    for (i, x) in v.iter_mut().enumerate().take(p + 1) {
+                        *x = q.pts[i * h + j];
+                    }
+                    let kn = c.knots();
+                    let (u0, u1) = (kn[k], kn[k + 1]);
+                    // C(u1) = c_p unless u1 is a jump (multiplicity p + 1) inside the domain
+                    let last = k == spans[spans.len() - 1];
+                    let seg = single::Segment {
+                        c: &v[..=p],
+                        a: u0,
+                        b: u1,
+                        end_kinds: [end_kind(c, u0), end_kind(c, u1)],
+                        right_attained: last || kn.iter().filter(|&&x| x == u1).count() <= p,
+                    };
+                    let i = if sign > 0.0 { 0 } else { 1 };
+                    let mut need = [false; 2];
+                    need[i] = true;
+                    if let Some(mut sd) = single::coord_sides(&seg, self.max_gap(c, j), need) {
+                        let s = std::mem::replace(&mut sd[i], Side::new());
+                        side.attain_f64(s.attained);
+                        for (ub, e) in s.cands {
+                            side.bound(ub, e);
+                        }
+                        side.stats.add(&s.stats);
                         continue;
                     }
                 }
@@ -666,14 +718,18 @@ impl BoxEncloser for BezierSubdivision {
             let need = [short[0].is_none(), short[1].is_none()];
             let mut fast = None;
             if single_segment && need.contains(&true) {
-                let mut v = [0.0; 4];
+                let mut v = [Ddi::exact(0.0); 4];
                 for (i, x) in v.iter_mut().enumerate().take(p + 1) {
-                    *x = c.control_point(i)[j];
+                    *x = Ddi::exact(c.control_point(i)[j]);
                 }
-                let scale = c.coord_scale(j);
-                // (two ulps of the scale, the resolution the reference tests use)
-                let max_gap = (self.tol * scale).max(2.0 * crate::scalar::ulp(scale));
-                fast = single::coord_sides(&v[..=p], a, b, max_gap, need);
+                let seg = single::Segment {
+                    c: &v[..=p],
+                    a,
+                    b,
+                    end_kinds: [CandidateKind::EndPoint; 2],
+                    right_attained: true,
+                };
+                fast = single::coord_sides(&seg, self.max_gap(c, j), need);
             }
             let mut side = |k: usize, sign: f64| -> Side {
                 if let Some(s) = short[k].take() {
@@ -682,7 +738,7 @@ impl BoxEncloser for BezierSubdivision {
                 if let Some(sides) = &mut fast {
                     return std::mem::replace(&mut sides[k], Side::new());
                 }
-                let ctx = ctx.get_or_insert_with(|| Ctx::new(c));
+                let ctx = ctx.get_or_insert_with(|| Ctx::new(c, self.fast_path));
                 self.maximize(ctx, j, sign)
             };
             let mut hi = side(0, 1.0);

@@ -68,27 +68,42 @@ struct Poly {
     p: usize,
     /// x: a_0 .. a_p (a_3 = 0 for p = 2)
     x: [Ddi; 4],
+    /// first differences Δc_0 .. Δc_{p-1}
+    d: [Ddi; 3],
+}
+
+/// Whether a `Ddi` is a single f64 value.
+fn is_f64(x: &Ddi) -> bool {
+    x.lo() == 0.0 && x.rad() == 0.0
 }
 
 impl Poly {
-    /// Power form of sum_i c_i B_i^p(t) (p = 2 or 3) from exact forward differences.
-    fn new(c: &[f64]) -> Poly {
+    /// Power form of sum_i c_i B_i^p(t) (p = 2 or 3) from enclosed coefficients: the first
+    /// differences are exact double-words (TwoSum) when the c_i are f64 values, enclosures
+    /// otherwise; higher differences are enclosed by `Ddi` sums.
+    fn new(c: &[Ddi]) -> Poly {
         let p = c.len() - 1;
         let z = Ddi::exact(0.0);
-        // Δc_i exact (TwoSum); higher differences enclosed by Ddi sums.
-        let d: [Ddi; 3] =
-            std::array::from_fn(|i| if i < p { Ddi::diff(c[i + 1], c[i]) } else { z });
+        let d: [Ddi; 3] = std::array::from_fn(|i| {
+            if i >= p {
+                z
+            } else if is_f64(&c[i]) && is_f64(&c[i + 1]) {
+                Ddi::diff(c[i + 1].hi(), c[i].hi())
+            } else {
+                c[i + 1] - c[i]
+            }
+        });
         let dd0 = d[1] - d[0];
         let x = if p == 3 {
             // a_1 = 3 Δc_0, a_2 = 3 Δ^2 c_0, a_3 = Δ^3 c_0 = Δc_2 - 2 Δc_1 + Δc_0
             let three = Ddi::exact(3.0);
             let a3 = (d[2] - d[1]) - dd0;
-            [Ddi::exact(c[0]), three * d[0], three * dd0, a3]
+            [c[0], three * d[0], three * dd0, a3]
         } else {
             // a_1 = 2 Δc_0, a_2 = Δ^2 c_0
-            [Ddi::exact(c[0]), Ddi::exact(2.0) * d[0], dd0, z]
+            [c[0], Ddi::exact(2.0) * d[0], dd0, z]
         };
-        Poly { p, x }
+        Poly { p, x, d }
     }
     fn x(&self, t: Ddi) -> Ddi {
         horner(&self.x[..=self.p], t)
@@ -196,18 +211,25 @@ fn extremum(a: f64, b: f64, t0: f64, t1: f64, unique: bool, kind: CandidateKind)
     }
 }
 
-/// Both sides of coordinate `c` (the p + 1 control values of a single polynomial Bézier
-/// segment over [a, b], p = 2 or 3): `[max side, min side]` as sign-adjusted [`Side`]s (see
-/// the module docs), or `None` when the fast path cannot prove a result whose gap is at most
-/// `max_gap` on every side it is asked for (`need`: [max, min]; a side not needed comes
-/// back incomplete and must not be used).
-pub(super) fn coord_sides(
-    c: &[f64],
-    a: f64,
-    b: f64,
-    max_gap: f64,
-    need: [bool; 2],
-) -> Option<[Side; 2]> {
+/// One polynomial Bézier segment of one coordinate: coefficients c_0 .. c_p (p = 2 or 3; f64
+/// values, or enclosures of the exact ones) over the parameter interval [a, b].
+pub(super) struct Segment<'a> {
+    pub c: &'a [Ddi],
+    pub a: f64,
+    pub b: f64,
+    /// what the ends are (domain end, knot)
+    pub end_kinds: [CandidateKind; 2],
+    /// whether the curve attains its value at b (false at a jump knot, where c_p is a left
+    /// limit only; it still bounds the segment)
+    pub right_attained: bool,
+}
+
+/// Both sides of a coordinate on one polynomial Bézier segment: `[max side, min side]` as
+/// sign-adjusted [`Side`]s (see the module docs), or `None` when the fast path cannot prove a
+/// result whose gap is at most `max_gap` on every side it is asked for (`need`: [max, min];
+/// a side not needed comes back incomplete and must not be used).
+pub(super) fn coord_sides(seg: &Segment, max_gap: f64, need: [bool; 2]) -> Option<[Side; 2]> {
+    let Segment { c, a, b, .. } = *seg;
     let p = c.len().checked_sub(1)?;
     if !(2..=3).contains(&p) {
         return None;
@@ -234,23 +256,30 @@ pub(super) fn coord_sides(
     }
     z[k] = 1.0;
     k += 1;
-    // Signs at the ends are exact comparisons: x'(0) = p (c_1 - c_0), x'(1) = p (c_p - c_{p-1}).
+    // Signs at the ends. For f64 coefficients they are exact comparisons: x'(0) = p (c_1 - c_0),
+    // x'(1) = p (c_p - c_{p-1}).
     // If x'(0) = 0 exactly, x' = t q(t) with q of degree p - 2 and q(0) = (p - 1)(c_2 - c_1)
     // (Bernstein coefficients of x' / p: Δc_0 = 0, Δc_1, ...; divide out t), so x' has the sign
     // of c_2 - c_1 just right of 0 and the roots of x' in (0, 1] are those of q: one fewer.
     // The same at t = 1 with c_{p-1} - c_{p-2}. The sign of q at the end replaces that of x'
     // there, and the counting of step 4 runs on q (x' = t q or (1 - t) q or t (1 - t) q has
     // the sign of q inside (0, 1)).
-    let cmp = |x: f64, y: f64| -> Option<bool> { (x != y).then_some(x > y) };
+    // (For enclosed coefficients the filter of `Deriv` decides, and an end slope that may be
+    // zero gives up.)
     let mut max_roots = p - 1;
-    let mut end_sign = |i: usize, j: usize, k: usize| -> Option<bool> {
-        cmp(c[j], c[i]).or_else(|| {
-            max_roots -= 1;
-            cmp(c[k], c[j])
-        })
+    let (s0, s1) = if c.iter().all(is_f64) {
+        let cmp =
+            |x: &Ddi, y: &Ddi| -> Option<bool> { (x.hi() != y.hi()).then_some(x.hi() > y.hi()) };
+        let mut end_sign = |i: usize, j: usize, k: usize| -> Option<bool> {
+            cmp(&c[j], &c[i]).or_else(|| {
+                max_roots -= 1;
+                cmp(&c[k], &c[j])
+            })
+        };
+        (end_sign(0, 1, 2)?, end_sign(p, p - 1, p - 2).map(|up| !up)?)
+    } else {
+        (deriv.sign(&poly, 0.0)?, deriv.sign(&poly, 1.0)?)
     };
-    let s0 = end_sign(0, 1, 2)?;
-    let s1 = end_sign(p, p - 1, p - 2).map(|up| !up)?;
     let mut s = [false; 6];
     s[0] = s0;
     s[k - 1] = s1;
@@ -263,20 +292,26 @@ pub(super) fn coord_sides(
     // zeros at the ends, or 0 for a cubic whose discriminant is proven negative (only needed
     // when there are few changes).
     if changes + 1 < max_roots {
-        let d: [Ddi; 3] = std::array::from_fn(|i| Ddi::diff(c[i + 1], c[i]));
+        let d = &poly.d;
         if sign(d[1] * d[1] - d[0] * d[2]) != Some(false) {
             return None;
         }
     }
-    // Candidates: the exact end values and the enclosures over the sign-change intervals.
+    // Candidates: the end values and the enclosures over the sign-change intervals.
     let mut hi = Side::new();
     let mut lo = Side::new();
-    for (t, v) in [(0.0, c[0]), (1.0, c[p])] {
-        let e = extremum(a, b, t, t, false, CandidateKind::EndPoint);
-        hi.attain_f64(v);
-        hi.bound(v, e);
-        lo.attain_f64(-v);
-        lo.bound(-v, e);
+    for (t, v, kind, attained) in [
+        (0.0, c[0], seg.end_kinds[0], true),
+        (1.0, c[p], seg.end_kinds[1], seg.right_attained),
+    ] {
+        let e = extremum(a, b, t, t, false, kind);
+        let v = v.to_interval();
+        if attained {
+            hi.attain_f64(v.inf());
+            lo.attain_f64(-v.sup());
+        }
+        hi.bound(v.sup(), e);
+        lo.bound(-v.inf(), e);
     }
     // max |x''(ξ) / 2| over [0, 1] <= |α_2| + 3 |α_3| <= m2 (Lemma B: a term and a product).
     let m2 = up(poly.x[2].abs_upper() + 3.0 * poly.x[3].abs_upper());
@@ -328,7 +363,7 @@ mod tests {
     #[test]
     fn power_form_matches_bernstein() {
         let c = [1.0, -2.0, 4.0, 0.5];
-        let poly = Poly::new(&c);
+        let poly = Poly::new(&c.map(Ddi::exact));
         for i in 0..=8 {
             let t = i as f64 / 8.0;
             let bern = (1.0 - t).powi(3) * c[0]
@@ -340,19 +375,31 @@ mod tests {
         }
     }
 
+    fn sides(c: &[f64]) -> Option<[Side; 2]> {
+        let c: Vec<Ddi> = c.iter().map(|&x| Ddi::exact(x)).collect();
+        let seg = Segment {
+            c: &c,
+            a: 0.0,
+            b: 1.0,
+            end_kinds: [CandidateKind::EndPoint; 2],
+            right_attained: true,
+        };
+        coord_sides(&seg, 1e-15, [true; 2])
+    }
+
     #[test]
     fn interior_extrema_and_give_ups() {
         // x = 3 t (1 - t)^2 * 2 - ... : max of a symmetric bump
-        let [hi, lo] = coord_sides(&[0.0, 1.0, 1.0, 0.0], 0.0, 1.0, 1e-15, [true; 2]).unwrap();
+        let [hi, lo] = sides(&[0.0, 1.0, 1.0, 0.0]).unwrap();
         // exact max 0.75 at t = 0.5, min 0 at the ends
         assert!(hi.upper >= 0.75 && hi.attained <= 0.75 && hi.upper - 0.75 < 1e-15);
         assert_eq!(-lo.upper, 0.0);
         // a double root of x' (x = t^3 shape around 1/2): not provable, gives up
-        assert!(coord_sides(&[0.0, 1.0, 0.0, 1.0], 0.0, 1.0, 1e-15, [true; 2]).is_none());
-        let flat = coord_sides(&[2.0, 2.0, 2.0, 2.0], 0.0, 1.0, 1e-15, [true; 2]);
+        assert!(sides(&[0.0, 1.0, 0.0, 1.0]).is_none());
+        let flat = sides(&[2.0, 2.0, 2.0, 2.0]);
         assert!(flat.is_none());
         // a monotone cubic with an interior control maximum: exact ends
-        let [hi, lo] = coord_sides(&[0.0, 1.0, 0.9, 0.95], 0.0, 1.0, 1e-15, [true; 2]).unwrap();
+        let [hi, lo] = sides(&[0.0, 1.0, 0.9, 0.95]).unwrap();
         assert_eq!((hi.upper, hi.attained), (0.95, 0.95));
         assert_eq!((lo.upper, lo.attained), (0.0, 0.0));
     }
