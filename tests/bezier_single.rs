@@ -4,9 +4,7 @@
 //! branch and bound (`fast_path: false`).
 
 use nurbs_box::enclose::{BezierSubdivision, Rescaled};
-use nurbs_box::gen::{self, Family, GenParams};
 use nurbs_box::{BoxEncloser, Enclosure, NurbsCurve};
-use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 
 /// The registered strategy (`Rescaled(BezierSubdivision::default())`) and the same without
@@ -29,6 +27,7 @@ fn bezier(pts: Vec<Vec<f64>>, a: f64, b: f64) -> NurbsCurve {
     NurbsCurve::new(p, k, pts, None).unwrap()
 }
 
+#[cfg_attr(not(feature = "mpfr"), allow(dead_code))]
 /// Random single-segment quadratics and cubics of many shapes (one coordinate per shape
 /// kind, so every curve mixes them).
 fn random_single(rng: &mut impl Rng) -> NurbsCurve {
@@ -150,7 +149,9 @@ fn hand_made_cases() {
 #[cfg(feature = "mpfr")]
 mod mpfr {
     use super::*;
+    use nurbs_box::gen::{self, Family, GenParams};
     use nurbs_box::reference::{reference_box, ulps_outside};
+    use proptest::prelude::{any, prop_assert, proptest};
 
     /// Every bound of the fast path must be within this many ulps of the coordinate scale of
     /// the exact extremum (the fast path's own acceptance rule is a certified gap of 2 ulps;
@@ -174,7 +175,8 @@ mod mpfr {
                 let sc = c.coord_scale(j);
                 let dl = ulps_outside(cb.lo, &rb.lo[j], sc, false);
                 let dh = ulps_outside(cb.hi, &rb.hi[j], sc, true);
-                if !(dl >= 0.0 && dh >= 0.0) {
+                let sound = dl >= 0.0 && dh >= 0.0; // (false for NaN)
+                if !sound {
                     return Err(format!(
                         "variant {k} coord {j}: MISS [{}, {}] ({dl}, {dh} ulps) exact [{}, {}]\n{curve}",
                         cb.lo, cb.hi, rb.lo[j], rb.hi[j]
@@ -185,7 +187,8 @@ mod mpfr {
                 // 2^-250 beyond it)
                 let il = ulps_outside(cb.inner_lo, &rb.lo[j], sc, true);
                 let ih = ulps_outside(cb.inner_hi, &rb.hi[j], sc, false);
-                if !(il >= 0.0 && ih >= 0.0) {
+                let reached = il >= 0.0 && ih >= 0.0;
+                if !reached {
                     return Err(format!(
                         "variant {k} coord {j}: inner [{}, {}] not reached, exact [{}, {}]\n{curve}",
                         cb.inner_lo, cb.inner_hi, rb.lo[j], rb.hi[j]
@@ -196,7 +199,8 @@ mod mpfr {
             dist.push(d);
         }
         for (i, (&f, &g)) in dist[0].iter().zip(&dist[1]).enumerate() {
-            if !(f <= FAST_MAX_ULPS.max(g)) {
+            let ok = f <= FAST_MAX_ULPS.max(g); // (false for NaN)
+            if !ok {
                 return Err(format!(
                     "bound {i}: {f} ulps outside the exact box (general path: {g})\n{curve}"
                 ));
