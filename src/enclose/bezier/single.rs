@@ -1,19 +1,25 @@
-//! Fast path of the `bezier` strategy for a single polynomial Bézier segment of degree 2 or 3
-//! (a clamped curve with p + 1 control points and no weights: the common 2-D cubic Bézier).
+//! Root-isolating fast path of the `bezier` strategy for one polynomial Bézier segment of
+//! degree 2 or 3: a single clamped segment without weights (the common 2-D cubic Bézier), and
+//! the spans of non-rational quadratic / cubic splines (segments from double-double knot
+//! insertion, `HSpline::<Ddi>::bezier_segment`).
 //!
 //! For one coordinate x(t) = sum_i c_i B_i^p(t), t in [0, 1] (the curve's image does not
-//! depend on the parametrisation, so the local parameter is used throughout), with exact f64
-//! control values c_i:
+//! depend on the parametrisation, so the local parameter is used throughout), with control
+//! values c_i that are exact f64 (a single segment) or `Ddi` enclosures of the exact ones (a
+//! span; then every step below holds for the exact polynomial, the end slopes' signs come from
+//! the filter of step 3 instead of exact comparisons, and the end values are enclosures; the
+//! value at the right end counts as attained only where the curve is continuous):
 //!
 //! 1. Power form x(t) = a_0 + a_1 t + a_2 t^2 + a_3 t^3 from the forward differences
 //!    a_k = binom(p, k) Δ^k c_0 (Farin, *Curves and Surfaces for CAGD*, monomial form of a
-//!    Bézier curve), in [`Ddi`]: the first differences Δc_i are exact double-words (TwoSum),
-//!    so every coefficient encloses the exact one about 2^-100 relative wide.
+//!    Bézier curve), in [`Ddi`]: the first differences Δc_i are exact double-words (TwoSum)
+//!    for f64 data, so every coefficient encloses the exact one about 2^-100 relative wide.
 //! 2. f64 estimates of the roots of x' (quadratic formula in the cancellation-free form).
 //!    Nothing about soundness depends on them: they only choose test points.
 //! 3. Test points 0 = z_0 < z_1 < ... < z_k = 1: both ends and r ± h around each estimate r
-//!    (h = 2^-40). The sign of x'(z_i) is *proven* at each point (`Ddi` Horner enclosure
-//!    excluding 0); if any sign is not proven the fast path gives up.
+//!    (h = 2^-40). The sign of x'(z_i) is *proven* at each point (an f64 filter with an
+//!    a-priori error bound, [`Deriv`], else a `Ddi` Horner enclosure excluding 0); if any sign
+//!    is not proven the fast path gives up.
 //! 4. Root counting. x' is a non-zero polynomial (it has a proven non-zero value) of degree
 //!    p - 1, so it has at most R = p - 1 real roots, counted with multiplicity; R = 0 when the
 //!    discriminant Δc_1^2 - Δc_0 Δc_2 of the cubic's x'/3 (Bernstein form d_0 (1-t)^2 +
