@@ -94,7 +94,7 @@ pub struct TightEval {
 
 /// Horner's rule in `Ddi` with the fused step [`Ddi::mul_add`] (an empty polynomial is 0).
 #[inline]
-fn horner(c: &[Ddi], s: Ddi) -> Ddi {
+pub(crate) fn horner(c: &[Ddi], s: Ddi) -> Ddi {
     match c.split_last() {
         None => Ddi::exact(0.0),
         Some((&last, rest)) => rest.iter().rev().fold(last, |acc, &ck| acc.mul_add(s, ck)),

@@ -124,24 +124,16 @@ impl Rescaling {
     pub fn of(c: &NurbsCurve) -> Option<Rescaling> {
         let d = c.dim();
         let pts = c.points_flat();
-        let mut coord_exp = vec![0; d];
-        let mut coord_rounded = vec![false; d];
-        for j in 0..d {
-            let m = pts
-                .iter()
-                .skip(j)
-                .step_by(d)
-                .fold(0.0f64, |m, x| m.max(x.abs()));
-            let e = exponent(m);
-            if e.abs() > COORD_WINDOW {
-                coord_exp[j] = e;
-                coord_rounded[j] = pts
-                    .iter()
+        let coord_e = |j: usize| {
+            exponent(
+                pts.iter()
                     .skip(j)
                     .step_by(d)
-                    .any(|&x| ldexp_exact(x, -e).is_none());
-            }
-        }
+                    .fold(0.0f64, |m, x| m.max(x.abs())),
+            )
+        };
+        // (checked first without allocating: moderate curves are the common case)
+        let coords_moderate = (0..d).all(|j| coord_e(j).abs() <= COORD_WINDOW);
         let mut weight_exp = 0;
         if let Some(w) = c.weights() {
             let e = exponent(w.iter().fold(0.0f64, |m, &x| m.max(x)));
@@ -156,6 +148,22 @@ impl Rescaling {
         let e = exponent(0.5 * b - 0.5 * a) + 1;
         if e.abs() > KNOT_WINDOW && c.knots().iter().all(|&x| ldexp_exact(x, -e).is_some()) {
             knot_exp = e;
+        }
+        if coords_moderate && weight_exp == 0 && knot_exp == 0 {
+            return None;
+        }
+        let mut coord_exp = vec![0; d];
+        let mut coord_rounded = vec![false; d];
+        for j in 0..d {
+            let e = coord_e(j);
+            if e.abs() > COORD_WINDOW {
+                coord_exp[j] = e;
+                coord_rounded[j] = pts
+                    .iter()
+                    .skip(j)
+                    .step_by(d)
+                    .any(|&x| ldexp_exact(x, -e).is_none());
+            }
         }
         let r = Rescaling {
             coord_exp,
