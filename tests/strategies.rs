@@ -762,7 +762,13 @@ mod mpfr {
                     nurbs_box::curve_to_json(c)
                 ));
             }
-            if inner && !(rb.lo[j] <= cb.inner_lo && cb.inner_hi <= rb.hi[j]) {
+            // inner bounds reached (exact min <= inner_lo, inner_hi <= exact max), up to the
+            // reference's resolution (ulps_outside counts |distance| < 2^-160 of the scale as 0:
+            // an attained f64 end value may sit ~1e-79 off the MPFR value)
+            let sc = c.coord_scale(j);
+            let reached = ulps_outside(cb.inner_lo, &rb.lo[j], sc, true) >= 0.0
+                && ulps_outside(cb.inner_hi, &rb.hi[j], sc, false) >= 0.0;
+            if inner && !reached {
                 return Err(format!(
                     "{}: coord {j}: inner [{}, {}] not reached, exact [{}, {}]\ncurve: {}",
                     e.strategy,
