@@ -18,6 +18,13 @@
 //!   the thesis's C_j' / C_j'' (listing `Diff_intKNR`, eq. 3.10) is [`DerivForm::Quotient`];
 //! * cheap monotonicity pre-tests skip most spans, and a span whose local control points lie
 //!   inside the box found so far is skipped (convex hull property, thesis prop. 2.1);
+//! * by default f, f' and the values over a box come from the span's Bernstein form
+//!   ([`Newton::bernstein`]: the Bézier points of C_j - c, c a control point value of the
+//!   span, and the Bernstein coefficients of the derivative numerator, restricted to the box by
+//!   de Casteljau): no dependency-effect growth of interval de Boor over wide boxes, and no
+//!   cancellation for nearly flat coordinates (extreme weights, flat runs), where interval
+//!   de Boor on the homogeneous rows cannot tell f from 0 and the search used to stop at its
+//!   limits with the control-hull bound;
 //! * candidate values use the mean-value form C(m) + C'(X)(X - m), which is tight at a
 //!   critical point (C' ~ 0 there).
 
@@ -508,14 +515,20 @@ impl<'a> Engine<'a> {
         } else {
             // C over the box (TightEval: second-order Taylor form around the midpoint m,
             // about one ulp wide near a critical point); m is in [lo, hi) inside span k, where
-            // the curve is this piece, so C(m) is attained; so is C(lo) (lo < hi <= u_{k+1}).
-            // (Both: a box ending at a critical point at the span end has its best attained
-            // value at an end; boxes meet there, so some box has it as its lo.)
-            self.stats.point_evaluations += 2;
+            // the curve is this piece, so C(m) is attained. So is C(lo) (lo < hi <= u_{k+1}),
+            // evaluated too when lo is the knot u_k: a critical point at a knot is often the
+            // extremum, and the boxes on both sides only reach it at an end.
+            self.stats.point_evaluations += 1;
             let m = midpoint(cd.lo, cd.hi);
+            let at_knot = cd.lo == self.c.knots()[k];
             let cm = [
                 self.tight.coord_at(self.j, m),
-                self.tight.coord_at(self.j, cd.lo),
+                if at_knot {
+                    self.stats.point_evaluations += 1;
+                    self.tight.coord_at(self.j, cd.lo)
+                } else {
+                    Interval::EMPTY
+                },
             ];
             let mut enc = self.tight.coord_over(self.j, cd.lo, cd.hi);
             if let Some(sp) = self.poly.as_ref().filter(|sp| sp.k == k) {
