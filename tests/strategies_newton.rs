@@ -262,7 +262,8 @@ fn tightness_against_reference() {
         100.0 * within4
     );
     assert!(med <= 1.0);
-    assert!(within4 >= 0.95, "{within4}");
+    // (max 3e7 ulps before the Bernstein form: 2-ulp parameter boxes on 1e-12 spans at u ~ 6)
+    assert!(max <= 4.0, "{max}");
 }
 
 /// High degree (p = 20..40), rational, several spans: every bound of the default `newton`

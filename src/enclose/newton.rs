@@ -33,6 +33,7 @@ use super::{
 };
 use crate::bspline::{BezierSeg, HSpline};
 use crate::curve::NurbsCurve;
+use crate::ddi::Ddi;
 use crate::eval::CurveEval;
 use crate::knots::multiplicity;
 use crate::mr::Mr;
@@ -273,6 +274,9 @@ struct Cand {
     /// whether the curve attains the value of span k's piece at the point(s) evaluated (false
     /// for the left limit at a discontinuity)
     attained: bool,
+    /// the box in the span's local parameter t, whose image u([t0, t1]) is in [lo, hi]
+    /// (boxes of a search on the Bernstein form)
+    t: Option<(f64, f64)>,
 }
 
 impl Cand {
@@ -285,6 +289,7 @@ impl Cand {
             kind,
             unique: false,
             attained,
+            t: None,
         }
     }
 }
@@ -411,7 +416,9 @@ impl<'a> Engine<'a> {
         (v[0], v[1])
     }
 
-    /// Enclosure of C_j over / at `u` in the closed span k.
+    /// Enclosure of C_j over / at `u` in the closed span k. With the Bernstein form
+    /// ([`Newton::bernstein`]) here and in [`Engine::f`], [`Engine::df`] `u` is the local
+    /// parameter t in [0, 1] of the span (the search then runs in t).
     fn value(&mut self, k: usize, u: Interval) -> Interval {
         self.stats.point_evaluations += 1;
         if let Some(sp) = self.poly.as_ref().filter(|sp| self.bern && sp.k == k) {
@@ -443,7 +450,7 @@ impl<'a> Engine<'a> {
         self.stats.derivative_evaluations += 1;
         let bern = self.poly.as_ref().filter(|sp| self.bern && sp.k == k);
         let r = match self.s.form {
-            // the Bernstein form's F(t(u)): same sign and zeros as C_j' (see SpanPoly)
+            // the Bernstein form's F(t): same sign and zeros as C_j' (see SpanPoly)
             _ if bern.is_some() => bern.map_or(Interval::ENTIRE, |sp| sp.f(u.inf(), u.sup())),
             DerivForm::Quotient => self.value_and_slope(k, u).1,
             // (non-rational: f = A_j', no level-0 evaluation)
@@ -466,7 +473,7 @@ impl<'a> Engine<'a> {
         self.stats.derivative_evaluations += 1;
         let bern = self.poly.as_ref().filter(|sp| self.bern && sp.k == k);
         let r = if let Some(sp) = bern {
-            // d/du F(t(u)), the derivative of the f above
+            // F'(t), the derivative of the f above
             sp.df(u.inf(), u.sup())
         } else if !self.rational {
             self.level(2, k, u).0
@@ -531,12 +538,19 @@ impl<'a> Engine<'a> {
                 },
             ];
             let mut enc = self.tight.coord_over(self.j, cd.lo, cd.hi);
-            if let Some(sp) = self.poly.as_ref().filter(|sp| sp.k == k) {
-                // the hull of the Bézier points of the piece over the box (convex hull
-                // property, see SpanPoly::values): also an enclosure of its values there
-                let b = sp.values(cd.lo, cd.hi);
+            let mut cm = cm;
+            if let (Some((t0, t1)), Some(sp)) = (cd.t, self.poly.as_ref().filter(|sp| sp.k == k)) {
+                // The hull of the Bézier points of the piece over [t0, t1] (convex hull
+                // property, see SpanPoly::values): also an enclosure of its values on the box,
+                // and far tighter than [lo, hi] when the span is below the f64 resolution of
+                // u (a 1e-12 span at u ~ 6: C'' ~ 1e24 times ulp(u)^2). The piece's value at
+                // u(t_mid), a real in the span, is attained.
+                let (b, at) = sp.values_tight(self.c, self.j, t0, t1);
                 if !b.intersection(enc).is_empty() {
                     enc = enc.intersection(b);
+                }
+                if cm[1].is_empty() {
+                    cm[1] = at;
                 }
             }
             (enc, cm)
@@ -861,18 +875,29 @@ impl<'a> Engine<'a> {
             }
             status[si] = Status::Searched;
             boxes.clear();
-            let t = self.search(k, sa, sb, (acc.inner_lo, acc.inner_hi), &mut boxes);
+            // the Bernstein form is searched in the local parameter t in [0, 1]
+            let bern = self.bern && self.poly.is_some();
+            let (x0, x1) = if bern { (0.0, 1.0) } else { (sa, sb) };
+            let t = self.search(k, x0, x1, (acc.inner_lo, acc.inner_hi), &mut boxes);
             if term == Termination::Converged {
                 term = t;
             }
             for zb in &boxes {
+                let (lo, hi, t) = match self.poly.as_ref().filter(|_| bern) {
+                    Some(sp) => {
+                        let (lo, hi) = sp.to_u(zb.lo, zb.hi);
+                        (lo, hi, Some((zb.lo, zb.hi)))
+                    }
+                    None => (zb.lo, zb.hi, None),
+                };
                 let cd = Cand {
                     k,
-                    lo: zb.lo,
-                    hi: zb.hi,
+                    lo,
+                    hi,
                     kind: CandidateKind::Critical,
                     unique: zb.unique,
                     attained: true,
+                    t,
                 };
                 let (e, at) = self.eval_cand(&cd);
                 acc.add(&cd, e, at);
@@ -942,27 +967,7 @@ impl SpanPoly {
         let p = c.degree();
         let rational = c.is_rational();
         let shift = span_shift((k - p..=k).map(|i| c.control_point(i)[j]).collect());
-        let cs = Mr::from_f64(shift);
-        let mut pts = Vec::with_capacity((p + 1) * (1 + rational as usize));
-        for i in k - p..=k {
-            // x_i - c: exact for x_i = c (and within a factor 2 of c, Sterbenz), else enclosed
-            let x = Mr::from_f64(c.control_point(i)[j]) - cs;
-            if rational {
-                let w = Mr::from_f64(c.weight(i));
-                pts.push(x * w);
-                pts.push(w);
-            } else {
-                pts.push(x);
-            }
-        }
-        let local = HSpline {
-            degree: p,
-            knots: c.knots()[k - p..=k + p + 1].to_vec(),
-            dim: 1,
-            rational,
-            pts,
-        };
-        let seg = local.bezier_segment(p);
+        let seg = shifted_segment(c, j, k, shift);
         let q = &seg.pts;
         let fco: Vec<Mr> = if rational && pair.is_empty() {
             // degree above BERNSTEIN_MAX_DEGREE: F unknown
@@ -1005,62 +1010,67 @@ impl SpanPoly {
         }
     }
 
-    /// Enclosure of the local parameter t(u) = (u - a) / (b - a) of u in [a, b].
-    fn t(&self, u: f64) -> Mr {
-        let (a, b) = (iv::point(self.seg.a), iv::point(self.seg.b));
-        Mr::from_interval(((iv::point(u) - a) / (b - a)).intersection(iv::span(0.0, 1.0)))
-    }
-
-    /// The Bézier points of `s` over the parameter box [x0, x1] inside [a, b]: de Casteljau at
-    /// enclosures of t(x1) (left part, over [0, t1]) and of t(x0) / t(x1) (right part of that).
-    /// For every exact t in the enclosures the split encloses the exact sub-segment
-    /// ([`BezierSeg::split_points`]), so the result encloses the points over [t(x0), t(x1)].
-    fn restrict(&self, s: &BezierSeg<Mr>, x0: f64, x1: f64) -> Vec<Mr> {
-        let (a, b) = (self.seg.a, self.seg.b);
+    /// The Bézier points of `s` over [t0, t1] inside [0, 1]: de Casteljau at t1 (left part,
+    /// over [0, t1]), then at an enclosure of t0 / t1 (right part of that). For every exact
+    /// parameter in the enclosure the split encloses the exact sub-segment
+    /// ([`BezierSeg::split_points`]), so the result encloses the points over [t0, t1].
+    fn restrict<S: Scalar>(s: &BezierSeg<S>, t0: f64, t1: f64) -> Vec<S> {
         let mut part = s.clone();
-        let mut t1 = Mr::from_f64(1.0);
-        if x1 < b {
-            t1 = self.t(x1);
-            part.pts = part.split_points(&t1).0;
+        if t1 < 1.0 {
+            part.pts = part.split_points(&S::from_f64(t1)).0;
         }
-        if x0 > a {
-            part.pts = part.split_points(&(self.t(x0) / t1)).1;
+        if t0 > 0.0 {
+            part.pts = part.split_points(&(S::from_f64(t0) / S::from_f64(t1))).1;
         }
         part.pts
     }
 
-    /// F over [x0, x1] (at x0 for a point): de Casteljau value, or the coefficient hull.
-    fn f(&self, x0: f64, x1: f64) -> Interval {
-        if x0 == x1 {
-            return self.f.eval_local(&self.t(x0))[0].to_interval();
+    /// F over [t0, t1] (at t0 for a point): de Casteljau value, or the coefficient hull.
+    fn f(&self, t0: f64, t1: f64) -> Interval {
+        if t0 == t1 {
+            return self.f.eval_local(&Mr::from_f64(t0))[0].to_interval();
         }
-        hull(&self.restrict(&self.f, x0, x1))
+        hull(&Self::restrict(&self.f, t0, t1))
     }
 
-    /// d/du F(t(u)) = F'(t) / (b - a) over [x0, x1].
-    fn df(&self, x0: f64, x1: f64) -> Interval {
-        let d = if x0 == x1 {
-            self.df.eval_local(&self.t(x0))[0].to_interval()
-        } else {
-            hull(&self.restrict(&self.df, x0, x1))
-        };
-        d / (iv::point(self.seg.b) - iv::point(self.seg.a))
+    /// F' over [t0, t1] (at t0 for a point).
+    fn df(&self, t0: f64, t1: f64) -> Interval {
+        if t0 == t1 {
+            return self.df.eval_local(&Mr::from_f64(t0))[0].to_interval();
+        }
+        hull(&Self::restrict(&self.df, t0, t1))
     }
 
-    /// The values of the piece C_j over [x0, x1]: hull of the Cartesian Bézier points of the
+    /// The values of the piece C_j over [t0, t1]: hull of the Cartesian Bézier points of the
     /// restricted segment, shifted back by c.
-    fn values(&self, x0: f64, x1: f64) -> Interval {
-        let q = self.restrict(&self.seg, x0, x1);
-        hull(&self.cartesian(q)) + iv::point(self.c)
+    fn values(&self, t0: f64, t1: f64) -> Interval {
+        let q = Self::restrict(&self.seg, t0, t1);
+        hull(&cartesian(q, self.seg.rational)) + iv::point(self.c)
     }
 
-    /// The Cartesian points (x_i - c) of homogeneous points.
-    fn cartesian(&self, q: Vec<Mr>) -> Vec<Mr> {
-        if self.seg.rational {
-            q.chunks_exact(2).map(|h| h[0] / h[1]).collect()
-        } else {
-            q
-        }
+    /// As [`SpanPoly::values`], and C_j at the parameter u(t_mid) (a real in the closed span:
+    /// a value of the piece there), in double-double intervals ([`Ddi`]): for the candidate
+    /// boxes, where the few hundred ulps of the Mr points would show in the bounds.
+    fn values_tight(&self, c: &NurbsCurve, j: usize, t0: f64, t1: f64) -> (Interval, Interval) {
+        let seg: BezierSeg<Ddi> = shifted_segment(c, j, self.k, self.c);
+        let r = self.seg.rational;
+        let over = hull(&cartesian(Self::restrict(&seg, t0, t1), r));
+        let at = hull(&cartesian(
+            seg.eval_local(&Ddi::from_f64(midpoint(t0, t1))),
+            r,
+        ));
+        let sh = iv::point(self.c);
+        (over + sh, at + sh)
+    }
+
+    /// An f64 box [lo, hi] inside [a, b] that contains u([t0, t1]), u(t) = a + t (b - a)
+    /// (outward-rounded interval arithmetic; u(t) is in [a, b] for t in [0, 1]).
+    fn to_u(&self, t0: f64, t1: f64) -> (f64, f64) {
+        let (a, b) = (self.seg.a, self.seg.b);
+        let len = iv::point(b) - iv::point(a);
+        let lo = (iv::point(a) + iv::point(t0) * len).inf();
+        let hi = (iv::point(a) + iv::point(t1) * len).sup();
+        (lo.clamp(a, b), hi.clamp(a, b))
     }
 
     /// Coordinate j of the span's Bézier points, enclosed: their hull [lo, hi] and whether
@@ -1075,7 +1085,7 @@ impl SpanPoly {
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut inc, mut dec) = (true, true);
         let mut prev = Interval::EMPTY;
-        for x in self.cartesian(self.seg.pts.clone()) {
+        for x in cartesian(self.seg.pts.clone(), self.seg.rational) {
             let x = x.to_interval() + iv::point(self.c);
             if x.is_empty() || x.is_entire() {
                 return (f64::NEG_INFINITY, f64::INFINITY, false, false);
@@ -1099,8 +1109,48 @@ impl SpanPoly {
     }
 }
 
-/// Interval hull of Mr values (ENTIRE if any is unbounded).
-fn hull(v: &[Mr]) -> Interval {
+/// The homogeneous Bézier segment of the shifted piece C_j - c on span k of `c`: rows
+/// ((x_i - c) w_i, w_i) (rational) or x_i - c, by Boehm knot insertion on the p + 1 local
+/// control points ([`HSpline::bezier_segment`]). Each x_i - c is exact for x_i = c (and
+/// within a factor 2 of c, Sterbenz), else enclosed by S.
+fn shifted_segment<S: Scalar>(c: &NurbsCurve, j: usize, k: usize, shift: f64) -> BezierSeg<S> {
+    let p = c.degree();
+    let rational = c.is_rational();
+    let cs = S::from_f64(shift);
+    let mut pts = Vec::with_capacity((p + 1) * (1 + rational as usize));
+    for i in k - p..=k {
+        let x = S::from_f64(c.control_point(i)[j]) - cs.clone();
+        if rational {
+            let w = S::from_f64(c.weight(i));
+            pts.push(x * w.clone());
+            pts.push(w);
+        } else {
+            pts.push(x);
+        }
+    }
+    let local = HSpline {
+        degree: p,
+        knots: c.knots()[k - p..=k + p + 1].to_vec(),
+        dim: 1,
+        rational,
+        pts,
+    };
+    local.bezier_segment(p)
+}
+
+/// The Cartesian points (x_i - c) of homogeneous one-coordinate points.
+fn cartesian<S: Scalar>(q: Vec<S>, rational: bool) -> Vec<S> {
+    if rational {
+        q.chunks_exact(2)
+            .map(|h| h[0].clone() / h[1].clone())
+            .collect()
+    } else {
+        q
+    }
+}
+
+/// Interval hull of enclosures (ENTIRE if any is unbounded).
+fn hull<S: Scalar>(v: &[S]) -> Interval {
     v.iter()
         .fold(Interval::EMPTY, |h, x| h.convex_hull(x.to_interval()))
 }
@@ -1499,7 +1549,8 @@ mod tests {
                 }
                 let sp = SpanPoly::new(&c, 0, k, &pair);
                 for i in 0..=10 {
-                    let u = a + (b - a) * i as f64 / 10.0;
+                    let t = i as f64 / 10.0;
+                    let u = a + (b - a) * t;
                     let mut buf = Vec::new();
                     let rows: &[usize] = if c.is_rational() { &[0, 1] } else { &[0] };
                     let h0 = ev.level(0).eval_span_rows(k, &u, rows, &mut buf).to_vec();
@@ -1514,27 +1565,30 @@ mod tests {
                     } else {
                         h1[0] * l / sc
                     };
-                    let got = sp.f(u, u);
+                    let got = sp.f(t, t);
                     let tol = 1e-12 * (1.0 + want.abs());
                     assert!(
                         got.inf() - tol <= want && want <= got.sup() + tol,
                         "k {k} u {u}: {got:?} vs {want}"
                     );
                     // F over a box contains F at its points; F' by a difference quotient
-                    let (u0, u1) = (
-                        u.clamp(a, b - 1e-3 * l),
-                        u.clamp(a, b - 1e-3 * l) + 1e-3 * l,
-                    );
-                    let (f0, f1) = (sp.f(u0, u0).mid(), sp.f(u1, u1).mid());
-                    let d = sp.df(u0, u1);
-                    // mean value theorem: the difference quotient is a value of F'/(b - a)
-                    let q = (f1 - f0) / (u1 - u0);
+                    let (t0, t1) = (t.min(0.999), t.min(0.999) + 1e-3);
+                    let (f0, f1) = (sp.f(t0, t0).mid(), sp.f(t1, t1).mid());
+                    let d = sp.df(t0, t1);
+                    // mean value theorem: the difference quotient is a value of F'
+                    let q = (f1 - f0) / (t1 - t0);
                     let e = 1e-9 * (1.0 + q.abs());
                     assert!(d.inf() - e <= q && q <= d.sup() + e, "{d:?} {q}");
-                    assert!(sp.f(u0, u1).contains(f0) && sp.f(u0, u1).contains(f1));
+                    assert!(sp.f(t0, t1).contains(f0) && sp.f(t0, t1).contains(f1));
+                    // the piece's value at u(t), and u([t0, t1]) covers u(t0), u(t1)
+                    let y = c.point::<f64>(u).unwrap()[0];
+                    let vt = sp.values_tight(&c, 0, t, t).1;
+                    assert!(vt.inf() - 1e-12 <= y && y <= vt.sup() + 1e-12, "{vt:?} {y}");
+                    let (lo, hi) = sp.to_u(t0, t1);
+                    assert!(lo <= a + t0 * l && a + t1 * l <= hi && a <= lo && hi <= b);
                 }
                 // values over the span contain the f64 points of the piece
-                let v = sp.values(a, b);
+                let v = sp.values(0.0, 1.0);
                 for i in 0..=10 {
                     let u = a + (b - a) * i as f64 / 10.0;
                     let y = c.point::<f64>(u).unwrap()[0];
