@@ -20,7 +20,7 @@
 //! Anything non-finite (overflow, NaN, division by a set that may contain 0) gives
 //! [`Mr::ENTIRE`].
 
-use crate::ddi::{dist_up, up, Ddi, ETA16, U1};
+use crate::ddi::{up, Ddi, ETA16, U1};
 use crate::scalar::Scalar;
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -59,22 +59,6 @@ impl Mr {
     #[inline]
     pub fn rad(&self) -> f64 {
         self.r
-    }
-
-    /// An enclosure of the interval `x` (ENTIRE for an empty or unbounded one): centre
-    /// c = fl(lo/2 + hi/2), a float in [lo, hi] (halving is exact above the subnormals, and
-    /// rounding a sum of two reals in [lo/2, hi/2] stays in [lo, hi]; clamped anyway), radius
-    /// the larger of the distances to the ends, each bounded above by `dist_up` (ddi.rs).
-    pub fn from_interval(x: Interval) -> Mr {
-        if x.is_empty() || !x.inf().is_finite() || !x.sup().is_finite() {
-            return Mr::ENTIRE;
-        }
-        let (lo, hi) = (x.inf(), x.sup());
-        if lo == hi {
-            return Mr::checked(lo, 0.0);
-        }
-        let c = (0.5 * lo + 0.5 * hi).clamp(lo, hi);
-        Mr::checked(c, dist_up(hi, c).max(dist_up(c, lo)))
     }
 }
 
@@ -273,25 +257,6 @@ mod tests {
                 assert!(m.rad() <= 1e-12 * m.mid().abs().max(1.0), "{m:?}");
             }
         }
-    }
-
-    #[test]
-    fn from_interval_encloses() {
-        for (lo, hi) in [
-            (0.1, 0.3),
-            (-1e300, 1e300),
-            (1e-320, 3e-320),
-            (-2.5, -2.5),
-            (0.0, 1.0),
-        ] {
-            let x = Interval::try_from((lo, hi)).unwrap();
-            let m = Mr::from_interval(x).to_interval();
-            assert!(m.inf() <= lo && hi <= m.sup(), "{lo} {hi} {m:?}");
-            assert!(m.wid() <= 2.0 * (hi - lo) + 1e-300, "{m:?}");
-        }
-        assert_eq!(Mr::from_interval(Interval::EMPTY), Mr::ENTIRE);
-        assert_eq!(Mr::from_interval(Interval::ENTIRE), Mr::ENTIRE);
-        assert_eq!(Mr::from_interval(iv(0.75)), Mr::from_f64(0.75));
     }
 
     #[test]
