@@ -523,11 +523,12 @@ impl<'a> Engine<'a> {
             // C over the box (TightEval: second-order Taylor form around the midpoint m,
             // about one ulp wide near a critical point); m is in [lo, hi) inside span k, where
             // the curve is this piece, so C(m) is attained. So is C(lo) (lo < hi <= u_{k+1}),
-            // evaluated too when lo is the knot u_k: a critical point at a knot is often the
-            // extremum, and the boxes on both sides only reach it at an end.
+            // evaluated too when lo is the knot u_k (Bernstein boxes, whose parameter maps are
+            // rounded outward): a critical point at a knot is often the extremum, and the
+            // boxes on both sides only reach it at an end.
             self.stats.point_evaluations += 1;
             let m = midpoint(cd.lo, cd.hi);
-            let at_knot = cd.lo == self.c.knots()[k];
+            let at_knot = cd.t.is_some() && cd.lo == self.c.knots()[k];
             let cm = [
                 self.tight.coord_at(self.j, m),
                 if at_knot {
