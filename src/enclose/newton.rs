@@ -113,8 +113,10 @@ pub struct Newton {
     /// interval de Boor over the box: the hull of the coefficients of the form restricted to a
     /// box (de Casteljau) overestimates the range by O(width^2), and the shift by c removes the
     /// cancellation of nearly flat coordinates (extreme weights, flat runs), where interval
-    /// de Boor on the homogeneous rows cannot tell f from 0. Also a pre-test: coefficients of
-    /// one sign prove the span monotone. Degrees up to 256 (above, interval de Boor; not in
+    /// de Boor on the homogeneous rows cannot tell f from 0. The search then runs in the
+    /// span's local parameter t in [0, 1] (finer than the f64 values of u on tiny spans far
+    /// from 0), and the candidate boxes also get the double-double hull of their Bézier points.
+    /// Also a pre-test: coefficients of one sign prove the span monotone. Degrees up to 256 (above, interval de Boor; not in
     /// the thesis).
     pub bernstein: bool,
     /// Measure the time spent in derivative evaluations (two clock reads per evaluation).
