@@ -607,15 +607,14 @@ mod mpfr {
                         e.strategy, cb.termination
                     );
                 }
-                // Tightness: the Bézier strategy is within a few ulps of the coordinate scale;
-                // the Newton-based ones lose digits with extreme weight ratios and 1e-12 spans
-                // (up to ~1e10 ulps = 2e-6 relative here), the hull is not tight at all.
+                // Tightness: the Bézier and the (Bernstein-form) Newton strategies are within a
+                // few ulps of the coordinate scale; the hull is not tight at all.
                 let allowed = match e.strategy {
                     "hull" => f64::INFINITY,
                     // the thesis preset keeps the thesis's 20-step limit per box: sound (checked
                     // above) but it may stop far from the extremum on such curves
                     "newton-thesis" => f64::INFINITY,
-                    "bezier" => 64.0,
+                    "bezier" | "newton" | "search-region-verified" => 64.0,
                     _ => 1e11,
                 };
                 assert!(

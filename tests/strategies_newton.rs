@@ -262,7 +262,8 @@ fn tightness_against_reference() {
         100.0 * within4
     );
     assert!(med <= 1.0);
-    assert!(within4 >= 0.95, "{within4}");
+    // (max 3e7 ulps before the Bernstein form: 2-ulp parameter boxes on 1e-12 spans at u ~ 6)
+    assert!(max <= 4.0, "{max}");
 }
 
 /// High degree (p = 20..40), rational, several spans: every bound of the default `newton`
@@ -297,6 +298,41 @@ fn high_degree_rational_tightness_against_reference() {
                 (0.0..=4.0).contains(&a) && (0.0..=4.0).contains(&b),
                 "p {p} coord {j}: {a} {b} ulps {cb:?}"
             );
+        }
+    }
+}
+
+/// Fuzz findings (tests/data/fuzz/structured/slow-unit-*): rational curves with extreme
+/// weights whose coordinate is nearly flat (a degree-26 unclamped curve, all points but one
+/// equal; a degree-5 10-D curve with a flat run and coordinates ~1e-249). Interval de Boor on
+/// the homogeneous rows could not separate C_j' from 0 there: newton stopped at the work / box
+/// limit with the control-hull bound (1.6e-2 and 3e-11 beyond the exact extremum). With the
+/// shifted Bernstein form (`Newton::bernstein`) it converges to a few ulps.
+#[cfg(feature = "mpfr")]
+#[test]
+fn fuzz_findings_nearly_flat_rational_coordinates_are_tight() {
+    use nurbs_box::enclose::strategy_by_name;
+    use nurbs_box::reference::{reference_box, ulps_outside};
+    use nurbs_box::Termination;
+    for name in [
+        "slow-unit-99800a67eef38e4952346d75f6b771832cc8e6ec",
+        "slow-unit-4f872d1e8da0111acdc397686768b3a2920df2ff",
+    ] {
+        let bytes = std::fs::read(format!("tests/data/fuzz/structured/{name}")).unwrap();
+        let c = nurbs_box::robust::curve_from_bytes(&bytes).unwrap();
+        let r = reference_box(&c);
+        let e = strategy_by_name("newton", None).unwrap().enclose(&c);
+        for (j, cb) in e.coords.iter().enumerate() {
+            let s = c.coord_scale(j);
+            let lo = ulps_outside(cb.lo, &r.lo[j], s, false);
+            let hi = ulps_outside(cb.hi, &r.hi[j], s, true);
+            assert!(
+                (0.0..=8.0).contains(&lo) && (0.0..=8.0).contains(&hi),
+                "{name} coordinate {j}: {lo} / {hi} ulps outside the exact [{}, {}]: {cb:?}",
+                r.lo[j],
+                r.hi[j]
+            );
+            assert_eq!(cb.termination, Termination::Converged, "{name} {j}");
         }
     }
 }

@@ -18,14 +18,22 @@
 //!   the thesis's C_j' / C_j'' (listing `Diff_intKNR`, eq. 3.10) is [`DerivForm::Quotient`];
 //! * cheap monotonicity pre-tests skip most spans, and a span whose local control points lie
 //!   inside the box found so far is skipped (convex hull property, thesis prop. 2.1);
+//! * by default f, f' and the values over a box come from the span's Bernstein form
+//!   ([`Newton::bernstein`]: the Bézier points of C_j - c, c a control point value of the
+//!   span, and the Bernstein coefficients of the derivative numerator, restricted to the box by
+//!   de Casteljau): no dependency-effect growth of interval de Boor over wide boxes, and no
+//!   cancellation for nearly flat coordinates (extreme weights, flat runs), where interval
+//!   de Boor on the homogeneous rows cannot tell f from 0 and the search used to stop at its
+//!   limits with the control-hull bound;
 //! * candidate values use the mean-value form C(m) + C'(X)(X - m), which is tight at a
 //!   critical point (C' ~ 0 there).
 
 use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
-use crate::bspline::HSpline;
+use crate::bspline::{BezierSeg, HSpline};
 use crate::curve::NurbsCurve;
+use crate::ddi::Ddi;
 use crate::eval::CurveEval;
 use crate::knots::multiplicity;
 use crate::mr::Mr;
@@ -99,6 +107,18 @@ pub struct Newton {
     /// B-spline control points at high degree, where p + 1 local control points spread over
     /// p + 1 spans (not in the thesis).
     pub bezier_pretest: bool,
+    /// Evaluate f, f' and the values of C_j over Newton boxes from the span's Bernstein form
+    /// (Bézier points of C_j - c with c a control point value of the
+    /// span, and the Bernstein coefficients of the derivative numerator, in [`Mr`]) instead of
+    /// interval de Boor over the box: the hull of the coefficients of the form restricted to a
+    /// box (de Casteljau) overestimates the range by O(width^2), and the shift by c removes the
+    /// cancellation of nearly flat coordinates (extreme weights, flat runs), where interval
+    /// de Boor on the homogeneous rows cannot tell f from 0. The search then runs in the
+    /// span's local parameter t in [0, 1] (finer than the f64 values of u on tiny spans far
+    /// from 0), and the candidate boxes also get the double-double hull of their Bézier points.
+    /// Also a pre-test: coefficients of one sign prove the span monotone. Degrees up to 256 (above, interval de Boor; not in
+    /// the thesis).
+    pub bernstein: bool,
     /// Measure the time spent in derivative evaluations (two clock reads per evaluation).
     pub time_derivatives: bool,
 }
@@ -110,6 +130,10 @@ pub const DEFAULT_MAX_WORK: u64 = 2_000_000;
 /// Evaluations allowed per span on top of [`Newton::max_work`], so that the budget grows with
 /// the size of the input.
 pub const EVALS_PER_SPAN: u64 = 64;
+
+/// Highest degree for `Newton::bernstein` (the binomial ratios of the derivative numerator
+/// stay far from overflow; above, interval de Boor is used).
+pub(crate) const BERNSTEIN_MAX_DEGREE: usize = 256;
 
 /// Cap of the per-span allowance in work units (64 evaluations of a degree-40 span).
 pub const WORK_PER_SPAN: u64 = 64 * 41 * 41;
@@ -130,6 +154,7 @@ impl Default for Newton {
             pretest: true,
             prune: true,
             bezier_pretest: true,
+            bernstein: true,
             time_derivatives: false,
         }
     }
@@ -156,6 +181,7 @@ impl Newton {
             pretest: false,
             prune: false,
             bezier_pretest: false,
+            bernstein: false,
             time_derivatives: true,
         }
     }
@@ -250,6 +276,9 @@ struct Cand {
     /// whether the curve attains the value of span k's piece at the point(s) evaluated (false
     /// for the left limit at a discontinuity)
     attained: bool,
+    /// the box in the span's local parameter t, whose image u([t0, t1]) is in [lo, hi]
+    /// (boxes of a search on the Bernstein form)
+    t: Option<(f64, f64)>,
 }
 
 impl Cand {
@@ -262,6 +291,7 @@ impl Cand {
             kind,
             unique: false,
             attained,
+            t: None,
         }
     }
 }
@@ -295,9 +325,14 @@ pub(crate) struct Engine<'a> {
     stack: Vec<(f64, f64)>,
     /// coordinate currently worked on
     j: usize,
-    /// homogeneous rows (C_j w, w) of coordinate j for the Bézier pre-test
-    /// ([`Newton::bezier_pretest`]), built per coordinate
-    bez: Option<HSpline<Mr>>,
+    /// Bernstein form of the span being worked on ([`Newton::bezier_pretest`],
+    /// [`Newton::bernstein`])
+    poly: Option<SpanPoly>,
+    /// whether the Newton search evaluates through `poly` ([`Newton::bernstein`])
+    bern: bool,
+    /// `pair[i (p + 1) + l]` (i < l): (l - i) C(p, i) C(p, l) / C(2p - 2, i + l - 1), the
+    /// coefficients of the rational derivative numerator (see [`SpanPoly::new`])
+    pair: Vec<Mr>,
     stats: Stats,
     /// evaluations allowed for the current coordinate ([`Newton::max_work`])
     budget: u64,
@@ -329,7 +364,16 @@ impl<'a> Engine<'a> {
             buf: Vec::with_capacity(2 * (p + 1)),
             stack: Vec::new(),
             j: 0,
-            bez: None,
+            poly: None,
+            bern: s.bernstein && (1..=BERNSTEIN_MAX_DEGREE).contains(&p),
+            pair: if c.is_rational()
+                && (s.bernstein || s.bezier_pretest)
+                && (1..=BERNSTEIN_MAX_DEGREE).contains(&p)
+            {
+                pair_coefficients(p)
+            } else {
+                Vec::new()
+            },
             stats: Stats::default(),
             budget: u64::MAX,
         }
@@ -374,9 +418,14 @@ impl<'a> Engine<'a> {
         (v[0], v[1])
     }
 
-    /// Enclosure of C_j over / at `u` in the closed span k.
+    /// Enclosure of C_j over / at `u` in the closed span k. With the Bernstein form
+    /// ([`Newton::bernstein`]) here and in [`Engine::f`], [`Engine::df`] `u` is the local
+    /// parameter t in [0, 1] of the span (the search then runs in t).
     fn value(&mut self, k: usize, u: Interval) -> Interval {
         self.stats.point_evaluations += 1;
+        if let Some(sp) = self.poly.as_ref().filter(|sp| self.bern && sp.k == k) {
+            return sp.values(u.inf(), u.sup());
+        }
         let (a, w) = self.level(0, k, u);
         if self.rational {
             a / w
@@ -401,7 +450,10 @@ impl<'a> Engine<'a> {
     fn f(&mut self, k: usize, u: Interval) -> Interval {
         let t = self.s.time_derivatives.then(Instant::now);
         self.stats.derivative_evaluations += 1;
+        let bern = self.poly.as_ref().filter(|sp| self.bern && sp.k == k);
         let r = match self.s.form {
+            // the Bernstein form's F(t): same sign and zeros as C_j' (see SpanPoly)
+            _ if bern.is_some() => bern.map_or(Interval::ENTIRE, |sp| sp.f(u.inf(), u.sup())),
             DerivForm::Quotient => self.value_and_slope(k, u).1,
             // (non-rational: f = A_j', no level-0 evaluation)
             DerivForm::Numerator if !self.rational => self.level(1, k, u).0,
@@ -421,7 +473,11 @@ impl<'a> Engine<'a> {
     fn df(&mut self, k: usize, u: Interval) -> Interval {
         let t = self.s.time_derivatives.then(Instant::now);
         self.stats.derivative_evaluations += 1;
-        let r = if !self.rational {
+        let bern = self.poly.as_ref().filter(|sp| self.bern && sp.k == k);
+        let r = if let Some(sp) = bern {
+            // F'(t), the derivative of the f above
+            sp.df(u.inf(), u.sup())
+        } else if !self.rational {
             self.level(2, k, u).0
         } else {
             let (a, w) = self.level(0, k, u);
@@ -443,9 +499,9 @@ impl<'a> Engine<'a> {
         r
     }
 
-    /// Outer enclosure of C_j over the candidate box, and an enclosure of a value the curve
-    /// attains (if `attained`).
-    fn eval_cand(&mut self, cd: &Cand) -> (Interval, Option<Interval>) {
+    /// Outer enclosure of C_j over the candidate box, and enclosures of values the curve
+    /// attains (if `attained`; EMPTY for none).
+    fn eval_cand(&mut self, cd: &Cand) -> (Interval, [Interval; 2]) {
         let k = cd.k;
         // Convex hull of the local control points (thesis prop. 2.1): exact and always sound
         // for every value of span k's piece on the closed span (also the limit at its end);
@@ -459,20 +515,48 @@ impl<'a> Engine<'a> {
             // itself a candidate, so the outer box does not grow from it.
             let q = cd.lo;
             let v = self.tight.coord_over(self.j, f64::next_down(q), q);
-            (v, v)
+            (v, [v, Interval::EMPTY])
         } else if cd.lo == cd.hi {
             // C(q) about one ulp wide (TightEval, double-double Horner); the curve's value at q
             // is span k's piece there (k is q's span, or the curve is continuous at q)
             let v = self.tight.coord_at(self.j, cd.lo);
-            (v, v)
+            (v, [v, Interval::EMPTY])
         } else {
             // C over the box (TightEval: second-order Taylor form around the midpoint m,
             // about one ulp wide near a critical point); m is in [lo, hi) inside span k, where
-            // the curve is this piece, so C(m) is attained.
+            // the curve is this piece, so C(m) is attained. So is C(lo) (lo < hi <= u_{k+1}),
+            // evaluated too when lo is the knot u_k (Bernstein boxes, whose parameter maps are
+            // rounded outward): a critical point at a knot is often the extremum, and the
+            // boxes on both sides only reach it at an end.
             self.stats.point_evaluations += 1;
             let m = midpoint(cd.lo, cd.hi);
-            let cm = self.tight.coord_at(self.j, m);
-            (self.tight.coord_over(self.j, cd.lo, cd.hi), cm)
+            let at_knot = cd.t.is_some() && cd.lo == self.c.knots()[k];
+            let cm = [
+                self.tight.coord_at(self.j, m),
+                if at_knot {
+                    self.stats.point_evaluations += 1;
+                    self.tight.coord_at(self.j, cd.lo)
+                } else {
+                    Interval::EMPTY
+                },
+            ];
+            let mut enc = self.tight.coord_over(self.j, cd.lo, cd.hi);
+            let mut cm = cm;
+            if let (Some((t0, t1)), Some(sp)) = (cd.t, self.poly.as_ref().filter(|sp| sp.k == k)) {
+                // The hull of the Bézier points of the piece over [t0, t1] (convex hull
+                // property, see SpanPoly::values): also an enclosure of its values on the box,
+                // and far tighter than [lo, hi] when the span is below the f64 resolution of
+                // u (a 1e-12 span at u ~ 6: C'' ~ 1e24 times ulp(u)^2). The piece's value at
+                // u(t_mid), a real in the span, is attained.
+                let (b, at) = sp.values_tight(self.c, self.j, t0, t1);
+                if !b.intersection(enc).is_empty() {
+                    enc = enc.intersection(b);
+                }
+                if cm[1].is_empty() {
+                    cm[1] = at;
+                }
+            }
+            (enc, cm)
         };
         // Both are enclosures of span k's values on the candidate (coord_over may also contain
         // the next piece's value at an interior knot ending the box, a curve value as well).
@@ -481,8 +565,14 @@ impl<'a> Engine<'a> {
             // cannot happen mathematically (both contain the range); stay sound anyway
             enc = hull;
         }
-        let at = at.intersection(hull);
-        (enc, (cd.attained && !at.is_empty()).then_some(at))
+        let at = at.map(|v| {
+            if cd.attained {
+                v.intersection(hull)
+            } else {
+                Interval::EMPTY
+            }
+        });
+        (enc, at)
     }
 
     /// min / max of coordinate j of the local control points P_{k-p} .. P_k (exact).
@@ -495,42 +585,6 @@ impl<'a> Engine<'a> {
             hi = hi.max(x);
         }
         (lo, hi)
-    }
-
-    /// Coordinate j of the Bézier points of span k (rational: the Cartesian points A_i / w_i of
-    /// the homogeneous Bézier points), enclosed: their hull [lo, hi] and whether they are
-    /// non-decreasing / non-increasing (for every choice of the exact points in the
-    /// enclosures: each upper bound <= the next lower bound).
-    ///
-    /// Why this is sound: the exact Bézier points of the span come from Boehm knot insertion
-    /// (NURBS Book A5.1; thesis eq. 4.12), which [`Mr`] encloses; the new weights are convex
-    /// combinations of positive weights, so positive. A rational Bézier curve with positive
-    /// weights lies in the convex hull of its points (thesis prop. 2.1, on the closed span,
-    /// the right-end limit included), and is monotone if its points are (the argument of
-    /// [`Engine::monotone`]).
-    fn bezier_points(&self, k: usize) -> (f64, f64, bool, bool) {
-        let Some(hs) = &self.bez else {
-            return (f64::NEG_INFINITY, f64::INFINITY, false, false);
-        };
-        let seg = hs.bezier_segment(k);
-        let h = seg.hdim();
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        let (mut inc, mut dec) = (true, true);
-        let mut prev = Interval::EMPTY;
-        for q in seg.pts.chunks_exact(h) {
-            let x = if self.rational { q[0] / q[1] } else { q[0] }.to_interval();
-            if x.is_empty() || x.is_entire() {
-                return (f64::NEG_INFINITY, f64::INFINITY, false, false);
-            }
-            lo = lo.min(x.inf());
-            hi = hi.max(x.sup());
-            if !prev.is_empty() {
-                inc &= x.inf() >= prev.sup();
-                dec &= x.sup() <= prev.inf();
-            }
-            prev = x;
-        }
-        (lo, hi, inc, dec)
     }
 
     /// Whether coordinate j of the local control points of span k is non-decreasing /
@@ -723,9 +777,8 @@ impl<'a> Engine<'a> {
         let t0 = Instant::now();
         self.j = j;
         self.stats = Stats::default();
-        if self.s.bezier_pretest && (self.s.pretest || self.s.prune) {
-            self.bez = Some(HSpline::from_curve(&self.c.coordinate_curve(j)));
-        }
+        self.poly = None;
+        let want_poly = (self.s.bezier_pretest && (self.s.pretest || self.s.prune)) || self.bern;
         let (a, b) = self.c.domain();
         let ns = self.spans.len();
         let cost = ((self.p + 1) as u64).pow(2);
@@ -791,18 +844,28 @@ impl<'a> Engine<'a> {
                     continue;
                 }
             }
-            if self.bez.is_some() {
-                let (blo, bhi, inc, dec) = self.bezier_points(k);
-                if mode == SpanMode::Prune && blo >= acc.inner_lo && bhi <= acc.inner_hi {
+            if want_poly {
+                let sp = SpanPoly::new(self.c, self.j, k, &self.pair);
+                self.poly = None;
+                let bp = self.s.bezier_pretest;
+                let (blo, bhi, inc, dec) = sp.bezier_points();
+                if bp && mode == SpanMode::Prune && blo >= acc.inner_lo && bhi <= acc.inner_hi {
                     // as the local-hull prune above, with the span's own Bézier hull
                     continue;
                 }
-                if self.s.pretest && (inc || dec) {
+                if bp && self.s.pretest && (inc || dec) {
                     status[si] = Status::Mono { inc, dec };
                     continue;
                 }
+                let (inc, dec) = sp.f_signs();
+                if self.bern && self.s.pretest && (inc || dec) {
+                    // F >= 0 (or <= 0) on the closed span, and sign F = sign C_j'
+                    status[si] = Status::Mono { inc, dec };
+                    continue;
+                }
+                self.poly = Some(sp);
             }
-            if self.s.pretest {
+            if self.s.pretest && !(self.bern && self.poly.is_some()) {
                 let fx = self.f(k, iv::span(sa, sb));
                 if !fx.is_empty() && !fx.contains(0.0) {
                     // f has one sign on the closed span, and sign f = sign C_j'.
@@ -815,18 +878,29 @@ impl<'a> Engine<'a> {
             }
             status[si] = Status::Searched;
             boxes.clear();
-            let t = self.search(k, sa, sb, (acc.inner_lo, acc.inner_hi), &mut boxes);
+            // the Bernstein form is searched in the local parameter t in [0, 1]
+            let bern = self.bern && self.poly.is_some();
+            let (x0, x1) = if bern { (0.0, 1.0) } else { (sa, sb) };
+            let t = self.search(k, x0, x1, (acc.inner_lo, acc.inner_hi), &mut boxes);
             if term == Termination::Converged {
                 term = t;
             }
             for zb in &boxes {
+                let (lo, hi, t) = match self.poly.as_ref().filter(|_| bern) {
+                    Some(sp) => {
+                        let (lo, hi) = sp.to_u(zb.lo, zb.hi);
+                        (lo, hi, Some((zb.lo, zb.hi)))
+                    }
+                    None => (zb.lo, zb.hi, None),
+                };
                 let cd = Cand {
                     k,
-                    lo: zb.lo,
-                    hi: zb.hi,
+                    lo,
+                    hi,
                     kind: CandidateKind::Critical,
                     unique: zb.unique,
                     attained: true,
+                    t,
                 };
                 let (e, at) = self.eval_cand(&cd);
                 acc.add(&cd, e, at);
@@ -852,6 +926,277 @@ impl<'a> Engine<'a> {
         stats.time_total = t0.elapsed();
         acc.finish(stats, term)
     }
+}
+
+/// The Bernstein form of coordinate j on one knot span k = [a, b] = [u_k, u_{k+1}], in [`Mr`]
+/// ([`Newton::bernstein`]; not in the thesis). With t = (u - a) / (b - a):
+/// * `seg`: the homogeneous Bézier points ((x_i - c) w_i, w_i) (rational) or x_i - c of the
+///   shifted piece C_j - c, by Boehm knot insertion on the p + 1 local control points (NURBS
+///   Book A5.1 via [`HSpline::bezier_segment`]; thesis eq. 4.12). c is a local control point
+///   value (the most frequent one): the points of a flat run become exact zeros, so nearly flat
+///   coordinates keep their relative accuracy (the shift changes neither C_j' nor its zeros);
+/// * `f`: F(t) = A_t W - A W_t (rational; A, W the shifted numerator and the weight in t), or
+///   A_t / p (polynomial), in Bernstein form of degree n = 2p - 2 (p - 1). The rational
+///   coefficients: with B_i' B_l - B_i B_l' = (i - l) B_i B_l / (t (1 - t)) for degree-p
+///   Bernstein polynomials and B_i^p B_l^p / (t (1 - t)) = C(p,i) C(p,l) / C(2p-2,i+l-1)
+///   B_{i+l-1}^{2p-2},
+///   F = sum_{i<l} (l - i) C(p,i) C(p,l) / C(2p-2,i+l-1) (a_l w_i - a_i w_l) B_{i+l-1}^{2p-2}
+///   (Farin, "Curves and Surfaces for CAGD", sec. 13 on rational Bézier derivatives; the same
+///   sum as in [`Engine::monotone`]). C_j' = F / (W^2 (b - a)) (or p F / (b - a)): F has the
+///   sign and the zeros of C_j' on the closed span;
+/// * `df`: F' = n sum (F_{i+1} - F_i) B_i^{n-1} (the hodograph).
+///
+/// Ranges over a box come from the hull of the coefficients restricted to it by de Casteljau
+/// (convex hull property: Bernstein polynomials are >= 0 and sum to 1; for the rational values
+/// the positive weights make the point a convex combination of the Cartesian Bézier points).
+/// Every Mr operation encloses its exact result, so every coefficient encloses the exact one.
+struct SpanPoly {
+    /// span index k
+    k: usize,
+    /// the shift c (a control point coordinate, exact)
+    c: f64,
+    /// homogeneous Bézier segment of C_j - c over [a, b]
+    seg: BezierSeg<Mr>,
+    /// F, degree n
+    f: BezierSeg<Mr>,
+    /// F', degree n - 1 (one zero coefficient for n = 0)
+    df: BezierSeg<Mr>,
+}
+
+impl SpanPoly {
+    /// The form of coordinate j of `c` on span k; `pair` from [`pair_coefficients`] (rational;
+    /// empty: F is left unknown, ENTIRE).
+    fn new(c: &NurbsCurve, j: usize, k: usize, pair: &[Mr]) -> Self {
+        let p = c.degree();
+        let rational = c.is_rational();
+        let shift = span_shift((k - p..=k).map(|i| c.control_point(i)[j]).collect());
+        let seg = shifted_segment(c, j, k, shift);
+        let q = &seg.pts;
+        let fco: Vec<Mr> = if rational && pair.is_empty() {
+            // degree above BERNSTEIN_MAX_DEGREE: F unknown
+            vec![Mr::ENTIRE]
+        } else if rational {
+            let mut d = vec![Mr::from_f64(0.0); 2 * p - 1];
+            for i in 0..p {
+                for l in i + 1..=p {
+                    let (ai, wi, al, wl) = (q[2 * i], q[2 * i + 1], q[2 * l], q[2 * l + 1]);
+                    d[i + l - 1] = d[i + l - 1] + pair[i * (p + 1) + l] * (al * wi - ai * wl);
+                }
+            }
+            d
+        } else {
+            q.windows(2).map(|w| w[1] - w[0]).collect()
+        };
+        let n = fco.len() - 1;
+        let dco: Vec<Mr> = if rational && pair.is_empty() {
+            vec![Mr::ENTIRE]
+        } else if n == 0 {
+            vec![Mr::from_f64(0.0)]
+        } else {
+            let nm = Mr::from_usize(n);
+            fco.windows(2).map(|w| nm * (w[1] - w[0])).collect()
+        };
+        let poly = |pts: Vec<Mr>| BezierSeg {
+            a: seg.a,
+            b: seg.b,
+            degree: pts.len() - 1,
+            dim: 1,
+            rational: false,
+            pts,
+        };
+        SpanPoly {
+            k,
+            c: shift,
+            f: poly(fco),
+            df: poly(dco),
+            seg,
+        }
+    }
+
+    /// The Bézier points of `s` over [t0, t1] inside [0, 1]: de Casteljau at t1 (left part,
+    /// over [0, t1]), then at an enclosure of t0 / t1 (right part of that). For every exact
+    /// parameter in the enclosure the split encloses the exact sub-segment
+    /// ([`BezierSeg::split_points`]), so the result encloses the points over [t0, t1].
+    fn restrict<S: Scalar>(s: &BezierSeg<S>, t0: f64, t1: f64) -> Vec<S> {
+        let mut part = s.clone();
+        if t1 < 1.0 {
+            part.pts = part.split_points(&S::from_f64(t1)).0;
+        }
+        if t0 > 0.0 {
+            part.pts = part.split_points(&(S::from_f64(t0) / S::from_f64(t1))).1;
+        }
+        part.pts
+    }
+
+    /// F over [t0, t1] (at t0 for a point): de Casteljau value, or the coefficient hull.
+    fn f(&self, t0: f64, t1: f64) -> Interval {
+        if t0 == t1 {
+            return self.f.eval_local(&Mr::from_f64(t0))[0].to_interval();
+        }
+        hull(&Self::restrict(&self.f, t0, t1))
+    }
+
+    /// F' over [t0, t1] (at t0 for a point).
+    fn df(&self, t0: f64, t1: f64) -> Interval {
+        if t0 == t1 {
+            return self.df.eval_local(&Mr::from_f64(t0))[0].to_interval();
+        }
+        hull(&Self::restrict(&self.df, t0, t1))
+    }
+
+    /// The values of the piece C_j over [t0, t1]: hull of the Cartesian Bézier points of the
+    /// restricted segment, shifted back by c.
+    fn values(&self, t0: f64, t1: f64) -> Interval {
+        let q = Self::restrict(&self.seg, t0, t1);
+        hull(&cartesian(q, self.seg.rational)) + iv::point(self.c)
+    }
+
+    /// As [`SpanPoly::values`], and C_j at the parameter u(t_mid) (a real in the closed span:
+    /// a value of the piece there), in double-double intervals ([`Ddi`]): for the candidate
+    /// boxes, where the few hundred ulps of the Mr points would show in the bounds.
+    fn values_tight(&self, c: &NurbsCurve, j: usize, t0: f64, t1: f64) -> (Interval, Interval) {
+        let seg: BezierSeg<Ddi> = shifted_segment(c, j, self.k, self.c);
+        let r = self.seg.rational;
+        let over = hull(&cartesian(Self::restrict(&seg, t0, t1), r));
+        let at = hull(&cartesian(
+            seg.eval_local(&Ddi::from_f64(midpoint(t0, t1))),
+            r,
+        ));
+        let sh = iv::point(self.c);
+        (over + sh, at + sh)
+    }
+
+    /// An f64 box [lo, hi] inside [a, b] that contains u([t0, t1]), u(t) = a + t (b - a)
+    /// (outward-rounded interval arithmetic; u(t) is in [a, b] for t in [0, 1]).
+    fn to_u(&self, t0: f64, t1: f64) -> (f64, f64) {
+        let (a, b) = (self.seg.a, self.seg.b);
+        let len = iv::point(b) - iv::point(a);
+        let lo = (iv::point(a) + iv::point(t0) * len).inf();
+        let hi = (iv::point(a) + iv::point(t1) * len).sup();
+        (lo.clamp(a, b), hi.clamp(a, b))
+    }
+
+    /// Coordinate j of the span's Bézier points, enclosed: their hull [lo, hi] and whether
+    /// they are non-decreasing / non-increasing (for every choice of the exact points in the
+    /// enclosures: each upper bound <= the next lower bound).
+    ///
+    /// Why this is sound: the new weights of knot insertion are convex combinations of
+    /// positive weights, so positive. A rational Bézier curve with positive weights lies in
+    /// the convex hull of its points (thesis prop. 2.1, on the closed span, the right-end limit
+    /// included), and is monotone if its points are (the argument of [`Engine::monotone`]).
+    fn bezier_points(&self) -> (f64, f64, bool, bool) {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut inc, mut dec) = (true, true);
+        let mut prev = Interval::EMPTY;
+        for x in cartesian(self.seg.pts.clone(), self.seg.rational) {
+            let x = x.to_interval() + iv::point(self.c);
+            if x.is_empty() || x.is_entire() {
+                return (f64::NEG_INFINITY, f64::INFINITY, false, false);
+            }
+            lo = lo.min(x.inf());
+            hi = hi.max(x.sup());
+            if !prev.is_empty() {
+                inc &= x.inf() >= prev.sup();
+                dec &= x.sup() <= prev.inf();
+            }
+            prev = x;
+        }
+        (lo, hi, inc, dec)
+    }
+
+    /// Whether F >= 0 / F <= 0 on the whole span (all coefficients of one sign), i.e. C_j
+    /// non-decreasing / non-increasing on the closed span.
+    fn f_signs(&self) -> (bool, bool) {
+        let h = hull(&self.f.pts);
+        (h.inf() >= 0.0, h.sup() <= 0.0)
+    }
+}
+
+/// The homogeneous Bézier segment of the shifted piece C_j - c on span k of `c`: rows
+/// ((x_i - c) w_i, w_i) (rational) or x_i - c, by Boehm knot insertion on the p + 1 local
+/// control points ([`HSpline::bezier_segment`]). Each x_i - c is exact for x_i = c (and
+/// within a factor 2 of c, Sterbenz), else enclosed by S.
+fn shifted_segment<S: Scalar>(c: &NurbsCurve, j: usize, k: usize, shift: f64) -> BezierSeg<S> {
+    let p = c.degree();
+    let rational = c.is_rational();
+    let cs = S::from_f64(shift);
+    let mut pts = Vec::with_capacity((p + 1) * (1 + rational as usize));
+    for i in k - p..=k {
+        let x = S::from_f64(c.control_point(i)[j]) - cs.clone();
+        if rational {
+            let w = S::from_f64(c.weight(i));
+            pts.push(x * w.clone());
+            pts.push(w);
+        } else {
+            pts.push(x);
+        }
+    }
+    let local = HSpline {
+        degree: p,
+        knots: c.knots()[k - p..=k + p + 1].to_vec(),
+        dim: 1,
+        rational,
+        pts,
+    };
+    local.bezier_segment(p)
+}
+
+/// The Cartesian points (x_i - c) of homogeneous one-coordinate points.
+fn cartesian<S: Scalar>(q: Vec<S>, rational: bool) -> Vec<S> {
+    if rational {
+        q.chunks_exact(2)
+            .map(|h| h[0].clone() / h[1].clone())
+            .collect()
+    } else {
+        q
+    }
+}
+
+/// Interval hull of enclosures (ENTIRE if any is unbounded).
+fn hull<S: Scalar>(v: &[S]) -> Interval {
+    v.iter()
+        .fold(Interval::EMPTY, |h, x| h.convex_hull(x.to_interval()))
+}
+
+/// The shift c of [`SpanPoly`]: the most frequent of the local control point coordinates
+/// (the smallest such; the median when all differ). Any value is sound; this one makes flat
+/// runs exact zeros.
+fn span_shift(mut xs: Vec<f64>) -> f64 {
+    xs.sort_by(f64::total_cmp);
+    let (mut best, mut run) = (xs[xs.len() / 2], 1);
+    let mut i = 0;
+    while i < xs.len() {
+        let e = i + xs[i..].iter().take_while(|&&x| x == xs[i]).count();
+        if e - i > run {
+            (best, run) = (xs[i], e - i);
+        }
+        i = e;
+    }
+    best
+}
+
+/// `pair[i (p + 1) + l]` = (l - i) C(p, i) C(p, l) / C(2p - 2, i + l - 1) for i < l (see
+/// [`SpanPoly`]), enclosed: binomials by Pascal's rule in [`Mr`] (exact while below 2^53).
+fn pair_coefficients(p: usize) -> Vec<Mr> {
+    let binom = |n: usize| {
+        let mut row = vec![Mr::from_f64(1.0)];
+        for _ in 0..n {
+            let mut next = vec![Mr::from_f64(1.0); row.len() + 1];
+            for i in 1..row.len() {
+                next[i] = row[i - 1] + row[i];
+            }
+            row = next;
+        }
+        row
+    };
+    let (bp, b2) = (binom(p), binom(2 * p - 2));
+    let mut pair = vec![Mr::from_f64(0.0); (p + 1) * (p + 1)];
+    for i in 0..p {
+        for l in i + 1..=p {
+            pair[i * (p + 1) + l] = Mr::from_usize(l - i) * bp[i] * bp[l] / b2[i + l - 1];
+        }
+    }
+    pair
 }
 
 /// A midpoint of [x0, x1] inside it (no overflow for huge bounds).
@@ -887,13 +1232,13 @@ impl Acc {
         }
     }
 
-    fn add(&mut self, cd: &Cand, e: Interval, attained: Option<Interval>) {
+    fn add(&mut self, cd: &Cand, e: Interval, attained: [Interval; 2]) {
         // An empty enclosure cannot occur (every value evaluated is a real number); treat it
         // as "anything" to stay sound.
         let e = if e.is_empty() { Interval::ENTIRE } else { e };
         self.lo = self.lo.min(e.inf());
         self.hi = self.hi.max(e.sup());
-        if let Some(v) = attained.filter(|v| !v.is_empty()) {
+        for v in attained.into_iter().filter(|v| !v.is_empty()) {
             // The curve attains a value inside v: it reaches <= sup v and >= inf v.
             self.inner_lo = self.inner_lo.min(v.sup());
             self.inner_hi = self.inner_hi.max(v.inf());
@@ -1179,6 +1524,88 @@ mod tests {
         );
         let e = Newton::default().enclose(&c);
         sound(&c, &e);
+    }
+
+    #[test]
+    fn span_poly_derivative_numerator_matches_f64() {
+        // F(t) against A_t W - A W_t (rational) / A_t / p (polynomial) from f64 de Boor
+        // derivatives of the shifted homogeneous rows, scaled to the local parameter.
+        let p = 5;
+        let kn = vec![
+            0., 0., 0., 0., 0., 0., 0.2, 0.45, 0.5, 1., 1., 1., 1., 1., 1.,
+        ];
+        let x: Vec<f64> = (0..9).map(|i| ((i * 37) % 11) as f64 / 7.0 - 0.6).collect();
+        let w: Vec<f64> = (0..9).map(|i| 0.3 + ((i * 5) % 7) as f64).collect();
+        for wt in [None, Some(w)] {
+            let c = curve1(p, kn.clone(), &x, wt);
+            let pair = if c.is_rational() {
+                pair_coefficients(p)
+            } else {
+                Vec::new()
+            };
+            let ev = CurveEval::<f64>::new(&c, 2);
+            let k0 = c.knots().iter().position(|&u| u > 0.0).unwrap() - 1;
+            for k in k0..c.num_points() {
+                let (a, b) = (c.knots()[k], c.knots()[k + 1]);
+                if a == b {
+                    continue;
+                }
+                let sp = SpanPoly::new(&c, 0, k, &pair);
+                for i in 0..=10 {
+                    let t = i as f64 / 10.0;
+                    let u = a + (b - a) * t;
+                    let mut buf = Vec::new();
+                    let rows: &[usize] = if c.is_rational() { &[0, 1] } else { &[0] };
+                    let h0 = ev.level(0).eval_span_rows(k, &u, rows, &mut buf).to_vec();
+                    let h1 = ev
+                        .level(1)
+                        .eval_span_rows(k - 1, &u, rows, &mut buf)
+                        .to_vec();
+                    let (l, sc) = (b - a, if c.is_rational() { 1.0 } else { p as f64 });
+                    let want = if c.is_rational() {
+                        // shifted: A - c W; (A - cW)_t W - (A - cW) W_t = A_t W - A W_t
+                        (h1[0] * h0[1] - h0[0] * h1[1]) * l
+                    } else {
+                        h1[0] * l / sc
+                    };
+                    let got = sp.f(t, t);
+                    let tol = 1e-12 * (1.0 + want.abs());
+                    assert!(
+                        got.inf() - tol <= want && want <= got.sup() + tol,
+                        "k {k} u {u}: {got:?} vs {want}"
+                    );
+                    // F over a box contains F at its points; F' by a difference quotient
+                    let (t0, t1) = (t.min(0.999), t.min(0.999) + 1e-3);
+                    let (f0, f1) = (sp.f(t0, t0).mid(), sp.f(t1, t1).mid());
+                    let d = sp.df(t0, t1);
+                    // mean value theorem: the difference quotient is a value of F'
+                    let q = (f1 - f0) / (t1 - t0);
+                    let e = 1e-9 * (1.0 + q.abs());
+                    assert!(d.inf() - e <= q && q <= d.sup() + e, "{d:?} {q}");
+                    assert!(sp.f(t0, t1).contains(f0) && sp.f(t0, t1).contains(f1));
+                    // the piece's value at u(t), and u([t0, t1]) covers u(t0), u(t1)
+                    let y = c.point::<f64>(u).unwrap()[0];
+                    let vt = sp.values_tight(&c, 0, t, t).1;
+                    assert!(vt.inf() - 1e-12 <= y && y <= vt.sup() + 1e-12, "{vt:?} {y}");
+                    let (lo, hi) = sp.to_u(t0, t1);
+                    assert!(lo <= a + t0 * l && a + t1 * l <= hi && a <= lo && hi <= b);
+                }
+                // values over the span contain the f64 points of the piece
+                let v = sp.values(0.0, 1.0);
+                for i in 0..=10 {
+                    let u = a + (b - a) * i as f64 / 10.0;
+                    let y = c.point::<f64>(u).unwrap()[0];
+                    assert!(v.inf() - 1e-12 <= y && y <= v.sup() + 1e-12, "{v:?} {y}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn span_shift_prefers_flat_runs() {
+        assert_eq!(span_shift(vec![3.0, 1.0, 1.0, 2.0, 1.0]), 1.0);
+        assert_eq!(span_shift(vec![3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(span_shift(vec![-0.5]), -0.5);
     }
 
     #[test]
