@@ -330,6 +330,9 @@ pub(crate) struct Engine<'a> {
     poly: Option<SpanPoly>,
     /// whether the Newton search evaluates through `poly` ([`Newton::bernstein`])
     bern: bool,
+    /// whether the search of the current span evaluates through `poly`: `bern`, unless the
+    /// span's F is swamped by its rounding ([`SpanPoly::f_swamped`]; then interval de Boor)
+    bern_span: bool,
     /// `pair[i (p + 1) + l]` (i < l): (l - i) C(p, i) C(p, l) / C(2p - 2, i + l - 1), the
     /// coefficients of the rational derivative numerator (see [`SpanPoly::new`])
     pair: Vec<Mr>,
@@ -366,6 +369,7 @@ impl<'a> Engine<'a> {
             j: 0,
             poly: None,
             bern: s.bernstein && (1..=BERNSTEIN_MAX_DEGREE).contains(&p),
+            bern_span: false,
             pair: if c.is_rational()
                 && (s.bernstein || s.bezier_pretest)
                 && (1..=BERNSTEIN_MAX_DEGREE).contains(&p)
@@ -423,7 +427,7 @@ impl<'a> Engine<'a> {
     /// parameter t in [0, 1] of the span (the search then runs in t).
     fn value(&mut self, k: usize, u: Interval) -> Interval {
         self.stats.point_evaluations += 1;
-        if let Some(sp) = self.poly.as_ref().filter(|sp| self.bern && sp.k == k) {
+        if let Some(sp) = self.poly.as_ref().filter(|sp| self.bern_span && sp.k == k) {
             return sp.values(u.inf(), u.sup());
         }
         let (a, w) = self.level(0, k, u);
@@ -450,7 +454,7 @@ impl<'a> Engine<'a> {
     fn f(&mut self, k: usize, u: Interval) -> Interval {
         let t = self.s.time_derivatives.then(Instant::now);
         self.stats.derivative_evaluations += 1;
-        let bern = self.poly.as_ref().filter(|sp| self.bern && sp.k == k);
+        let bern = self.poly.as_ref().filter(|sp| self.bern_span && sp.k == k);
         let r = match self.s.form {
             // the Bernstein form's F(t): same sign and zeros as C_j' (see SpanPoly)
             _ if bern.is_some() => bern.map_or(Interval::ENTIRE, |sp| sp.f(u.inf(), u.sup())),
@@ -473,7 +477,7 @@ impl<'a> Engine<'a> {
     fn df(&mut self, k: usize, u: Interval) -> Interval {
         let t = self.s.time_derivatives.then(Instant::now);
         self.stats.derivative_evaluations += 1;
-        let bern = self.poly.as_ref().filter(|sp| self.bern && sp.k == k);
+        let bern = self.poly.as_ref().filter(|sp| self.bern_span && sp.k == k);
         let r = if let Some(sp) = bern {
             // F'(t), the derivative of the f above
             sp.df(u.inf(), u.sup())
@@ -825,6 +829,7 @@ impl<'a> Engine<'a> {
         let mut boxes: Vec<ZeroBox> = Vec::new();
         for &si in order {
             let (k, sa, sb) = self.spans[si];
+            self.bern_span = false;
             let mode = modes[si];
             if mode == SpanMode::Skip {
                 continue;
@@ -863,9 +868,17 @@ impl<'a> Engine<'a> {
                     status[si] = Status::Mono { inc, dec };
                     continue;
                 }
+                // A swamped F (every coefficient's enclosure contains 0) can prove nothing
+                // (every de Casteljau value contains 0 too): the Bernstein search would split
+                // down to `tol` everywhere and use up the work budget of the coordinate. Then
+                // search this span with interval de Boor on the derivative splines, whose control
+                // points are differences of the original ones (no cancellation on tiny spans,
+                // where the Bézier points of C_j all agree to the last few ulps). Either path
+                // is sound; this only picks the one that can make progress.
+                self.bern_span = self.bern && !sp.f_swamped();
                 self.poly = Some(sp);
             }
-            if self.s.pretest && !(self.bern && self.poly.is_some()) {
+            if self.s.pretest && !self.bern_span {
                 let fx = self.f(k, iv::span(sa, sb));
                 if !fx.is_empty() && !fx.contains(0.0) {
                     // f has one sign on the closed span, and sign f = sign C_j'.
@@ -879,7 +892,7 @@ impl<'a> Engine<'a> {
             status[si] = Status::Searched;
             boxes.clear();
             // the Bernstein form is searched in the local parameter t in [0, 1]
-            let bern = self.bern && self.poly.is_some();
+            let bern = self.bern_span;
             let (x0, x1) = if bern { (0.0, 1.0) } else { (sa, sb) };
             let t = self.search(k, x0, x1, (acc.inner_lo, acc.inner_hi), &mut boxes);
             if term == Termination::Converged {
@@ -1102,6 +1115,15 @@ impl SpanPoly {
             prev = x;
         }
         (lo, hi, inc, dec)
+    }
+
+    /// Whether every coefficient enclosure of F contains 0 (and F is not exactly 0): the
+    /// rounding of the Bernstein form swamps F, so no box of the span can be excluded with it
+    /// (e.g. a span of 1e-14 where the Bézier points agree to a few ulps and F, their
+    /// differences, is below their rounding errors).
+    fn f_swamped(&self) -> bool {
+        let zero = self.f.pts.iter().all(|x| x.mid() == 0.0 && x.rad() == 0.0);
+        !zero && self.f.pts.iter().all(|x| x.to_interval().contains(0.0))
     }
 
     /// Whether F >= 0 / F <= 0 on the whole span (all coefficients of one sign), i.e. C_j
