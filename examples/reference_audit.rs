@@ -26,7 +26,7 @@ fn main() {
 #[cfg(feature = "mpfr")]
 mod imp {
     use nurbs_box::enclose::{all_strategies, Guarantee};
-    use nurbs_box::reference::{reference_box, ulps_outside};
+    use nurbs_box::reference::{inner_reached, reference_box, ulps_outside};
     use nurbs_box::robust::curve_from_bytes;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
@@ -86,8 +86,7 @@ mod imp {
                     // inner bounds: values the curve reaches, so min <= inner_lo, inner_hi <= max,
                     // up to the reference's resolution (2^-160 of the scale, see ulps_outside: a
                     // clamped end value of 6e3 in a coordinate of scale 2e226 is below it)
-                    let inner_ok = ulps_outside(cb.inner_lo, &rb.lo[j], scale, true) >= 0.0
-                        && ulps_outside(cb.inner_hi, &rb.hi[j], scale, false) >= 0.0;
+                    let inner_ok = inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, scale);
                     *t.terminations
                         .entry(format!("{:?}", cb.termination))
                         .or_default() += 1;

@@ -159,7 +159,13 @@ mod imp {
                 }
                 acc.ulps.push(d);
             }
-            if !(rb.lo[j] <= cb.inner_lo && cb.inner_hi <= rb.hi[j]) {
+            if !nurbs_box::reference::inner_reached(
+                rb,
+                j,
+                cb.inner_lo,
+                cb.inner_hi,
+                c.coord_scale(j),
+            ) {
                 acc.inner_bad += 1;
             }
         }

@@ -406,6 +406,21 @@ pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f6
     (diff / fl(ulp(scale))).to_f64()
 }
 
+/// Whether inner bounds are reached according to the reference: exact min <= `inner_lo` and
+/// `inner_hi` <= exact max of coordinate `j`, up to the reference's resolution (see
+/// [`ulps_outside`]: an attained f64 value, e.g. a clamped end point, may sit ~2^-256 beyond the
+/// MPFR extremum, which must not count as a failure).
+pub fn inner_reached(
+    rb: &ReferenceBox,
+    j: usize,
+    inner_lo: f64,
+    inner_hi: f64,
+    scale: f64,
+) -> bool {
+    ulps_outside(inner_lo, &rb.lo[j], scale, true) >= 0.0
+        && ulps_outside(inner_hi, &rb.hi[j], scale, false) >= 0.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -593,7 +593,7 @@ mod mpfr {
                     rb.hi[j]
                 );
                 assert!(
-                    rb.lo[j] <= cb.inner_lo && cb.inner_hi <= rb.hi[j],
+                    nurbs_box::reference::inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, scale),
                     "{name}: {} coordinate {j}: inner [{:e}, {:e}] not reached, exact [{}, {}]",
                     e.strategy,
                     cb.inner_lo,

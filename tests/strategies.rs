@@ -716,7 +716,7 @@ fn search_region_heuristic_can_miss_and_verified_variant_does_not() {
 #[cfg(feature = "mpfr")]
 mod mpfr {
     use super::*;
-    use nurbs_box::reference::{reference_box, ulps_outside, ReferenceBox};
+    use nurbs_box::reference::{inner_reached, reference_box, ulps_outside, ReferenceBox};
 
     /// Median part of the tightness target of issue 3.
     const TARGET_MEDIAN_ULPS: f64 = 1.0;
@@ -765,9 +765,7 @@ mod mpfr {
             // inner bounds reached (exact min <= inner_lo, inner_hi <= exact max), up to the
             // reference's resolution (ulps_outside counts |distance| < 2^-160 of the scale as 0:
             // an attained f64 end value may sit ~1e-79 off the MPFR value)
-            let sc = c.coord_scale(j);
-            let reached = ulps_outside(cb.inner_lo, &rb.lo[j], sc, true) >= 0.0
-                && ulps_outside(cb.inner_hi, &rb.hi[j], sc, false) >= 0.0;
+            let reached = inner_reached(rb, j, cb.inner_lo, cb.inner_hi, c.coord_scale(j));
             if inner && !reached {
                 return Err(format!(
                     "{}: coord {j}: inner [{}, {}] not reached, exact [{}, {}]\ncurve: {}",
