@@ -363,6 +363,30 @@ impl<S: Scalar> BezierSeg<S> {
         (left, right)
     }
 
+    /// The control points of the piece over the local range [t0, t1] inside [0, 1], by two de
+    /// Casteljau splits ([`BezierSeg::split_points`]): at `t1` (left part, over [0, t1]), then
+    /// at `t0_rel` = t0 / t1 (right part of that). `None` skips a split (t1 = 1, t0 = 0). The
+    /// callers pass enclosures of the split parameters (computing t0 / t1 in one step, e.g.
+    /// (s0 - a) / (s1 - a), keeps it tight); for every exact parameter in them each split
+    /// encloses the exact sub-segment, so the result encloses the points over [t0, t1].
+    pub fn sub_points(&self, t1: Option<&S>, t0_rel: Option<&S>) -> Vec<S> {
+        let pts = match t1 {
+            Some(t) => self.split_points(t).0,
+            None => self.pts.clone(),
+        };
+        match t0_rel {
+            Some(t) => {
+                BezierSeg {
+                    pts,
+                    ..self.clone_meta()
+                }
+                .split_points(t)
+                .1
+            }
+            None => pts,
+        }
+    }
+
     /// de Casteljau split at local t into the segments over [0, t] and [t, 1] (the parameter
     /// bounds a, b of the halves are f64 approximations of the split point).
     pub fn split(&self, t: f64) -> (BezierSeg<S>, BezierSeg<S>) {

@@ -16,16 +16,8 @@ use nurbs_box::{basis_funs, project, HSpline, NurbsCurve};
 use proptest::prelude::*;
 use rand::Rng;
 
-fn config(default_cases: u32) -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default_cases);
-    ProptestConfig {
-        cases,
-        ..ProptestConfig::default()
-    }
-}
+mod common;
+use common::config;
 
 /// Parameters to test at: the domain ends, every distinct knot in the domain and its f64
 /// neighbours, and uniform random points.

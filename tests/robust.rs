@@ -14,16 +14,8 @@ use nurbs_box::{Enclosure, NurbsCurve};
 use proptest::prelude::*;
 use std::time::{Duration, Instant};
 
-fn config(default_cases: u32) -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default_cases);
-    ProptestConfig {
-        cases,
-        ..ProptestConfig::default()
-    }
-}
+mod common;
+use common::config;
 
 /// Clamped uniform knots for `npts` points of degree p on [a, b].
 fn clamped(p: usize, npts: usize, a: f64, b: f64) -> Vec<f64> {

@@ -45,16 +45,8 @@ fn tight_for(name: &str) -> Option<f64> {
     MEETS_TARGET.contains(&name).then_some(TARGET_MAX_ULPS)
 }
 
-fn config(default_cases: u32) -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default_cases);
-    ProptestConfig {
-        cases,
-        ..ProptestConfig::default()
-    }
-}
+mod common;
+use common::config;
 
 fn verified() -> Vec<Box<dyn BoxEncloser>> {
     let v: Vec<_> = all_strategies(None)

@@ -7,6 +7,7 @@ use nurbs_box::enclose::{
 use nurbs_box::validate::{check_containment, dense_params};
 use nurbs_box::{Enclosure, NurbsCurve};
 use proptest::prelude::*;
+mod common;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -140,7 +141,7 @@ fn check_mpfr(c: &NurbsCurve, e: &Enclosure) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 16, ..ProptestConfig::default() })]
+    #![proptest_config(common::config(16))]
 
     #[test]
     fn verified_boxes_contain_the_curve(seed in any::<u64>()) {

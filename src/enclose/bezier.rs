@@ -200,21 +200,11 @@ fn critical(seg: &BezierSeg<Interval>, s0: f64, s1: f64) -> Option<f64> {
 /// restricted to the global parameter range [s0, s1] inside [seg.a, seg.b].
 fn sub_coeffs(seg: &BezierSeg<Interval>, s0: f64, s1: f64, sign: f64) -> Vec<Interval> {
     let (a, b) = (seg.a, seg.b);
-    let mut pts = seg.pts.clone();
-    let tmp = BezierSeg {
-        pts: Vec::new(),
-        ..seg.clone()
-    };
-    if s1 < b {
-        // local t1 = (s1 - a) / (b - a), enclosed; left part is the curve over [a, s1]
-        let t1 = (iv::point(s1) - iv::point(a)) / (iv::point(b) - iv::point(a));
-        pts = BezierSeg { pts, ..tmp.clone() }.split_points(&t1).0;
-    }
-    if s0 > a {
-        // relative to [a, s1]: t0 = (s0 - a) / (s1 - a)
-        let t0 = (iv::point(s0) - iv::point(a)) / (iv::point(s1) - iv::point(a));
-        pts = BezierSeg { pts, ..tmp }.split_points(&t0).1;
-    }
+    let (pa, pb, p0, p1) = (iv::point(a), iv::point(b), iv::point(s0), iv::point(s1));
+    // local t1 = (s1 - a) / (b - a); t0 relative to [a, s1]: (s0 - a) / (s1 - a), enclosed
+    let t1 = (s1 < b).then(|| (p1 - pa) / (pb - pa));
+    let t0 = (s0 > a).then(|| (p0 - pa) / (p1 - pa));
+    let pts = seg.sub_points(t1.as_ref(), t0.as_ref());
     let s = iv::point(sign);
     if seg.rational {
         pts.chunks(2).map(|c| s * (c[0] / c[1])).collect()

@@ -21,12 +21,56 @@ impl BoxEncloser for ControlHull {
     }
     fn enclose(&self, c: &NurbsCurve) -> Enclosure {
         let t0 = Instant::now();
-        let (a, b) = c.domain();
-        // Only the control points whose basis functions are non-zero somewhere on the domain
-        // matter: all of them for a valid curve (each N_{i,p} has support meeting [u_p, u_{n+1}]).
+        // The end points are reached by the curve: their enclosures' upper (lower) ends bound
+        // a value the curve attains from above (below).
         let [ea, eb] = c.end_values();
-        let mut coords = Vec::with_capacity(c.dim());
-        for j in 0..c.dim() {
+        let mut coords = control_point_box(
+            c,
+            |j, lo, hi| {
+                (
+                    ea[j].sup().min(eb[j].sup()).max(lo),
+                    ea[j].inf().max(eb[j].inf()).min(hi),
+                )
+            },
+            Termination::Direct,
+            2,
+        );
+        let el = t0.elapsed();
+        if let Some(c0) = coords.first_mut() {
+            c0.stats.time_total = el;
+        }
+        Enclosure {
+            strategy: self.name(),
+            verified: true,
+            coords,
+        }
+    }
+}
+
+/// Per coordinate j the box [lo, hi] of the control points (exact: min / max of f64 data), with
+/// the inner bounds `inner(j, lo, hi)` (the caller's reason why the curve reaches them),
+/// argmin / argmax at the supports of the extreme control points, and `termination`. O(n d):
+/// shared by [`ControlHull`] and the high-degree fallback (`rescale::degree_fallback`).
+pub(crate) fn control_point_box(
+    c: &NurbsCurve,
+    inner: impl Fn(usize, f64, f64) -> (f64, f64),
+    termination: Termination,
+    point_evaluations: u64,
+) -> Vec<CoordBox> {
+    let (a, b) = c.domain();
+    // Only the control points whose basis functions are non-zero somewhere on the domain
+    // matter: all of them for a valid curve (each N_{i,p} has support meeting [u_p, u_{n+1}]).
+    let at = |i: usize| {
+        let k = &c.knots()[i..=i + c.degree() + 1];
+        Extremum {
+            u_lo: k[0].max(a),
+            u_hi: k[k.len() - 1].min(b),
+            unique: false,
+            kind: CandidateKind::ControlPoint,
+        }
+    };
+    (0..c.dim())
+        .map(|j| {
             let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
             let (mut ilo, mut ihi) = (0, 0);
             for i in 0..c.num_points() {
@@ -40,20 +84,8 @@ impl BoxEncloser for ControlHull {
                     ihi = i;
                 }
             }
-            // The end points are reached by the curve: their enclosures' upper (lower) ends
-            // bound a value the curve attains from above (below).
-            let inner_lo = ea[j].sup().min(eb[j].sup()).max(lo);
-            let inner_hi = ea[j].inf().max(eb[j].inf()).min(hi);
-            let at = |i: usize| {
-                let k = &c.knots()[i..=i + c.degree() + 1];
-                Extremum {
-                    u_lo: k[0].max(a),
-                    u_hi: k[k.len() - 1].min(b),
-                    unique: false,
-                    kind: CandidateKind::ControlPoint,
-                }
-            };
-            coords.push(CoordBox {
+            let (inner_lo, inner_hi) = inner(j, lo, hi);
+            CoordBox {
                 lo,
                 hi,
                 inner_lo,
@@ -61,20 +93,11 @@ impl BoxEncloser for ControlHull {
                 argmin: vec![at(ilo)],
                 argmax: vec![at(ihi)],
                 stats: Stats {
-                    point_evaluations: 2,
+                    point_evaluations,
                     ..Default::default()
                 },
-                termination: Termination::Direct,
-            });
-        }
-        let el = t0.elapsed();
-        if let Some(c0) = coords.first_mut() {
-            c0.stats.time_total = el;
-        }
-        Enclosure {
-            strategy: self.name(),
-            verified: true,
-            coords,
-        }
-    }
+                termination,
+            }
+        })
+        .collect()
 }

@@ -1029,16 +1029,11 @@ impl SpanPoly {
     /// The Bézier points of `s` over [t0, t1] inside [0, 1]: de Casteljau at t1 (left part,
     /// over [0, t1]), then at an enclosure of t0 / t1 (right part of that). For every exact
     /// parameter in the enclosure the split encloses the exact sub-segment
-    /// ([`BezierSeg::split_points`]), so the result encloses the points over [t0, t1].
+    /// ([`BezierSeg::sub_points`]), so the result encloses the points over [t0, t1].
     fn restrict<S: Scalar>(s: &BezierSeg<S>, t0: f64, t1: f64) -> Vec<S> {
-        let mut part = s.clone();
-        if t1 < 1.0 {
-            part.pts = part.split_points(&S::from_f64(t1)).0;
-        }
-        if t0 > 0.0 {
-            part.pts = part.split_points(&(S::from_f64(t0) / S::from_f64(t1))).1;
-        }
-        part.pts
+        let t1s = (t1 < 1.0).then(|| S::from_f64(t1));
+        let t0s = (t0 > 0.0).then(|| S::from_f64(t0) / S::from_f64(t1));
+        s.sub_points(t1s.as_ref(), t0s.as_ref())
     }
 
     /// F over [t0, t1] (at t0 for a point): de Casteljau value, or the coefficient hull.

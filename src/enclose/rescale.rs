@@ -34,9 +34,7 @@
 //! subnormal or overflows ([`scale_outward`]). Curves whose magnitudes are moderate (the
 //! common case) are passed through untouched, so their results are bit-for-bit unchanged.
 
-use super::{
-    BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
-};
+use super::{BoxEncloser, Enclosure, Guarantee, Termination};
 use crate::curve::NurbsCurve;
 
 /// Values whose binary exponent lies within ±`WINDOW` of 0 are left alone: with coordinates
@@ -248,38 +246,16 @@ pub fn degree_fallback(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
     if kn[n + 1..].iter().all(|&u| u == b) {
         ends.push(n);
     }
-    let coords = (0..c.dim())
-        .map(|j| {
-            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-            for i in 0..=n {
-                let x = c.control_point(i)[j];
-                lo = lo.min(x);
-                hi = hi.max(x);
-            }
-            let (mut inner_lo, mut inner_hi) = (hi, lo);
-            for &i in &ends {
-                let x = c.control_point(i)[j];
-                inner_lo = inner_lo.min(x);
-                inner_hi = inner_hi.max(x);
-            }
-            let whole = Extremum {
-                u_lo: a,
-                u_hi: b,
-                unique: false,
-                kind: CandidateKind::Unresolved,
-            };
-            CoordBox {
-                lo,
-                hi,
-                inner_lo,
-                inner_hi,
-                argmin: vec![whole],
-                argmax: vec![whole],
-                stats: Stats::default(),
-                termination: Termination::WorkLimit,
-            }
-        })
-        .collect();
+    let coords = super::hull::control_point_box(
+        c,
+        |j, lo, hi| {
+            ends.iter()
+                .map(|&i| c.control_point(i)[j])
+                .fold((hi, lo), |(l, h), x| (l.min(x), h.max(x)))
+        },
+        Termination::WorkLimit,
+        0,
+    );
     Enclosure {
         strategy: s.name(),
         verified: s.guarantee() == Guarantee::Verified,
