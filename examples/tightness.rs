@@ -185,7 +185,12 @@ mod imp {
         let prov = Provenance::collect();
         let strategies = all_strategies(None);
         let families: Vec<(String, Option<Family>)> = std::iter::once(("moderate".into(), None))
-            .chain(Family::ALL.iter().map(|f| (f.name().to_string(), Some(*f))))
+            .chain(
+                Family::ALL
+                    .iter()
+                    .chain(&[Family::RangeLimits])
+                    .map(|f| (f.name().to_string(), Some(*f))),
+            )
             .collect();
         let header = "| family | strategy | curves | bounds | median | p90 | max | ref miss | pt miss | inner bad | curves missed | µs/curve (median) | µs/curve (mean) |\n|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|";
         println!("# Tightness: ulps_outside of every bound vs the 256-bit reference\n");

@@ -147,7 +147,7 @@ impl<S: Scalar> HSpline<S> {
             );
         }
         let two = self.de_boor_column(k, u, 2);
-        let f = S::from_usize(p) / (S::from_f64(self.knots[k + 1]) - S::from_f64(self.knots[k]));
+        let f = knot_quotient(S::from_usize(p), self.knots[k], self.knots[k + 1]);
         let dh: Vec<S> = (0..h)
             .map(|c| f.clone() * (two[h + c].clone() - two[c].clone()))
             .collect();
@@ -222,8 +222,7 @@ impl<S: Scalar> HSpline<S> {
                 pts.extend(std::iter::repeat_with(S::zero).take(h));
                 continue;
             }
-            let f =
-                pp.clone() / (S::from_f64(self.knots[i + p + 1]) - S::from_f64(self.knots[i + 1]));
+            let f = knot_quotient(pp.clone(), self.knots[i + 1], self.knots[i + p + 1]);
             for c in 0..h {
                 pts.push(
                     f.clone() * (self.pts[(i + 1) * h + c].clone() - self.pts[i * h + c].clone()),
@@ -489,8 +488,7 @@ fn knot_ins<S: Scalar>(
     for j in 1..=r {
         l = k - p + j;
         for i in 0..=p - j - s {
-            let alpha = (us.clone() - S::from_f64(up[l + i]))
-                / (S::from_f64(up[i + k + 1]) - S::from_f64(up[l + i]));
+            let alpha = knot_ratio(&us, up[l + i], up[i + k + 1]);
             for c in 0..h {
                 let lo = rw[i * h + c].clone();
                 let hi = rw[(i + 1) * h + c].clone();
@@ -536,13 +534,55 @@ pub fn corner_cut_level<S: Scalar>(
     // alpha for level r, position j (i = k - p + j): (u - u_i) / (u_{i+p+1-r} - u_i)
     for j in (r..=p).rev() {
         let i = k - p + j;
-        let a = (u.clone() - S::from_f64(knots[i]))
-            / (S::from_f64(knots[i + p + 1 - r]) - S::from_f64(knots[i]));
+        let a = knot_ratio(u, knots[i], knots[i + p + 1 - r]);
         for c in 0..h {
             let hi = col[j * h + c].clone();
             let lo = col[(j - 1) * h + c].clone();
             col[j * h + c] = S::lerp(&a, &lo, &hi);
         }
+    }
+}
+
+/// Below this magnitude a knot difference cannot overflow (2^1022, half of the f64 range).
+const HALF_MAX: f64 = 4.49423283715578976932e307;
+
+/// x - a, or x/2 - a/2 when `half` (see [`knot_ratio`]).
+#[inline]
+fn knot_diff<S: Scalar>(x: S, a: f64, half: bool) -> S {
+    if half {
+        let h = S::from_f64(0.5);
+        x * h.clone() - S::from_f64(a) * h
+    } else {
+        x - S::from_f64(a)
+    }
+}
+
+/// The knot ratio (x - a) / (b - a) of de Boor's and Boehm's alphas, for knots a < b and x in
+/// [a, b], without overflow.
+///
+/// Knots are finite, but the difference of two of opposite sign near ±f64::MAX is not: in
+/// f64 it becomes inf and the ratio 0 or NaN (a wrong but finite-looking point), in interval
+/// arithmetic [MAX, inf] (sound, but useless). When |b - a| >= 2^1022 both differences are
+/// formed from halved operands instead, (x/2 - a/2) / (b/2 - a/2), which equals the ratio in
+/// exact arithmetic and cannot overflow (|b/2 - a/2| <= MAX). Halving is exact except for a
+/// subnormal operand, where it rounds by at most 2^-1075; a verified `S` (intervals, `Ddi`,
+/// `Mr`) encloses that rounding (outward rounded products, underflow included), and against
+/// a denominator >= 2^1021 it is far below one ulp of the ratio.
+#[inline]
+pub fn knot_ratio<S: Scalar>(x: &S, a: f64, b: f64) -> S {
+    let half = !(b - a).abs().lt(&HALF_MAX);
+    knot_diff(x.clone(), a, half) / knot_diff(S::from_f64(b), a, half)
+}
+
+/// num / (b - a) for knots a < b without overflow: (num / 2) / (b/2 - a/2) when the
+/// difference may overflow (the derivative factors p / (u_{i+p+1} - u_{i+1}) of eq. 2.7).
+#[inline]
+pub fn knot_quotient<S: Scalar>(num: S, a: f64, b: f64) -> S {
+    let half = !(b - a).abs().lt(&HALF_MAX);
+    if half {
+        num * S::from_f64(0.5) / knot_diff(S::from_f64(b), a, true)
+    } else {
+        num / (S::from_f64(b) - S::from_f64(a))
     }
 }
 
@@ -555,13 +595,17 @@ pub fn basis_funs<S: Scalar>(knots: &[f64], k: usize, u: &S, p: usize) -> Vec<S>
     n[0] = S::one();
     let mut left = vec![S::zero(); p + 1];
     let mut right = vec![S::zero(); p + 1];
+    // All differences below are of the knots u_{k+1-p} ..= u_{k+p} and u in [u_k, u_{k+1}]:
+    // halved together when their spread may overflow (see `knot_ratio`); every N is a ratio
+    // of such differences, so the common factor cancels.
+    let half = !(knots[k + p] - knots[k + 1 - p]).abs().lt(&HALF_MAX);
+    let d = |x: S, a: f64| knot_diff(x, a, half);
     for j in 1..=p {
-        left[j] = u.clone() - S::from_f64(knots[k + 1 - j]);
-        right[j] = S::from_f64(knots[k + j]) - u.clone();
+        left[j] = d(u.clone(), knots[k + 1 - j]);
+        right[j] = -d(u.clone(), knots[k + j]);
         let mut saved = S::zero();
         for r in 0..j {
-            let temp =
-                n[r].clone() / (S::from_f64(knots[k + r + 1]) - S::from_f64(knots[k + 1 - j + r]));
+            let temp = n[r].clone() / d(S::from_f64(knots[k + r + 1]), knots[k + 1 - j + r]);
             n[r] = saved + right[r + 1].clone() * temp.clone();
             saved = left[j - r].clone() * temp;
         }

@@ -115,10 +115,15 @@ pub enum Family {
     HighDegree,
     /// everything at once (moderate degree)
     Mixed,
+    /// the corners of the f64 range: knots near ±f64::MAX whose differences overflow,
+    /// subnormal knots among huge ones, coordinates at ±f64::MAX and at subnormal sizes
+    RangeLimits,
 }
 
 impl Family {
-    /// All families.
+    /// All families but [`Family::RangeLimits`], whose curves break plain-f64 properties (f64
+    /// evaluation overflows there): the property tests draw from these; the range tests and
+    /// the tightness table add `RangeLimits` explicitly.
     pub const ALL: [Family; 11] = [
         Family::ClampedUniform,
         Family::ClusteredKnots,
@@ -147,6 +152,7 @@ impl Family {
             Family::ExtremeMagnitudes => "extreme_magnitudes",
             Family::HighDegree => "high_degree",
             Family::Mixed => "mixed",
+            Family::RangeLimits => "range_limits",
         }
     }
 
@@ -243,6 +249,14 @@ impl Family {
                 symmetric: 0.2,
                 ..d
             },
+            // (built by `range_limit_curve`; these are its degree and size ranges)
+            Family::RangeLimits => GenParams {
+                degree: 1..=4,
+                extra_points: 0..=6,
+                rational: 1.0 / 3.0,
+                weight_log10: (-3.0, 3.0),
+                ..d
+            },
         }
     }
 
@@ -250,7 +264,103 @@ impl Family {
     pub fn curve(self, rng: &mut impl Rng) -> NurbsCurve {
         match self {
             Family::NearDegenerateCubic => near_degenerate_cubic(rng),
+            Family::RangeLimits => range_limit_curve(rng),
             f => random_curve(rng, &f.params()),
+        }
+    }
+}
+
+/// A curve at the corners of the f64 range ([`Family::RangeLimits`]): degree 1..=4, up to 6
+/// extra points, dimension 1..=3, a third rational (weights 1e-3 .. 1e3). Knots are one of:
+/// clamped at ±f64::MAX with interior knots drawn from subnormals (k 2^-1074), zero, ordinary
+/// values and fractions of ±f64::MAX (spans and knot differences that overflow); [0, MAX]
+/// with subnormal interior knots; an unclamped vector spread over [-MAX, MAX]; a domain of a
+/// few subnormals. Coordinates are ordinary, at or near ±f64::MAX, subnormal, or a mix.
+pub fn range_limit_curve(rng: &mut impl Rng) -> NurbsCurve {
+    const M: f64 = f64::MAX;
+    let sub = |k: u64| f64::from_bits(k);
+    loop {
+        let p = rng.random_range(1..=4usize);
+        let npts = p + 1 + rng.random_range(0..=6usize);
+        let dim = rng.random_range(1..=3usize);
+        let ni = npts - p - 1;
+        let m = npts + p;
+        let interior = |rng: &mut dyn rand::RngCore| -> f64 {
+            match rng.random_range(0..6) {
+                0 => sub(rng.random_range(1..8)),
+                1 => 0.0,
+                2 => rng.random_range(-2.0..2.0),
+                3 => M * rng.random_range(-1.0..1.0),
+                4 => -sub(rng.random_range(1..8)),
+                _ => M * rng.random_range(0.1..1.0),
+            }
+        };
+        let knots: Vec<f64> = match rng.random_range(0..4) {
+            0 => {
+                let mut v: Vec<f64> = (0..ni).map(|_| interior(rng)).collect();
+                v.sort_by(f64::total_cmp);
+                let mut k = vec![-M; p + 1];
+                k.extend(v);
+                k.extend(std::iter::repeat_n(M, p + 1));
+                k
+            }
+            1 => {
+                let mut v: Vec<f64> = (0..ni)
+                    .map(|_| match rng.random_range(0..3) {
+                        0 => sub(rng.random_range(1..16)),
+                        1 => M * rng.random_range(0.0..1.0),
+                        _ => rng.random_range(0.0..4.0),
+                    })
+                    .collect();
+                v.sort_by(f64::total_cmp);
+                let mut k = vec![0.0; p + 1];
+                k.extend(v);
+                k.extend(std::iter::repeat_n(M, p + 1));
+                k
+            }
+            2 => {
+                let mut v: Vec<f64> = (0..=m).map(|_| M * rng.random_range(-1.0..1.0)).collect();
+                v[rng.random_range(0..=m)] = sub(1);
+                v.sort_by(f64::total_cmp);
+                v
+            }
+            _ => {
+                let mut v: Vec<f64> = (0..ni).map(|_| sub(rng.random_range(1..64))).collect();
+                v.sort_by(f64::total_cmp);
+                let mut k = vec![0.0; p + 1];
+                k.extend(v);
+                k.extend(std::iter::repeat_n(sub(64), p + 1));
+                k
+            }
+        };
+        let style: Vec<u8> = (0..dim).map(|_| rng.random_range(0..4)).collect();
+        let pts: Vec<Vec<f64>> = (0..npts)
+            .map(|_| {
+                style
+                    .iter()
+                    .map(|&s| match s {
+                        0 => rng.random_range(-5.0..5.0),
+                        1 => match rng.random_range(0..3) {
+                            0 => M,
+                            1 => -M,
+                            _ => M * rng.random_range(-1.0..1.0),
+                        },
+                        2 => sub(rng.random_range(0..4096)) * if rng.random_bool(0.5) { 1.0 } else { -1.0 },
+                        _ => match rng.random_range(0..3) {
+                            0 => M * rng.random_range(-1.0..1.0),
+                            1 => sub(rng.random_range(0..4096)),
+                            _ => rng.random_range(-1.0..1.0),
+                        },
+                    })
+                    .collect()
+            })
+            .collect();
+        let weights = rng
+            .random_bool(1.0 / 3.0)
+            .then(|| (0..npts).map(|_| log_uniform(rng, (-3.0, 3.0))).collect());
+        // (the constructor rejects an empty domain or a multiplicity above p + 1: draw again)
+        if let Ok(c) = NurbsCurve::new(p, knots, pts, weights) {
+            return c;
         }
     }
 }

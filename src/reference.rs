@@ -270,9 +270,11 @@ fn row(seg: &BezierSeg<Float>, c: usize) -> Vec<Float> {
 /// scale_j in C_j, and the derivative numerator N = A' w - A w' multiplies two such factors.
 /// With prec = 256 + 2 log2(w_max / w_min) + log2(p + 1) + 16 the error stays below ~2^-240 of
 /// the scale whatever the weights (a weight ratio of 1e293 at plain 256 bits gave a "reference"
-/// maximum above every control point, found by `examples/reference_audit.rs`). Knots need no
-/// extra bits: they enter only through differences of f64 values (one rounding each, a
-/// relative perturbation of the convex-combination factors).
+/// maximum above every control point, found by `examples/reference_audit.rs`). Knots enter only
+/// through differences of f64 values (one rounding each, a relative perturbation of the
+/// convex-combination factors); still, a knot vector spread from ±f64::MAX to subnormals gets
+/// enough bits for exact differences, so that the reference does not rest on that argument
+/// where the strategies are most fragile.
 pub fn working_prec(curve: &NurbsCurve) -> u32 {
     let ratio_bits = curve.weights().map_or(0.0, |w| {
         let (mn, mx) = w
@@ -282,7 +284,33 @@ pub fn working_prec(curve: &NurbsCurve) -> u32 {
         (mx.log2() - mn.log2()).max(0.0)
     });
     let p_bits = (curve.degree() as f64 + 1.0).log2();
-    MPFR_PREC + (2.0 * ratio_bits + p_bits).ceil() as u32 + 16
+    let prec = MPFR_PREC + (2.0 * ratio_bits + p_bits).ceil() as u32 + 16;
+    // Knots spread over the f64 range (near ±f64::MAX next to subnormals): enough bits that
+    // every knot difference is exact (up to ~2,100 bits; the range itself is 2,098 bits).
+    prec.max(knot_bits(curve.knots()).saturating_add(64))
+}
+
+/// Bits from the largest knot magnitude down to the lowest set bit of any knot: a difference
+/// of two knots is exact at this precision.
+fn knot_bits(knots: &[f64]) -> u32 {
+    let nz = || knots.iter().filter(|u| **u != 0.0);
+    let (Some(hi), Some(lo)) = (
+        nz().map(|u| u.abs().log2().floor() as i32 + 1).max(),
+        nz().map(|u| {
+            let b = u.abs().to_bits();
+            let e = (b >> 52) as i32;
+            let m = b & ((1u64 << 52) - 1);
+            if e == 0 {
+                m.trailing_zeros() as i32 - 1074
+            } else {
+                (m | (1u64 << 52)).trailing_zeros() as i32 + e - 1075
+            }
+        })
+        .min(),
+    ) else {
+        return 0;
+    };
+    (hi - lo + 2).max(0) as u32
 }
 
 /// The reference box of a curve (see the module documentation for the method), computed at

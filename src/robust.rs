@@ -101,6 +101,23 @@ pub fn curve_from_bytes(data: &[u8]) -> Result<NurbsCurve, CurveError> {
             pts[i * dim + j] = match v {
                 255 => r.f64_bits(),
                 254 if i > 0 => pts[(i - 1) * dim + j],
+                // the range limits: ±f64::MAX, a signed subnormal
+                253 => {
+                    if r.u8() % 2 == 0 {
+                        f64::MAX
+                    } else {
+                        -f64::MAX
+                    }
+                }
+                252 => {
+                    let b = r.u8();
+                    let x = f64::from_bits(u64::from(b >> 1));
+                    if b % 2 == 0 {
+                        x
+                    } else {
+                        -x
+                    }
+                }
                 _ => scale[j] * (offset[j] + (f64::from(v) - 127.0) / 64.0),
             };
         }
@@ -131,6 +148,28 @@ pub fn curve_from_bytes(data: &[u8]) -> Result<NurbsCurve, CurveError> {
         }
         // raw bits for every knot (mostly invalid: tests the validation)
         2 => (0..=m).map(|_| r.f64_bits()).collect(),
+        // the range limits: clamped at ±f64::MAX, interior knots from bytes among subnormals,
+        // zero, ordinary values and fractions of ±f64::MAX (knot differences that overflow)
+        5 => {
+            let mut v: Vec<f64> = (0..ni)
+                .map(|_| {
+                    let b = r.u8();
+                    match b {
+                        0..=31 => f64::from_bits(u64::from(b) + 1),
+                        32..=63 => -f64::from_bits(u64::from(b) - 31),
+                        64..=95 => 0.0,
+                        96..=159 => (f64::from(b) - 128.0) / 16.0,
+                        _ => f64::MAX * ((f64::from(b) - 208.0) / 48.0),
+                    }
+                })
+                .collect();
+            v.sort_by(f64::total_cmp);
+            let lo = if flags & 0x80 == 0 { -f64::MAX } else { 0.0 };
+            let mut k = vec![lo; p + 1];
+            k.extend(v.into_iter().map(|u| u.max(lo)));
+            k.extend(std::iter::repeat_n(f64::MAX, p + 1));
+            k
+        }
         // gaps from bytes: 0 (multiplicity), 1e-12 .. 1 scaled, clamped ends; domain scale
         style => {
             let dom = r.pow10(300.0);

@@ -58,9 +58,10 @@ pub struct BezierSubdivision {
     /// coefficient bounds (sound) and reported as [`Termination::BoxLimit`].
     pub max_pieces: usize,
     /// Work budget per coordinate and side, in pieces times (p + 1)^2 (the cost of one
-    /// piece's de Casteljau splits); pieces beyond it (and beyond 64 + the number of spans)
-    /// are bounded as a whole and reported as [`Termination::WorkLimit`]. Bounds the time of
-    /// high-degree curves (issue 6).
+    /// piece's de Casteljau splits), plus per span 64 pieces but at most
+    /// [`super::WORK_PER_SPAN`] units; pieces beyond it are bounded as a whole and reported as
+    /// [`Termination::WorkLimit`]. Bounds the time of high-degree curves (about 1 s per
+    /// coordinate at degree 1000).
     pub max_work: u64,
     /// Use the root-isolating fast path (module `single`; default true) for a single
     /// polynomial Bézier segment of degree 2 or 3, and on the spans of non-rational curves of
@@ -356,8 +357,11 @@ impl BezierSubdivision {
         let mut pieces = 0usize;
         let cost = ((p + 1) as u64).pow(2);
         // a piece costs about four de Casteljau passes of (p + 1)^2 / 2 steps plus evaluations
+        // (plus an allowance per span that also shrinks with the cost, as newton's: a fixed
+        // 64 pieces took 17 s at degree 1000)
+        let per_span = super::newton::EVALS_PER_SPAN.min(super::newton::WORK_PER_SPAN / cost);
         let work_pieces = (self.max_work / (4 * cost))
-            .saturating_add(64 + spans.len() as u64)
+            .saturating_add(per_span.saturating_mul(spans.len() as u64))
             .min(usize::MAX as u64) as usize;
         while let Some(item) = heap.pop() {
             // Best-first: every remaining bound is <= item.pri <= a value the curve attains.
@@ -435,10 +439,19 @@ impl BezierSubdivision {
                 }
             }
             let seg = segs[k].get_or_insert_with(|| hs.bezier_segment(k)).coord(j);
+            // The last coefficient at the span's right end u_{k+1} is the left limit there:
+            // a value of the curve unless u_{k+1} is a knot of multiplicity p + 1 inside the
+            // domain (a jump: C(u_{k+1}) belongs to the next piece).
+            let right_attained = {
+                let kn = c.knots();
+                k == spans[spans.len() - 1] || kn.iter().filter(|&&x| x == kn[k + 1]).count() <= p
+            };
             let Some((s0, s1, depth, co)) = item.piece else {
                 let co = sub_coeffs(&seg, seg.a, seg.b, sign);
                 side.attain(co[0]);
-                side.attain(co[co.len() - 1]);
+                if right_attained {
+                    side.attain(co[co.len() - 1]);
+                }
                 heap.push(Item {
                     pri: ub(&co),
                     span: k,
@@ -451,7 +464,9 @@ impl BezierSubdivision {
             pieces += 1;
             let (e0, e1) = (co[0], co[p]);
             side.attain(e0);
-            side.attain(e1);
+            if s1 < seg.b || right_attained {
+                side.attain(e1);
+            }
             let inner = co[1..p]
                 .iter()
                 .fold(f64::NEG_INFINITY, |m, x| m.max(x.sup()));
@@ -461,9 +476,14 @@ impl BezierSubdivision {
                     // At a discontinuity (knot of multiplicity p + 1) C(s) belongs to the next
                     // piece and this piece only approaches its end coefficient: then the
                     // intersection is empty and the (closure) value e itself is used.
+                    // (the closure value bounds the piece but is not attained)
                     let v = (sg * vals.at(j, s)).intersection(e);
-                    let v = if v.is_empty() { e } else { v };
-                    side.attain(v);
+                    let v = if v.is_empty() {
+                        e
+                    } else {
+                        side.attain(v);
+                        v
+                    };
                     side.bound(
                         v.sup(),
                         Extremum {
@@ -623,6 +643,11 @@ impl BezierSubdivision {
 /// coefficients (NURBS Book P5.x, convex hull property), so max v_i + E bounds it, and
 /// C(u_k) = b_0 (right-continuous; b_p = C(u_{k+1}) only on the last span, elsewhere it may
 /// be a left limit at a jump) is attained. Results are rounded outward by one step.
+///
+/// No subtraction overflows: `knot_ratio` halves the operands of a knot difference that could
+/// (|t_b - t_a| >= 2^1022), which adds at most 2^-1075 / 2^1021 to α̂, far below η (and the
+/// driver only passes moderate knot vectors here: `rescale`, `segments`). A non-finite
+/// coefficient would void the bound, so it sends the span to the interval path.
 fn span_filter(
     c: &NurbsCurve,
     q: &BezierSeg<f64>,
@@ -636,6 +661,11 @@ fn span_filter(
     let m = (k - p..=k).fold(0.0f64, |m, i| m.max(c.control_point(i)[j].abs()));
     let e = (2 * p) as f64 * (8.0 * f64::EPSILON) * m + f64::MIN_POSITIVE;
     let v = |i: usize| sign * q.pts[i * h + j];
+    // (f64::max skips a NaN: a NaN or infinite coefficient, from an overflow, voids the
+    // a-priori bound, so the span goes to the interval path)
+    if !(0..=p).all(|i| v(i).is_finite()) {
+        return None;
+    }
     let vmax = (0..=p).map(v).fold(f64::NEG_INFINITY, f64::max);
     let at = if last { v(0).max(v(p)) } else { v(0) };
     if !(vmax.is_finite() && e.is_finite() && at.is_finite()) {

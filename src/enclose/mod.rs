@@ -12,10 +12,11 @@ mod hull;
 mod newton;
 mod rescale;
 mod search_region;
+mod segments;
 
 pub use bezier::BezierSubdivision;
 pub use hull::ControlHull;
-pub use newton::{DerivForm, Newton, Split, DEFAULT_MAX_WORK};
+pub use newton::{DerivForm, Newton, Split, DEFAULT_MAX_WORK, EVALS_PER_SPAN, WORK_PER_SPAN};
 pub use rescale::{
     degree_fallback, enclose_rescaled, scale_outward, Rescaled, Rescaling, MAX_SEARCH_DEGREE,
 };

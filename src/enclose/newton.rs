@@ -898,6 +898,19 @@ impl<'a> Engine<'a> {
             if term == Termination::Converged {
                 term = t;
             }
+            if t == Termination::WorkLimit && boxes.len() > 1 {
+                // Out of budget: the boxes left are enclosed as one (their hull, still inside
+                // the span), so that the work after the limit is one evaluation per span, not
+                // one per box (2p boxes of O(p^2) each took minutes at degree 800).
+                let lo = boxes.iter().map(|zb| zb.lo).fold(f64::INFINITY, f64::min);
+                let hi = boxes.iter().map(|zb| zb.hi).fold(f64::NEG_INFINITY, f64::max);
+                boxes.clear();
+                boxes.push(ZeroBox {
+                    lo,
+                    hi,
+                    unique: false,
+                });
+            }
             for zb in &boxes {
                 let (lo, hi, t) = match self.poly.as_ref().filter(|_| bern) {
                     Some(sp) => {

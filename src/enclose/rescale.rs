@@ -33,6 +33,33 @@
 //! Mapping bounds back multiplies by 2^e again, with directed rounding where the result is
 //! subnormal or overflows ([`scale_outward`]). Curves whose magnitudes are moderate (the
 //! common case) are passed through untouched, so their results are bit-for-bit unchanged.
+//!
+//! # Rounded coordinates
+//!
+//! When a scaled control point coordinate is not exact (it fell into the subnormal range), the
+//! curve is enclosed twice: once with every such coordinate rounded down, once rounded up
+//! (each a curve C_dn <= C <= C_up at every u, because the rational basis functions are >= 0
+//! and sum to 1). The lower bound and the attained upper value come from C_dn, the upper bound
+//! and the attained lower value from C_up: all four stay valid for C, with no widening.
+//!
+//! # The knot scaling, and what it cannot do
+//!
+//! The knot exponent s is the one that maps the domain to a length in [1/2, 1), clamped to
+//! the range where 2^-s u is exact for every knot: s <= t(u) + 1074 for the lowest set bit
+//! 2^t(u) of each knot (scaling down), and 2^-s |u| < 2^1020 (scaling up; also keeps every
+//! knot difference below 2^1021, so no kernel overflows). An ordinary knot such as 0.1
+//! (t = -56) still allows s up to 1018. A curve whose knots cannot be brought into the
+//! moderate range exactly (a knot with a 2^-1074 bit next to knots near ±f64::MAX: no exact
+//! affine map of such a vector has a spread below f64::MAX) goes span by span through
+//! [`super::segments`] instead: each span's piece becomes Bézier curves over [0, 1].
+//!
+//! # Facts applied to every result
+//!
+//! The control-point box is an exact outer box (convex hull property, thesis prop. 2.1), so
+//! every outer bound is clamped to it: a bound of a finite curve is finite, and a NaN or an
+//! infinity from an overflow can never survive as a bound. At a clamped end the curve takes
+//! the end control point exactly ([`NurbsCurve::clamped_ends`]), an attained value for the
+//! inner bounds (this makes an end value such as f64::MAX an exact, attained bound).
 
 use super::{BoxEncloser, Enclosure, Guarantee, Termination};
 use crate::curve::NurbsCurve;
@@ -59,6 +86,23 @@ fn exponent(x: f64) -> i32 {
     ((m.to_bits() >> 52) & 0x7ff) as i32 - 1022 - bias
 }
 
+/// The exponent t of the lowest set bit of a finite non-zero x (x = m 2^t with m odd):
+/// x 2^-s is exact for s <= t + 1074 (no bit falls below the smallest subnormal 2^-1074).
+fn low_exp(x: f64) -> i32 {
+    let b = x.abs().to_bits();
+    let e = (b >> 52) as i32;
+    let m = b & ((1u64 << 52) - 1);
+    if e == 0 {
+        m.trailing_zeros() as i32 - 1074
+    } else {
+        (m | (1u64 << 52)).trailing_zeros() as i32 + e - 1075
+    }
+}
+
+/// Knots are kept below 2^KNOT_MAX_EXP in magnitude, so that every difference of two knots
+/// (and of a knot and a parameter) is below 2^(KNOT_MAX_EXP + 1) and cannot overflow.
+const KNOT_MAX_EXP: i32 = 1019;
+
 /// x * 2^k (round to nearest; two steps so that 2^k itself never over/underflows).
 fn ldexp(x: f64, k: i32) -> f64 {
     if (-1022..=1023).contains(&k) {
@@ -74,6 +118,24 @@ fn ldexp_exact(x: f64, k: i32) -> Option<f64> {
     // A finite result that is normal (or an exact zero from a zero) is exact; otherwise
     // check by scaling back (a subnormal y may still be exact).
     (y.is_finite() && (y == 0.0) == (x == 0.0) && ldexp(y, -k) == x).then_some(y)
+}
+
+/// x * 2^k rounded toward -inf (`up` false) or +inf (`up` true), for scaling control points
+/// down: exact unless the product is subnormal, where the nearest value is moved one step if
+/// it lies on the wrong side (the check scales back exactly: y 2^-k is normal or exact).
+fn ldexp_directed(x: f64, k: i32, up: bool) -> f64 {
+    let y = ldexp(x, k);
+    if ldexp_exact(x, k).is_some() {
+        return y;
+    }
+    let back = ldexp(y, -k);
+    if up && back < x {
+        y.next_up()
+    } else if !up && back > x {
+        y.next_down()
+    } else {
+        y
+    }
 }
 
 /// x * 2^k rounded upward (`up`) or downward: a bound that is still a bound after scaling.
@@ -109,12 +171,44 @@ pub fn scale_outward(x: f64, k: i32, up: bool) -> f64 {
 pub struct Rescaling {
     /// coordinate j is multiplied by 2^-coord_exp[j]
     pub coord_exp: Vec<i32>,
-    /// whether some control point coordinate j rounded (widen the box by one subnormal step)
+    /// whether some control point coordinate j rounded (enclosed rounded down and up)
     pub coord_rounded: Vec<bool>,
     /// weights are multiplied by 2^-weight_exp
     pub weight_exp: i32,
     /// knots are multiplied by 2^-knot_exp
     pub knot_exp: i32,
+    /// whether the scaled knots are moderate (domain length within 2^±30 of 1, no knot
+    /// difference can overflow); if not, the curve is enclosed span by span
+    /// ([`super::segments`])
+    pub knots_moderate: bool,
+}
+
+/// The knot exponent (see the module docs) and whether the scaled knots are moderate.
+fn knot_scaling(c: &NurbsCurve) -> (i32, bool) {
+    let kn = c.knots();
+    let (a, b) = c.domain();
+    // b/2 - a/2 cannot overflow; halving may round only for subnormals (irrelevant here:
+    // the exponent is only a choice, exactness is checked on the knots themselves)
+    let want = exponent(0.5 * b - 0.5 * a) + 1;
+    let max_e = kn.iter().map(|&u| exponent(u)).max().unwrap_or(0);
+    if want.abs() <= KNOT_WINDOW && max_e <= KNOT_MAX_EXP {
+        return (0, true);
+    }
+    // exact range: s <= low_exp(u) + 1074 for every non-zero knot, s >= max_e - KNOT_MAX_EXP
+    let s_hi = kn
+        .iter()
+        .filter(|&&u| u != 0.0)
+        .map(|&u| low_exp(u) + 1074)
+        .min()
+        .unwrap_or(i32::MAX);
+    let s_lo = max_e - KNOT_MAX_EXP;
+    let s = want.clamp(s_lo.min(s_hi), s_hi);
+    let exact = kn.iter().all(|&u| ldexp_exact(u, -s).is_some());
+    if !exact {
+        return (0, false);
+    }
+    let moderate = (want - s).abs() <= KNOT_WINDOW && max_e - s <= KNOT_MAX_EXP;
+    (s, moderate)
 }
 
 impl Rescaling {
@@ -139,15 +233,8 @@ impl Rescaling {
                 weight_exp = e;
             }
         }
-        let mut knot_exp = 0;
-        let (a, b) = c.domain();
-        // b/2 - a/2 cannot overflow; halving may round only for subnormals (irrelevant here:
-        // the exponent is only a choice, exactness is checked on the knots themselves)
-        let e = exponent(0.5 * b - 0.5 * a) + 1;
-        if e.abs() > KNOT_WINDOW && c.knots().iter().all(|&x| ldexp_exact(x, -e).is_some()) {
-            knot_exp = e;
-        }
-        if coords_moderate && weight_exp == 0 && knot_exp == 0 {
+        let (knot_exp, knots_moderate) = knot_scaling(c);
+        if coords_moderate && weight_exp == 0 && knot_exp == 0 && knots_moderate {
             return None;
         }
         let mut coord_exp = vec![0; d];
@@ -163,23 +250,30 @@ impl Rescaling {
                     .any(|&x| ldexp_exact(x, -e).is_none());
             }
         }
-        let r = Rescaling {
+        Some(Rescaling {
             coord_exp,
             coord_rounded,
             weight_exp,
             knot_exp,
-        };
-        (r.coord_exp.iter().any(|&e| e != 0) || r.weight_exp != 0 || r.knot_exp != 0).then_some(r)
+            knots_moderate,
+        })
     }
 
-    /// The rescaled curve (same image up to the coordinate scaling, see the module docs).
-    pub fn apply(&self, c: &NurbsCurve) -> NurbsCurve {
+    /// The rescaled curve (same image up to the coordinate scaling, see the module docs);
+    /// coordinates that round are rounded down (`up` false) or up, or to nearest (`None`).
+    pub fn apply_directed(&self, c: &NurbsCurve, up: Option<bool>) -> NurbsCurve {
         let d = c.dim();
         let pts: Vec<f64> = c
             .points_flat()
             .iter()
             .enumerate()
-            .map(|(k, &x)| ldexp(x, -self.coord_exp[k % d]))
+            .map(|(k, &x)| {
+                let e = -self.coord_exp[k % d];
+                match up {
+                    Some(up) if self.coord_rounded[k % d] => ldexp_directed(x, e, up),
+                    _ => ldexp(x, e),
+                }
+            })
             .collect();
         let knots: Vec<f64> = c
             .knots()
@@ -195,17 +289,47 @@ impl Rescaling {
         NurbsCurve::from_flat(c.degree(), d, knots, pts, weights).unwrap_or_else(|_| c.clone())
     }
 
+    /// The rescaled curve, coordinates rounded to nearest (see [`Rescaling::apply_directed`]).
+    pub fn apply(&self, c: &NurbsCurve) -> NurbsCurve {
+        self.apply_directed(c, None)
+    }
+
+    /// Enclose `c` with `s` through this rescaling: scaled curve(s) enclosed (span by span if
+    /// the knots are not moderate), rounded coordinates from the curves rounded down and up,
+    /// the result mapped back.
+    pub fn enclose_with(&self, s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
+        let run = |cc: &NurbsCurve| {
+            if self.knots_moderate {
+                s.enclose(cc)
+            } else {
+                super::segments::enclose_by_segments(s, cc)
+            }
+        };
+        if !self.coord_rounded.contains(&true) {
+            return self.restore(run(&self.apply(c)));
+        }
+        let mut dn = run(&self.apply_directed(c, Some(false)));
+        let up = run(&self.apply_directed(c, Some(true)));
+        for (j, (cd, cu)) in dn.coords.iter_mut().zip(up.coords).enumerate() {
+            if self.coord_rounded[j] {
+                // C_dn <= C <= C_up: lo and the attained max from C_dn, hi and the attained
+                // min from C_up (see the module docs)
+                cd.hi = cu.hi;
+                cd.inner_lo = cu.inner_lo;
+                cd.argmax = cu.argmax;
+                cd.stats.add(&cu.stats);
+                if cd.termination == Termination::Converged {
+                    cd.termination = cu.termination;
+                }
+            }
+        }
+        self.restore(dn)
+    }
+
     /// Map an enclosure of the rescaled curve back to the original curve.
     pub fn restore(&self, mut e: Enclosure) -> Enclosure {
         for (j, cb) in e.coords.iter_mut().enumerate() {
             let k = self.coord_exp[j];
-            if self.coord_rounded[j] {
-                // one subnormal step covers the <= 2^-1075 rounding of the scaled points
-                cb.lo = cb.lo.next_down();
-                cb.hi = cb.hi.next_up();
-                cb.inner_lo = cb.inner_lo.next_up();
-                cb.inner_hi = cb.inner_hi.next_down();
-            }
             cb.lo = scale_outward(cb.lo, k, false);
             cb.hi = scale_outward(cb.hi, k, true);
             // inner bounds: the curve reaches <= inner_lo and >= inner_hi, so round inner_lo up
@@ -224,7 +348,7 @@ impl Rescaling {
 /// Above this degree every strategy returns the control-point box ([`degree_fallback`]): one
 /// interval evaluation costs ~(p + 1)^2 corner cuts (a second at p = 3000), so a search would
 /// take minutes per curve, and a small input (a few KB of JSON per thousand degrees) could
-/// stall a batch. The formats allow any degree; issue 6 asks for degrees up to 40.
+/// stall a batch. The formats allow any degree.
 pub const MAX_SEARCH_DEGREE: usize = 1000;
 
 /// The control-point box of `c` (convex hull property, thesis prop. 2.1; exact) as the result
@@ -232,27 +356,12 @@ pub const MAX_SEARCH_DEGREE: usize = 1000;
 /// [`Termination::WorkLimit`].
 ///
 /// Inner bounds without evaluating the curve: every u has lo <= C_j(u) <= hi, so the curve
-/// reaches a value <= hi and one >= lo; at a clamped end (p + 1 equal knots) the curve
-/// interpolates the end control point exactly (NURBS Book eq. 2.3 / property P4.1), whose
-/// coordinates are then attained values.
+/// reaches a value <= hi and one >= lo; the attained end values are added by
+/// [`enclose_rescaled`].
 pub fn degree_fallback(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
-    let (p, n) = (c.degree(), c.num_points() - 1);
-    let kn = c.knots();
-    let (a, b) = c.domain();
-    let mut ends = Vec::new();
-    if kn[..=p].iter().all(|&u| u == a) {
-        ends.push(0);
-    }
-    if kn[n + 1..].iter().all(|&u| u == b) {
-        ends.push(n);
-    }
     let coords = super::hull::control_point_box(
         c,
-        |j, lo, hi| {
-            ends.iter()
-                .map(|&i| c.control_point(i)[j])
-                .fold((hi, lo), |(l, h), x| (l.min(x), h.max(x)))
-        },
+        |_, lo, hi| (hi, lo),
         Termination::WorkLimit,
         0,
     );
@@ -267,23 +376,45 @@ pub fn degree_fallback(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
 /// docs); the result is an enclosure of `c` itself. Above [`MAX_SEARCH_DEGREE`] the result is
 /// the control-point box ([`degree_fallback`]).
 ///
-/// For a verified strategy the inner bounds are also made consistent with the outer ones:
-/// every u has lo <= C_j(u) <= hi, so the curve reaches a value <= hi and a value >= lo, and
-/// `inner_lo = min(inner_lo, hi)`, `inner_hi = max(inner_hi, lo)` stay valid (a constant
-/// coordinate may otherwise get an inner bound one rounding beyond the exact outer one).
+/// Then the facts of the module docs are applied: outer bounds clamped to the control-point
+/// box, the end control points of clamped ends taken as attained values, and the inner
+/// bounds made consistent with the outer ones: every u has lo <= C_j(u) <= hi, so the curve
+/// reaches a value <= hi and a value >= lo, and `inner_lo = min(inner_lo, hi)`,
+/// `inner_hi = max(inner_hi, lo)` stay valid (a constant coordinate may otherwise get an inner
+/// bound one rounding beyond the exact outer one).
 pub fn enclose_rescaled(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
-    if c.degree() > MAX_SEARCH_DEGREE {
-        return degree_fallback(s, c);
-    }
-    let mut e = match Rescaling::of(c) {
-        None => s.enclose(c),
-        Some(r) => r.restore(s.enclose(&r.apply(c))),
-    };
-    if s.guarantee() == Guarantee::Verified {
-        for cb in &mut e.coords {
-            cb.inner_lo = cb.inner_lo.min(cb.hi);
-            cb.inner_hi = cb.inner_hi.max(cb.lo);
+    let mut e = if c.degree() > MAX_SEARCH_DEGREE {
+        degree_fallback(s, c)
+    } else {
+        match Rescaling::of(c) {
+            None => s.enclose(c),
+            Some(r) => r.enclose_with(s, c),
         }
+    };
+    let n = c.num_points() - 1;
+    let cl = c.clamped_ends();
+    let verified = s.guarantee() == Guarantee::Verified;
+    for (j, cb) in e.coords.iter_mut().enumerate() {
+        let (plo, phi) = (0..=n)
+            .map(|i| c.control_point(i)[j])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+                (l.min(x), h.max(x))
+            });
+        // (f64::max/min return the non-NaN operand: a NaN bound becomes the hull's)
+        cb.lo = cb.lo.max(plo);
+        cb.hi = cb.hi.min(phi);
+        if !verified {
+            continue;
+        }
+        for (end, i) in [(0, 0), (1, n)] {
+            if cl[end] {
+                let x = c.control_point(i)[j];
+                cb.inner_lo = cb.inner_lo.min(x);
+                cb.inner_hi = cb.inner_hi.max(x);
+            }
+        }
+        cb.inner_lo = cb.inner_lo.min(cb.hi).max(cb.lo);
+        cb.inner_hi = cb.inner_hi.max(cb.lo).min(cb.hi);
     }
     e
 }

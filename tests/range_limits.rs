@@ -1,0 +1,264 @@
+//! Soundness at the corners of the f64 range: knot vectors whose spans overflow (knots near
+//! ±f64::MAX), subnormal knots among huge ones, coordinates at ±f64::MAX and subnormal sizes,
+//! jumps at knots of multiplicity p + 1, and bounded work at degree 1,000.
+//!
+//! Every strategy of the registry, on every curve: the checks of `robust::check_enclosure`
+//! (interval evaluation at dense parameters: no outer bound beyond a value the curve provably
+//! takes), finite boxes, ordered inner bounds; with `--features mpfr` also against the exact
+//! box (reference at enough bits for exact knot differences): no outer miss, no inner bound the
+//! curve does not reach, and `newton` / `bezier` within a few ulps where they converge.
+
+use nurbs_box::enclose::{all_strategies, Guarantee, Termination};
+use nurbs_box::gen::{self, Family};
+use nurbs_box::robust::{check_enclosure, check_params};
+use nurbs_box::{parse_curve, Enclosure, NurbsCurve};
+use std::time::{Duration, Instant};
+
+/// The curves an adversary found (wrong verified bounds before the overflow-safe knot
+/// arithmetic, the segment path and the range facts of the driver).
+const FOUND: &[(&str, &str)] = &[
+    (
+        "bezier_outer_miss",
+        r#"{"degree": 3, "knots": [-1.7976931348623157e+308, -1.7976931348623157e+308, -1.7976931348623157e+308, -1.7976931348623157e+308, -4.4942328371557893e+307, 5e-324, 2.2471164185778946e+307, 4.4942328371557893e+307, 6.741349255733684e+307, 1.1235582092889472e+308, 1.7976931348623157e+308, 1.7976931348623157e+308, 1.7976931348623157e+308, 1.7976931348623157e+308], "control_points": [[5.0], [5.0], [3.0], [1.0], [2.0], [1.0], [3.0], [5.0], [-1.0], [4.0]]}"#,
+    ),
+    (
+        "bezier_false_inner",
+        r#"{"degree": 2, "knots": [-1.7976931348623157e+308, -1.7976931348623157e+308, -1.7976931348623157e+308, 5e-324, 8.988465674311579e+307, 1.3482698511467367e+308, 1.3482698511467367e+308, 1.3482698511467367e+308], "control_points": [[-0.05550951284776673, -240.76955335254445], [-0.5800903872570458, -24.286686951704837], [0.7866340851152702, -220.3823859577318], [0.2148759925705206, 534.315258295924], [0.39166573353688694, -467.3388790854809]]}"#,
+    ),
+    (
+        "max_end_point",
+        r#"{"degree": 2, "knots": [0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0], "control_points": [[0.0, 8.453e-321, 6.370192998856131e-302], [1e-320, 5.845e-321, -1.2591779949217282e-301], [1.7976931348623157e+308, 7.102766244247816e-301, 3.9302663627707674e-301], [1.7976931348623157e+308, 5.891160777143012e+307, -2.59767507677386e-301]]}"#,
+    ),
+    (
+        "min_end_point",
+        r#"{"degree":1,"knots":[0,0,1,1],"control_points":[[-1.7976931348623157e308],[1e-300]]}"#,
+    ),
+    (
+        "jump",
+        r#"{"degree":2,"knots":[0,0,0,0.5,0.5,0.5,1,1,1],"control_points":[[0],[1],[3],[-5],[0],[0]]}"#,
+    ),
+];
+
+fn found(name: &str) -> NurbsCurve {
+    let text = FOUND.iter().find(|(n, _)| *n == name).unwrap().1;
+    parse_curve(text.as_bytes()).unwrap()
+}
+
+/// Every registered strategy on `c`: sound at dense parameters, finite, ordered, in time.
+fn check(name: &str, c: &NurbsCurve, limit: Duration) -> Vec<Enclosure> {
+    let params = check_params(c, 16, &[]);
+    let mut out = Vec::new();
+    for s in all_strategies(None) {
+        let t = Instant::now();
+        let e = s.enclose(c);
+        let dt = t.elapsed();
+        assert!(dt < limit, "{name}: {} took {dt:?}", s.name());
+        if let Err(m) = check_enclosure(c, &e, s.guarantee(), &params) {
+            panic!("{name}: {}: {m}", s.name());
+        }
+        if s.guarantee() == Guarantee::Verified {
+            for (j, cb) in e.coords.iter().enumerate() {
+                assert!(
+                    cb.lo.is_finite() && cb.hi.is_finite(),
+                    "{name}: {} coordinate {j}: [{:e}, {:e}] not finite",
+                    s.name(),
+                    cb.lo,
+                    cb.hi
+                );
+                assert!(
+                    cb.lo <= cb.inner_lo && cb.inner_lo <= cb.hi,
+                    "{name}: {} {j}: {cb:?}",
+                    s.name()
+                );
+                assert!(
+                    cb.lo <= cb.inner_hi && cb.inner_hi <= cb.hi,
+                    "{name}: {} {j}: {cb:?}",
+                    s.name()
+                );
+            }
+        }
+        out.push(e);
+    }
+    out
+}
+
+#[test]
+fn found_curves_are_sound_and_finite() {
+    for (name, _) in FOUND {
+        let c = found(name);
+        let encs = check(name, &c, Duration::from_secs(10));
+        #[cfg(feature = "mpfr")]
+        mpfr::against_reference(name, &c, &encs, true);
+        let _ = encs;
+    }
+}
+
+#[test]
+fn end_values_at_the_range_limits_are_exact_attained_bounds() {
+    // x: clamped end P_n = f64::MAX is the maximum, P_0 = 0 the minimum: both exact, attained
+    let c = found("max_end_point");
+    let c2 = found("min_end_point");
+    for s in all_strategies(None) {
+        if s.guarantee() != Guarantee::Verified {
+            continue;
+        }
+        let e = s.enclose(&c);
+        let x = &e.coords[0];
+        assert_eq!((x.lo, x.hi), (0.0, f64::MAX), "{}", s.name());
+        assert_eq!((x.inner_lo, x.inner_hi), (0.0, f64::MAX), "{}", s.name());
+        let e = s.enclose(&c2);
+        let x = &e.coords[0];
+        assert_eq!((x.lo, x.hi), (-f64::MAX, 1e-300), "{}", s.name());
+        assert_eq!((x.inner_lo, x.inner_hi), (-f64::MAX, 1e-300), "{}", s.name());
+    }
+}
+
+#[test]
+fn overflowing_spans_converge_without_a_work_limit() {
+    // the outer miss curve: every strategy but the hull finds the minimum
+    // 1.3643515984042635878... (in the span [5e-324, 2.247e307]) and converges
+    let c = found("bezier_outer_miss");
+    let exact = 1.364_351_598_404_263_6_f64;
+    for s in all_strategies(None) {
+        if s.name() == "hull" {
+            continue;
+        }
+        let e = s.enclose(&c);
+        let x = &e.coords[0];
+        assert!(
+            x.lo <= exact && x.lo >= exact - 4.0 * f64::EPSILON,
+            "{}: lo {}",
+            s.name(),
+            x.lo
+        );
+        assert!(x.inner_lo >= exact - f64::EPSILON && x.inner_lo <= exact + 4.0 * f64::EPSILON);
+        assert!(
+            !matches!(
+                x.termination,
+                Termination::WorkLimit | Termination::BoxLimit | Termination::IterationLimit
+            ),
+            "{}: {:?}",
+            s.name(),
+            x.termination
+        );
+    }
+}
+
+#[test]
+fn a_left_limit_at_a_jump_is_not_attained() {
+    // C < 3 on [0, 0.5), C(0.5) = -5, C <= 0 after: sup 3 is not reached, max C = 0
+    let c = found("jump");
+    for s in all_strategies(None) {
+        if s.guarantee() != Guarantee::Verified {
+            continue;
+        }
+        let e = s.enclose(&c);
+        let x = &e.coords[0];
+        assert!(x.hi >= 3.0, "{}: hi {}", s.name(), x.hi);
+        assert!(x.inner_hi < 3.0, "{}: inner_hi {}", s.name(), x.inner_hi);
+        assert_eq!(x.lo, -5.0, "{}", s.name());
+        if s.name() != "hull" {
+            // C(0.5) = -5 is the right piece's value: attained (the hull has only end values)
+            assert_eq!(x.inner_lo, -5.0, "{}", s.name());
+        }
+    }
+    // and a family of jump curves: the left limit is the maximum but never attained
+    for k in 1..=4usize {
+        let p = k;
+        let mut knots = vec![0.0; p + 1];
+        knots.extend(std::iter::repeat_n(0.5, p + 1));
+        knots.extend(std::iter::repeat_n(1.0, p + 1));
+        let mut pts: Vec<Vec<f64>> = (0..=p).map(|i| vec![i as f64]).collect();
+        pts.extend((0..=p).map(|i| vec![-1.0 - i as f64]));
+        let c = NurbsCurve::new(p, knots, pts, None).unwrap();
+        for s in all_strategies(None) {
+            if s.guarantee() != Guarantee::Verified {
+                continue;
+            }
+            let x = &s.enclose(&c).coords[0];
+            // max of the values taken: sup of the left piece p (not attained); attained: at
+            // most the left piece's values below p, or -1 after the jump
+            assert!(x.hi >= p as f64, "{} p={p}", s.name());
+            assert!(x.inner_hi < p as f64, "{} p={p}: {}", s.name(), x.inner_hi);
+        }
+    }
+}
+
+#[test]
+fn the_range_limit_family_is_sound() {
+    let mut r = gen::rng(0x7a11);
+    let n = std::env::var("RANGE_CURVES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(60);
+    for i in 0..n {
+        let c = Family::RangeLimits.curve(&mut r);
+        let name = format!("range_limits #{i}");
+        let encs = check(&name, &c, Duration::from_secs(10));
+        #[cfg(feature = "mpfr")]
+        mpfr::against_reference(&name, &c, &encs, false);
+        let _ = encs;
+    }
+}
+
+#[test]
+fn degree_1000_is_bounded_for_every_strategy() {
+    let p = 1000;
+    let pts: Vec<Vec<f64>> = (0..=p)
+        .map(|i| {
+            let x = i as f64;
+            vec![(x * 0.7).sin(), (x * 1.3).cos() * 0.5]
+        })
+        .collect();
+    let mut knots = vec![0.0; p + 1];
+    knots.extend(std::iter::repeat_n(1.0, p + 1));
+    let c = NurbsCurve::new(p, knots, pts, None).unwrap();
+    // (the goal is 10 s per curve; the limit here allows for a loaded test machine)
+    check("degree_1000", &c, Duration::from_secs(30));
+}
+
+#[cfg(feature = "mpfr")]
+mod mpfr {
+    use super::*;
+    use nurbs_box::reference::{inner_reached, reference_box, ulps_outside};
+
+    /// No verified outer bound misses the exact box, every inner bound is reached; with
+    /// `tight`, converged `newton` / `bezier` bounds are within 4 ulps of the scale.
+    pub fn against_reference(name: &str, c: &NurbsCurve, encs: &[Enclosure], tight: bool) {
+        let rb = reference_box(c);
+        for e in encs.iter().filter(|e| e.verified) {
+            for j in 0..c.dim() {
+                let cb = &e.coords[j];
+                let scale = c.coord_scale(j);
+                let dlo = ulps_outside(cb.lo, &rb.lo[j], scale, false);
+                let dhi = ulps_outside(cb.hi, &rb.hi[j], scale, true);
+                assert!(
+                    dlo >= 0.0 && dhi >= 0.0,
+                    "{name}: {} coordinate {j}: [{:e}, {:e}] misses the exact [{}, {}]",
+                    e.strategy,
+                    cb.lo,
+                    cb.hi,
+                    rb.lo[j],
+                    rb.hi[j]
+                );
+                assert!(
+                    inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, scale),
+                    "{name}: {} coordinate {j}: inner [{:e}, {:e}] not reached, exact [{}, {}]",
+                    e.strategy,
+                    cb.inner_lo,
+                    cb.inner_hi,
+                    rb.lo[j],
+                    rb.hi[j]
+                );
+                let converged = matches!(cb.termination, Termination::Converged);
+                if tight && converged && matches!(e.strategy, "newton" | "bezier") {
+                    assert!(
+                        dlo <= 4.0 && dhi <= 4.0,
+                        "{name}: {} {j}: {dlo} / {dhi} ulps",
+                        e.strategy
+                    );
+                }
+            }
+        }
+    }
+}
