@@ -352,7 +352,11 @@ fn decode(s: &str) -> Result<String, ApiError> {
 fn curve_from_body(body: &[u8], limits: &Limits) -> Result<NurbsCurve, ApiError> {
     let c = parse_curve(body)?;
     let checks = [
-        ("the number of control points", c.num_points(), limits.max_points),
+        (
+            "the number of control points",
+            c.num_points(),
+            limits.max_points,
+        ),
         ("the degree", c.degree(), limits.max_degree),
         ("the dimension", c.dim(), limits.max_dim),
     ];
@@ -522,7 +526,9 @@ fn write_extremum(out: &mut Vec<u8>, x: &Extremum, c: &NurbsCurve, h: &HSpline<f
     write_num(out, x.u_lo);
     out.extend_from_slice(b",\"u_hi\":");
     write_num(out, x.u_hi);
-    out.extend_from_slice(format!(",\"unique\":{},\"kind\":\"{kind}\",\"point\":", x.unique).as_bytes());
+    out.extend_from_slice(
+        format!(",\"unique\":{},\"kind\":\"{kind}\",\"point\":", x.unique).as_bytes(),
+    );
     let (a, b) = c.domain();
     let u = (0.5 * x.u_lo + 0.5 * x.u_hi).clamp(a, b);
     if u.is_finite() {

@@ -12,6 +12,7 @@
 //! body gets 411.
 
 mod api;
+mod ws;
 
 pub use api::{handle, ApiError, Limits, Reply};
 
@@ -30,6 +31,8 @@ pub const MAX_CONNECTIONS: usize = 32;
 const MAX_HEADERS: usize = 64;
 /// An idle or stalled connection is closed after this.
 const IO_TIMEOUT: Duration = Duration::from_secs(30);
+/// An idle WebSocket is closed after this (the page opens a new one when it needs it).
+const WS_IDLE_TIMEOUT: Duration = Duration::from_secs(600);
 
 /// A bound listener, ready to [`Server::run`].
 #[derive(Debug)]
@@ -147,6 +150,19 @@ struct Request {
     target: String,
     body: Vec<u8>,
     keep_alive: bool,
+    /// `Upgrade: websocket`: the `Sec-WebSocket-Key` and the `Origin` (if any)
+    websocket: Option<(String, Option<String>)>,
+}
+
+/// The path of the WebSocket endpoint (see [`ws`]).
+const WS_PATH: &str = "/api/ws";
+
+/// Whether a WebSocket handshake may proceed: no `Origin` (not a browser) or this server's
+/// own page; a page of another site must not drive the API through the user's browser.
+fn origin_allowed(origin: Option<&str>, port: u16) -> bool {
+    origin.is_none_or(|o| {
+        o == format!("http://127.0.0.1:{port}") || o == format!("http://localhost:{port}")
+    })
 }
 
 /// What reading a request gave.
@@ -173,13 +189,35 @@ fn connection(mut stream: TcpStream, limits: &Limits) -> io::Result<()> {
                 linger(&mut stream);
                 return Ok(());
             }
+            Read1::Request(r) if r.websocket.is_some() && r.target == WS_PATH => {
+                let (key, origin) = r.websocket.unwrap_or_default();
+                let port = stream.local_addr()?.port();
+                if r.method != "GET" || !origin_allowed(origin.as_deref(), port) {
+                    let reply = status_reply(
+                        403,
+                        "forbidden",
+                        "a WebSocket to the API is open to this server's own page only",
+                    );
+                    write_reply(&mut stream, &reply, false, false)?;
+                    return Ok(());
+                }
+                stream.write_all(
+                    format!(
+                        "HTTP/1.1 101 Switching Protocols\r\nUpgrade: websocket\r\n\
+                         Connection: Upgrade\r\nSec-WebSocket-Accept: {}\r\n\r\n",
+                        ws::accept_key(&key)
+                    )
+                    .as_bytes(),
+                )?;
+                stream.set_read_timeout(Some(WS_IDLE_TIMEOUT))?;
+                return ws::serve(&mut stream, std::mem::take(&mut buf), limits);
+            }
             Read1::Request(r) => {
-                let reply = std::panic::catch_unwind(|| {
-                    api::handle(&r.method, &r.target, &r.body, limits)
-                })
-                .unwrap_or_else(|_| {
-                    ApiError::Internal("the request handler failed".into()).reply("")
-                });
+                let reply =
+                    std::panic::catch_unwind(|| api::handle(&r.method, &r.target, &r.body, limits))
+                        .unwrap_or_else(|_| {
+                            ApiError::Internal("the request handler failed".into()).reply("")
+                        });
                 write_reply(&mut stream, &reply, r.keep_alive, r.method == "HEAD")?;
                 if !r.keep_alive {
                     return Ok(());
@@ -194,7 +232,7 @@ fn connection(mut stream: TcpStream, limits: &Limits) -> io::Result<()> {
 fn read_request(stream: &mut TcpStream, buf: &mut Vec<u8>, limits: &Limits) -> io::Result<Read1> {
     let mut chunk = [0u8; 8192];
     // The head.
-    let (head_len, method, target, keep_alive, length, expect_continue) = loop {
+    let (head_len, method, target, keep_alive, length, expect_continue, websocket) = loop {
         let mut headers = [httparse::EMPTY_HEADER; MAX_HEADERS];
         let mut req = httparse::Request::new(&mut headers);
         match req.parse(buf) {
@@ -203,7 +241,7 @@ fn read_request(stream: &mut TcpStream, buf: &mut Vec<u8>, limits: &Limits) -> i
                     req.headers
                         .iter()
                         .find(|h| h.name.eq_ignore_ascii_case(name))
-                        .map(|h| String::from_utf8_lossy(h.value).trim().to_ascii_lowercase())
+                        .map(|h| String::from_utf8_lossy(h.value).trim().to_string())
                 };
                 if header("transfer-encoding").is_some() {
                     return Ok(Read1::Refuse(status_reply(
@@ -223,9 +261,16 @@ fn read_request(stream: &mut TcpStream, buf: &mut Vec<u8>, limits: &Limits) -> i
                         )))
                     }
                 };
-                let conn = header("connection").unwrap_or_default();
+                let conn = header("connection")
+                    .unwrap_or_default()
+                    .to_ascii_lowercase();
                 let keep_alive = req.version == Some(1) && !conn.contains("close");
-                let expect = header("expect").is_some_and(|v| v == "100-continue");
+                let expect =
+                    header("expect").is_some_and(|v| v.eq_ignore_ascii_case("100-continue"));
+                let websocket = header("upgrade")
+                    .filter(|u| u.eq_ignore_ascii_case("websocket"))
+                    .and_then(|_| header("sec-websocket-key"))
+                    .map(|key| (key, header("origin")));
                 break (
                     n,
                     req.method.unwrap_or("").to_string(),
@@ -233,6 +278,7 @@ fn read_request(stream: &mut TcpStream, buf: &mut Vec<u8>, limits: &Limits) -> i
                     keep_alive,
                     length,
                     expect,
+                    websocket,
                 );
             }
             Ok(httparse::Status::Partial) if buf.len() <= MAX_HEAD_BYTES => {}
@@ -287,6 +333,7 @@ fn read_request(stream: &mut TcpStream, buf: &mut Vec<u8>, limits: &Limits) -> i
         target,
         body,
         keep_alive,
+        websocket,
     }))
 }
 
@@ -320,6 +367,7 @@ fn reason(status: u16) -> &'static str {
         400 => "Bad Request",
         404 => "Not Found",
         405 => "Method Not Allowed",
+        403 => "Forbidden",
         411 => "Length Required",
         413 => "Content Too Large",
         431 => "Request Header Fields Too Large",
