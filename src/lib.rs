@@ -37,6 +37,8 @@ mod refine;
 pub mod report;
 pub mod robust;
 pub mod scalar;
+#[cfg(feature = "serve")]
+pub mod serve;
 mod tight;
 pub mod tridiagonal;
 pub mod validate;
@@ -45,8 +47,8 @@ pub use bspline::{basis_funs, BezierSeg, HSpline};
 pub use curve::NurbsCurve;
 pub use ddi::Ddi;
 pub use enclose::{
-    all_strategies, strategy_by_name, BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum,
-    Guarantee, Stats, Termination,
+    all_strategies, strategy_by_name, strategy_with_work, BoxEncloser, CandidateKind, CoordBox,
+    Enclosure, Extremum, Guarantee, Stats, Termination,
 };
 pub use error::{CurveError, EvalError};
 pub use eval::{project, CurveEval};

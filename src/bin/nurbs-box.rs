@@ -42,6 +42,18 @@ enum Command {
     Interpolate(InterpolateArgs),
     /// Verified glyph boxes of a TrueType/OpenType font vs the boxes the font stores.
     Font(FontArgs),
+    /// Serve the interactive page (edit a curve, watch its verified box) and its JSON API on
+    /// 127.0.0.1.
+    #[cfg(feature = "serve")]
+    Serve(ServeArgs),
+}
+
+#[cfg(feature = "serve")]
+#[derive(Args, Debug)]
+struct ServeArgs {
+    /// TCP port (default: a free one; the address is printed on start).
+    #[arg(long, default_value_t = 0)]
+    port: u16,
 }
 
 #[derive(Args, Debug)]
@@ -137,6 +149,8 @@ fn main() -> ExitCode {
         Command::Enclose(a) => run_enclose(a),
         Command::Interpolate(a) => run_interpolate(a),
         Command::Font(a) => run_font(a),
+        #[cfg(feature = "serve")]
+        Command::Serve(a) => run_serve(a),
     };
     match result {
         Ok(Outcome::AllOk) => ExitCode::SUCCESS,
@@ -307,4 +321,19 @@ fn run_font(a: FontArgs) -> Result<Outcome, Fatal> {
             Some(io) if io.kind() == io::ErrorKind::BrokenPipe => Fatal(String::new()),
             _ => Fatal(e.to_string()),
         })
+}
+
+#[cfg(feature = "serve")]
+fn run_serve(a: ServeArgs) -> Result<Outcome, Fatal> {
+    use nurbs_box::serve::{Limits, Server};
+    use std::io::Write;
+    let server = Server::bind(a.port, Limits::default())
+        .map_err(|e| Fatal(format!("cannot listen on 127.0.0.1:{}: {e}", a.port)))?;
+    let mut out = io::stdout().lock();
+    writeln!(out, "nurbs-box serve: {} (Ctrl-C stops it)", server.url())
+        .and_then(|()| out.flush())
+        .map_err(|e| Fatal(e.to_string()))?;
+    drop(out);
+    server.run();
+    Ok(Outcome::AllOk)
 }

@@ -220,19 +220,41 @@ pub const STRATEGY_NAMES: &[&str] = &[
 /// The strategy called `name` (see [`STRATEGY_NAMES`]), with tolerance `tol` where the strategy
 /// has one (`None`: its default). `None` if the name is unknown.
 pub fn strategy_by_name(name: &str, tol: Option<f64>) -> Option<Box<dyn BoxEncloser>> {
+    strategy_with_work(name, tol, DEFAULT_MAX_WORK)
+}
+
+/// [`strategy_by_name`] with the work budget `max_work` (per coordinate, see
+/// [`Newton::max_work`] and [`BezierSubdivision::max_work`]) of the searching strategies, for
+/// callers that bound the time of one call (the `serve` API).
+pub fn strategy_with_work(
+    name: &str,
+    tol: Option<f64>,
+    max_work: u64,
+) -> Option<Box<dyn BoxEncloser>> {
     // Every strategy is wrapped in `Rescaled`: curves with extreme magnitudes are enclosed
     // after an exact power-of-two rescaling (see rescale.rs), moderate ones untouched.
     fn boxed<S: BoxEncloser + 'static>(s: S) -> Option<Box<dyn BoxEncloser>> {
         Some(Box::new(Rescaled(s)))
     }
-    let newton = tol.map_or_else(Newton::default, Newton::with_tol);
+    let newton = Newton {
+        max_work,
+        ..tol.map_or_else(Newton::default, Newton::with_tol)
+    };
+    let bezier = BezierSubdivision {
+        max_work,
+        ..tol.map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol)
+    };
+    let thesis = Newton {
+        max_work,
+        ..Newton::thesis()
+    };
     match name {
         "hull" => boxed(ControlHull),
-        "bezier" => boxed(tol.map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol)),
+        "bezier" => boxed(bezier),
         "newton" => boxed(newton),
         // The thesis's own settings (inewtonKNRH: quotient-rule derivatives, split once into
         // 2p pieces, 20 steps per box; derivative time measured), for reproducing its tables.
-        "newton-thesis" => boxed(Renamed("newton-thesis", Newton::thesis())),
+        "newton-thesis" => boxed(Renamed("newton-thesis", thesis)),
         "search-region" => boxed(SearchRegion::thesis(newton)),
         "search-region-verified" => boxed(SearchRegion::verified(newton)),
         _ => None,
