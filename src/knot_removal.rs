@@ -167,12 +167,12 @@ impl<S: Scalar> HSpline<S> {
         let pt = |i: usize| &self.pts[i * h..(i + 1) * h];
         let us = S::from_f64(u);
         let alpha = |i: usize| -> (S, S) {
-            let (ui, uj) = (S::from_f64(self.knots[i]), S::from_f64(self.knots[i + p + 1]));
+            let (ui, uj) = (
+                S::from_f64(self.knots[i]),
+                S::from_f64(self.knots[i + p + 1]),
+            );
             let den = uj.clone() - ui.clone();
-            (
-                (us.clone() - ui) / den.clone(),
-                (uj - us.clone()) / den,
-            )
+            ((us.clone() - ui) / den.clone(), (uj - us.clone()) / den)
         };
         // L = (r - s) - first = p - s, in -1 ..= p - 1; `it` steps from each side.
         let l = p as isize - s as isize;
@@ -363,11 +363,8 @@ impl NurbsCurve {
                 got: q.to_vec(),
             });
         }
-        let dist = |a: &[f64], b: &[f64]| {
-            a.iter()
-                .zip(b)
-                .fold(0.0f64, |acc, (x, y)| acc.hypot(x - y))
-        };
+        let dist =
+            |a: &[f64], b: &[f64]| a.iter().zip(b).fold(0.0f64, |acc, (x, y)| acc.hypot(x - y));
         let (p0, p1) = (self.control_point(i - 1), self.control_point(i));
         if p0 == p1 {
             return Err(KnotRemovalError::DegenerateLeg { index: i });
@@ -525,12 +522,10 @@ pub fn run_cli<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
     let mut all_ok = true;
     for (index, curve) in CurveReader::new(input) {
         let mut line = Vec::new();
-        let res = curve
-            .map_err(|e| (e.kind(), e.to_string()))
-            .and_then(|c| {
-                c.remove_knot(u, times.unwrap_or(usize::MAX), tol)
-                    .map_err(|e| (e.kind(), e.to_string()))
-            });
+        let res = curve.map_err(|e| (e.kind(), e.to_string())).and_then(|c| {
+            c.remove_knot(u, times.unwrap_or(usize::MAX), tol)
+                .map_err(|e| (e.kind(), e.to_string()))
+        });
         match res {
             Ok(rem) => {
                 write_curve(&mut line, &rem.curve);
@@ -669,7 +664,10 @@ mod tests {
         assert!((u - 0.1).abs() < 1e-15, "{u}");
         let ins = c.insert_knot(u, 1).unwrap();
         let q = ins.control_point(2);
-        assert!((q[0] - 2.7).abs() < 1e-14 && (q[1] - 4.).abs() < 1e-14, "{q:?}");
+        assert!(
+            (q[0] - 2.7).abs() < 1e-14 && (q[1] - 4.).abs() < 1e-14,
+            "{q:?}"
+        );
         // rational: the created Cartesian point is q, though s is not the length ratio
         let w = NurbsCurve::new(
             2,
@@ -685,7 +683,9 @@ mod tests {
             (p[0] - 4.).abs() < 1e-14 && (p[1] - 1.).abs() < 1e-14
         }));
         assert_eq!(
-            w.inverse_insertion_knot(1, &[1., 1., 1.]).unwrap_err().kind(),
+            w.inverse_insertion_knot(1, &[1., 1., 1.])
+                .unwrap_err()
+                .kind(),
             "invalid_point"
         );
     }

@@ -15,15 +15,18 @@
 //!   form (Berrut & Trefethen 2004, sec. 3, "modified Lagrange formula"), falling back to the
 //!   lecture's product form when t may coincide with a node.
 //! * [`LagrangeCurve::to_bezier`] converts it to the crate's curve form, one Bézier segment of
-//!   degree g on the clamped knots {u_0^(g+1), u_g^(g+1)}, and carries the rounding of the
-//!   conversion as a per-coordinate radius (see [`LagrangeBezier`] for the guarantee).
+//!   degree g on the clamped knots {u_0^(g+1), u_g^(g+1)}, computed in rigorous double-double
+//!   arithmetic, and carries the rounding of the conversion as a per-coordinate radius (see [`LagrangeBezier`] for the guarantee).
 
 use crate::bezier_tools::binom_s;
 use crate::bspline::BezierSeg;
 use crate::curve::NurbsCurve;
+use crate::ddi::Ddi;
 use crate::enclose::{BoxEncloser, Enclosure};
 use crate::error::CurveError;
-use crate::interpolate::{parameters, validate as validate_points, InterpolateError, Parametrization};
+use crate::interpolate::{
+    parameters, validate as validate_points, InterpolateError, Parametrization,
+};
 use crate::scalar::{iv, Scalar};
 use inari::Interval;
 use thiserror::Error;
@@ -243,10 +246,20 @@ impl LagrangeCurve {
     }
 
     /// Convert to one Bézier segment of degree g over [u_0, u_g] (a [`NurbsCurve`] on clamped
-    /// knots) with the rounding carried; see [`LagrangeBezier`].
+    /// knots) with the rounding carried; see [`LagrangeBezier`]. The coefficients are
+    /// computed in rigorous double-double arithmetic ([`Ddi`], about 2^-100 relative), so the
+    /// radius is essentially the rounding of the coefficients to f64 (half an ulp), even
+    /// where the conversion is ill-conditioned (clustered parameters, many points);
+    /// [`LagrangeCurve::to_bezier_with`] runs it in another verified type.
+    pub fn to_bezier(&self) -> Result<LagrangeBezier, LagrangeError> {
+        self.to_bezier_with::<Ddi>()
+    }
+
+    /// [`LagrangeCurve::to_bezier`] with the coefficients computed in S (a verified type:
+    /// `Interval` or `Ddi`; with `f64` the radius is meaningless).
     ///
-    /// Method (all in interval arithmetic, inari, outward rounded). With t = u_0 + s (u_g - u_0),
-    /// each factor of L_i is linear in s with Bernstein coefficients
+    /// Method. With t = u_0 + s (u_g - u_0), each factor of L_i is linear in s with Bernstein
+    /// coefficients
     ///
     /// ```text
     /// (t - u_k) / (u_i - u_k) = (1 - s) (u_0 - u_k) / (u_i - u_k) + s (u_g - u_k) / (u_i - u_k),
@@ -257,56 +270,65 @@ impl LagrangeCurve {
     /// s^l (1 - s)^(m - l), where multiplying by a0 (1 - s) + a1 s is the convolution
     /// c'_l = a0 c_l + a1 c_{l-1} (no binomials on the way); at the end the Bernstein
     /// coefficients are b_l = sum_i q_i c^(i)_l / C(g, l) (binomials in S, exact, from
-    /// [`crate::bezier_tools`]). Each step is an interval operation on enclosures, so every
-    /// b_l encloses the exact Bernstein coefficient of the exact Lagrange curve (inclusion
-    /// isotonicity). Dividing each factor by u_i - u_k on the way (rather than the product at
-    /// the end) keeps the running products near the size of L_i and away from overflow.
-    /// O(g^3 + g^2 d).
-    pub fn to_bezier(&self) -> Result<LagrangeBezier, LagrangeError> {
+    /// [`crate::bezier_tools`]). Each step is an operation of the verified type on
+    /// enclosures, so every b_l encloses the exact Bernstein coefficient of the exact Lagrange
+    /// curve (inclusion isotonicity). Dividing each factor by u_i - u_k on the way (rather
+    /// than the product at the end) keeps the running products near the size of L_i and away
+    /// from overflow. The f64 coefficient is m_l = the representative of b_l, and the radius
+    /// takes max_l |b_l - m_l| from the verified difference b_l - m_l. O(g^3 + g^2 d).
+    pub fn to_bezier_with<S: Scalar>(&self) -> Result<LagrangeBezier, LagrangeError> {
         let g = self.degree();
         let d = self.dim;
         let u = &self.params;
-        let p = |x: f64| iv::point(x);
+        let p = S::from_f64;
         let (u0, ug) = (p(u[0]), p(u[g]));
-        let mut coeffs = vec![iv::point(0.0); (g + 1) * d];
-        let mut c = Vec::with_capacity(g + 1);
+        let mut coeffs = vec![S::zero(); (g + 1) * d];
+        let mut c: Vec<S> = Vec::with_capacity(g + 1);
         for i in 0..=g {
             c.clear();
-            c.push(iv::point(1.0));
+            c.push(S::one());
             let ui = p(u[i]);
             for (k, &uk) in u.iter().enumerate() {
                 if k == i {
                     continue;
                 }
-                let (uk, den) = (p(uk), ui - p(uk));
-                let (a0, a1) = ((u0 - uk) / den, (ug - uk) / den);
+                let uk = p(uk);
+                let den = ui.clone() - uk.clone();
+                let a0 = (u0.clone() - uk.clone()) / den.clone();
+                let a1 = (ug.clone() - uk) / den;
                 // c' = a0 c + a1 (c shifted by one); in place from the top
-                c.push(a1 * c[c.len() - 1]);
-                for l in (1..c.len() - 1).rev() {
-                    c[l] = a0 * c[l] + a1 * c[l - 1];
+                let top = a1.clone() * c[c.len() - 1].clone();
+                for l in (1..c.len()).rev() {
+                    c[l] = a0.clone() * c[l].clone() + a1.clone() * c[l - 1].clone();
                 }
-                c[0] = a0 * c[0];
+                c[0] = a0 * c[0].clone();
+                c.push(top);
             }
             for (l, cl) in c.iter().enumerate() {
                 for j in 0..d {
-                    coeffs[l * d + j] = coeffs[l * d + j] + *cl * p(self.points[i * d + j]);
+                    let q = p(self.points[i * d + j]);
+                    coeffs[l * d + j] = coeffs[l * d + j].clone() + cl.clone() * q;
                 }
             }
         }
         let mut mids = Vec::with_capacity(coeffs.len());
+        let mut encl = Vec::with_capacity(coeffs.len());
         let mut radius = vec![0.0f64; d];
         for l in 0..=g {
-            let binom: Interval = binom_s(g, l);
+            let binom: S = binom_s(g, l);
             for j in 0..d {
-                let b = coeffs[l * d + j] / binom;
-                coeffs[l * d + j] = b;
-                if !(b.inf().is_finite() && b.sup().is_finite()) {
+                let b = coeffs[l * d + j].clone() / binom.clone();
+                let bi = b.to_interval();
+                if !(bi.inf().is_finite() && bi.sup().is_finite()) {
                     return Err(LagrangeError::Overflow { index: l, coord: j });
                 }
-                let m = b.mid();
-                // |b_exact - m| <= mag(b - m): interval subtraction rounds outward.
-                radius[j] = radius[j].max((b - p(m)).mag());
+                let m = b.to_f64();
+                let m = if bi.contains(m) { m } else { bi.mid() };
+                // |b_exact - m| <= mag(b - m): the difference is formed in the verified type
+                // and rounded outward by to_interval.
+                radius[j] = radius[j].max((b - p(m)).to_interval().mag());
                 mids.push(m);
+                encl.push(bi);
             }
         }
         let mut knots = vec![u[0]; g + 1];
@@ -315,7 +337,7 @@ impl LagrangeCurve {
         Ok(LagrangeBezier {
             curve,
             radius,
-            coefficients: BezierSeg::from_points(u[0], u[g], d, coeffs),
+            coefficients: BezierSeg::from_points(u[0], u[g], d, encl),
         })
     }
 }
@@ -365,12 +387,9 @@ impl<S: Scalar> Barycentric<'_, S> {
             let basis = c.basis(t);
             return (0..d)
                 .map(|j| {
-                    basis
-                        .iter()
-                        .enumerate()
-                        .fold(S::zero(), |acc, (i, l)| {
-                            acc + l.clone() * S::from_f64(c.points[i * d + j])
-                        })
+                    basis.iter().enumerate().fold(S::zero(), |acc, (i, l)| {
+                        acc + l.clone() * S::from_f64(c.points[i * d + j])
+                    })
                 })
                 .collect();
         }
@@ -454,7 +473,12 @@ pub fn widen_enclosure(e: &Enclosure, radius: &[f64]) -> Enclosure {
 
 /// One report record of `nurbs-box interpolate --basis lagrange --report FILE` (no newline):
 /// `{"index":i,"basis":"lagrange","degree":g,"params":[...],"coefficient_radius":[...]}`.
-pub fn write_report_record(out: &mut Vec<u8>, index: usize, lc: &LagrangeCurve, lb: &LagrangeBezier) {
+pub fn write_report_record(
+    out: &mut Vec<u8>,
+    index: usize,
+    lc: &LagrangeCurve,
+    lb: &LagrangeBezier,
+) {
     use crate::io::write_nums;
     out.extend_from_slice(
         format!(
@@ -521,7 +545,10 @@ mod tests {
     fn errors_are_typed() {
         let e = |r: Result<LagrangeCurve, LagrangeError>| r.unwrap_err().kind();
         let p = pts(&[[0., 0.], [1., 1.], [2., 0.]]);
-        assert_eq!(e(LagrangeCurve::new(vec![0., 1., 1.], &p)), "params_not_increasing");
+        assert_eq!(
+            e(LagrangeCurve::new(vec![0., 1., 1.], &p)),
+            "params_not_increasing"
+        );
         assert_eq!(e(LagrangeCurve::new(vec![0., 1.], &p)), "param_count");
         assert_eq!(
             e(LagrangeCurve::new(vec![0., f64::NAN, 1.], &p)),
@@ -530,10 +557,15 @@ mod tests {
         assert_eq!(e(LagrangeCurve::new(vec![0.], &p[..1])), "too_few_points");
         assert_eq!(e(LagrangeCurve::new(vec![], &[])), "too_few_points");
         assert_eq!(
-            e(LagrangeCurve::interpolate(&pts(&[[0., 0.], [0., 0.]]), Parametrization::Chordal)),
+            e(LagrangeCurve::interpolate(
+                &pts(&[[0., 0.], [0., 0.]]),
+                Parametrization::Chordal
+            )),
             "coincident_points"
         );
-        let many: Vec<Vec<f64>> = (0..=MAX_LAGRANGE_DEGREE + 1).map(|i| vec![i as f64]).collect();
+        let many: Vec<Vec<f64>> = (0..=MAX_LAGRANGE_DEGREE + 1)
+            .map(|i| vec![i as f64])
+            .collect();
         assert_eq!(
             e(LagrangeCurve::interpolate(&many, Parametrization::Uniform)),
             "too_many_points"
