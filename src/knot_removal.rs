@@ -254,7 +254,10 @@ impl<S: Scalar> HSpline<S> {
                 return Ok((cur, t));
             }
             let (next, mis) = cur.remove_knot_once(u)?;
-            if mis.iter().any(|x| !(x.to_interval().mag() <= tol)) {
+            if mis.iter().any(|x| {
+                let m = x.to_interval().mag();
+                m.is_nan() || m > tol
+            }) {
                 return Ok((cur, t));
             }
             cur = next;
@@ -333,7 +336,7 @@ impl NurbsCurve {
             let Some(bound) = removal_error_bound(self, &c) else {
                 break;
             };
-            if bound.iter().any(|&b| !(b <= tol)) {
+            if bound.iter().any(|&b| b.is_nan() || b > tol) {
                 break;
             }
             cur = next;

@@ -12,7 +12,7 @@
 //!
 //! * [`LagrangeCurve`] is the curve itself, defined exactly by the f64 points and parameters.
 //! * [`LagrangeCurve::eval`] evaluates it generically over [`Scalar`] in the first barycentric
-//!   form (Berrut & Trefethen 2004, sec. 3, "modified Lagrange formula"), falling back to the
+//!   form (Berrut & Trefethen 2004, the "modified Lagrange formula"), falling back to the
 //!   lecture's product form when t may coincide with a node.
 //! * [`LagrangeCurve::to_bezier`] converts it to the crate's curve form, one Bézier segment of
 //!   degree g on the clamped knots {u_0^(g+1), u_g^(g+1)}, computed in rigorous double-double
@@ -218,7 +218,7 @@ impl LagrangeCurve {
         let u = &self.params;
         let (a, b) = self.domain();
         // Any positive f64 works as the scale C (it cancels exactly); (b - a) / 4, the
-        // "capacity" of the interval, keeps the products near 1 (Berrut & Trefethen, sec. 7).
+        // "capacity" of the interval, keeps the products near 1 (the rescaling Berrut & Trefethen suggest).
         let c = (b - a) / 4.0;
         let c = if c.is_normal() { c } else { 1.0 };
         let cs = S::from_f64(c);
@@ -343,7 +343,7 @@ impl LagrangeCurve {
 }
 
 /// Barycentric evaluation of a [`LagrangeCurve`] in S (Berrut & Trefethen 2004, "Barycentric
-/// Lagrange Interpolation", SIAM Review 46(3), sec. 3, the first or "modified Lagrange" form):
+/// Lagrange Interpolation", SIAM Review 46(3), the first or "modified Lagrange" form):
 ///
 /// ```text
 /// c(t) = l(t) sum_i (w_i C / (t - u_i)) q_i,  l(t) = prod_k (t - u_k) / C,
