@@ -140,15 +140,14 @@ fn polynomial_data_give_closed_form_coefficients() {
         for l in 0..=g {
             let (gf, lf) = (g as f64, l as f64);
             let want = [lf, gf * lf * (lf - 1.0) / (gf - 1.0) - 3.0 * lf];
-            for j in 0..2 {
+            for (j, &w) in want.iter().enumerate() {
                 let enc = lb.coefficients.pts[l * 2 + j];
                 let got = lb.curve.control_point(l)[j];
                 assert!(
-                    enc.inf() - 1e-9 <= want[j] && want[j] <= enc.sup() + 1e-9,
-                    "g={g} l={l} j={j}: {enc:?} vs {}",
-                    want[j]
+                    enc.inf() - 1e-9 <= w && w <= enc.sup() + 1e-9,
+                    "g={g} l={l} j={j}: {enc:?} vs {w}"
                 );
-                assert!((got - want[j]).abs() <= lb.radius[j] + 1e-12 * (1.0 + want[j].abs()));
+                assert!((got - w).abs() <= lb.radius[j] + 1e-12 * (1.0 + w.abs()));
             }
         }
     }
