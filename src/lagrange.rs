@@ -198,41 +198,31 @@ impl LagrangeCurve {
     /// prod_{k != i} (t - u_k) / (u_i - u_k). O(g^2); no division by a quantity depending on
     /// t, so it is sound for any interval t (also one containing nodes).
     pub fn basis<S: Scalar>(&self, t: &S) -> Vec<S> {
-        let u = &self.params;
+        self.products(|ui: &S, uk: &S| (t.clone() - uk.clone()) / (ui.clone() - uk.clone()))
+    }
+
+    /// For each i: prod_{k != i} f(u_i, u_k), in S.
+    fn products<S: Scalar>(&self, f: impl Fn(&S, &S) -> S) -> Vec<S> {
+        let u: Vec<S> = self.params.iter().map(|&x| S::from_f64(x)).collect();
         (0..u.len())
             .map(|i| {
-                let ui = S::from_f64(u[i]);
-                u.iter()
-                    .enumerate()
-                    .filter(|&(k, _)| k != i)
-                    .fold(S::one(), |acc, (_, &uk)| {
-                        let uk = S::from_f64(uk);
-                        acc * (t.clone() - uk.clone()) / (ui.clone() - uk)
-                    })
+                (0..u.len())
+                    .filter(|&k| k != i)
+                    .fold(S::one(), |acc, k| acc * f(&u[i], &u[k]))
             })
             .collect()
     }
 
     /// The barycentric weights in S (see [`Barycentric`]); O(g^2) once, then O(g d) per point.
     pub fn barycentric<S: Scalar>(&self) -> Barycentric<'_, S> {
-        let u = &self.params;
         let (a, b) = self.domain();
         // Any positive f64 works as the scale C (it cancels exactly); (b - a) / 4, the
-        // "capacity" of the interval, keeps the products near 1 (the rescaling Berrut & Trefethen suggest).
+        // "capacity" of the interval, keeps the products near 1 (the rescaling Berrut &
+        // Trefethen suggest).
         let c = (b - a) / 4.0;
         let c = if c.is_normal() { c } else { 1.0 };
         let cs = S::from_f64(c);
-        let weights = (0..u.len())
-            .map(|i| {
-                let ui = S::from_f64(u[i]);
-                u.iter()
-                    .enumerate()
-                    .filter(|&(k, _)| k != i)
-                    .fold(S::one(), |acc, (_, &uk)| {
-                        acc * cs.clone() / (ui.clone() - S::from_f64(uk))
-                    })
-            })
-            .collect();
+        let weights = self.products(|ui: &S, uk: &S| cs.clone() / (ui.clone() - uk.clone()));
         Barycentric {
             curve: self,
             scale: cs,

@@ -10,8 +10,6 @@ use nurbs_box::interpolate::{interpolate_cubic, Parametrization};
 use nurbs_box::lagrange::{widen_enclosure, LagrangeCurve};
 use nurbs_box::scalar::iv;
 use proptest::prelude::*;
-use std::io::Write;
-use std::process::{Command, Stdio};
 
 mod common;
 use common::config;
@@ -253,30 +251,8 @@ mod mpfr {
 
 // ---- `nurbs-box interpolate --basis lagrange` ----
 
-const BIN: &str = env!("CARGO_BIN_EXE_nurbs-box");
-
 fn run(args: &[&str], stdin: &str) -> (i32, String, String) {
-    let mut child = Command::new(BIN)
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("start nurbs-box");
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(stdin.as_bytes())
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
-    let err = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(!err.contains("panicked"), "{err}");
-    (
-        out.status.code().unwrap(),
-        String::from_utf8(out.stdout).unwrap(),
-        err,
-    )
+    common::run_bin(args, stdin.as_bytes())
 }
 
 #[test]
