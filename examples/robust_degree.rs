@@ -34,7 +34,7 @@ fn main() {
     let only = std::env::var("STRAT").ok();
     for s in all_strategies(None)
         .into_iter()
-        .filter(|s| only.as_deref().map_or(true, |o| o == s.name()))
+        .filter(|s| only.as_deref().is_none_or(|o| o == s.name()))
     {
         let t = Instant::now();
         let e = s.enclose(&c);

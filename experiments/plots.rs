@@ -40,7 +40,7 @@ fn range(v: impl Iterator<Item = f64>) -> (f64, f64) {
         lo = lo.min(x);
         hi = hi.max(x);
     }
-    if !(lo <= hi) {
+    if lo.partial_cmp(&hi).is_none_or(|o| o.is_gt()) {
         (0.0, 1.0)
     } else if lo == hi {
         (lo - 0.5 - lo.abs() * 0.1, hi + 0.5 + hi.abs() * 0.1)

@@ -258,7 +258,7 @@ fn measure_row(
                 (m.time, frac)
             })
             .collect();
-        tf.sort_by(|a, b| a.0.cmp(&b.0));
+        tf.sort_by_key(|a| a.0);
         let (med_time, med_frac) = tf[tf.len() / 2];
         let spans = |c: &NurbsCurve| (c.breakpoints().len() - 1) * c.dim();
         let iters: f64 = ms
@@ -299,6 +299,7 @@ fn build_specs(args: &Args) -> Vec<RowSpec> {
             .wrapping_add((k * 1000 + i) as u64)
     };
     // Knot-count sweep (thesis notation: n + 1 control points), then continued.
+    #[allow(clippy::type_complexity)]
     let mut ns: Vec<(usize, Option<(f64, f64, f64, f64)>)> = THESIS_KNOTS
         .iter()
         .map(|r| (r.0, Some((r.1, r.2, r.3, r.4))))

@@ -70,7 +70,7 @@ fn best_of<T>(repeats: usize, mut f: impl FnMut() -> T) -> (Duration, f64, T) {
             (Some(a), Some(b)) => (b - a) / dt.as_secs_f64(),
             _ => f64::NAN,
         };
-        if best.as_ref().map_or(true, |(b, _, _)| dt < *b) {
+        if best.as_ref().is_none_or(|(b, _, _)| dt < *b) {
             best = Some((dt, cores, r));
         }
     }

@@ -39,7 +39,7 @@ pub enum BezierToolError {
 
 /// Binomial coefficient in S, built by the multiplicative recurrence in S itself, so that for
 /// intervals it encloses the exact integer whatever its size.
-fn binom_s<S: Scalar>(n: usize, k: usize) -> S {
+pub(crate) fn binom_s<S: Scalar>(n: usize, k: usize) -> S {
     if n <= 50 {
         // exact in f64 (C(50, 25) < 2^53): eval's `binom` rounds its product to the integer
         return S::from_f64(binom(n, k));

@@ -206,13 +206,13 @@ fn run_curve(p: usize, run: &[Vec<[f64; 2]>]) -> Result<NurbsCurve, CurveError> 
         let end = seg[p];
         if i + 1 == run.len() {
             pts.push(end.to_vec());
-            knots.extend(std::iter::repeat((i + 1) as f64).take(p + 1));
+            knots.extend(std::iter::repeat_n((i + 1) as f64, p + 1));
         } else if p == 2 && is_exact_midpoint(seg[1], run[i + 1][1], end) {
             // simple knot: C(i+1) = (P_prev + P_next) / 2 = end, exactly
             knots.push((i + 1) as f64);
         } else {
             pts.push(end.to_vec());
-            knots.extend(std::iter::repeat((i + 1) as f64).take(p));
+            knots.extend(std::iter::repeat_n((i + 1) as f64, p));
         }
     }
     NurbsCurve::new(p, knots, pts, None)

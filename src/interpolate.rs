@@ -202,7 +202,7 @@ pub struct Interpolant {
 }
 
 /// Check the point set: at least 2 points, one dimension >= 1, finite values. Returns d.
-fn validate(points: &[Vec<f64>]) -> Result<usize, InterpolateError> {
+pub(crate) fn validate(points: &[Vec<f64>]) -> Result<usize, InterpolateError> {
     if points.len() < 2 {
         return Err(InterpolateError::TooFewPoints { got: points.len() });
     }
@@ -507,17 +507,30 @@ pub fn parse_point_sets(text: &str) -> Vec<PointSetInput> {
 /// curve on `out` but a record `{"index": i, "error": {"kind": ..., "message": ...}}` on `err`
 /// (keeping `out` a pure curve stream). Returns `Ok(true)` when every set gave a curve.
 pub fn run_cli<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
-    mut input: R,
+    input: R,
     param: Parametrization,
     out: &mut W,
     err: &mut E,
+) -> std::io::Result<bool> {
+    run_cli_with(input, out, err, |_, pts| {
+        interpolate_cubic(pts, param).map_err(|e| (e.kind(), e.to_string()))
+    })
+}
+
+/// [`run_cli`] with the construction `build(index, points)` in place of the cubic spline (the
+/// Lagrange curves of [`crate::lagrange`] use it): same input forms, same output and error
+/// records.
+pub fn run_cli_with<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
+    mut input: R,
+    out: &mut W,
+    err: &mut E,
+    mut build: impl FnMut(usize, &[Vec<f64>]) -> Result<NurbsCurve, (&'static str, String)>,
 ) -> std::io::Result<bool> {
     let mut text = String::new();
     input.read_to_string(&mut text)?;
     let mut all_ok = true;
     for (i, set) in parse_point_sets(&text).into_iter().enumerate() {
-        let res = set
-            .and_then(|pts| interpolate_cubic(&pts, param).map_err(|e| (e.kind(), e.to_string())));
+        let res = set.and_then(|pts| build(i, &pts));
         let mut line = Vec::new();
         match res {
             Ok(c) => {

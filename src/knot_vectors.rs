@@ -34,9 +34,9 @@ pub fn uniform_clamped(degree: usize, npts: usize) -> Result<Vec<f64>, CurveErro
     check(degree, npts)?;
     let last = (npts - degree) as f64;
     let mut k = Vec::with_capacity(npts + degree + 1);
-    k.extend(std::iter::repeat(0.0).take(degree + 1));
+    k.extend(std::iter::repeat_n(0.0, degree + 1));
     k.extend((1..npts - degree).map(|i| i as f64));
-    k.extend(std::iter::repeat(last).take(degree + 1));
+    k.extend(std::iter::repeat_n(last, degree + 1));
     Ok(k)
 }
 

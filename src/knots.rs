@@ -97,7 +97,8 @@ impl NurbsCurve {
         let (d0, d1) = self.domain();
         let (a, b) = (a.max(d0), b.min(d1));
         let mut out = Vec::new();
-        if !(a <= b) {
+        // also when a or b is NaN
+        if a.partial_cmp(&b).is_none_or(|o| o.is_gt()) {
             return out;
         }
         let kn = self.knots();

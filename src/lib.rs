@@ -28,8 +28,10 @@ pub mod font;
 pub mod gen;
 pub mod interpolate;
 pub mod io;
+pub mod knot_removal;
 pub mod knot_vectors;
 mod knots;
+pub mod lagrange;
 mod mr;
 #[cfg(feature = "mpfr")]
 pub mod reference;

@@ -342,10 +342,10 @@ fn reference_box_at_prec(curve: &NurbsCurve) -> ReferenceBox {
                 segment_candidates(seg, j, w.as_deref(), &fa, &len)
             };
             for (v, u) in cands {
-                if lo[j].as_ref().map_or(true, |(m, _)| v < *m) {
+                if lo[j].as_ref().is_none_or(|(m, _)| v < *m) {
                     lo[j] = Some((v.clone(), u));
                 }
-                if hi[j].as_ref().map_or(true, |(m, _)| v > *m) {
+                if hi[j].as_ref().is_none_or(|(m, _)| v > *m) {
                     hi[j] = Some((v, u));
                 }
             }
@@ -716,7 +716,7 @@ mod tests {
                     let a = (u.clone() - &step).max(&fl(kn[k]));
                     let b = (u + &step).min(&fl(kn[k + 1]));
                     let v = golden_max(&h, k, j, a, b, sgn);
-                    if m.as_ref().map_or(true, |x| (v.clone() - x) * sgn > 0) {
+                    if m.as_ref().is_none_or(|x| (v.clone() - x) * sgn > 0) {
                         m = Some(v);
                     }
                 }

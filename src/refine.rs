@@ -8,6 +8,14 @@ use crate::curve::NurbsCurve;
 use crate::error::EvalError;
 
 fn from_hspline(h: &HSpline<f64>) -> NurbsCurve {
+    // Knot insertion keeps weights positive (convex combinations) and the knot vector valid,
+    // so this cannot fail for a curve built from a valid one.
+    to_curve(h).expect("refinement of a valid curve is valid")
+}
+
+/// The curve of an f64 spline, or `None` when its data are not a valid curve (e.g. knot
+/// removal beyond tolerance can make a weight non-positive).
+pub(crate) fn to_curve(h: &HSpline<f64>) -> Option<NurbsCurve> {
     let hd = h.hdim();
     let d = h.dim;
     let mut pts = Vec::with_capacity(h.npts() * d);
@@ -17,10 +25,7 @@ fn from_hspline(h: &HSpline<f64>) -> NurbsCurve {
         pts.extend(c[..d].iter().map(|x| if h.rational { x / wi } else { *x }));
         w.push(wi);
     }
-    // Knot insertion keeps weights positive (convex combinations) and the knot vector valid,
-    // so this cannot fail for a curve built from a valid one.
-    NurbsCurve::from_flat(h.degree, d, h.knots.clone(), pts, h.rational.then_some(w))
-        .expect("refinement of a valid curve is valid")
+    NurbsCurve::from_flat(h.degree, d, h.knots.clone(), pts, h.rational.then_some(w)).ok()
 }
 
 impl NurbsCurve {

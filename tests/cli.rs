@@ -3,39 +3,18 @@
 
 use inari::Interval;
 use serde_json::Value;
-use std::io::Write;
-use std::process::{Command, Stdio};
 
-const BIN: &str = env!("CARGO_BIN_EXE_nurbs-box");
+#[allow(dead_code)] // the proptest config is not used here
+mod common;
 
 /// Run the binary with `args`, feeding `stdin`; (exit code, stdout records, stderr).
 fn run(args: &[&str], stdin: &[u8]) -> (i32, Vec<Value>, String) {
-    let mut child = Command::new(BIN)
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("start nurbs-box");
-    let mut sin = child.stdin.take().unwrap();
-    let input = stdin.to_vec();
-    // Write from another thread: the child may fill its stdout pipe before reading all input.
-    let writer = std::thread::spawn(move || {
-        let _ = sin.write_all(&input);
-    });
-    let out = child.wait_with_output().unwrap();
-    writer.join().unwrap();
-    let stdout = String::from_utf8(out.stdout).expect("stdout is UTF-8");
-    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(
-        !stderr.contains("panicked"),
-        "the binary panicked: {stderr}"
-    );
+    let (code, stdout, stderr) = common::run_bin(args, stdin);
     let records = stdout
         .lines()
         .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("bad record {l:?}: {e}")))
         .collect();
-    (out.status.code().expect("exit code"), records, stderr)
+    (code, records, stderr)
 }
 
 const LINE: &str = r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0, 5], [2, -1]]}"#;

@@ -40,6 +40,7 @@ fn check(face: &Face<'_>, boxes: &[GlyphBox], stored: bool) {
             );
             for i in 0..=32 {
                 let q = seg.eval_local(&iv::point(i as f64 / 32.0));
+                #[allow(clippy::needless_range_loop)]
                 for j in 0..2 {
                     assert!(
                         q[j].sup() >= g.tight_lo[j] && q[j].inf() <= g.tight_hi[j],

@@ -38,8 +38,10 @@ enum Command {
     Eval(EvalArgs),
     /// Box enclosures of whole curves.
     Enclose(EncloseArgs),
-    /// Cubic spline interpolants of point sets, written as curves (pipe into `enclose`).
+    /// Cubic spline or Lagrange interpolants of point sets, written as curves (pipe into `enclose`).
     Interpolate(InterpolateArgs),
+    /// Remove a knot as often as the curve allows within a tolerance; writes the curves.
+    RemoveKnot(RemoveKnotArgs),
     /// Verified glyph boxes of a TrueType/OpenType font vs the boxes the font stores.
     Font(FontArgs),
     /// Serve the interactive page (edit a curve, watch its verified box) and its JSON API on
@@ -61,8 +63,38 @@ struct InterpolateArgs {
     /// Parametrisation: uniform, chordal, centripetal or foley (2-D only).
     #[arg(long, default_value = "chordal")]
     param: String,
+    /// Interpolant: `cubic` (natural cubic spline) or `lagrange` (one polynomial of degree
+    /// points - 1 through all points, written as one Bézier segment; see `--report`).
+    #[arg(long, default_value = "cubic", value_parser = ["cubic", "lagrange"])]
+    basis: String,
+    /// Write one JSON record per converted point set to this file: for `lagrange` the
+    /// parameters and `coefficient_radius`, the per-coordinate amount by which a verified box
+    /// of the written curve must be widened to enclose the exact Lagrange curve.
+    #[arg(long)]
+    report: Option<PathBuf>,
     /// Point sets: a JSON array of points, a JSON array of point sets, or JSON Lines with one
     /// point set per line; `-` for stdin. Errors go to stderr as records with the set's index.
+    #[arg(default_value = "-")]
+    input: PathBuf,
+}
+
+#[derive(Args, Debug)]
+struct RemoveKnotArgs {
+    /// The knot value U to remove (an interior knot of each curve).
+    #[arg(long, allow_negative_numbers = true)]
+    knot: f64,
+    /// Remove at most N times (default: as often as possible).
+    #[arg(long)]
+    times: Option<usize>,
+    /// Tolerance: no coordinate of the curve may move by more than T (verified), >= 0.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    tol: f64,
+    /// Write one JSON record per curve to this file: multiplicity, requested, removed and the
+    /// verified per-coordinate `error_bound` of the removal.
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// Input file (curves, JSON Lines or one JSON array), or `-` for stdin. Errors go to
+    /// stderr as records with the curve's index.
     #[arg(default_value = "-")]
     input: PathBuf,
 }
@@ -148,6 +180,7 @@ fn main() -> ExitCode {
         Command::Eval(a) => run_eval(a),
         Command::Enclose(a) => run_enclose(a),
         Command::Interpolate(a) => run_interpolate(a),
+        Command::RemoveKnot(a) => run_remove_knot(a),
         Command::Font(a) => run_font(a),
         #[cfg(feature = "serve")]
         Command::Serve(a) => run_serve(a),
@@ -295,13 +328,95 @@ fn run_interpolate(a: InterpolateArgs) -> Result<Outcome, Fatal> {
     let param: nurbs_box::interpolate::Parametrization =
         a.param.parse().map_err(|e| Fatal(format!("--{e}")))?;
     let (input, _) = open_input(&a.input)?;
-    match nurbs_box::interpolate::run_cli(input, param, &mut io::stdout().lock(), &mut io::stderr())
-    {
+    let mut report = create_report(a.report.as_ref())?;
+    let (out, err) = (&mut io::stdout().lock(), &mut io::stderr());
+    let res = match a.basis.as_str() {
+        "lagrange" => nurbs_box::lagrange::run_cli(
+            input,
+            param,
+            out,
+            err,
+            report.as_mut().map(|f| f as &mut dyn io::Write),
+        ),
+        _ => {
+            let mut rep = Vec::new();
+            let res = nurbs_box::interpolate::run_cli_with(input, out, err, |i, pts| {
+                let opts = nurbs_box::interpolate::InterpolationOptions {
+                    param,
+                    ..Default::default()
+                };
+                let it = nurbs_box::interpolate::interpolate_cubic_with(pts, &opts)
+                    .map_err(|e| (e.kind(), e.to_string()))?;
+                rep.extend_from_slice(
+                    format!("{{\"index\":{i},\"basis\":\"cubic\",\"params\":").as_bytes(),
+                );
+                nurbs_box::io::write_nums(&mut rep, it.params.iter().copied());
+                rep.extend_from_slice(b"}\n");
+                Ok(it.curve)
+            });
+            match report.as_mut() {
+                Some(f) => res.and_then(|ok| io::Write::write_all(f, &rep).map(|()| ok)),
+                None => res,
+            }
+        }
+    };
+    finish_curve_command(res, report)
+}
+
+/// `--report FILE` of the curve-writing commands.
+fn create_report(path: Option<&PathBuf>) -> Result<Option<io::BufWriter<File>>, Fatal> {
+    path.map(|p| {
+        File::create(p)
+            .map(io::BufWriter::new)
+            .map_err(|e| Fatal(format!("--report: cannot create {}: {e}", p.display())))
+    })
+    .transpose()
+}
+
+/// Exit status of a command that writes curves to stdout and error records to stderr.
+fn finish_curve_command(
+    res: io::Result<bool>,
+    report: Option<io::BufWriter<File>>,
+) -> Result<Outcome, Fatal> {
+    let res = res.and_then(|ok| {
+        if let Some(mut f) = report {
+            io::Write::flush(&mut f)?;
+        }
+        Ok(ok)
+    });
+    match res {
         Ok(true) => Ok(Outcome::AllOk),
         Ok(false) => Ok(Outcome::SomeErrors),
         Err(e) if e.kind() == io::ErrorKind::BrokenPipe => Err(Fatal(String::new())),
         Err(e) => Err(Fatal(e.to_string())),
     }
+}
+
+fn run_remove_knot(a: RemoveKnotArgs) -> Result<Outcome, Fatal> {
+    if !a.knot.is_finite() {
+        return Err(Fatal(format!(
+            "--knot: expected a finite number, got {}",
+            a.knot
+        )));
+    }
+    if !(a.tol.is_finite() && a.tol >= 0.0) {
+        return Err(Fatal(format!(
+            "--tol: expected a finite number >= 0, got {}",
+            a.tol
+        )));
+    }
+    let (input, _) = open_input(&a.input)?;
+    let mut report = create_report(a.report.as_ref())?;
+    let res = nurbs_box::knot_removal::run_cli(
+        input,
+        a.knot,
+        a.times,
+        a.tol,
+        &mut io::stdout().lock(),
+        &mut io::stderr(),
+        report.as_mut().map(|f| f as &mut dyn io::Write),
+    );
+    finish_curve_command(res, report)
 }
 
 fn run_font(a: FontArgs) -> Result<Outcome, Fatal> {

@@ -836,6 +836,7 @@ mod tests {
         for i in 0..=10000 {
             let u = i as f64 / 10000.0;
             let p = c.enclose_point(iv::point(u)).unwrap();
+            #[allow(clippy::needless_range_loop)]
             for j in 0..2 {
                 // a containment miss is proven when the point's enclosure lies beyond a bound
                 assert!(
