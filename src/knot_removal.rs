@@ -505,7 +505,7 @@ fn reinsert(r: &HSpline<Interval>, u: f64, k: usize, p: usize) -> Option<HSpline
 }
 
 /// The `nurbs-box remove-knot` command as a library function: read curves (either stream form
-/// of `shared/formats.md`) from `input`, remove the knot `u` from each as often as
+/// of `docs/formats.md`) from `input`, remove the knot `u` from each as often as
 /// [`NurbsCurve::remove_knot`] allows (at most `times`, default its multiplicity) within `tol`,
 /// and write the resulting curves, one per line, to `out` (pipe into `enclose`). An input that
 /// is not a valid curve, or whose knot cannot be removed at all (not a knot, not interior),
