@@ -345,7 +345,10 @@ pub fn range_limit_curve(rng: &mut impl Rng) -> NurbsCurve {
                             1 => -M,
                             _ => M * rng.random_range(-1.0..1.0),
                         },
-                        2 => sub(rng.random_range(0..4096)) * if rng.random_bool(0.5) { 1.0 } else { -1.0 },
+                        2 => {
+                            sub(rng.random_range(0..4096))
+                                * if rng.random_bool(0.5) { 1.0 } else { -1.0 }
+                        }
                         _ => match rng.random_range(0..3) {
                             0 => M * rng.random_range(-1.0..1.0),
                             1 => sub(rng.random_range(0..4096)),

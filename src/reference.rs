@@ -296,17 +296,7 @@ fn knot_bits(knots: &[f64]) -> u32 {
     let nz = || knots.iter().filter(|u| **u != 0.0);
     let (Some(hi), Some(lo)) = (
         nz().map(|u| u.abs().log2().floor() as i32 + 1).max(),
-        nz().map(|u| {
-            let b = u.abs().to_bits();
-            let e = (b >> 52) as i32;
-            let m = b & ((1u64 << 52) - 1);
-            if e == 0 {
-                m.trailing_zeros() as i32 - 1074
-            } else {
-                (m | (1u64 << 52)).trailing_zeros() as i32 + e - 1075
-            }
-        })
-        .min(),
+        nz().map(|&u| crate::enclose::rescale::low_exp(u)).min(),
     ) else {
         return 0;
     };

@@ -10,9 +10,8 @@
 
 use nurbs_box::enclose::{all_strategies, Guarantee, Termination};
 use nurbs_box::gen::{self, Family};
-use nurbs_box::robust::{check_enclosure, check_params};
 use nurbs_box::{parse_curve, Enclosure, NurbsCurve};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// The curves an adversary found (wrong verified bounds before the overflow-safe knot
 /// arithmetic, the segment path and the range facts of the driver).
@@ -44,42 +43,11 @@ fn found(name: &str) -> NurbsCurve {
     parse_curve(text.as_bytes()).unwrap()
 }
 
-/// Every registered strategy on `c`: sound at dense parameters, finite, ordered, in time.
+mod common;
+
+/// Every registered strategy on `c` (`common::check_registry`).
 fn check(name: &str, c: &NurbsCurve, limit: Duration) -> Vec<Enclosure> {
-    let params = check_params(c, 16, &[]);
-    let mut out = Vec::new();
-    for s in all_strategies(None) {
-        let t = Instant::now();
-        let e = s.enclose(c);
-        let dt = t.elapsed();
-        assert!(dt < limit, "{name}: {} took {dt:?}", s.name());
-        if let Err(m) = check_enclosure(c, &e, s.guarantee(), &params) {
-            panic!("{name}: {}: {m}", s.name());
-        }
-        if s.guarantee() == Guarantee::Verified {
-            for (j, cb) in e.coords.iter().enumerate() {
-                assert!(
-                    cb.lo.is_finite() && cb.hi.is_finite(),
-                    "{name}: {} coordinate {j}: [{:e}, {:e}] not finite",
-                    s.name(),
-                    cb.lo,
-                    cb.hi
-                );
-                assert!(
-                    cb.lo <= cb.inner_lo && cb.inner_lo <= cb.hi,
-                    "{name}: {} {j}: {cb:?}",
-                    s.name()
-                );
-                assert!(
-                    cb.lo <= cb.inner_hi && cb.inner_hi <= cb.hi,
-                    "{name}: {} {j}: {cb:?}",
-                    s.name()
-                );
-            }
-        }
-        out.push(e);
-    }
-    out
+    common::check_registry(name, c, 16, limit)
 }
 
 #[test]
@@ -109,7 +77,12 @@ fn end_values_at_the_range_limits_are_exact_attained_bounds() {
         let e = s.enclose(&c2);
         let x = &e.coords[0];
         assert_eq!((x.lo, x.hi), (-f64::MAX, 1e-300), "{}", s.name());
-        assert_eq!((x.inner_lo, x.inner_hi), (-f64::MAX, 1e-300), "{}", s.name());
+        assert_eq!(
+            (x.inner_lo, x.inner_hi),
+            (-f64::MAX, 1e-300),
+            "{}",
+            s.name()
+        );
     }
 }
 

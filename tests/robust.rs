@@ -273,39 +273,13 @@ fn extreme_curves() -> Vec<(&'static str, NurbsCurve)> {
     v
 }
 
-/// Run every strategy on `c`: no panic, the checks of `check_enclosure` at dense parameters,
-/// finite boxes from every verified strategy, within `limit`. Returns the verified results.
+/// Run every strategy on `c` (`common::check_registry`: sound at dense parameters, finite and
+/// ordered boxes, within `limit`). Returns the verified results.
 fn check_curve(name: &str, c: &NurbsCurve, per_span: usize, limit: Duration) -> Vec<Enclosure> {
-    let params = check_params(c, per_span, &[]);
-    let mut out = Vec::new();
-    for s in all_strategies(None) {
-        let t = Instant::now();
-        let e = s.enclose(c);
-        let dt = t.elapsed();
-        assert!(dt < limit, "{name}: {} took {dt:?}", s.name());
-        if let Err(m) = check_enclosure(c, &e, s.guarantee(), &params) {
-            panic!("{name}: {}: {m}", s.name());
-        }
-        if s.guarantee() == Guarantee::Verified {
-            for (j, cb) in e.coords.iter().enumerate() {
-                // the registered strategies also order their bounds (rescale.rs)
-                assert!(
-                    cb.inner_lo <= cb.hi && cb.lo <= cb.inner_hi,
-                    "{name}: {}",
-                    s.name()
-                );
-                assert!(
-                    cb.lo.is_finite() && cb.hi.is_finite(),
-                    "{name}: {} coordinate {j}: box [{:e}, {:e}] is not finite",
-                    s.name(),
-                    cb.lo,
-                    cb.hi
-                );
-            }
-            out.push(e);
-        }
-    }
-    out
+    common::check_registry(name, c, per_span, limit)
+        .into_iter()
+        .filter(|e| e.verified)
+        .collect()
 }
 
 #[test]

@@ -10,7 +10,7 @@ use std::time::Duration;
 mod bezier;
 mod hull;
 mod newton;
-mod rescale;
+pub(crate) mod rescale;
 mod search_region;
 mod segments;
 

@@ -903,7 +903,10 @@ impl<'a> Engine<'a> {
                 // the span), so that the work after the limit is one evaluation per span, not
                 // one per box (2p boxes of O(p^2) each took minutes at degree 800).
                 let lo = boxes.iter().map(|zb| zb.lo).fold(f64::INFINITY, f64::min);
-                let hi = boxes.iter().map(|zb| zb.hi).fold(f64::NEG_INFINITY, f64::max);
+                let hi = boxes
+                    .iter()
+                    .map(|zb| zb.hi)
+                    .fold(f64::NEG_INFINITY, f64::max);
                 boxes.clear();
                 boxes.push(ZeroBox {
                     lo,

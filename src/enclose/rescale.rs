@@ -88,7 +88,7 @@ fn exponent(x: f64) -> i32 {
 
 /// The exponent t of the lowest set bit of a finite non-zero x (x = m 2^t with m odd):
 /// x 2^-s is exact for s <= t + 1074 (no bit falls below the smallest subnormal 2^-1074).
-fn low_exp(x: f64) -> i32 {
+pub(crate) fn low_exp(x: f64) -> i32 {
     let b = x.abs().to_bits();
     let e = (b >> 52) as i32;
     let m = b & ((1u64 << 52) - 1);
@@ -359,12 +359,7 @@ pub const MAX_SEARCH_DEGREE: usize = 1000;
 /// reaches a value <= hi and one >= lo; the attained end values are added by
 /// [`enclose_rescaled`].
 pub fn degree_fallback(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
-    let coords = super::hull::control_point_box(
-        c,
-        |_, lo, hi| (hi, lo),
-        Termination::WorkLimit,
-        0,
-    );
+    let coords = super::hull::control_point_box(c, |_, lo, hi| (hi, lo), Termination::WorkLimit, 0);
     Enclosure {
         strategy: s.name(),
         verified: s.guarantee() == Guarantee::Verified,

@@ -101,10 +101,14 @@ pub fn enclose_by_segments(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
                 kind,
             };
             if sb.lo <= cb.inner_lo {
-                cb.argmin.push(span(sb.argmin_kind.unwrap_or(super::CandidateKind::Unresolved)));
+                cb.argmin.push(span(
+                    sb.argmin_kind.unwrap_or(super::CandidateKind::Unresolved),
+                ));
             }
             if sb.hi >= cb.inner_hi {
-                cb.argmax.push(span(sb.argmax_kind.unwrap_or(super::CandidateKind::Unresolved)));
+                cb.argmax.push(span(
+                    sb.argmax_kind.unwrap_or(super::CandidateKind::Unresolved),
+                ));
             }
         }
     }
@@ -154,9 +158,14 @@ fn span_boxes(
             seg.pts[i * h + j]
         }
     };
-    let pts: Vec<Interval> = (0..=p).flat_map(|i| (0..d).map(move |j| (i, j))).map(|(i, j)| pt(i, j)).collect();
+    let pts: Vec<Interval> = (0..=p)
+        .flat_map(|i| (0..d).map(move |j| (i, j)))
+        .map(|(i, j)| pt(i, j))
+        .collect();
     let usable = w.iter().all(|x| x.inf() > 0.0 && x.sup().is_finite())
-        && pts.iter().all(|x| x.inf().is_finite() && x.sup().is_finite());
+        && pts
+            .iter()
+            .all(|x| x.inf().is_finite() && x.sup().is_finite());
     if !usable {
         // An enclosure overflowed: the span's control points bound its piece (convex hull
         // property, exact); attained: its start value only if that is a clamped-exact point.
@@ -165,15 +174,26 @@ fn span_boxes(
     // weights ŵ_i = midpoints, κ = ρmax / ρmin - 1 (rounded up; 0 for polynomial pieces)
     let what: Vec<f64> = w.iter().map(|x| x.mid()).collect();
     let kappa = if rational {
-        let rho: Vec<Interval> = w.iter().zip(&what).map(|(x, &m)| *x / iv::point(m)).collect();
-        let rmax = rho.iter().map(|r| r.sup()).fold(f64::NEG_INFINITY, f64::max);
+        let rho: Vec<Interval> = w
+            .iter()
+            .zip(&what)
+            .map(|(x, &m)| *x / iv::point(m))
+            .collect();
+        let rmax = rho
+            .iter()
+            .map(|r| r.sup())
+            .fold(f64::NEG_INFINITY, f64::max);
         let rmin = rho.iter().map(|r| r.inf()).fold(f64::INFINITY, f64::min);
-        (iv::point(rmax) / iv::point(rmin) - iv::point(1.0)).sup().max(0.0)
+        (iv::point(rmax) / iv::point(rmin) - iv::point(1.0))
+            .sup()
+            .max(0.0)
     } else {
         0.0
     };
     let side = |up: bool| -> Vec<f64> {
-        pts.iter().map(|x| if up { x.sup() } else { x.inf() }).collect()
+        pts.iter()
+            .map(|x| if up { x.sup() } else { x.inf() })
+            .collect()
     };
     let (phi, plo) = (side(true), side(false));
     let exact = phi == plo && kappa == 0.0;
@@ -188,11 +208,17 @@ fn span_boxes(
         return local_hull_boxes(c, k, coords);
     };
     let ehi = enclose_rescaled(s, &chi);
-    let elo = if exact { ehi.clone() } else { enclose_rescaled(s, &clo) };
+    let elo = if exact {
+        ehi.clone()
+    } else {
+        enclose_rescaled(s, &clo)
+    };
     let radius = |q: &[f64], j: usize| -> Interval {
         let (mn, mx) = (0..=p)
             .map(|i| q[i * d + j])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
         let r = ((iv::point(mx) - iv::point(mn)) * iv::point(0.5)).sup();
         iv::point(kappa) * iv::point(r)
     };
@@ -206,7 +232,9 @@ fn span_boxes(
             for t in [bh.termination, bl.termination] {
                 // the worst over the pieces: a limit, else Converged, else Direct (hull)
                 let cur = coords[j].termination;
-                if cur == Termination::Direct || (cur == Termination::Converged && t != Termination::Direct) {
+                if cur == Termination::Direct
+                    || (cur == Termination::Converged && t != Termination::Direct)
+                {
                     coords[j].termination = t;
                 }
             }
@@ -240,7 +268,9 @@ fn local_hull_boxes(c: &NurbsCurve, k: usize, coords: &mut [CoordBox]) -> Vec<Sp
             coords[j].termination = Termination::WorkLimit;
             let (lo, hi) = (k - p..=k)
                 .map(|i| c.control_point(i)[j])
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                    (a.min(x), b.max(x))
+                });
             SpanBox {
                 lo,
                 hi,

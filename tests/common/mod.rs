@@ -44,3 +44,52 @@ pub fn run_bin(args: &[&str], stdin: &[u8]) -> (i32, String, String) {
     );
     (out.status.code().expect("exit code"), stdout, stderr)
 }
+
+/// Run every registered strategy on `c`: no panic, the checks of `robust::check_enclosure` at
+/// dense parameters (`per_span` per span), each call within `limit`; for the verified ones
+/// finite boxes with ordered inner bounds (lo <= inner_lo <= hi, lo <= inner_hi <= hi).
+/// Returns every strategy's result.
+#[allow(dead_code)] // not every test crate checks strategies
+pub fn check_registry(
+    name: &str,
+    c: &nurbs_box::NurbsCurve,
+    per_span: usize,
+    limit: std::time::Duration,
+) -> Vec<nurbs_box::Enclosure> {
+    use nurbs_box::enclose::{all_strategies, Guarantee};
+    use nurbs_box::robust::{check_enclosure, check_params};
+    let params = check_params(c, per_span, &[]);
+    let mut out = Vec::new();
+    for s in all_strategies(None) {
+        let t = std::time::Instant::now();
+        let e = s.enclose(c);
+        let dt = t.elapsed();
+        assert!(dt < limit, "{name}: {} took {dt:?}", s.name());
+        if let Err(m) = check_enclosure(c, &e, s.guarantee(), &params) {
+            panic!("{name}: {}: {m}", s.name());
+        }
+        if s.guarantee() == Guarantee::Verified {
+            for (j, cb) in e.coords.iter().enumerate() {
+                assert!(
+                    cb.lo.is_finite() && cb.hi.is_finite(),
+                    "{name}: {} coordinate {j}: box [{:e}, {:e}] is not finite",
+                    s.name(),
+                    cb.lo,
+                    cb.hi
+                );
+                assert!(
+                    cb.lo <= cb.inner_lo && cb.inner_lo <= cb.hi,
+                    "{name}: {} {j}: {cb:?}",
+                    s.name()
+                );
+                assert!(
+                    cb.lo <= cb.inner_hi && cb.inner_hi <= cb.hi,
+                    "{name}: {} {j}: {cb:?}",
+                    s.name()
+                );
+            }
+        }
+        out.push(e);
+    }
+    out
+}
