@@ -1,11 +1,11 @@
-//! Long-run soundness audit (issue 6) against the exact extremum: random byte strings are
-//! decoded into extreme curves (`robust::curve_from_bytes`: degree up to 40, dimension up to 10,
-//! magnitudes 1e±300, raw f64 bit patterns, weights 1e±6, flat runs, clustered / multiple /
-//! unclamped knots), every registered verified strategy encloses each valid curve (the same
-//! `strategy_by_name` objects the command line uses), and every outer bound is compared with
-//! the 256-bit reference box (`reference::reference_box`), every inner bound with the exact
-//! extremum. The fuzz targets check against sampled interval evaluations; this checks against
-//! the extremum itself, which sampling can miss by a hair.
+//! Long-run soundness audit against the exact extremum: random byte strings are decoded into
+//! extreme curves (`robust::curve_from_bytes`: degree up to 40, dimension up to 10, magnitudes
+//! 1e±300, raw f64 bit patterns, weights 1e±6, flat runs, clustered / multiple / unclamped knots),
+//! every registered verified strategy encloses each valid curve (the same `strategy_by_name`
+//! objects the command line uses), and every outer bound is compared with the 256-bit reference box
+//! (`reference::reference_box`), every inner bound with the exact extremum. The fuzz targets check
+//! against sampled interval evaluations; this checks against the extremum itself, which sampling
+//! can miss by a hair.
 //!
 //! Run: `cargo run --release --features mpfr --example reference_audit [-- --cases N --seed S
 //! --seconds T --show-worst 1]`, or as in the README `... > results/reference_audit.md` (defaults: 2000 cases, seed 1, no time limit). Prints a summary per strategy

@@ -1,5 +1,5 @@
-//! Tightness and soundness of every strategy against the 256-bit reference (issue 3's target:
-//! every bound of `newton` / `bezier` within 4 ulps of the coordinate scale of the exact
+//! Tightness and soundness of every strategy against the 256-bit reference (the crate's tightness
+//! target: every bound of `newton` / `bezier` within 4 ulps of the coordinate scale of the exact
 //! extremum, median <= 1 ulp), per strategy and per `gen` family.
 //!
 //! Run: `cargo run --release --features mpfr --example tightness [-- --curves N --seed S
@@ -238,7 +238,7 @@ mod imp {
             );
         }
         println!(
-            "\nTarget (issue 3) for newton, bezier, search-region-verified: max <= 4, median <= 1, \
+            "\nTightness target for newton, bezier, search-region-verified: max <= 4, median <= 1, \
              0 misses. search-region is the thesis heuristic (allowed to miss)."
         );
     }

@@ -1,5 +1,5 @@
-//! Throughput of the batch API and of the streaming pipeline (issue 5), for several thread
-//! counts, on random curves.
+//! Throughput of the batch API and of the streaming pipeline, for several thread counts, on random
+//! curves.
 //!
 //! ```text
 //! cargo run --release --bin throughput -- [--strategy hull] [--curves 100000] [--threads 1,2]

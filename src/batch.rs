@@ -211,7 +211,7 @@ pub fn enclose_records(
         Ok(c) => {
             let mut ok = true;
             for s in strategies {
-                // Defence in depth (issue 6): a strategy must never panic, but if one does, this
+                // Defence in depth: a strategy must never panic, but if one does, this
                 // curve gets an error record and every other curve still gets its boxes.
                 match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| s.enclose(&c))) {
                     Ok(e) => write_enclosure_record(buf, index, &e, timings),

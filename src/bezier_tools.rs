@@ -1,4 +1,4 @@
-//! Bézier tools (seed 004, "Modellierung mit Kurven"): Bézier segments as curves, the monomial
+//! Bézier tools (lecture "Modellierung mit Kurven"): Bézier segments as curves, the monomial
 //! form with Horner evaluation and the basis change both ways, the Hermite form of a cubic
 //! segment, and degree elevation.
 //!
@@ -140,7 +140,8 @@ pub fn bezier_segments<S: Scalar>(c: &NurbsCurve) -> Vec<BezierSeg<S>> {
 }
 
 /// A segment in the monomial basis of the local parameter t in [0, 1]:
-/// c(t) = sum_k a_k t^k (seed 004, "Monombasis"), homogeneous rows like [`BezierSeg`].
+/// c(t) = sum_k a_k t^k (lecture "Modellierung mit Kurven", "Monombasis"), homogeneous rows
+/// like [`BezierSeg`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct MonomialSeg<S> {
     /// parameter interval start in the original curve
@@ -162,9 +163,10 @@ impl<S: Scalar> MonomialSeg<S> {
         self.dim + self.rational as usize
     }
 
-    /// Basis change Bernstein -> monomial (seed 004, "Basistransformation", T_{M<-B}):
-    /// a_k = C(p, k) Δ^k b_0, the k-th forward difference of the control points, which is the
-    /// matrix of the source (for p = 3: rows 1 -3 3 -1 / 3 -6 3 / 3 -3 / 1) applied row-wise.
+    /// Basis change Bernstein -> monomial (lecture "Modellierung mit Kurven",
+    /// "Basistransformation", T_{M<-B}): a_k = C(p, k) Δ^k b_0, the k-th forward difference of
+    /// the control points, which is the matrix of the source (for p = 3: rows
+    /// 1 -3 3 -1 / 3 -6 3 / 3 -3 / 1) applied row-wise.
     pub fn from_bezier(s: &BezierSeg<S>) -> Self {
         let h = s.hdim();
         let p = s.degree;
@@ -190,8 +192,9 @@ impl<S: Scalar> MonomialSeg<S> {
         }
     }
 
-    /// Basis change monomial -> Bernstein (T_{B<-M} of seed 004, for p = 3 the matrix
-    /// 1 0 0 0 / 1 1/3 0 0 / 1 2/3 1/3 0 / 1 1 1 1): b_i = sum_{k<=i} C(i, k) / C(p, k) a_k.
+    /// Basis change monomial -> Bernstein (T_{B<-M} of the lecture "Modellierung mit Kurven",
+    /// for p = 3 the matrix 1 0 0 0 / 1 1/3 0 0 / 1 2/3 1/3 0 / 1 1 1 1):
+    /// b_i = sum_{k<=i} C(i, k) / C(p, k) a_k.
     pub fn to_bezier(&self) -> BezierSeg<S> {
         let h = self.hdim();
         let p = self.degree;
@@ -215,8 +218,8 @@ impl<S: Scalar> MonomialSeg<S> {
         }
     }
 
-    /// Horner evaluation at local t, all rows (seed 004, "Hornerschema": f = a_g; for
-    /// i = g-1..0: f = a_i + t f). O(p) per row.
+    /// Horner evaluation at local t, all rows (lecture "Modellierung mit Kurven",
+    /// "Hornerschema": f = a_g; for i = g-1..0: f = a_i + t f). O(p) per row.
     pub fn eval_horner(&self, t: &S) -> Vec<S> {
         let h = self.hdim();
         let p = self.degree;
@@ -230,7 +233,8 @@ impl<S: Scalar> MonomialSeg<S> {
     }
 }
 
-/// A cubic segment in Hermite form over [a, b] (seed 004, "Hermite Interpolation"):
+/// A cubic segment in Hermite form over [a, b] (lecture "Modellierung mit Kurven",
+/// "Hermite Interpolation"):
 /// c(u) = H0(s) q0 + Δ H1(s) m0 + Δ H2(s) m1 + H3(s) q1, s = (u - a)/Δ, Δ = b - a, with
 /// H0 = (1-s)^2 (1+2s), H1 = s (1-s)^2, H2 = -s^2 (1-s), H3 = (3-2s) s^2. So c(a) = q0,
 /// c(b) = q1, c'(a) = m0, c'(b) = m1 (derivatives with respect to u).
@@ -252,7 +256,8 @@ pub struct HermiteCubic<S> {
 
 impl<S: Scalar> HermiteCubic<S> {
     /// The Bézier form: b0 = q0, b1 = q0 + Δ m0 / 3, b2 = q1 - Δ m1 / 3, b3 = q1 (end
-    /// derivative of a Bézier cubic is 3 (b1 - b0) / Δ; seed 004, "Endtangenteninterpolation").
+    /// derivative of a Bézier cubic is 3 (b1 - b0) / Δ; lecture "Modellierung mit Kurven",
+    /// "Endtangenteninterpolation").
     pub fn to_bezier(&self) -> Result<BezierSeg<S>, BezierToolError> {
         let dt = self.delta()?;
         let f = dt / S::from_usize(3);
@@ -333,9 +338,9 @@ mod tests {
 
     #[test]
     fn basis_change_example_of_seed_004() {
-        // f = 2 B0 - 2 B1 + 5 B2 + 1 B3 (seed 004, "Polynombasen Vergleich"). The slide gives
-        // 2 - 12 t + 33 t^2 - 23 t^3, but its own expansion sums the t^3 terms to
-        // -2 - 6 - 15 + 1 = -22 (= b3 - 3 b2 + 3 b1 - b0): the slide has a typo.
+        // f = 2 B0 - 2 B1 + 5 B2 + 1 B3 (lecture "Modellierung mit Kurven", slide "Polynombasen
+        // Vergleich"). The slide gives 2 - 12 t + 33 t^2 - 23 t^3, but its own expansion sums the
+        // t^3 terms to -2 - 6 - 15 + 1 = -22 (= b3 - 3 b2 + 3 b1 - b0): the slide has a typo.
         let s = BezierSeg::<f64>::from_points(0.0, 1.0, 1, vec![2., -2., 5., 1.]);
         let m = MonomialSeg::from_bezier(&s);
         assert_eq!(m.coeffs, vec![2., -12., 33., -22.]);

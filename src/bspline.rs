@@ -85,13 +85,14 @@ impl<S: Scalar> HSpline<S> {
         self.de_boor_into(k, u, 1, out);
     }
 
-    /// The de Boor scheme on span `k` stopped early (seed 002, sec. 3.1, method `de_boor(t,
-    /// stop)`): the corner cutting runs until a column holds only `stop` points, and that column
-    /// d^r_{k-p+r} .. d^r_k (r = p + 1 - stop) is returned, row-major, `hdim` values per point.
+    /// The de Boor scheme on span `k` stopped early (lab course "B-Spline-Kurven", sec. 3.1,
+    /// method `de_boor(t, stop)`): the corner cutting runs until a column holds only `stop`
+    /// points, and that column d^r_{k-p+r} .. d^r_k (r = p + 1 - stop) is returned, row-major,
+    /// `hdim` values per point.
     ///
     /// `stop = p + 1` returns the control points of the span, `stop = 1` the curve point, and
-    /// `stop = 2` the two points whose difference is the tangent direction (thesis listing
-    /// `tang`, lines 2418-2442). `stop` is clamped to `1..=p + 1`.
+    /// `stop = 2` the two points whose difference is the tangent direction (thesis sec. 7.2,
+    /// listing `tang`). `stop` is clamped to `1..=p + 1`.
     /// The same enclosure property as [`HSpline::eval_span`] holds for interval `u`: each
     /// intermediate point is a polynomial in u over the span.
     pub fn de_boor_column(&self, k: usize, u: &S, stop: usize) -> Vec<S> {
@@ -116,8 +117,8 @@ impl<S: Scalar> HSpline<S> {
     /// One level r (1 <= r <= p) of de Boor corner cutting on span `k`, in place on the
     /// triangle buffer `col` of p + 1 homogeneous points: position j (r <= j <= p, point index
     /// i = k - p + j) becomes d^r_i = alpha (d^{r-1}_i - d^{r-1}_{i-1}) + d^{r-1}_{i-1} with
-    /// alpha = (u - u_i) / (u_{i+p+1-r} - u_i) (seed 002 eq. for alpha_j^k; NURBS Book A5.1
-    /// triangle). Positions below r are left as they were.
+    /// alpha = (u - u_i) / (u_{i+p+1-r} - u_i) (alpha_j^k of the lab course "B-Spline-Kurven",
+    /// sec. 2.2; NURBS Book A5.1 triangle). Positions below r are left as they were.
     ///
     /// The convex combination is [`Scalar::lerp`] (thesis sec. 5.1 form, intersected with the
     /// convex form for intervals). The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0.
@@ -126,7 +127,7 @@ impl<S: Scalar> HSpline<S> {
     }
 
     /// Point and first derivative (Cartesian, `dim` values each) on span `k` by corner cutting,
-    /// without derivative control points (thesis listing `tang`, lines 2406-2442, made exact):
+    /// without derivative control points (thesis sec. 7.2, listing `tang`, made exact):
     /// the de Boor column with two points R0, R1 gives the homogeneous derivative
     /// A'(u) = p (R1 - R0) / (u_{k+1} - u_k) (blossoming; Farin, Curves and Surfaces, sec. on
     /// derivatives of B-splines), the last level gives the point A(u). For a rational curve
@@ -327,8 +328,8 @@ impl<S: Scalar> BezierSeg<S> {
         self.dim + self.rational as usize
     }
 
-    /// de Casteljau evaluation at local t (seed 004; all rows): the first point of the right
-    /// half of the split at t.
+    /// de Casteljau evaluation at local t (lecture "Modellierung mit Kurven"; all rows): the first
+    /// point of the right half of the split at t.
     pub fn eval_local(&self, t: &S) -> Vec<S> {
         let h = self.hdim();
         let (_, mut right) = self.split_points(t);
@@ -336,10 +337,10 @@ impl<S: Scalar> BezierSeg<S> {
         right
     }
 
-    /// de Casteljau subdivision (seed 004) at local t: the control points of the halves over
-    /// [0, t] and [t, 1]. Convex combinations in the a*(R1-R2)+R2 form. For intervals (also an
-    /// interval t) both halves enclose the exact halves for every real t in `t` (each new point
-    /// is a polynomial in t and the old points; inclusion isotonicity).
+    /// de Casteljau subdivision (lecture "Modellierung mit Kurven") at local t: the control points
+    /// of the halves over [0, t] and [t, 1]. Convex combinations in the a*(R1-R2)+R2 form. For
+    /// intervals (also an interval t) both halves enclose the exact halves for every real t in `t`
+    /// (each new point is a polynomial in t and the old points; inclusion isotonicity).
     pub fn split_points(&self, t: &S) -> (Vec<S>, Vec<S>) {
         let h = self.hdim();
         let p = self.degree;

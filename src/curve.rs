@@ -4,7 +4,7 @@ use crate::error::CurveError;
 
 /// A NURBS curve C(u) = sum N_{i,p}(u) w_i P_i / sum N_{i,p}(u) w_i (thesis def. 3.1).
 ///
-/// Invariants established by [`NurbsCurve::new`] (see `shared/formats.md`):
+/// Invariants established by [`NurbsCurve::new`] (see `docs/formats.md`):
 /// degree p >= 1; n + 1 >= p + 1 control points, all of one dimension d >= 1, finite;
 /// exactly n + p + 2 finite, non-decreasing knots, no value repeated more than p + 1 times;
 /// weights (if any) finite and > 0; the domain [u_p, u_{n+1}] has positive length.

@@ -2,7 +2,7 @@
 
 use thiserror::Error;
 
-/// Why a curve description is not a valid NURBS curve (see `shared/formats.md`).
+/// Why a curve description is not a valid NURBS curve (see `docs/formats.md`).
 ///
 /// Every variant names the field and, where it applies, the position.
 #[derive(Debug, Clone, PartialEq, Error)]

@@ -385,7 +385,7 @@ pub fn glyph_boxes(
 /// Append one glyph record (one line of `nurbs-box font` output, no newline):
 /// `{"glyph_id","name","verified","curves","lo","hi","inner_lo","inner_hi","stored_bbox",
 /// "control_bbox","loose_by","too_small_by"}`; boxes as [x_min, y_min, x_max, y_max] arrays
-/// (corners as [x, y]), `null` where absent; numbers as in `shared/formats.md`.
+/// (corners as [x, y]), `null` where absent; numbers as in `docs/formats.md`.
 pub fn write_glyph_record(out: &mut Vec<u8>, g: &GlyphBox) {
     let opt = |out: &mut Vec<u8>, b: Option<[f64; 4]>| match b {
         Some(b) => write_nums(out, b),

@@ -3,8 +3,8 @@
 //! extrema exactly at knots, extreme magnitudes and high degrees.
 //!
 //! Used by the property tests and by the reproduction harness (`thesis_curve_1d`,
-//! `thesis_curve_2d_nurbs` for the knot-count and degree sweeps of thesis ch. 6,
-//! /work/shared/seeds/000_*.txt lines 1290-1330).
+//! `thesis_curve_2d_nurbs` for the knot-count and degree sweeps of thesis ch. 6, its two
+//! timing tables).
 //!
 //! Everything is deterministic given the RNG (use [`rng`] for a seeded ChaCha8 generator).
 //! Every curve returned is valid by construction (the constructor is called and its `Ok` is

@@ -1,6 +1,6 @@
-//! Cubic B-spline interpolation through points p_0 .. p_m in any dimension (seed 002,
-//! sec. 2.3-2.4): data parameters by the uniform, chordal, centripetal or Foley rule, knots
-//! t_{i+3} = t̂_i with clamped ends, natural end conditions (C'' = 0) or prescribed end
+//! Cubic B-spline interpolation through points p_0 .. p_m in any dimension (lab course
+//! "B-Spline-Kurven", sec. 2.3-2.4): data parameters by the uniform, chordal, centripetal or Foley
+//! rule, knots t_{i+3} = t̂_i with clamped ends, natural end conditions (C'' = 0) or prescribed end
 //! tangents, and the tridiagonal system solved by the Thomas algorithm.
 //!
 //! The construction runs in f64 and is not exact: the result is *a* curve (a valid
@@ -20,7 +20,8 @@ use std::fmt;
 use std::str::FromStr;
 use thiserror::Error;
 
-/// How the data parameters t̂_0 < ... < t̂_m are chosen (seed 002, sec. 2.3). t̂_0 = 0.
+/// How the data parameters t̂_0 < ... < t̂_m are chosen (lab course "B-Spline-Kurven", sec. 2.3).
+/// t̂_0 = 0.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Parametrization {
     /// t̂_i = i ("äquidistant"). Allows repeated consecutive points.
@@ -72,7 +73,8 @@ impl FromStr for Parametrization {
     }
 }
 
-/// The condition imposed at one end of the interpolant (seed 002: the two missing equations).
+/// The condition imposed at one end of the interpolant (lab course "B-Spline-Kurven", sec. 2.3: the
+/// two missing equations).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub enum EndCondition {
     /// C'' = 0 at this end (natural spline, eq. 13).
@@ -146,7 +148,7 @@ pub enum InterpolateError {
         /// the parameter computed for it
         value: f64,
     },
-    /// Foley's rule is defined for plane curves only (seed 002, sec. 2.3).
+    /// Foley's rule is defined for plane curves only (lab course "B-Spline-Kurven", sec. 2.3).
     #[error("param: the foley parametrisation needs 2-D points, got {dim}-D (use chordal or centripetal)")]
     FoleyNeeds2D {
         /// dimension of the points
@@ -237,17 +239,17 @@ fn dist(p: &[f64], q: &[f64]) -> f64 {
         .fold(0.0, |acc: f64, (a, b)| acc.hypot(a - b))
 }
 
-/// Turning angle at p_i (the angle between p_i - p_{i-1} and p_{i+1} - p_i, in [0, pi]) of a
-/// 2-D polyline: pi - Theta_i in the notation of seed 002, eq. 7. Directions are normalised
-/// first so the cross and dot products cannot overflow.
+/// Turning angle at p_i (the angle between p_i - p_{i-1} and p_{i+1} - p_i, in [0, pi]) of a 2-D
+/// polyline: pi - Theta_i in the notation of the lab course "B-Spline-Kurven", eq. 7. Directions
+/// are normalised first so the cross and dot products cannot overflow.
 fn turning_angle(prev: &[f64], p: &[f64], next: &[f64], d_in: f64, d_out: f64) -> f64 {
     let (ax, ay) = ((p[0] - prev[0]) / d_in, (p[1] - prev[1]) / d_in);
     let (bx, by) = ((next[0] - p[0]) / d_out, (next[1] - p[1]) / d_out);
     (ax * by - ay * bx).abs().atan2(ax * bx + ay * by)
 }
 
-/// The data parameters t̂_0 = 0 < t̂_1 < ... < t̂_m for `points` under `param` (seed 002,
-/// sec. 2.3, eqs. 5-7). Validates the points first.
+/// The data parameters t̂_0 = 0 < t̂_1 < ... < t̂_m for `points` under `param`
+/// (lab course "B-Spline-Kurven", sec. 2.3, eqs. 5-7). Validates the points first.
 pub fn parameters(
     points: &[Vec<f64>],
     param: Parametrization,
@@ -326,8 +328,8 @@ fn check_tangent(e: &EndCondition, end: &'static str, dim: usize) -> Result<(), 
     Ok(())
 }
 
-/// The natural cubic spline interpolant through `points` with the given parametrisation
-/// (seed 002, sec. 2.3). Shorthand for [`interpolate_cubic_with`] with natural ends.
+/// The natural cubic spline interpolant through `points` with the given parametrisation (lab course
+/// "B-Spline-Kurven", sec. 2.3). Shorthand for [`interpolate_cubic_with`] with natural ends.
 pub fn interpolate_cubic(
     points: &[Vec<f64>],
     param: Parametrization,
@@ -339,7 +341,7 @@ pub fn interpolate_cubic(
     Ok(interpolate_cubic_with(points, &opts)?.curve)
 }
 
-/// Cubic B-spline interpolation (seed 002, sec. 2.3, eqs. 8-14).
+/// Cubic B-spline interpolation (lab course "B-Spline-Kurven", sec. 2.3, eqs. 8-14).
 ///
 /// Knots: t_{i+3} = t̂_i with fourfold end knots (eqs. 8-9; the source's 1-based t_1..t_{m+5}
 /// are our u_1..u_{m+5}, plus u_0 = t̂_0 and u_{m+6} = t̂_m which do not influence the curve).
@@ -498,7 +500,7 @@ pub fn parse_point_sets(text: &str) -> Vec<PointSetInput> {
 
 /// The `nurbs-box interpolate` command as a library function: read point sets from `input`,
 /// interpolate each with natural end conditions and the parametrisation `param`, and write one
-/// curve per line (the curve JSON of `shared/formats.md`, by [`crate::io::write_curve`]) to
+/// curve per line (the curve JSON of `docs/formats.md`, by [`crate::io::write_curve`]) to
 /// `out`, so the output can be piped into `nurbs-box enclose`.
 ///
 /// Input: a JSON array of points (one point set, e.g. `[[0,0],[1,2],[3,1]]`), a JSON array of

@@ -1,4 +1,4 @@
-//! The JSON curve format and the record formats of the command line (`shared/formats.md`).
+//! The JSON curve format and the record formats of the command line (`docs/formats.md`).
 //!
 //! * [`parse_curve`] turns one JSON object into a validated [`NurbsCurve`], or into an
 //!   [`InputError`] that names the field and position (`knots[3]: expected a number, got a
@@ -859,7 +859,7 @@ fn convert_error(
 // ---------------------------------------------------------------------------------------------
 // Streams.
 
-/// The two stream forms of `shared/formats.md`.
+/// The two stream forms of `docs/formats.md`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StreamForm {
     /// one curve per line (blank lines skipped)
@@ -1285,9 +1285,8 @@ pub fn read_curves(bytes: &[u8]) -> Vec<(usize, Result<NurbsCurve, InputError>)>
 // Writing.
 
 /// Append a finite f64 as the shortest decimal that round-trips (serde_json uses ryu), and a
-/// non-finite one as the string "inf" / "-inf" (callers never pass NaN; see `write_bound`).
-/// Append a number as the shortest round-trip decimal; a non-finite value as the string
-/// "inf" / "-inf" (or "nan") as `shared/formats.md` prescribes.
+/// non-finite one as the string "inf" / "-inf" (`docs/formats.md`, "Numbers"). A NaN would be
+/// written as "nan", but the record writers replace NaN by the trivially sound infinity first.
 pub fn write_num(out: &mut Vec<u8>, x: f64) {
     if x.is_finite() {
         // Writing into a Vec cannot fail.

@@ -1,6 +1,6 @@
-//! Knot vector generators: uniform clamped and unclamped vectors (seed 003, sec. 2.2 and its
-//! `createNodeVector` listing) and the interpolation knots with triple end knots (seed 002,
-//! eqs. 8-9).
+//! Knot vector generators: uniform clamped and unclamped vectors ("Uniform Non Rational B-Splines",
+//! sec. 2.2 and its `createNodeVector` listing) and the interpolation knots with triple end knots
+//! (lab course "B-Spline-Kurven", eqs. 8-9).
 //!
 //! The uniform vectors use the integers 0, 1, 2, ... as in the source: they are exact in f64
 //! (up to 2^53), so the knot differences formed by the kernels are exact too.
@@ -24,10 +24,10 @@ fn check(degree: usize, npts: usize) -> Result<(), CurveError> {
     Ok(())
 }
 
-/// The uniform clamped knot vector for `npts` control points of degree p (seed 003, sec. 2.2:
-/// KV = [t_0 = ... = t_p, t_{p+1}, ..., t_{m}, t_{m+1} = ... = t_{m+p}]): p + 1 zeros, the
-/// interior knots 1, 2, ..., npts - p - 1, and p + 1 copies of npts - p. The domain is
-/// [0, npts - p]; the curve interpolates its first and last control points.
+/// The uniform clamped knot vector for `npts` control points of degree p ("Uniform Non Rational
+/// B-Splines", sec. 2.2: KV = [t_0 = ... = t_p, t_{p+1}, ..., t_{m}, t_{m+1} = ... = t_{m+p}]):
+/// p + 1 zeros, the interior knots 1, 2, ..., npts - p - 1, and p + 1 copies of npts - p. The
+/// domain is [0, npts - p]; the curve interpolates its first and last control points.
 ///
 /// Errors: degree 0, or fewer than p + 1 points.
 pub fn uniform_clamped(degree: usize, npts: usize) -> Result<Vec<f64>, CurveError> {
@@ -40,10 +40,10 @@ pub fn uniform_clamped(degree: usize, npts: usize) -> Result<Vec<f64>, CurveErro
     Ok(k)
 }
 
-/// The uniform unclamped ("floating") knot vector 0, 1, ..., npts + p for `npts` control points
-/// of degree p. The domain is [p, npts]; the curve does not in general pass through its end
-/// control points (seed 003, sec. 2.1, the curves that "end shortly before the last control
-/// point").
+/// The uniform unclamped ("floating") knot vector 0, 1, ..., npts + p for `npts` control points of
+/// degree p. The domain is [p, npts]; the curve does not in general pass through its end control
+/// points ("Uniform Non Rational B-Splines", sec. 2.1, the curves that "end shortly before the last
+/// control point").
 ///
 /// Errors: degree 0, or fewer than p + 1 points.
 pub fn uniform_unclamped(degree: usize, npts: usize) -> Result<Vec<f64>, CurveError> {
@@ -51,10 +51,10 @@ pub fn uniform_unclamped(degree: usize, npts: usize) -> Result<Vec<f64>, CurveEr
     Ok((0..npts + degree + 1).map(|i| i as f64).collect())
 }
 
-/// Knots of the cubic interpolating spline for data parameters t̂_0 < ... < t̂_m (seed 002,
-/// eq. 8: t_{i+3} = t̂_i, and eq. 9: triple end knots, here made fourfold to give the full
-/// clamped vector of m + 3 control points, m + 7 knots). The caller guarantees that the
-/// parameters are finite and strictly increasing.
+/// Knots of the cubic interpolating spline for data parameters t̂_0 < ... < t̂_m (lab course
+/// "B-Spline-Kurven", eq. 8: t_{i+3} = t̂_i, and eq. 9: triple end knots, here made fourfold to
+/// give the full clamped vector of m + 3 control points, m + 7 knots). The caller guarantees that
+/// the parameters are finite and strictly increasing.
 pub fn interpolation_knots(params: &[f64]) -> Vec<f64> {
     let (first, last) = (params[0], params[params.len() - 1]);
     let mut k = Vec::with_capacity(params.len() + 6);
@@ -71,7 +71,8 @@ mod tests {
 
     #[test]
     fn source_examples() {
-        // seed 003, sec. 2.2, Bsp 1: (0, 0, 0, 1, 2, 3, 3, 3) for n = 2 with five points
+        // "Uniform Non Rational B-Splines", sec. 2.2, Bsp 1: (0, 0, 0, 1, 2, 3, 3, 3) for n = 2
+        // with five points
         assert_eq!(
             uniform_clamped(2, 5).unwrap(),
             vec![0., 0., 0., 1., 2., 3., 3., 3.]

@@ -10,7 +10,9 @@
 //! [`inari::Interval`] with outward rounding, and `rug::Float` under the `mpfr` feature.
 //!
 //! Sources: the 2009 diploma thesis "Optimale Box-Einschließungen von NURBS Kurven"
-//! (Universität Wien) and The NURBS Book (Piegl & Tiller); each algorithm cites its source.
+//! (Universität Wien) and The NURBS Book (Piegl & Tiller); each algorithm cites its source, and
+//! `docs/sources.md` in the repository maps every algorithm to its citation. The JSON formats and
+//! the command-line contract: `docs/formats.md`.
 //!
 #![doc = include_str!("guarantees.md")]
 #![warn(missing_docs)]

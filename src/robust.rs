@@ -1,8 +1,8 @@
-//! Robustness tooling (issue 6): a decoder that turns arbitrary bytes into (mostly valid,
-//! often extreme) curves, and a checker that runs every strategy on a curve and reports any
-//! broken guarantee. Shared by the cargo-fuzz targets (`fuzz/`), the long-run harness
-//! (`experiments/robust_run.rs`) and the regression tests (`tests/robust.rs`), so a fuzz
-//! finding replays exactly in a plain `cargo test`.
+//! Robustness tooling: a decoder that turns arbitrary bytes into (mostly valid, often extreme)
+//! curves, and a checker that runs every strategy on a curve and reports any broken guarantee.
+//! Shared by the cargo-fuzz targets (`fuzz/`), the long-run harness (`experiments/robust_run.rs`)
+//! and the regression tests (`tests/robust.rs`), so a fuzz finding replays exactly in a plain
+//! `cargo test`.
 //!
 //! The decoder is structured (every byte means something about the curve: degree, dimension,
 //! knot pattern, magnitudes, weights, raw f64 bit patterns), so coverage-guided fuzzing

@@ -1,5 +1,5 @@
-//! Tridiagonal linear systems by the Thomas algorithm (Gaussian elimination without pivoting
-//! in LU form, seed 002 sec. 2.4, "konzentrierter Gaußscher Algorithmus").
+//! Tridiagonal linear systems by the Thomas algorithm (Gaussian elimination without pivoting in LU
+//! form; lab course "B-Spline-Kurven", sec. 2.4, "konzentrierter Gaußscher Algorithmus").
 
 use thiserror::Error;
 
@@ -34,10 +34,11 @@ pub enum TridiagonalError {
 
 /// Solve A X = D in place for a tridiagonal n x n matrix A with sub-diagonal `a` (a[0] is not
 /// used), diagonal `b` and super-diagonal `c` (c[n-1] is not used); `rhs` holds D row-major with
-/// `ncols` columns (one per coordinate, seed 002: "this system must be solved for each
-/// coordinate"; the factorisation is shared) and is overwritten by X.
+/// `ncols` columns (one per coordinate; the lab course "B-Spline-Kurven": "this system must be
+/// solved for each coordinate"; the factorisation is shared) and is overwritten by X.
 ///
-/// Algorithm (seed 002, sec. 2.4, compact form): v_1 := a_1 := c_n := y_0 := 0;
+/// Algorithm (lab course "B-Spline-Kurven", sec. 2.4, compact form):
+/// v_1 := a_1 := c_n := y_0 := 0;
 /// for k = 1..n: z_k := 1/(b_k - a_k v_k), v_{k+1} := z_k c_k, y_k := z_k (d_k - a_k y_{k-1});
 /// x_n := y_n, x_k := y_k - v_{k+1} x_{k+1}. Here the products with z_k are written as
 /// divisions by the pivot (one rounding fewer). No pivoting: the source shows stability for

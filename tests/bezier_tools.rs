@@ -1,6 +1,7 @@
-//! Properties of the Bézier tools (seed 004): basis changes round-trip, Horner and de Casteljau
-//! agree, Hermite form round-trips, degree elevation keeps the curve (verified: the interval
-//! enclosures of the original and the elevated segment at the same t always overlap).
+//! Properties of the Bézier tools (lecture "Modellierung mit Kurven"): basis changes round-trip,
+//! Horner and de Casteljau agree, Hermite form round-trips, degree elevation keeps the curve
+//! (verified: the interval enclosures of the original and the elevated segment at the same t always
+//! overlap).
 
 use inari::Interval;
 use nurbs_box::bezier_tools::{HermiteCubic, MonomialSeg};

@@ -1,4 +1,4 @@
-//! The `nurbs-box` binary against the contract of `shared/formats.md`: records, indices, exit
+//! The `nurbs-box` binary against the contract of `docs/formats.md`: records, indices, exit
 //! statuses, hostile input, both stream forms, order with several threads.
 
 use inari::Interval;
@@ -380,7 +380,7 @@ fn input_file_argument() {
     assert_eq!((code, recs.len()), (0, 2));
 }
 
-// ---- `interpolate` and `font` (helper "build") ----
+// ---- `interpolate` and `font` ----
 
 #[test]
 fn interpolate_pipes_into_enclose() {

@@ -1,10 +1,9 @@
-//! Foundation properties of the shared kernels (issue 2, "How we will know"), on the nasty
-//! curve families of `nurbs_box::gen`:
-//! partition of unity, de Boor = basis-function sum, refinement (knot insertion, split,
-//! Bézier decomposition) keeps the curve, every interval enclosure contains the f64 value and
-//! (feature `mpfr`) the 256-bit value of points and derivatives 1 and 2, interval parameters
-//! straddling knots enclose samples, Bézier curves equal their Bernstein form, the circle,
-//! and a regression bound on point-enclosure width.
+//! Foundation properties of the shared kernels, on the nasty curve families of `nurbs_box::gen`:
+//! partition of unity, de Boor = basis-function sum, refinement (knot insertion, split, Bézier
+//! decomposition) keeps the curve, every interval enclosure contains the f64 value and (feature
+//! `mpfr`) the 256-bit value of points and derivatives 1 and 2, interval parameters straddling
+//! knots enclose samples, Bézier curves equal their Bernstein form, the circle, and a regression
+//! bound on point-enclosure width.
 //!
 //! Case counts: `PROPTEST_CASES` when set, else a per-test default chosen to keep the binary
 //! within seconds.

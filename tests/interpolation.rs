@@ -1,4 +1,5 @@
-//! Properties of cubic spline interpolation (seed 002) and of the Thomas solver.
+//! Properties of cubic spline interpolation (lab course "B-Spline-Kurven") and of the Thomas
+//! solver.
 
 use inari::Interval;
 use nurbs_box::interpolate::{

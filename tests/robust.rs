@@ -1,6 +1,6 @@
-//! Robustness (issue 6): extreme valid curves get sound, finite boxes from every strategy in
-//! bounded time; arbitrary f64 bit patterns give a sound box or a typed error, never a panic;
-//! the fuzz corpus and every fuzz finding replay as regression tests.
+//! Robustness: extreme valid curves get sound, finite boxes from every strategy in bounded time;
+//! arbitrary f64 bit patterns give a sound box or a typed error, never a panic; the fuzz corpus and
+//! every fuzz finding replay as regression tests.
 //!
 //! Containment is checked with interval evaluation at dense parameters
 //! (`validate::check_containment`) and, with `--features mpfr`, against the 256-bit reference
@@ -41,7 +41,9 @@ fn curve(p: usize, knots: Vec<f64>, pts: Vec<Vec<f64>>, w: Option<Vec<f64>>) -> 
     NurbsCurve::new(p, knots, pts, w).expect("valid test curve")
 }
 
-/// The extreme valid curves of issue 6 (name, curve).
+/// Extreme valid curves (name, curve): magnitudes at the ends of the f64 range, extreme
+/// weights, narrow spans, tiny and huge domains, flat coordinates, jumps, ten dimensions, and
+/// degrees up to 150.
 fn extreme_curves() -> Vec<(&'static str, NurbsCurve)> {
     let mut v = Vec::new();
     // coordinates 1e300 .. 1e-300 with weights 1e6 .. 1e-6: w P overflows without rescaling
@@ -348,7 +350,8 @@ fn adversarial_curves_finish_quickly() {
             None,
         ),
     ));
-    // beyond the issue's degree range: degree 150, one span (expensive evaluations)
+    // beyond the fuzz decoder's degree range (up to 40): degree 150, one span (expensive
+    // evaluations)
     cases.push((
         "degree_150",
         curve(

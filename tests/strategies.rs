@@ -1,5 +1,5 @@
-//! Strategy properties (issue 3, "How we will know"): for every *verified* strategy, over random
-//! 1-D/2-D/3-D curves from the nasty families of `nurbs_box::gen` and over known boxes:
+//! Strategy properties: for every *verified* strategy, over random 1-D/2-D/3-D curves from the
+//! nasty families of `nurbs_box::gen` and over known boxes:
 //!
 //! * soundness: the box is never proven to miss the curve (`check_containment` at dense
 //!   parameters, knots and their f64 neighbours: a miss means the verified interval enclosure
@@ -10,8 +10,8 @@
 //!   control-hull box;
 //! * with feature `mpfr`: the box contains the 256-bit reference extrema (`ulps_outside >= 0`),
 //!   the inner bounds are reached (exact min <= inner_lo, inner_hi <= exact max), and the
-//!   tightness target of issue 3 (every bound within 4 ulps of the coordinate scale of the
-//!   exact extremum, median <= 1 ulp) on moderate families.
+//!   tightness target (every bound within 4 ulps of the coordinate scale of the exact extremum,
+//!   median <= 1 ulp) on moderate families.
 //!
 //! Known boxes (each verified strategy): the NURBS circle, rotated ellipses, a spike on knots
 //! 1e-5 apart, flat coordinates, an extremum at a knot, a C0 corner, a discontinuity, unclamped
@@ -30,7 +30,7 @@ use proptest::prelude::*;
 /// The strategies that must lie within an ulp or so of the exact box (and so inside the hull).
 const EXACT: [&str; 3] = ["newton", "bezier", "search-region-verified"];
 
-/// Tightness target of issue 3, in ulps of the coordinate scale.
+/// Tightness target, in ulps of the coordinate scale.
 const TARGET_MAX_ULPS: f64 = 4.0;
 
 /// The exact strategies that meet the tightness target against the 256-bit reference on the
@@ -184,13 +184,12 @@ proptest! {
 
     /// Sandwich: newton's box lies inside the control-hull box.
     ///
-    /// FAILS at the time of writing (measured over 3000 nasty curves, seeds 0..3000): newton's
-    /// box leaves the hull box on ~35% of the curves, by 2 ulps (clamped uniform, unclamped,
-    /// multiple knots, high degree: an end point / interpolated control point rounded outward
-    /// instead of being intersected with the exact hull), up to 25-199 ulps (clustered knots,
-    /// extrema at knots, flat coordinates) and 9.4e8 ulps (extreme weights). Sound, but not
-    /// the sandwich of issue 3. E.g. `flat_coordinate_on_a_span`: hi 1.0000000000000009 vs
-    /// hull 1.
+    /// FAILS at the time of writing (measured over 3000 nasty curves, seeds 0..3000): newton's box
+    /// leaves the hull box on ~35% of the curves, by 2 ulps (clamped uniform, unclamped, multiple
+    /// knots, high degree: an end point / interpolated control point rounded outward instead of
+    /// being intersected with the exact hull), up to 25-199 ulps (clustered knots, extrema at
+    /// knots, flat coordinates) and 9.4e8 ulps (extreme weights). Sound, but not the sandwich. E.g.
+    /// `flat_coordinate_on_a_span`: hi 1.0000000000000009 vs hull 1.
     #[test]
     fn sandwich_newton(seed in any::<u64>()) {
         if let Err(m) = sandwich("newton", seed) {
@@ -710,7 +709,7 @@ mod mpfr {
     use super::*;
     use nurbs_box::reference::{inner_reached, reference_box, ulps_outside, ReferenceBox};
 
-    /// Median part of the tightness target of issue 3.
+    /// Median part of the tightness target.
     const TARGET_MEDIAN_ULPS: f64 = 1.0;
 
     /// Signed distances (ulps of the coordinate scale, positive = safe side) of every outer
@@ -915,7 +914,7 @@ mod mpfr {
         v[v.len() / 2]
     }
 
-    /// Tightness target of issue 3 on moderate curves: clamped uniform / random and unclamped
+    /// Tightness target on moderate curves: clamped uniform / random and unclamped
     /// knots, rational with weights in [0.1, 10], p <= 5, 1-D to 3-D (`GenParams::default`,
     /// plus the `clamped_uniform` and `unclamped` families). For each exact strategy: every
     /// bound within 4 ulps of the coordinate scale of the exact extremum, median <= 1.

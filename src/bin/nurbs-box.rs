@@ -1,6 +1,6 @@
 //! `nurbs-box`: verified box enclosures of NURBS curves from the command line.
 //!
-//! The formats and exit statuses are the contract of `shared/formats.md`:
+//! The formats and exit statuses are the contract of `docs/formats.md`:
 //! exit 0 when every curve got its records, 1 when some curve got an error record, 2 when the
 //! command itself could not run (bad flag, unreadable input, write failure).
 //!

@@ -1,4 +1,5 @@
-//! Bézier decomposition with subdivision (issue 3, strategy 3).
+//! The `bezier` strategy: Bézier decomposition with subdivision (NURBS Book A5.6, then
+//! branch and bound on the Bernstein coefficients).
 //!
 //! 1. Knot insertion turns every non-empty span into a Bézier segment, in interval arithmetic
 //!    (`HSpline<Interval>::decompose`, NURBS Book A5.6), so the coefficients enclose the exact

@@ -1,5 +1,5 @@
-//! The thesis's interval Newton box enclosure (ch. 6; listings `inewtonKNRH` and `main`,
-//! thesis lines 1766-1990), made sound and tight.
+//! The thesis's interval Newton box enclosure (ch. 6; listings `inewtonKNRH` and `main` of
+//! sec. 7.1.2), made sound and tight.
 //!
 //! Per coordinate j, the extreme values of C_j over the domain are attained at
 //! (a) the domain end points, (b) the non-differentiable knots (multiplicity >= p, thesis ch. 6),
@@ -49,7 +49,7 @@ pub enum Split {
     Bisect,
     /// this many equal pieces (at least 2)
     Pieces(usize),
-    /// 2p equal pieces (thesis `inewtonKNRH`, lines 1815-1825)
+    /// 2p equal pieces (thesis listing `inewtonKNRH`, its split when a Newton step is empty)
     TwiceDegree,
 }
 
@@ -81,7 +81,7 @@ pub struct Newton {
     /// at most [`WORK_PER_SPAN`] units (and at least 8 evaluations in all):
     /// once spent, every box still to search is enclosed as a whole (sound, maybe less tight;
     /// reported as [`Termination::WorkLimit`]). Bounds the time of high-degree curves, whose
-    /// interval evaluations are expensive and overestimate a lot (issue 6).
+    /// interval evaluations are expensive and overestimate a lot.
     pub max_work: u64,
     /// Split rule when a step makes too little progress.
     pub split: Split,
@@ -161,7 +161,7 @@ impl Default for Newton {
 }
 
 impl Newton {
-    /// The thesis's settings (listing `inewtonKNRH`, lines 1766-1850): C' / C'' by the quotient
+    /// The thesis's settings (sec. 7.1.2, listing `inewtonKNRH`): C' / C'' by the quotient
     /// rule, split once per span into 2p pieces when a step makes no progress, 20 steps per box,
     /// stop at radius <= tol (the thesis does not state its tol; 1e-6 is assumed), every span
     /// searched (no pre-tests, no pruning), derivative time measured (its tables' columns).
@@ -704,7 +704,8 @@ impl<'a> Engine<'a> {
                     break;
                 }
                 if !y2.is_empty() {
-                    // Two pieces: iterate on one, keep the other (thesis lines 70-100).
+                    // Two pieces: iterate on one, keep the other (listing `inewtonKNRH`, its
+                    // two-piece case).
                     self.stats.subdivisions += 1;
                     self.stack.push((y2.inf(), y2.sup()));
                     (x0, x1) = (y1.inf(), y1.sup());

@@ -1,4 +1,4 @@
-//! Exact power-of-two rescaling of extreme curves before enclosing them (issue 6).
+//! Exact power-of-two rescaling of extreme curves before enclosing them.
 //!
 //! A valid curve may have coordinates near 1e±300, weights near 1e±300 or a parameter domain of
 //! length 1e-300. The strategies then work on intermediates that overflow or underflow (the

@@ -1,9 +1,9 @@
-//! The thesis's search-region heuristic (`suchbereich`, thesis lines 2226-2262, and ch. 6,
-//! lines 1290-1300) and a verified variant.
+//! The thesis's search-region heuristic (listing `suchbereich`, thesis sec. 7.1.3, described in
+//! ch. 6) and a verified variant.
 //!
 //! `suchbereich` takes, per coordinate, the control points with the two largest and the two
 //! smallest coordinate values (all ties), collects the knots u_i .. u_{i+p+1} of their supports,
-//! and `main` (lines 1925-1940) runs interval Newton on each interval between consecutive
+//! and `main` (thesis sec. 7.1.2) runs interval Newton on each interval between consecutive
 //! collected knots, i.e. on all of [min, max] of them. Candidates are then the Newton zeros,
 //! the domain end points and the non-differentiable knots. Outside the region nothing is looked
 //! at, so an extremum there is missed: the heuristic is **not** verified.
@@ -49,7 +49,7 @@ impl SearchRegion {
 /// collected by `suchbereich` (0-based translation of the listing).
 ///
 /// Reproduced as written, including two quirks of the listing: a control point index above
-/// n - 2 is clamped to n - 2 before its support knots are taken (line 2237:
+/// n - 2 is clamped to n - 2 before its support knots are taken (the listing's
 /// `if hv(i) > m-p-2, hv(i) = m-p-2` with m = n + p + 1, 1-based), and the point marked as used
 /// (`Pbea(hv(i)) = NaN`) is the clamped index, so a largest value at one of the last two points
 /// is found again in the second round.
