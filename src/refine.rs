@@ -42,8 +42,8 @@ impl NurbsCurve {
         ))
     }
 
-    /// Split at an interior parameter u (thesis sec. 4: subdivision by inserting u p times):
-    /// the curves over [a, u] and [u, b].
+    /// Split at an interior parameter u (thesis sec. 4.2, "Unterteilen der Kurve": subdivision by
+    /// inserting u p times): the curves over [a, u] and [u, b].
     pub fn split_at(&self, u: f64) -> Result<(NurbsCurve, NurbsCurve), EvalError> {
         self.check(u)?;
         let (a, b) = self.domain();

@@ -2,12 +2,12 @@
 //! of `rescale`): a knot vector with knots near ±f64::MAX, whose differences overflow, and a
 //! knot with a 2^-1074 bit, which no power-of-two scaling maps exactly.
 //!
-//! The image of the curve is the union of the images of its spans, and on span
-//! [u_k, u_{k+1}] the curve is a rational Bézier piece in the local parameter t in [0, 1]
-//! (NURBS Book A5.6 DecomposeCurve; thesis sec. 4.2.3). Its Bernstein coefficients are
-//! extracted once in interval arithmetic ([`HSpline::bezier_segment`], whose alphas are
-//! overflow-safe: [`crate::bspline::knot_ratio`]), so every quantity is an enclosure:
-//! Cartesian points P_i in boxes [P_i^lo, P_i^hi], weights w_i in intervals.
+//! The image of the curve is the union of the images of its spans, and on span [u_k, u_{k+1}] the
+//! curve is a rational Bézier piece in the local parameter t in [0, 1] (NURBS Book A5.6
+//! DecomposeCurve; thesis sec. 4.2, "Zerlegen einer B-Spline-Kurve in Bézier-Segmente"). Its
+//! Bernstein coefficients are extracted once in interval arithmetic ([`HSpline::bezier_segment`],
+//! whose alphas are overflow-safe: [`crate::bspline::knot_ratio`]), so every quantity is an
+//! enclosure: Cartesian points P_i in boxes [P_i^lo, P_i^hi], weights w_i in intervals.
 //!
 //! # Why the pieces' boxes bound the curve
 //!
