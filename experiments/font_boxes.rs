@@ -14,7 +14,7 @@
 
 use nurbs_box::enclose::strategy_by_name;
 use nurbs_box::font::{glyph_boxes, GlyphBox};
-use nurbs_box::report::Provenance;
+use nurbs_box::testkit::report::Provenance;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::PathBuf;

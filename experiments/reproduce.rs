@@ -15,9 +15,10 @@ mod plots;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use nurbs_box::enclose::{all_strategies, BoxEncloser, Enclosure, Guarantee};
-use nurbs_box::report::Provenance;
-use nurbs_box::validate::{check_containment, dense_params, gap_ulps};
-use nurbs_box::{gen, NurbsCurve};
+use nurbs_box::testkit::report::Provenance;
+use nurbs_box::testkit::validate::{check_containment, dense_params, gap_ulps};
+use nurbs_box::testkit::gen;
+use nurbs_box::NurbsCurve;
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -163,9 +164,9 @@ fn time_enclose(s: &dyn BoxEncloser, c: &NurbsCurve, min: Duration) -> (Duration
 fn reference_ulps(
     c: &NurbsCurve,
     enc: &Enclosure,
-    r: &nurbs_box::reference::ReferenceBox,
+    r: &nurbs_box::testkit::reference::ReferenceBox,
 ) -> (f64, bool) {
-    use nurbs_box::reference::ulps_outside;
+    use nurbs_box::testkit::reference::ulps_outside;
     let mut worst = 0.0f64;
     let mut miss = false;
     for (j, cb) in enc.coords.iter().enumerate() {
@@ -202,11 +203,11 @@ fn measure_row(
     }
     // 2. reference and containment, in parallel
     #[cfg(feature = "mpfr")]
-    let refs: Vec<Option<nurbs_box::reference::ReferenceBox>> = spec
+    let refs: Vec<Option<nurbs_box::testkit::reference::ReferenceBox>> = spec
         .curves
         .par_iter()
         .map(|c| {
-            (c.num_points() <= args.ref_max_points).then(|| nurbs_box::reference::reference_box(c))
+            (c.num_points() <= args.ref_max_points).then(|| nurbs_box::testkit::reference::reference_box(c))
         })
         .collect();
     let mut rows = Vec::new();

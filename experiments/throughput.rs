@@ -16,9 +16,9 @@
 //! on a machine shared with other work a speed-up can only show where that number grows.
 
 use clap::Parser;
-use nurbs_box::batch::{enclose_batch, enclose_stream, StreamOptions};
+use nurbs_box::io::batch::{enclose_batch, enclose_stream, StreamOptions};
 use nurbs_box::enclose::strategy_by_name;
-use nurbs_box::gen::{self, GenParams, KnotStyle};
+use nurbs_box::testkit::gen::{self, GenParams, KnotStyle};
 use nurbs_box::io::{write_curve, RecordReader};
 use nurbs_box::NurbsCurve;
 use std::time::{Duration, Instant};
@@ -83,7 +83,7 @@ fn main() {
         eprintln!("unknown strategy {:?}", a.strategy);
         std::process::exit(2);
     };
-    // Moderate random curves (nurbs_box::gen): degree 1..=5, dimension 2..=3, p+1..p+20
+    // Moderate random curves (nurbs_box::testkit::gen): degree 1..=5, dimension 2..=3, p+1..p+20
     // control points, half rational with weights in [0.1, 10], assorted knot vectors.
     let params = GenParams {
         dim: 2..=3,

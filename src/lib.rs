@@ -17,47 +17,27 @@
 #![doc = include_str!("guarantees.md")]
 #![warn(missing_docs)]
 
-pub mod batch;
-pub mod bezier_tools;
-mod bspline;
-mod curve;
-mod ddi;
+pub mod build;
 pub mod enclose;
 mod error;
-mod eval;
-pub mod families;
+#[cfg(feature = "font")]
 pub mod font;
-pub mod gen;
-pub mod interpolate;
 pub mod io;
-pub mod knot_removal;
-pub mod knot_vectors;
-mod knots;
-pub mod lagrange;
-mod mr;
-#[cfg(feature = "mpfr")]
-pub mod reference;
-mod refine;
-pub mod report;
-pub mod robust;
-pub mod scalar;
+pub mod num;
 #[cfg(feature = "serve")]
 pub mod serve;
-mod tight;
-pub mod tridiagonal;
-pub mod validate;
+pub mod spline;
+#[cfg(feature = "testkit")]
+pub mod testkit;
 
-pub use bspline::{basis_funs, BezierSeg, HSpline};
-pub use curve::NurbsCurve;
-pub use ddi::Ddi;
 pub use enclose::{
-    all_strategies, strategy_by_name, strategy_with_work, BoxEncloser, CandidateKind, CoordBox,
-    Enclosure, Extremum, Guarantee, Stats, Termination,
+    all_strategies, strategy_by_name, BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum,
+    Guarantee, Stats, Termination,
 };
 pub use error::{CurveError, EvalError};
-pub use eval::{project, CurveEval};
 pub use io::{curve_to_json, parse_curve, CurveReader, InputError};
-pub use knots::{find_span, multiplicity};
-pub use mr::Mr;
-pub use scalar::Scalar;
-pub use tight::TightEval;
+pub use num::{Ddi, Mr, Scalar};
+pub use spline::{
+    basis_funs, find_span, multiplicity, project, BezierSeg, CurveEval, HSpline, NurbsCurve,
+    TightEval,
+};

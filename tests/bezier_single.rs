@@ -149,8 +149,8 @@ fn hand_made_cases() {
 #[cfg(feature = "mpfr")]
 mod mpfr {
     use super::*;
-    use nurbs_box::gen::{self, Family, GenParams};
-    use nurbs_box::reference::{reference_box, ulps_outside};
+    use nurbs_box::testkit::gen::{self, Family, GenParams};
+    use nurbs_box::testkit::reference::{reference_box, ulps_outside};
     use proptest::prelude::{any, prop_assert, proptest};
 
     /// Every bound of the fast path must be within this many ulps of the coordinate scale of

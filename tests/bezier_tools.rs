@@ -4,8 +4,8 @@
 //! overlap).
 
 use inari::Interval;
-use nurbs_box::bezier_tools::{HermiteCubic, MonomialSeg};
-use nurbs_box::scalar::iv;
+use nurbs_box::build::bezier_tools::{HermiteCubic, MonomialSeg};
+use nurbs_box::num::iv;
 use nurbs_box::BezierSeg;
 use proptest::prelude::*;
 

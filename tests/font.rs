@@ -5,7 +5,7 @@
 use inari::Interval;
 use nurbs_box::enclose::{all_strategies, strategy_by_name};
 use nurbs_box::font::{glyph_boxes, glyph_outline, GlyphBox};
-use nurbs_box::scalar::iv;
+use nurbs_box::num::iv;
 use nurbs_box::{BezierSeg, Guarantee};
 use ttf_parser::Face;
 

@@ -1,4 +1,4 @@
-//! Foundation properties of the shared kernels, on the nasty curve families of `nurbs_box::gen`:
+//! Foundation properties of the shared kernels, on the nasty curve families of `nurbs_box::testkit::gen`:
 //! partition of unity, de Boor = basis-function sum, refinement (knot insertion, split, Bézier
 //! decomposition) keeps the curve, every interval enclosure contains the f64 value and (feature
 //! `mpfr`) the 256-bit value of points and derivatives 1 and 2, interval parameters straddling
@@ -9,8 +9,8 @@
 //! within seconds.
 
 use inari::Interval;
-use nurbs_box::gen::{self, Family, GenParams};
-use nurbs_box::scalar::{iv, ulp};
+use nurbs_box::testkit::gen::{self, Family, GenParams};
+use nurbs_box::num::{iv, ulp};
 use nurbs_box::{basis_funs, project, HSpline, NurbsCurve};
 use proptest::prelude::*;
 use rand::Rng;
@@ -303,7 +303,7 @@ fn circle() -> NurbsCurve {
 #[cfg(feature = "mpfr")]
 mod mpfr {
     use super::*;
-    use nurbs_box::scalar::MPFR_PREC;
+    use nurbs_box::num::MPFR_PREC;
     use rug::ops::Pow;
     use rug::Float;
 
@@ -324,7 +324,7 @@ mod mpfr {
         /// the left limit need not be attained, so the outer check is skipped there.
         #[test]
         fn verified_strategies_contain_the_reference(seed in any::<u64>()) {
-            use nurbs_box::reference::{reference_box, ulps_outside};
+            use nurbs_box::testkit::reference::{reference_box, ulps_outside};
             let (f, c, _) = seeded(seed);
             let rb = reference_box(&c);
             let jumps = c.interior_knots().iter().any(|&(_, m)| m > c.degree());
@@ -342,7 +342,7 @@ mod mpfr {
                             "{} on {}: coord {j} lo {} ({l} ulps) hi {} ({h} ulps) vs reference [{}, {}]",
                             s.name(), f.name(), cb.lo, cb.hi, rb.lo[j], rb.hi[j]);
                     }
-                    prop_assert!(nurbs_box::reference::inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, sc),
+                    prop_assert!(nurbs_box::testkit::reference::inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, sc),
                         "{} on {}: coord {j} inner [{}, {}] not reached, reference [{}, {}]",
                         s.name(), f.name(), cb.inner_lo, cb.inner_hi, rb.lo[j], rb.hi[j]);
                 }

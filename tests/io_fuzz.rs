@@ -2,7 +2,8 @@
 //! through `curve_to_json` bit for bit; both stream forms give the same curves.
 
 use nurbs_box::io::{curve_to_json, parse_curve, read_curves, CurveReader};
-use nurbs_box::{gen, NurbsCurve};
+use nurbs_box::testkit::gen;
+use nurbs_box::NurbsCurve;
 use proptest::prelude::*;
 use std::io::Read;
 

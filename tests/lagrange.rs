@@ -6,9 +6,9 @@
 
 use inari::Interval;
 use nurbs_box::enclose::strategy_by_name;
-use nurbs_box::interpolate::{interpolate_cubic, Parametrization};
-use nurbs_box::lagrange::{widen_enclosure, LagrangeCurve};
-use nurbs_box::scalar::iv;
+use nurbs_box::build::interpolate::{interpolate_cubic, Parametrization};
+use nurbs_box::build::lagrange::{widen_enclosure, LagrangeCurve};
+use nurbs_box::num::iv;
 use proptest::prelude::*;
 
 mod common;

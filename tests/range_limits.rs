@@ -9,7 +9,7 @@
 //! curve does not reach, and `newton` / `bezier` within a few ulps where they converge.
 
 use nurbs_box::enclose::{all_strategies, Guarantee, Termination};
-use nurbs_box::gen::{self, Family};
+use nurbs_box::testkit::gen::{self, Family};
 use nurbs_box::{parse_curve, Enclosure, NurbsCurve};
 use std::time::Duration;
 
@@ -193,7 +193,7 @@ fn degree_1000_is_bounded_for_every_strategy() {
 #[cfg(feature = "mpfr")]
 mod mpfr {
     use super::*;
-    use nurbs_box::reference::{inner_reached, reference_box, ulps_outside};
+    use nurbs_box::testkit::reference::{inner_reached, reference_box, ulps_outside};
 
     /// No verified outer bound misses the exact box, every inner bound is reached; with
     /// `tight`, converged `newton` / `bezier` bounds are within 4 ulps of the scale.

@@ -7,7 +7,7 @@
 //! box (`reference::reference_box`).
 
 use nurbs_box::enclose::{all_strategies, Guarantee, Termination};
-use nurbs_box::robust::{
+use nurbs_box::testkit::robust::{
     check_all_strategies, check_enclosure, check_params, raw_strategies, targets,
 };
 use nurbs_box::{Enclosure, NurbsCurve};
@@ -462,7 +462,7 @@ proptest! {
                 prop_assert!(v.is_empty(), "{:?}\n{}", v, nurbs_box::curve_to_json(&c));
                 // the strategies without the rescaling wrapper must be sound as well (their
                 // intermediates may overflow)
-                let v = nurbs_box::robust::check_strategies(&raw_strategies(), &c, 6, &[]);
+                let v = nurbs_box::testkit::robust::check_strategies(&raw_strategies(), &c, 6, &[]);
                 prop_assert!(v.is_empty(), "raw: {:?}\n{}", v, nurbs_box::curve_to_json(&c));
                 // and through the JSON format
                 let back = nurbs_box::parse_curve(nurbs_box::curve_to_json(&c).as_bytes());
@@ -540,7 +540,7 @@ fn fuzz_corpus_replays() {
 #[cfg(feature = "mpfr")]
 mod mpfr {
     use super::*;
-    use nurbs_box::reference::{reference_box, ulps_outside};
+    use nurbs_box::testkit::reference::{reference_box, ulps_outside};
 
     /// Every verified box contains the 256-bit reference box, and is close to it (see
     /// `allowed`). `ROBUST_PRINT=1` prints the distances.
@@ -562,7 +562,7 @@ mod mpfr {
                     rb.hi[j]
                 );
                 assert!(
-                    nurbs_box::reference::inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, scale),
+                    nurbs_box::testkit::reference::inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, scale),
                     "{name}: {} coordinate {j}: inner [{:e}, {:e}] not reached, exact [{}, {}]",
                     e.strategy,
                     cb.inner_lo,
@@ -850,7 +850,7 @@ fn cli_hostile_lines_between_extreme_curves() {
                             .collect(),
                     };
                     let m =
-                        nurbs_box::validate::check_containment(c, &e, &check_params(c, 20, &[]));
+                        nurbs_box::testkit::validate::check_containment(c, &e, &check_params(c, 20, &[]));
                     assert!(
                         m.misses.is_empty(),
                         "line {i} {}: {:?}",
@@ -884,7 +884,7 @@ fn a_panicking_strategy_becomes_an_error_record() {
     let c = curve(1, vec![0., 0., 1., 1.], vec![vec![0.], vec![1.]], None);
     let strategies: Vec<Box<dyn BoxEncloser>> = vec![Box::new(Boom), Box::new(ControlHull)];
     let mut buf = Vec::new();
-    let ok = nurbs_box::batch::enclose_records(7, Ok(c), &strategies, false, &mut buf);
+    let ok = nurbs_box::io::batch::enclose_records(7, Ok(c), &strategies, false, &mut buf);
     assert!(!ok);
     let text = String::from_utf8(buf).unwrap();
     let lines: Vec<serde_json::Value> = text

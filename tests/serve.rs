@@ -238,7 +238,7 @@ fn oversized_requests_are_refused_unread() {
     // more control points than the limit
     let n = Limits::default().max_points + 1;
     let pts = vec!["[0,0]"; n].join(",");
-    let knots = nurbs_box::knot_vectors::uniform_clamped(1, n).unwrap();
+    let knots = nurbs_box::build::knot_vectors::uniform_clamped(1, n).unwrap();
     let curve = format!(
         "{{\"degree\":1,\"knots\":{},\"control_points\":[{pts}]}}",
         serde_json::to_string(&knots).unwrap()

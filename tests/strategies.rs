@@ -1,5 +1,5 @@
 //! Strategy properties: for every *verified* strategy, over random 1-D/2-D/3-D curves from the
-//! nasty families of `nurbs_box::gen` and over known boxes:
+//! nasty families of `nurbs_box::testkit::gen` and over known boxes:
 //!
 //! * soundness: the box is never proven to miss the curve (`check_containment` at dense
 //!   parameters, knots and their f64 neighbours: a miss means the verified interval enclosure
@@ -21,9 +21,9 @@
 //! seconds.
 
 use nurbs_box::enclose::{all_strategies, strategy_by_name};
-use nurbs_box::gen::{self, Family, GenParams};
-use nurbs_box::scalar::{iv, ulp};
-use nurbs_box::validate::{check_containment, dense_params};
+use nurbs_box::testkit::gen::{self, Family, GenParams};
+use nurbs_box::num::{iv, ulp};
+use nurbs_box::testkit::validate::{check_containment, dense_params};
 use nurbs_box::{BoxEncloser, Enclosure, Guarantee, NurbsCurve, Termination};
 use proptest::prelude::*;
 
@@ -707,7 +707,7 @@ fn search_region_heuristic_can_miss_and_verified_variant_does_not() {
 #[cfg(feature = "mpfr")]
 mod mpfr {
     use super::*;
-    use nurbs_box::reference::{inner_reached, reference_box, ulps_outside, ReferenceBox};
+    use nurbs_box::testkit::reference::{inner_reached, reference_box, ulps_outside, ReferenceBox};
 
     /// Median part of the tightness target.
     const TARGET_MEDIAN_ULPS: f64 = 1.0;

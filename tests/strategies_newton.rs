@@ -4,7 +4,7 @@
 use nurbs_box::enclose::{
     BezierSubdivision, BoxEncloser, ControlHull, DerivForm, Newton, SearchRegion,
 };
-use nurbs_box::validate::{check_containment, dense_params};
+use nurbs_box::testkit::validate::{check_containment, dense_params};
 use nurbs_box::{Enclosure, NurbsCurve};
 use proptest::prelude::*;
 mod common;
@@ -168,11 +168,11 @@ proptest! {
             }
             #[cfg(feature = "mpfr")]
             {
-                let r = nurbs_box::reference::reference_box(&c);
+                let r = nurbs_box::testkit::reference::reference_box(&c);
                 for (j, a) in e.coords.iter().enumerate() {
                     let sc = c.coord_scale(j);
-                    let lo = nurbs_box::reference::ulps_outside(a.lo, &r.lo[j], sc, false);
-                    let hi = nurbs_box::reference::ulps_outside(a.hi, &r.hi[j], sc, true);
+                    let lo = nurbs_box::testkit::reference::ulps_outside(a.lo, &r.lo[j], sc, false);
+                    let hi = nurbs_box::testkit::reference::ulps_outside(a.hi, &r.hi[j], sc, true);
                     prop_assert!(lo >= 0.0 && hi >= 0.0, "{}: {lo} {hi} {a:?}", e.strategy);
                 }
             }
@@ -215,13 +215,13 @@ fn flat_and_discontinuous_random_curves_terminate() {
     }
 }
 
-/// Tightness against the 256-bit reference box (`nurbs_box::reference`): every bound on the
+/// Tightness against the 256-bit reference box (`nurbs_box::testkit::reference`): every bound on the
 /// safe side, and (for coordinates where the search converged) within a few ulps of the
 /// coordinate scale. Prints median / max (`cargo test --features mpfr -- --nocapture`).
 #[cfg(feature = "mpfr")]
 #[test]
 fn tightness_against_reference() {
-    use nurbs_box::reference::{reference_box, ulps_outside};
+    use nurbs_box::testkit::reference::{reference_box, ulps_outside};
     use nurbs_box::Termination;
     let mut ulps: Vec<f64> = Vec::new();
     let mut unconverged = 0;
@@ -275,7 +275,7 @@ fn tightness_against_reference() {
 #[cfg(feature = "mpfr")]
 #[test]
 fn high_degree_rational_tightness_against_reference() {
-    use nurbs_box::reference::{reference_box, ulps_outside};
+    use nurbs_box::testkit::reference::{reference_box, ulps_outside};
     for (case, p) in [20usize, 27, 33, 40].into_iter().enumerate() {
         let n = p + 8 + 4 * case;
         let inner = n - p - 1;
@@ -318,7 +318,7 @@ fn fuzz_findings_nearly_flat_rational_coordinates_are_tight() {
         "slow-unit-4f872d1e8da0111acdc397686768b3a2920df2ff",
     ] {
         let bytes = std::fs::read(format!("tests/data/fuzz/structured/{name}")).unwrap();
-        let c = nurbs_box::robust::curve_from_bytes(&bytes).unwrap();
+        let c = nurbs_box::testkit::robust::curve_from_bytes(&bytes).unwrap();
         let e = strategy_by_name("newton", None).unwrap().enclose(&c);
         assert_converged_within(name, &c, &e, 8.0);
     }
@@ -347,7 +347,7 @@ fn tiny_span_with_swamped_bernstein_form_is_tight() {
 /// reference box and at most `max_ulps` ulps of the coordinate scale outside it.
 #[cfg(feature = "mpfr")]
 fn assert_converged_within(name: &str, c: &NurbsCurve, e: &Enclosure, max_ulps: f64) {
-    use nurbs_box::reference::{reference_box, ulps_outside};
+    use nurbs_box::testkit::reference::{reference_box, ulps_outside};
     use nurbs_box::Termination;
     let r = reference_box(c);
     for (j, cb) in e.coords.iter().enumerate() {

@@ -3,5 +3,5 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    nurbs_box::robust::targets::json(data);
+    nurbs_box::testkit::robust::targets::json(data);
 });

@@ -4,5 +4,5 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    nurbs_box::robust::targets::structured(data);
+    nurbs_box::testkit::robust::targets::structured(data);
 });

@@ -9,12 +9,12 @@
 //! [`InputArgs`], and [`run_stream`] runs a per-curve closure over the input in parallel.
 
 use clap::{Args, Parser, Subcommand};
-use nurbs_box::batch::{
+use nurbs_box::io::batch::{
     enclose_records, input_error_line, process_stream, StreamError, StreamOptions, StreamSummary,
 };
 use nurbs_box::enclose::{strategy_by_name, BoxEncloser, STRATEGY_NAMES};
 use nurbs_box::io::{eval_fields, write_error_record, write_eval_record, InputError, ParseOptions};
-use nurbs_box::scalar::iv;
+use nurbs_box::num::iv;
 use nurbs_box::{NurbsCurve, TightEval};
 use std::fs::File;
 use std::io::{self, Read};
@@ -325,13 +325,13 @@ fn run_enclose(a: EncloseArgs) -> Result<Outcome, Fatal> {
 }
 
 fn run_interpolate(a: InterpolateArgs) -> Result<Outcome, Fatal> {
-    let param: nurbs_box::interpolate::Parametrization =
+    let param: nurbs_box::build::interpolate::Parametrization =
         a.param.parse().map_err(|e| Fatal(format!("--{e}")))?;
     let (input, _) = open_input(&a.input)?;
     let mut report = create_report(a.report.as_ref())?;
     let (out, err) = (&mut io::stdout().lock(), &mut io::stderr());
     let res = match a.basis.as_str() {
-        "lagrange" => nurbs_box::lagrange::run_cli(
+        "lagrange" => nurbs_box::build::lagrange::run_cli(
             input,
             param,
             out,
@@ -340,12 +340,12 @@ fn run_interpolate(a: InterpolateArgs) -> Result<Outcome, Fatal> {
         ),
         _ => {
             let mut rep = Vec::new();
-            let res = nurbs_box::interpolate::run_cli_with(input, out, err, |i, pts| {
-                let opts = nurbs_box::interpolate::InterpolationOptions {
+            let res = nurbs_box::build::interpolate::run_cli_with(input, out, err, |i, pts| {
+                let opts = nurbs_box::build::interpolate::InterpolationOptions {
                     param,
                     ..Default::default()
                 };
-                let it = nurbs_box::interpolate::interpolate_cubic_with(pts, &opts)
+                let it = nurbs_box::build::interpolate::interpolate_cubic_with(pts, &opts)
                     .map_err(|e| (e.kind(), e.to_string()))?;
                 rep.extend_from_slice(
                     format!("{{\"index\":{i},\"basis\":\"cubic\",\"params\":").as_bytes(),
@@ -407,7 +407,7 @@ fn run_remove_knot(a: RemoveKnotArgs) -> Result<Outcome, Fatal> {
     }
     let (input, _) = open_input(&a.input)?;
     let mut report = create_report(a.report.as_ref())?;
-    let res = nurbs_box::knot_removal::run_cli(
+    let res = nurbs_box::spline::knot_removal::run_cli(
         input,
         a.knot,
         a.times,

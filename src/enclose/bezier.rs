@@ -37,11 +37,11 @@
 use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
-use crate::bspline::{BezierSeg, HSpline};
-use crate::curve::NurbsCurve;
-use crate::ddi::Ddi;
-use crate::scalar::iv;
-use crate::tight::TightEval;
+use crate::spline::bspline::{BezierSeg, HSpline};
+use crate::spline::curve::NurbsCurve;
+use crate::num::ddi::Ddi;
+use crate::num::iv;
+use crate::spline::tight::TightEval;
 use inari::Interval;
 use std::time::Instant;
 
@@ -88,7 +88,7 @@ impl BezierSubdivision {
     /// tolerance, but at least two ulps of the scale (the resolution the reference tests use).
     fn max_gap(&self, c: &NurbsCurve, j: usize) -> f64 {
         let scale = c.coord_scale(j);
-        (self.tol * scale).max(2.0 * crate::scalar::ulp(scale))
+        (self.tol * scale).max(2.0 * crate::num::ulp(scale))
     }
 
     /// Default settings with a given relative tolerance.
@@ -862,8 +862,8 @@ mod tests {
     #[cfg(feature = "mpfr")]
     #[test]
     fn span_filter_bounds_hold_against_mpfr_segments() {
-        use crate::gen::{self, Family};
-        use crate::scalar::MPFR_PREC;
+        use crate::testkit::gen::{self, Family};
+        use crate::num::MPFR_PREC;
         use rug::Float;
         let mut r = gen::rng(5);
         let mut checked = 0;

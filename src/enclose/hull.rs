@@ -5,7 +5,7 @@
 use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
-use crate::curve::NurbsCurve;
+use crate::spline::curve::NurbsCurve;
 use std::time::Instant;
 
 /// Box of the control points; inner bound: the curve's end points (enclosed with intervals).

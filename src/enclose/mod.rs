@@ -4,7 +4,7 @@
 //! in the domain, `lo[j] <= C_j(u) <= hi[j]` exactly, rounding included; and the curve reaches
 //! the inner bounds: some u has `C_j(u) <= inner_lo[j]`, some u' has `C_j(u') >= inner_hi[j]`.
 
-use crate::curve::NurbsCurve;
+use crate::spline::curve::NurbsCurve;
 use std::time::Duration;
 
 mod bezier;

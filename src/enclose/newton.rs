@@ -31,14 +31,14 @@
 use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
-use crate::bspline::{BezierSeg, HSpline};
-use crate::curve::NurbsCurve;
-use crate::ddi::Ddi;
-use crate::eval::CurveEval;
-use crate::knots::multiplicity;
-use crate::mr::Mr;
-use crate::scalar::{iv, Scalar};
-use crate::tight::TightEval;
+use crate::spline::bspline::{BezierSeg, HSpline};
+use crate::spline::curve::NurbsCurve;
+use crate::num::ddi::Ddi;
+use crate::spline::eval::CurveEval;
+use crate::spline::knots::multiplicity;
+use crate::num::mr::Mr;
+use crate::num::{iv, Scalar};
+use crate::spline::tight::TightEval;
 use inari::Interval;
 use std::time::Instant;
 
@@ -1319,7 +1319,7 @@ impl Acc {
 mod tests {
     use super::*;
     use crate::enclose::{BezierSubdivision, ControlHull};
-    use crate::validate::{check_containment, dense_params, ulp};
+    use crate::testkit::validate::{check_containment, dense_params, ulp};
 
     fn curve1(p: usize, knots: Vec<f64>, x: &[f64], w: Option<Vec<f64>>) -> NurbsCurve {
         NurbsCurve::new(p, knots, x.iter().map(|&v| vec![v]).collect(), w).unwrap()

@@ -62,7 +62,7 @@
 //! inner bounds (this makes an end value such as f64::MAX an exact, attained bound).
 
 use super::{BoxEncloser, Enclosure, Guarantee, Termination};
-use crate::curve::NurbsCurve;
+use crate::spline::curve::NurbsCurve;
 
 /// Values whose binary exponent lies within ±`WINDOW` of 0 are left alone: with coordinates
 /// below 2^80 ~ 1e24, weights below 2^30 and domains of length 2^±30, every intermediate of

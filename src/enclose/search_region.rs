@@ -15,7 +15,7 @@
 
 use super::newton::{Engine, SpanMode};
 use super::{BoxEncloser, Enclosure, Guarantee, Newton};
-use crate::curve::NurbsCurve;
+use crate::spline::curve::NurbsCurve;
 
 /// Search-region strategy: the thesis heuristic (`verified == false`, name `search-region`) or
 /// the verified variant (`search-region-verified`).

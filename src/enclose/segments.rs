@@ -6,7 +6,7 @@
 //! curve is a rational Bézier piece in the local parameter t in [0, 1] (NURBS Book A5.6
 //! DecomposeCurve; thesis sec. 4.2, "Zerlegen einer B-Spline-Kurve in Bézier-Segmente"). Its
 //! Bernstein coefficients are extracted once in interval arithmetic ([`HSpline::bezier_segment`],
-//! whose alphas are overflow-safe: [`crate::bspline::knot_ratio`]), so every quantity is an
+//! whose alphas are overflow-safe: [`crate::spline::bspline::knot_ratio`]), so every quantity is an
 //! enclosure: Cartesian points P_i in boxes [P_i^lo, P_i^hi], weights w_i in intervals.
 //!
 //! # Why the pieces' boxes bound the curve
@@ -36,10 +36,10 @@
 //! t -> u is what overflows here.
 
 use super::{enclose_rescaled, BoxEncloser, CoordBox, Enclosure, Extremum, Termination};
-use crate::bspline::HSpline;
-use crate::curve::NurbsCurve;
-use crate::knots::multiplicity;
-use crate::scalar::iv;
+use crate::spline::bspline::HSpline;
+use crate::spline::curve::NurbsCurve;
+use crate::spline::knots::multiplicity;
+use crate::num::iv;
 use inari::Interval;
 
 /// Outer and attained values of one coordinate over one span.

@@ -4,6 +4,7 @@ use proptest::test_runner::Config as ProptestConfig;
 
 /// Proptest configuration with `default_cases` cases unless the `PROPTEST_CASES` environment
 /// variable says otherwise (CI sets it; see `.ci/run`).
+#[allow(dead_code)] // not every test crate runs proptests
 pub fn config(default_cases: u32) -> ProptestConfig {
     let cases = std::env::var("PROPTEST_CASES")
         .ok()
@@ -57,7 +58,7 @@ pub fn check_registry(
     limit: std::time::Duration,
 ) -> Vec<nurbs_box::Enclosure> {
     use nurbs_box::enclose::{all_strategies, Guarantee};
-    use nurbs_box::robust::{check_enclosure, check_params};
+    use nurbs_box::testkit::robust::{check_enclosure, check_params};
     let params = check_params(c, per_span, &[]);
     let mut out = Vec::new();
     for s in all_strategies(None) {

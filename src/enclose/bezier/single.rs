@@ -49,9 +49,9 @@
 //!    rule, and never wrong: every step above is proven, rounding included.
 
 use super::{CandidateKind, Extremum, Side, Stats, Termination};
-use crate::ddi::{dist_up, up, Ddi};
-use crate::scalar::Scalar;
-use crate::tight::horner;
+use crate::num::ddi::{dist_up, up, Ddi};
+use crate::num::Scalar;
+use crate::spline::tight::horner;
 
 /// Half-width (in the local parameter t in [0, 1]) of the test-point pairs around root
 /// estimates. The Taylor correction over such a bracket is about |x''| h^2 / 2, far below an
@@ -140,7 +140,7 @@ impl Poly {
 ///   |x'(t) - y| <= T = sum_k k (|lo_k| + rad_k) + 4u (|b̂_0| + |b̂_1| + |b̂_2|) + 2^-1073,
 ///
 /// a sum of five terms, each a product of an f64 with a sum of nonnegative f64: Lemma B of
-/// [`crate::ddi`] gives `err = up(fl(T)) >= T`. A non-finite value anywhere makes every test
+/// [`crate::num::ddi`] gives `err = up(fl(T)) >= T`. A non-finite value anywhere makes every test
 /// fail (comparisons with NaN or inf are false), never pass.
 struct Deriv {
     b: [f64; 3],

@@ -1,0 +1,14 @@
+//! Number types: the [`Scalar`] trait every kernel is generic over, and the verified types
+//! beside [`inari::Interval`]: [`Ddi`] (rigorous double-double intervals) and [`Mr`] (rigorous
+//! midpoint-radius f64).
+//!
+//! `scalar` holds the trait and its f64 / interval / MPFR instances; `ddi` and `mr` define the
+//! semantics of their types on top of error-free transformations and directed error bounds.
+
+pub mod ddi;
+pub mod mr;
+mod scalar;
+
+pub use ddi::Ddi;
+pub use mr::Mr;
+pub use scalar::*;

@@ -1,0 +1,696 @@
+//! B-spline curves in homogeneous coordinates, generic over the number type: the one copy of
+//! de Boor corner cutting, basis functions, derivative control points, knot insertion and
+//! Bézier extraction that the whole crate uses, for f64, intervals and MPFR alike.
+
+use crate::spline::curve::NurbsCurve;
+use crate::spline::knots::find_span;
+use crate::num::Scalar;
+
+/// A (non-rational) B-spline curve whose control points have `hdim` coordinates of type `S`.
+///
+/// A NURBS curve is represented by its homogeneous form Pw_i = (w_i P_i, w_i) (thesis eq. 3.7,
+/// helper `H`): then `hdim = dim + 1` and the last row is the weight function w(u). For a
+/// non-rational curve the weight row is left out (`rational == false`, w = 1).
+/// Knots are f64 and exact: all knot differences are formed in `S`.
+#[derive(Debug, Clone)]
+pub struct HSpline<S> {
+    /// degree (may reach 0 for high derivatives)
+    pub degree: usize,
+    /// knot vector, `npts + degree + 1` values
+    pub knots: Vec<f64>,
+    /// number of Cartesian coordinates d
+    pub dim: usize,
+    /// whether the last row is the weight row (hdim = dim + 1)
+    pub rational: bool,
+    /// control points, row-major, `hdim` values each
+    pub pts: Vec<S>,
+}
+
+impl<S: Scalar> HSpline<S> {
+    /// Homogeneous form of a NURBS curve (thesis helper `H`, eq. 3.7). For intervals the products
+    /// w_i * P_ij are outward rounded, so the spline encloses the exact homogeneous curve.
+    pub fn from_curve(c: &NurbsCurve) -> Self {
+        let dim = c.dim();
+        let rational = c.is_rational();
+        let hdim = dim + rational as usize;
+        let mut pts = Vec::with_capacity(c.num_points() * hdim);
+        for i in 0..c.num_points() {
+            let w = c.weight(i);
+            for &x in c.control_point(i) {
+                if rational {
+                    pts.push(S::from_f64(w) * S::from_f64(x));
+                } else {
+                    pts.push(S::from_f64(x));
+                }
+            }
+            if rational {
+                pts.push(S::from_f64(w));
+            }
+        }
+        HSpline {
+            degree: c.degree(),
+            knots: c.knots().to_vec(),
+            dim,
+            rational,
+            pts,
+        }
+    }
+
+    /// Coordinates per control point.
+    #[inline]
+    pub fn hdim(&self) -> usize {
+        self.dim + self.rational as usize
+    }
+
+    /// Number of control points.
+    #[inline]
+    pub fn npts(&self) -> usize {
+        self.pts.len() / self.hdim()
+    }
+
+    /// Exact span index of an f64 parameter.
+    #[inline]
+    pub fn span(&self, u: f64) -> usize {
+        find_span(&self.knots, self.degree, self.npts() - 1, u)
+    }
+
+    /// de Boor corner cutting on span `k` (thesis CurvePntByCornerCut / NURBS Book A5.1-style
+    /// triangle), all homogeneous rows, written into `out` (`hdim` values).
+    ///
+    /// This is [`HSpline::de_boor_column`] run to the end (a column of one point); both use the
+    /// single level step [`HSpline::corner_cut_level`].
+    /// For an interval `u` inside [u_k, u_{k+1}] the result encloses the curve over all of `u`
+    /// (the polynomial piece is the same there; inclusion isotonicity of interval arithmetic).
+    pub fn eval_span(&self, k: usize, u: &S, out: &mut Vec<S>) {
+        self.de_boor_into(k, u, 1, out);
+    }
+
+    /// The de Boor scheme on span `k` stopped early (lab course "B-Spline-Kurven", sec. 3.1,
+    /// method `de_boor(t, stop)`): the corner cutting runs until a column holds only `stop`
+    /// points, and that column d^r_{k-p+r} .. d^r_k (r = p + 1 - stop) is returned, row-major,
+    /// `hdim` values per point.
+    ///
+    /// `stop = p + 1` returns the control points of the span, `stop = 1` the curve point, and
+    /// `stop = 2` the two points whose difference is the tangent direction (thesis sec. 7.2,
+    /// listing `tang`). `stop` is clamped to `1..=p + 1`.
+    /// The same enclosure property as [`HSpline::eval_span`] holds for interval `u`: each
+    /// intermediate point is a polynomial in u over the span.
+    pub fn de_boor_column(&self, k: usize, u: &S, stop: usize) -> Vec<S> {
+        let mut out = Vec::new();
+        self.de_boor_into(k, u, stop, &mut out);
+        out
+    }
+
+    /// Shared body of [`HSpline::eval_span`] and [`HSpline::de_boor_column`].
+    fn de_boor_into(&self, k: usize, u: &S, stop: usize, out: &mut Vec<S>) {
+        let p = self.degree;
+        let h = self.hdim();
+        let levels = p + 1 - stop.clamp(1, p + 1);
+        out.clear();
+        out.extend_from_slice(&self.pts[(k - p) * h..(k + 1) * h]);
+        for r in 1..=levels {
+            self.corner_cut_level(k, r, u, out);
+        }
+        out.drain(..levels * h);
+    }
+
+    /// One level r (1 <= r <= p) of de Boor corner cutting on span `k`, in place on the
+    /// triangle buffer `col` of p + 1 homogeneous points: position j (r <= j <= p, point index
+    /// i = k - p + j) becomes d^r_i = alpha (d^{r-1}_i - d^{r-1}_{i-1}) + d^{r-1}_{i-1} with
+    /// alpha = (u - u_i) / (u_{i+p+1-r} - u_i) (alpha_j^k of the lab course "B-Spline-Kurven",
+    /// sec. 2.2; NURBS Book A5.1 triangle). Positions below r are left as they were.
+    ///
+    /// The convex combination is [`Scalar::lerp`] (thesis sec. 5.1 form, intersected with the
+    /// convex form for intervals). The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0.
+    pub fn corner_cut_level(&self, k: usize, r: usize, u: &S, col: &mut [S]) {
+        corner_cut_level(&self.knots, self.degree, k, r, u, self.hdim(), col);
+    }
+
+    /// Point and first derivative (Cartesian, `dim` values each) on span `k` by corner cutting,
+    /// without derivative control points (thesis sec. 7.2, listing `tang`, made exact):
+    /// the de Boor column with two points R0, R1 gives the homogeneous derivative
+    /// A'(u) = p (R1 - R0) / (u_{k+1} - u_k) (blossoming; Farin, Curves and Surfaces, sec. on
+    /// derivatives of B-splines), the last level gives the point A(u). For a rational curve
+    /// C = A/w and C' = (A' - w' C) / w (thesis eq. 3.10 with k = 1).
+    ///
+    /// For degree 0 the derivative is 0. For an interval `u` inside the closed span both results
+    /// enclose the exact values over all of `u` (every step is a rational function evaluated in
+    /// interval arithmetic).
+    pub fn tangent_span(&self, k: usize, u: &S) -> (Vec<S>, Vec<S>) {
+        let p = self.degree;
+        let h = self.hdim();
+        let d = self.dim;
+        if p == 0 {
+            let pt = self.pts[k * h..(k + 1) * h].to_vec();
+            return (
+                crate::spline::eval::project(pt, d, self.rational),
+                vec![S::zero(); d],
+            );
+        }
+        let two = self.de_boor_column(k, u, 2);
+        let f = knot_quotient(S::from_usize(p), self.knots[k], self.knots[k + 1]);
+        let dh: Vec<S> = (0..h)
+            .map(|c| f.clone() * (two[h + c].clone() - two[c].clone()))
+            .collect();
+        // The last level, on the two-point column placed at positions p-1, p of a triangle.
+        let mut col = vec![S::zero(); (p - 1) * h];
+        col.extend(two);
+        self.corner_cut_level(k, p, u, &mut col);
+        let ph = col[p * h..].to_vec();
+        if !self.rational {
+            return (ph, dh);
+        }
+        let w = ph[d].clone();
+        let wd = dh[d].clone();
+        let pt: Vec<S> = ph[..d].iter().map(|x| x.clone() / w.clone()).collect();
+        let der = (0..d)
+            .map(|j| (dh[j].clone() - wd.clone() * pt[j].clone()) / w.clone())
+            .collect();
+        (pt, der)
+    }
+
+    /// Like [`HSpline::eval_span`] but only for the homogeneous rows listed in `rows` (e.g. one
+    /// coordinate and the weight row), without allocating once `buf` has grown: the values are
+    /// returned as the slice `buf[p * rows.len()..]`, in the order of `rows`.
+    pub fn eval_span_rows<'b>(
+        &self,
+        k: usize,
+        u: &S,
+        rows: &[usize],
+        buf: &'b mut Vec<S>,
+    ) -> &'b [S] {
+        let p = self.degree;
+        let h = self.hdim();
+        let nr = rows.len();
+        buf.clear();
+        for i in k - p..=k {
+            buf.extend(rows.iter().map(|&r| self.pts[i * h + r].clone()));
+        }
+        corner_cut(&self.knots, p, k, u, nr, buf);
+        &buf[p * nr..]
+    }
+
+    /// Evaluate at an f64 parameter (span found exactly).
+    pub fn eval(&self, u: f64) -> Vec<S> {
+        let mut out = Vec::new();
+        self.eval_span(self.span(u), &S::from_f64(u), &mut out);
+        out
+    }
+
+    /// Derivative as a B-spline of degree p - 1 on knots u_1 .. u_{m-1} (thesis eq. 2.7):
+    /// Q_i = p (P_{i+1} - P_i) / (u_{i+p+1} - u_{i+1}). A zero denominator means N_{i,p-1} == 0,
+    /// and Q_i is set to 0 (the 0/0 := 0 convention of def. 1.2).
+    /// The span index of u in the derivative is one less than in `self`.
+    pub fn derivative(&self) -> HSpline<S> {
+        let p = self.degree;
+        let h = self.hdim();
+        let n = self.npts();
+        if p == 0 || n < 2 {
+            // derivative of a piecewise constant: zero (no knots inside a span)
+            return HSpline {
+                degree: 0,
+                knots: self.knots.clone(),
+                dim: self.dim,
+                rational: self.rational,
+                pts: vec![S::zero(); self.pts.len()],
+            };
+        }
+        let mut pts = Vec::with_capacity((n - 1) * h);
+        let pp = S::from_usize(p);
+        for i in 0..n - 1 {
+            let d = self.knots[i + p + 1] - self.knots[i + 1];
+            if d == 0.0 {
+                pts.extend(std::iter::repeat_with(S::zero).take(h));
+                continue;
+            }
+            let f = knot_quotient(pp.clone(), self.knots[i + 1], self.knots[i + p + 1]);
+            for c in 0..h {
+                pts.push(
+                    f.clone() * (self.pts[(i + 1) * h + c].clone() - self.pts[i * h + c].clone()),
+                );
+            }
+        }
+        HSpline {
+            degree: p - 1,
+            knots: self.knots[1..self.knots.len() - 1].to_vec(),
+            dim: self.dim,
+            rational: self.rational,
+            pts,
+        }
+    }
+
+    /// The Bézier segment of span k (u_k < u_{k+1}) in homogeneous form, by clamping the local
+    /// curve (p + 1 points, 2p + 2 knots, one span) at both ends with Boehm knot insertion
+    /// (NURBS Book A5.1 CurveKnotIns applied locally; equivalent to A5.6 DecomposeCurve for one
+    /// segment). Works for clamped and unclamped knot vectors alike. O(p^2).
+    pub fn bezier_segment(&self, k: usize) -> BezierSeg<S> {
+        let p = self.degree;
+        let h = self.hdim();
+        let mut q: Vec<S> = self.pts[(k - p) * h..(k + 1) * h].to_vec();
+        let mut t: Vec<f64> = self.knots[k - p..=k + p + 1].to_vec();
+        clamp_left(p, h, &mut t, &mut q);
+        // Mirror: reversed points, knots t'_j = -t_{2p+1-j}; clamp, mirror back. Negation is exact.
+        reverse_points(h, &mut q);
+        let mut tr: Vec<f64> = t.iter().rev().map(|x| -x).collect();
+        clamp_left(p, h, &mut tr, &mut q);
+        reverse_points(h, &mut q);
+        BezierSeg {
+            a: self.knots[k],
+            b: self.knots[k + 1],
+            degree: p,
+            dim: self.dim,
+            rational: self.rational,
+            pts: q,
+        }
+    }
+
+    /// Insert the knot u `r` times (NURBS Book A5.1 CurveKnotIns; thesis eqs. 4.12, 4.15/4.16).
+    /// Requires u in the domain; insertions beyond multiplicity p are ignored. The new points
+    /// are convex combinations alpha*(Q_i - Q_{i-1}) + Q_{i-1}.
+    pub fn insert_knot(&self, u: f64, r: usize) -> HSpline<S> {
+        let p = self.degree;
+        let h = self.hdim();
+        let k = self.span(u);
+        let total = crate::spline::knots::multiplicity(&self.knots, u);
+        let r = r.min(p.saturating_sub(total));
+        // A5.1 wants s = the copies of u among u_{k-p} ..= u_k (u in [u_k, u_{k+1})). At the
+        // right end of the domain, u = u_{k+1} lies in the closed last span k and no copy of u
+        // is at or below k (u_k < u_{k+1}): s = 0 there (Boehm's formula holds on the closed
+        // span). Using the total multiplicity instead changed the curve of an unclamped
+        // domain end.
+        let s = if u == self.knots[k + 1] { 0 } else { total };
+        if r == 0 {
+            return self.clone();
+        }
+        let (knots, pts) = knot_ins(p, h, &self.knots, &self.pts, k, s, u, r);
+        HSpline {
+            degree: p,
+            knots,
+            dim: self.dim,
+            rational: self.rational,
+            pts,
+        }
+    }
+
+    /// Bézier decomposition (NURBS Book A5.6 DecomposeCurve): one segment per non-empty span of
+    /// the domain, in order.
+    pub fn decompose(&self) -> Vec<BezierSeg<S>> {
+        let p = self.degree;
+        let n = self.npts() - 1;
+        (p..=n)
+            .filter(|&k| self.knots[k] < self.knots[k + 1])
+            .map(|k| self.bezier_segment(k))
+            .collect()
+    }
+}
+
+/// A Bézier segment over [a, b] in homogeneous coordinates (local parameter t in [0, 1]).
+#[derive(Debug, Clone)]
+pub struct BezierSeg<S> {
+    /// parameter interval start in the original curve
+    pub a: f64,
+    /// parameter interval end
+    pub b: f64,
+    /// degree
+    pub degree: usize,
+    /// Cartesian dimension
+    pub dim: usize,
+    /// whether the last row is the weight row
+    pub rational: bool,
+    /// p + 1 homogeneous control points, row-major
+    pub pts: Vec<S>,
+}
+
+impl<S: Scalar> BezierSeg<S> {
+    /// Coordinates per control point.
+    #[inline]
+    pub fn hdim(&self) -> usize {
+        self.dim + self.rational as usize
+    }
+
+    /// de Casteljau evaluation at local t (lecture "Modellierung mit Kurven"; all rows): the first
+    /// point of the right half of the split at t.
+    pub fn eval_local(&self, t: &S) -> Vec<S> {
+        let h = self.hdim();
+        let (_, mut right) = self.split_points(t);
+        right.truncate(h);
+        right
+    }
+
+    /// de Casteljau subdivision (lecture "Modellierung mit Kurven") at local t: the control points
+    /// of the halves over [0, t] and [t, 1]. Convex combinations in the a*(R1-R2)+R2 form. For
+    /// intervals (also an interval t) both halves enclose the exact halves for every real t in `t`
+    /// (each new point is a polynomial in t and the old points; inclusion isotonicity).
+    pub fn split_points(&self, t: &S) -> (Vec<S>, Vec<S>) {
+        let h = self.hdim();
+        let p = self.degree;
+        let mut b = self.pts.clone();
+        let mut left = Vec::with_capacity(b.len());
+        let mut right = vec![S::zero(); b.len()];
+        left.extend_from_slice(&b[0..h]);
+        right[p * h..(p + 1) * h].clone_from_slice(&b[p * h..(p + 1) * h]);
+        for r in 1..=p {
+            for i in 0..=p - r {
+                for c in 0..h {
+                    let lo = b[i * h + c].clone();
+                    let hi = b[(i + 1) * h + c].clone();
+                    b[i * h + c] = S::lerp(t, &lo, &hi);
+                }
+            }
+            left.extend_from_slice(&b[0..h]);
+            right[(p - r) * h..(p - r + 1) * h].clone_from_slice(&b[(p - r) * h..(p - r + 1) * h]);
+        }
+        (left, right)
+    }
+
+    /// The control points of the piece over the local range [t0, t1] inside [0, 1], by two de
+    /// Casteljau splits ([`BezierSeg::split_points`]): at `t1` (left part, over [0, t1]), then
+    /// at `t0_rel` = t0 / t1 (right part of that). `None` skips a split (t1 = 1, t0 = 0). The
+    /// callers pass enclosures of the split parameters (computing t0 / t1 in one step, e.g.
+    /// (s0 - a) / (s1 - a), keeps it tight); for every exact parameter in them each split
+    /// encloses the exact sub-segment, so the result encloses the points over [t0, t1].
+    pub fn sub_points(&self, t1: Option<&S>, t0_rel: Option<&S>) -> Vec<S> {
+        let pts = match t1 {
+            Some(t) => self.split_points(t).0,
+            None => self.pts.clone(),
+        };
+        match t0_rel {
+            Some(t) => {
+                BezierSeg {
+                    pts,
+                    ..self.clone_meta()
+                }
+                .split_points(t)
+                .1
+            }
+            None => pts,
+        }
+    }
+
+    /// de Casteljau split at local t into the segments over [0, t] and [t, 1] (the parameter
+    /// bounds a, b of the halves are f64 approximations of the split point).
+    pub fn split(&self, t: f64) -> (BezierSeg<S>, BezierSeg<S>) {
+        let (left, right) = self.split_points(&S::from_f64(t));
+        let m = self.a + t * (self.b - self.a);
+        (
+            BezierSeg {
+                b: m,
+                pts: left,
+                ..self.clone_meta()
+            },
+            BezierSeg {
+                a: m,
+                pts: right,
+                ..self.clone_meta()
+            },
+        )
+    }
+
+    /// The one-coordinate segment of Cartesian coordinate j: rows (w P_j, w), or (P_j).
+    pub fn coord(&self, j: usize) -> BezierSeg<S> {
+        let h = self.hdim();
+        let mut pts = Vec::with_capacity((self.degree + 1) * (1 + self.rational as usize));
+        for c in self.pts.chunks(h) {
+            pts.push(c[j].clone());
+            if self.rational {
+                pts.push(c[self.dim].clone());
+            }
+        }
+        BezierSeg {
+            dim: 1,
+            pts,
+            ..self.clone_meta()
+        }
+    }
+
+    fn clone_meta(&self) -> BezierSeg<S> {
+        BezierSeg {
+            a: self.a,
+            b: self.b,
+            degree: self.degree,
+            dim: self.dim,
+            rational: self.rational,
+            pts: Vec::new(),
+        }
+    }
+}
+
+fn reverse_points<S: Clone>(h: usize, q: &mut [S]) {
+    let n = q.len() / h;
+    for i in 0..n / 2 {
+        for c in 0..h {
+            q.swap(i * h + c, (n - 1 - i) * h + c);
+        }
+    }
+}
+
+/// Clamp a one-span local curve (p + 1 points, knots t_0..t_{2p+1}, span index p) at its left
+/// end t_p by inserting t_p until its multiplicity is p, then dropping the leading points and
+/// knots that no longer influence the span.
+fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut Vec<f64>, q: &mut Vec<S>) {
+    let u = t[p];
+    let s = t[..=p].iter().rev().take_while(|&&x| x == u).count();
+    if s >= p {
+        return;
+    }
+    let r = p - s;
+    let (nt, nq) = knot_ins(p, h, t, q, p, s, u, r);
+    *t = nt[r..].to_vec();
+    *q = nq[r * h..].to_vec();
+}
+
+/// NURBS Book A5.1 CurveKnotIns: insert u (in span k, multiplicity s) r times, r + s <= p.
+/// Returns the new knots and points.
+#[allow(clippy::too_many_arguments)]
+fn knot_ins<S: Scalar>(
+    p: usize,
+    h: usize,
+    up: &[f64],
+    pw: &[S],
+    k: usize,
+    s: usize,
+    u: f64,
+    r: usize,
+) -> (Vec<f64>, Vec<S>) {
+    let np = pw.len() / h - 1;
+    let nq = np + r;
+    let mut uq = Vec::with_capacity(up.len() + r);
+    uq.extend_from_slice(&up[..=k]);
+    uq.extend(std::iter::repeat_n(u, r));
+    uq.extend_from_slice(&up[k + 1..]);
+    let mut qw: Vec<S> = vec![S::zero(); (nq + 1) * h];
+    qw[..(k - p + 1) * h].clone_from_slice(&pw[..(k - p + 1) * h]);
+    for i in k - s..=np {
+        qw[(i + r) * h..(i + r + 1) * h].clone_from_slice(&pw[i * h..(i + 1) * h]);
+    }
+    let mut rw: Vec<S> = pw[(k - p) * h..(k - s + 1) * h].to_vec();
+    let us = S::from_f64(u);
+    let mut l = 0;
+    for j in 1..=r {
+        l = k - p + j;
+        for i in 0..=p - j - s {
+            let alpha = knot_ratio(&us, up[l + i], up[i + k + 1]);
+            for c in 0..h {
+                let lo = rw[i * h + c].clone();
+                let hi = rw[(i + 1) * h + c].clone();
+                rw[i * h + c] = S::lerp(&alpha, &lo, &hi);
+            }
+        }
+        qw[l * h..(l + 1) * h].clone_from_slice(&rw[0..h]);
+        let e = k + r - j - s;
+        qw[e * h..(e + 1) * h].clone_from_slice(&rw[(p - j - s) * h..(p - j - s + 1) * h]);
+    }
+    for i in l + 1..k - s {
+        qw[i * h..(i + 1) * h].clone_from_slice(&rw[(i - l) * h..(i - l + 1) * h]);
+    }
+    (uq, qw)
+}
+
+/// de Boor corner cutting (thesis CurvePntByCornerCut, NURBS Book A5.1-style triangle) in place
+/// on `buf`, which holds the p + 1 local control points P_{k-p} .. P_k of span k with `h` rows
+/// each; afterwards the value at `u` is in `buf[p * h..(p + 1) * h]`.
+///
+/// Each step is the convex combination written as alpha*(R1 - R2) + R2 (thesis sec. 5.1),
+/// which in interval arithmetic overestimates less than alpha*R1 + (1 - alpha)*R2.
+/// The denominators u_{i+p+1-r} - u_i are >= u_{k+1} - u_k > 0, so never zero.
+/// For an interval `u` inside [u_k, u_{k+1}] the result encloses the piece over all of `u`
+/// (the polynomial piece is the same there; inclusion isotonicity of interval arithmetic).
+pub fn corner_cut<S: Scalar>(knots: &[f64], p: usize, k: usize, u: &S, h: usize, buf: &mut [S]) {
+    for r in 1..=p {
+        corner_cut_level(knots, p, k, r, u, h, buf);
+    }
+}
+
+/// One level r of de Boor corner cutting on span k (see [`HSpline::corner_cut_level`]), on a
+/// buffer of p + 1 points with `h` rows each.
+pub fn corner_cut_level<S: Scalar>(
+    knots: &[f64],
+    p: usize,
+    k: usize,
+    r: usize,
+    u: &S,
+    h: usize,
+    col: &mut [S],
+) {
+    // alpha for level r, position j (i = k - p + j): (u - u_i) / (u_{i+p+1-r} - u_i)
+    for j in (r..=p).rev() {
+        let i = k - p + j;
+        let a = knot_ratio(u, knots[i], knots[i + p + 1 - r]);
+        for c in 0..h {
+            let hi = col[j * h + c].clone();
+            let lo = col[(j - 1) * h + c].clone();
+            col[j * h + c] = S::lerp(&a, &lo, &hi);
+        }
+    }
+}
+
+/// Below this magnitude a knot difference cannot overflow (2^1022, half of the f64 range).
+const HALF_MAX: f64 = 4.49423283715578976932e307;
+
+/// x - a, or x/2 - a/2 when `half` (see [`knot_ratio`]).
+#[inline]
+fn knot_diff<S: Scalar>(x: S, a: f64, half: bool) -> S {
+    if half {
+        let h = S::from_f64(0.5);
+        x * h.clone() - S::from_f64(a) * h
+    } else {
+        x - S::from_f64(a)
+    }
+}
+
+/// The knot ratio (x - a) / (b - a) of de Boor's and Boehm's alphas, for knots a < b and x in
+/// [a, b], without overflow.
+///
+/// Knots are finite, but the difference of two of opposite sign near ±f64::MAX is not: in
+/// f64 it becomes inf and the ratio 0 or NaN (a wrong but finite-looking point), in interval
+/// arithmetic [MAX, inf] (sound, but useless). When |b - a| >= 2^1022 both differences are
+/// formed from halved operands instead, (x/2 - a/2) / (b/2 - a/2), which equals the ratio in
+/// exact arithmetic and cannot overflow (|b/2 - a/2| <= MAX). Halving is exact except for a
+/// subnormal operand, where it rounds by at most 2^-1075; a verified `S` (intervals, `Ddi`,
+/// `Mr`) encloses that rounding (outward rounded products, underflow included), and against
+/// a denominator >= 2^1021 it is far below one ulp of the ratio.
+#[inline]
+pub fn knot_ratio<S: Scalar>(x: &S, a: f64, b: f64) -> S {
+    let half = !(b - a).abs().lt(&HALF_MAX);
+    knot_diff(x.clone(), a, half) / knot_diff(S::from_f64(b), a, half)
+}
+
+/// num / (b - a) for knots a < b without overflow: (num / 2) / (b/2 - a/2) when the
+/// difference may overflow (the derivative factors p / (u_{i+p+1} - u_{i+1}) of eq. 2.7).
+#[inline]
+pub fn knot_quotient<S: Scalar>(num: S, a: f64, b: f64) -> S {
+    let half = !(b - a).abs().lt(&HALF_MAX);
+    if half {
+        num * S::from_f64(0.5) / knot_diff(S::from_f64(b), a, true)
+    } else {
+        num / (S::from_f64(b) - S::from_f64(a))
+    }
+}
+
+/// All non-zero basis functions N_{k-p,p}(u) .. N_{k,p}(u) on span k (NURBS Book A2.2
+/// BasisFuns; thesis CurvePoint2). The denominator right[r+1] + left[j-r] is formed directly as
+/// the knot difference u_{k+r+1} - u_{k+1-j+r} (no u in it), which avoids the interval
+/// dependency problem; it is > 0 for a non-empty span.
+pub fn basis_funs<S: Scalar>(knots: &[f64], k: usize, u: &S, p: usize) -> Vec<S> {
+    let mut n = vec![S::zero(); p + 1];
+    n[0] = S::one();
+    let mut left = vec![S::zero(); p + 1];
+    let mut right = vec![S::zero(); p + 1];
+    // All differences below are of the knots u_{k+1-p} ..= u_{k+p} and u in [u_k, u_{k+1}]:
+    // halved together when their spread may overflow (see `knot_ratio`); every N is a ratio
+    // of such differences, so the common factor cancels.
+    let half = !(knots[k + p] - knots[k + 1 - p]).abs().lt(&HALF_MAX);
+    let d = |x: S, a: f64| knot_diff(x, a, half);
+    for j in 1..=p {
+        left[j] = d(u.clone(), knots[k + 1 - j]);
+        right[j] = -d(u.clone(), knots[k + j]);
+        let mut saved = S::zero();
+        for r in 0..j {
+            let temp = n[r].clone() / d(S::from_f64(knots[k + r + 1]), knots[k + 1 - j + r]);
+            n[r] = saved + right[r + 1].clone() * temp.clone();
+            saved = left[j - r].clone() * temp;
+        }
+        n[j] = saved;
+    }
+    n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::num::iv;
+    use inari::Interval;
+
+    fn cubic() -> NurbsCurve {
+        NurbsCurve::new(
+            3,
+            vec![0., 0., 0., 0., 0.3, 0.7, 1., 1., 1., 1.],
+            vec![
+                vec![0., 0.],
+                vec![1., 2.],
+                vec![2., -1.],
+                vec![3., 3.],
+                vec![4., 0.],
+                vec![5., 1.],
+            ],
+            Some(vec![1., 2., 0.5, 1., 3., 1.]),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn de_boor_columns_shrink_to_the_point() {
+        let h = HSpline::<f64>::from_curve(&cubic());
+        let u = 0.45;
+        let k = h.span(u);
+        let hd = h.hdim();
+        assert_eq!(
+            h.de_boor_column(k, &u, 4),
+            h.pts[(k - 3) * hd..(k + 1) * hd].to_vec()
+        );
+        for stop in 1..=4 {
+            assert_eq!(h.de_boor_column(k, &u, stop).len(), stop * hd);
+        }
+        assert_eq!(h.de_boor_column(k, &u, 1), h.eval(u));
+        // stop beyond p + 1 is clamped
+        assert_eq!(h.de_boor_column(k, &u, 9).len(), 4 * hd);
+        // the point lies on the segment between the two points of the stop = 2 column
+        let two = h.de_boor_column(k, &u, 2);
+        let a = (u - h.knots[k]) / (h.knots[k + 1] - h.knots[k]);
+        let pt = h.eval(u);
+        for c in 0..hd {
+            assert!((two[c] + a * (two[hd + c] - two[c]) - pt[c]).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn tangent_by_corner_cutting_matches_derivative_splines() {
+        let c = cubic();
+        let hf = HSpline::<f64>::from_curve(&c);
+        let hi = HSpline::<Interval>::from_curve(&c);
+        for i in 0..=50 {
+            let u = i as f64 / 50.0;
+            let k = hf.span(u);
+            let (p, d) = hf.tangent_span(k, &u);
+            let want: Vec<f64> = c.derivative(u, 1).unwrap();
+            let wp: Vec<f64> = c.point(u).unwrap();
+            let (pi, di) = hi.tangent_span(k, &iv::point(u));
+            for j in 0..2 {
+                assert!(
+                    (d[j] - want[j]).abs() < 1e-11 * (1.0 + want[j].abs()),
+                    "u={u}"
+                );
+                assert!((p[j] - wp[j]).abs() < 1e-13);
+                assert!(di[j].contains(d[j]) && pi[j].contains(p[j]));
+            }
+        }
+        // an interval parameter inside a span encloses the samples
+        let k = hf.span(0.4);
+        let (_, di) = hi.tangent_span(k, &iv::span(0.35, 0.6));
+        for i in 0..=20 {
+            let u = 0.35 + 0.25 * i as f64 / 20.0;
+            let (_, d) = hf.tangent_span(k, &u);
+            assert!(di[0].inf() <= d[0] + 1e-12 && d[0] - 1e-12 <= di[0].sup());
+        }
+    }
+}
