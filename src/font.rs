@@ -20,12 +20,12 @@
 //!   is exact); otherwise the segment is kept as a separate curve of its own degree and the
 //!   contour's spline is cut there.
 
-use crate::spline::bspline::BezierSeg;
-use crate::spline::curve::NurbsCurve;
 use crate::enclose::BoxEncloser;
 use crate::error::CurveError;
 use crate::io::{write_nums, write_str};
 use crate::num::iv;
+use crate::spline::bspline::BezierSeg;
+use crate::spline::curve::NurbsCurve;
 use inari::Interval;
 use thiserror::Error;
 use ttf_parser::{Face, GlyphId, OutlineBuilder};

@@ -3,19 +3,19 @@
 //! random, structured and near-degenerate quadratics and cubics, compared with the general
 //! branch and bound (`fast_path: false`).
 
-use nurbs_box::enclose::{BezierSubdivision, Rescaled};
+use nurbs_box::enclose::BezierSubdivision;
 use nurbs_box::{BoxEncloser, Enclosure, NurbsCurve};
 use rand::{Rng, SeedableRng};
 
-/// The registered strategy (`Rescaled(BezierSubdivision::default())`) and the same without
-/// the fast path.
+/// The registered strategy (`BezierSubdivision::default()`, whose `enclose` runs under the
+/// driver like the registry's) and the same without the fast path.
 fn strategies() -> [Box<dyn BoxEncloser>; 2] {
     [
-        Box::new(Rescaled(BezierSubdivision::default())),
-        Box::new(Rescaled(BezierSubdivision {
+        Box::new(BezierSubdivision::default()),
+        Box::new(BezierSubdivision {
             fast_path: false,
             ..Default::default()
-        })),
+        }),
     ]
 }
 

@@ -491,9 +491,9 @@ fn replay(dirs: &[(&str, Target)]) -> usize {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut n = 0;
     for (dir, run) in dirs {
-        let Ok(rd) = std::fs::read_dir(root.join(dir)) else {
-            continue;
-        };
+        // a missing directory is an error, not a silent skip
+        let rd = std::fs::read_dir(root.join(dir))
+            .unwrap_or_else(|e| panic!("fuzz directory {dir} is missing: {e}"));
         for f in rd.flatten() {
             // (a fuzzer running meanwhile may remove files)
             let Ok(bytes) = std::fs::read(f.path()) else {
@@ -518,10 +518,9 @@ fn replay(dirs: &[(&str, Target)]) -> usize {
 /// Every fuzz finding (crash, timeout, slow unit) replays without a violation, in bounded time.
 #[test]
 fn fuzz_findings_replay() {
-    let n = replay(&[
-        ("tests/data/fuzz/json", targets::json),
-        ("tests/data/fuzz/structured", targets::structured),
-    ]);
+    // (every finding so far came from the structured target; the json target's corpus replays
+    // in `fuzz_corpus_replays`)
+    let n = replay(&[("tests/data/fuzz/structured", targets::structured)]);
     assert!(n > 0, "no fuzz findings found");
 }
 
@@ -562,7 +561,13 @@ mod mpfr {
                     rb.hi[j]
                 );
                 assert!(
-                    nurbs_box::testkit::reference::inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, scale),
+                    nurbs_box::testkit::reference::inner_reached(
+                        &rb,
+                        j,
+                        cb.inner_lo,
+                        cb.inner_hi,
+                        scale
+                    ),
                     "{name}: {} coordinate {j}: inner [{:e}, {:e}] not reached, exact [{}, {}]",
                     e.strategy,
                     cb.inner_lo,
@@ -849,8 +854,11 @@ fn cli_hostile_lines_between_extreme_curves() {
                             })
                             .collect(),
                     };
-                    let m =
-                        nurbs_box::testkit::validate::check_containment(c, &e, &check_params(c, 20, &[]));
+                    let m = nurbs_box::testkit::validate::check_containment(
+                        c,
+                        &e,
+                        &check_params(c, 20, &[]),
+                    );
                     assert!(
                         m.misses.is_empty(),
                         "line {i} {}: {:?}",
@@ -877,7 +885,7 @@ fn a_panicking_strategy_becomes_an_error_record() {
         fn guarantee(&self) -> Guarantee {
             Guarantee::Verified
         }
-        fn enclose(&self, _: &NurbsCurve) -> Enclosure {
+        fn enclose_prepared(&self, _: &NurbsCurve) -> Enclosure {
             panic!("deliberate test panic")
         }
     }

@@ -21,8 +21,8 @@
 //! seconds.
 
 use nurbs_box::enclose::{all_strategies, strategy_by_name};
-use nurbs_box::testkit::gen::{self, Family, GenParams};
 use nurbs_box::num::{iv, ulp};
+use nurbs_box::testkit::gen::{self, Family, GenParams};
 use nurbs_box::testkit::validate::{check_containment, dense_params};
 use nurbs_box::{BoxEncloser, Enclosure, Guarantee, NurbsCurve, Termination};
 use proptest::prelude::*;
@@ -33,16 +33,11 @@ const EXACT: [&str; 3] = ["newton", "bezier", "search-region-verified"];
 /// Tightness target, in ulps of the coordinate scale.
 const TARGET_MAX_ULPS: f64 = 4.0;
 
-/// The exact strategies that meet the tightness target against the 256-bit reference on the
-/// known curves (checked in every known-box test with `mpfr`). newton and
-/// search-region-verified do not yet: see `mpfr::known_curves_within_target_newton`.
-#[cfg(feature = "mpfr")]
-const MEETS_TARGET: [&str; 1] = ["bezier"];
-
-/// The reference tightness demanded of strategy `name` in the known-box tests.
+/// The reference tightness demanded of strategy `name` in the known-box tests (with `mpfr`):
+/// the target for every exact strategy.
 #[cfg(feature = "mpfr")]
 fn tight_for(name: &str) -> Option<f64> {
-    MEETS_TARGET.contains(&name).then_some(TARGET_MAX_ULPS)
+    EXACT.contains(&name).then_some(TARGET_MAX_ULPS)
 }
 
 mod common;
@@ -184,12 +179,9 @@ proptest! {
 
     /// Sandwich: newton's box lies inside the control-hull box.
     ///
-    /// FAILS at the time of writing (measured over 3000 nasty curves, seeds 0..3000): newton's box
-    /// leaves the hull box on ~35% of the curves, by 2 ulps (clamped uniform, unclamped, multiple
-    /// knots, high degree: an end point / interpolated control point rounded outward instead of
-    /// being intersected with the exact hull), up to 25-199 ulps (clustered knots, extrema at
-    /// knots, flat coordinates) and 9.4e8 ulps (extreme weights). Sound, but not the sandwich. E.g.
-    /// `flat_coordinate_on_a_span`: hi 1.0000000000000009 vs hull 1.
+    /// (The driver clamps every outer bound to the exact control-point box, so this holds for
+    /// every strategy; it once failed by 2 ulps to 9.4e8 ulps where an end point or an
+    /// interpolated control point was rounded outward instead of intersected with the hull.)
     #[test]
     fn sandwich_newton(seed in any::<u64>()) {
         if let Err(m) = sandwich("newton", seed) {
@@ -199,8 +191,7 @@ proptest! {
 
     /// Sandwich: search-region-verified's box lies inside the control-hull box.
     ///
-    /// FAILS at the time of writing, with the same numbers as [`sandwich_newton`] (it shares
-    /// newton's engine).
+    /// (Shares newton's engine; see [`sandwich_newton`].)
     #[test]
     fn sandwich_search_region_verified(seed in any::<u64>()) {
         if let Err(m) = sandwich("search-region-verified", seed) {
@@ -455,8 +446,8 @@ fn constant_coordinate() {
     }
 }
 
-/// FAILS at the time of writing: bezier subdivides until its piece limit on flat rational
-/// coordinates whose value is attained on whole spans (the box itself is exact):
+/// bezier must not subdivide until its piece limit on flat rational coordinates whose value is
+/// attained on whole spans (the box itself is exact); it once did:
 /// * the rational constant y = 0.3 of [`constant_coordinate`] (weights 1, 1e-3, 5, 2, 1):
 ///   25478 subdivisions, 82390 point evaluations, `Termination::BoxLimit`, 0.29 s in release
 ///   (1.3 s in the test profile);
@@ -788,11 +779,6 @@ mod mpfr {
         check_against(c, e, &reference_box(c), tight).map(|_| ())
     }
 
-    /// Strategies whose inner bounds are known to be wrong on some curves (see
-    /// [`bezier_inner_bound_at_a_rational_jump`]); their inner bounds are checked by the ignored
-    /// [`bezier_inner_bounds_are_reached`] only, so the default suite does not fail at random.
-    const INNER_KNOWN_BAD: [&str; 0] = [];
-
     /// The reference box is that of the closure; at a jump knot (multiplicity p + 1) the left
     /// limit is not attained, but every strategy encloses it (closed spans), so the outer check
     /// applies to all curves. `inner_of`: the strategies whose inner bounds are checked.
@@ -812,11 +798,11 @@ mod mpfr {
         #![proptest_config(config(32))]
 
         /// Every verified strategy contains the 256-bit reference extrema and reaches its
-        /// inner bounds (except [`INNER_KNOWN_BAD`]), on every nasty family.
+        /// inner bounds, on every nasty family.
         #[test]
         fn verified_strategies_contain_the_exact_extrema(seed in any::<u64>()) {
             let (f, c) = seeded(seed);
-            if let Err(m) = check_curve(&c, &|n| !INNER_KNOWN_BAD.contains(&n)) {
+            if let Err(m) = check_curve(&c, &|_| true) {
                 prop_assert!(false, "family {}: {m}", f.name());
             }
         }
@@ -829,9 +815,8 @@ mod mpfr {
         /// bezier's inner bounds are reached (exact min <= inner_lo, inner_hi <= exact max), on
         /// the `multiple_knots` family (interior multiplicities up to p + 1, half rational).
         ///
-        /// FAILS at the time of writing on rational curves with a jump knot (multiplicity
-        /// p + 1): 2 of 20 `multiple_knots` curves in `examples/tightness` (seed 1), see
-        /// [`bezier_inner_bound_at_a_rational_jump`].
+        /// (Rational curves with a jump knot, multiplicity p + 1, once broke it: see
+        /// [`bezier_inner_bound_at_a_rational_jump`].)
         #[test]
         fn bezier_inner_bounds_are_reached(seed in any::<u64>()) {
             let c = Family::MultipleKnots.curve(&mut gen::rng(seed));
@@ -891,18 +876,14 @@ mod mpfr {
         known_curves_within_target("bezier");
     }
 
-    /// FAILS at the time of writing (target 4 ulps): newton's upper bound is 6.0 ulps above the
-    /// exact max of x on ellipse 2 (a = 3, b = 1, theta = 1, centre (1.5, -2)); 4.6 / 6.6 ulps
-    /// (lo / hi of x) on ellipse 3 (a = 1, b = 0.01, theta = 0.7); 6.5 ulps on the symmetric
-    /// rational cubic with its extremum at a knot; 8.9 ulps on the shifted rational unclamped
-    /// cubic.
+    /// Target 4 ulps (the interval de Boor newton once missed it by up to 8.9 ulps on the
+    /// shifted rational unclamped cubic; the Bernstein-form newton meets it).
     #[test]
     fn known_curves_within_target_newton() {
         known_curves_within_target("newton");
     }
 
-    /// FAILS at the time of writing with the numbers of [`known_curves_within_target_newton`]
-    /// (same engine).
+    /// (Same engine as [`known_curves_within_target_newton`].)
     #[test]
     fn known_curves_within_target_search_region_verified() {
         known_curves_within_target("search-region-verified");
@@ -960,9 +941,8 @@ mod mpfr {
             .unwrap_or(60)
     }
 
-    /// FAILS at the time of writing (60 curves, 252 bounds, `TIGHTNESS_CURVES` unset): median
-    /// 2.13 ulps, max 21.5 ulps (a rational quintic, clamped uniform knots; the worst curve is
-    /// printed by the assertion). Target: max 4, median 1.
+    /// Target: max 4, median 1 ulp (60 curves unless `TIGHTNESS_CURVES` says otherwise; the
+    /// worst curve is printed by the assertion).
     #[test]
     fn tightness_newton() {
         tightness_on_moderate("newton", moderate_curves());
@@ -973,7 +953,7 @@ mod mpfr {
         tightness_on_moderate("bezier", moderate_curves());
     }
 
-    /// FAILS at the time of writing with the numbers of [`tightness_newton`] (same engine).
+    /// (Same engine as [`tightness_newton`].)
     #[test]
     fn tightness_search_region_verified() {
         tightness_on_moderate("search-region-verified", moderate_curves());

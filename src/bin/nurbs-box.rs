@@ -9,10 +9,10 @@
 //! [`InputArgs`], and [`run_stream`] runs a per-curve closure over the input in parallel.
 
 use clap::{Args, Parser, Subcommand};
+use nurbs_box::enclose::{strategy_by_name, BoxEncloser, STRATEGY_NAMES};
 use nurbs_box::io::batch::{
     enclose_records, input_error_line, process_stream, StreamError, StreamOptions, StreamSummary,
 };
-use nurbs_box::enclose::{strategy_by_name, BoxEncloser, STRATEGY_NAMES};
 use nurbs_box::io::{eval_fields, write_error_record, write_eval_record, InputError, ParseOptions};
 use nurbs_box::num::iv;
 use nurbs_box::{NurbsCurve, TightEval};

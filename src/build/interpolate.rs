@@ -8,13 +8,13 @@
 //! of the crate is about that curve as given; [`interpolation_residual`] bounds, verified,
 //! how far it actually misses the data.
 
-use crate::spline::curve::NurbsCurve;
-use crate::error::{CurveError, EvalError};
-use crate::spline::eval::CurveEval;
-use crate::io::{write_curve, write_error_record};
 use crate::build::knot_vectors::interpolation_knots;
-use crate::num::iv;
 use crate::build::tridiagonal::{solve_tridiagonal, TridiagonalError};
+use crate::error::{CurveError, EvalError};
+use crate::io::{write_curve, write_error_record};
+use crate::num::iv;
+use crate::spline::curve::NurbsCurve;
+use crate::spline::eval::CurveEval;
 use inari::Interval;
 use std::fmt;
 use std::str::FromStr;

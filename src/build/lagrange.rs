@@ -19,15 +19,15 @@
 //!   arithmetic, and carries the rounding of the conversion as a per-coordinate radius (see [`LagrangeBezier`] for the guarantee).
 
 use crate::build::bezier_tools::binom_s;
-use crate::spline::bspline::BezierSeg;
-use crate::spline::curve::NurbsCurve;
-use crate::num::ddi::Ddi;
-use crate::enclose::{BoxEncloser, Enclosure};
-use crate::error::CurveError;
 use crate::build::interpolate::{
     parameters, validate as validate_points, InterpolateError, Parametrization,
 };
+use crate::enclose::{BoxEncloser, Enclosure};
+use crate::error::CurveError;
+use crate::num::ddi::Ddi;
 use crate::num::{iv, Scalar};
+use crate::spline::bspline::BezierSeg;
+use crate::spline::curve::NurbsCurve;
 use inari::Interval;
 use thiserror::Error;
 

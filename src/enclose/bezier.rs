@@ -693,7 +693,7 @@ impl BoxEncloser for BezierSubdivision {
     fn guarantee(&self) -> Guarantee {
         Guarantee::Verified
     }
-    fn enclose(&self, c: &NurbsCurve) -> Enclosure {
+    fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
         let (p, n) = (c.degree(), c.num_points() - 1);
         // Clamped ends have exactly known values P_0 / P_n (see `NurbsCurve::clamped_ends`).
         let (a, b) = c.domain();

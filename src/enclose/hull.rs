@@ -19,7 +19,7 @@ impl BoxEncloser for ControlHull {
     fn guarantee(&self) -> Guarantee {
         Guarantee::Verified
     }
-    fn enclose(&self, c: &NurbsCurve) -> Enclosure {
+    fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
         let t0 = Instant::now();
         // The end points are reached by the curve: their enclosures' upper (lower) ends bound
         // a value the curve attains from above (below).

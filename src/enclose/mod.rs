@@ -1,200 +1,38 @@
-//! The [`BoxEncloser`] trait, the [`Enclosure`] it returns, and the strategies.
+//! The [`BoxEncloser`] trait, the [`Enclosure`] it returns, the strategy registry and the
+//! driver that every strategy runs under.
 //!
 //! Invariant of a *verified* strategy (see `guarantees.md`): for every coordinate j and every u
 //! in the domain, `lo[j] <= C_j(u) <= hi[j]` exactly, rounding included; and the curve reaches
 //! the inner bounds: some u has `C_j(u) <= inner_lo[j]`, some u' has `C_j(u') >= inner_hi[j]`.
+//!
+//! # Adding a strategy
+//!
+//! One file `src/enclose/NAME.rs` with a type implementing [`BoxEncloser`] (its
+//! `enclose_prepared`), and one line in the [`registry!`] call below. The command line
+//! (`--strategy NAME`, `--strategy all`), the `serve` API, the reproduction harness, the benches,
+//! the robustness and fuzz lists and the property tests all take their strategies from the
+//! registry; `tests/docs.rs` checks that `src/guarantees.md` and `docs/formats.md` list it.
+//!
+//! # The driver
+//!
+//! [`BoxEncloser::enclose`] is provided: it runs the strategy's `enclose_prepared` under
+//! [`driver::drive`] (exact power-of-two rescaling of extreme curves, span-by-span Bézier
+//! pieces for knot vectors no exact scaling can tame, the control-point box above
+//! [`MAX_SEARCH_DEGREE`], and the facts applied to every result). So `Newton::default()
+//! .enclose(c)` and `strategy_by_name("newton", None).enclose(c)` are the same computation.
 
 use crate::spline::curve::NurbsCurve;
-use std::time::Duration;
 
-mod bezier;
-mod hull;
-mod newton;
-pub(crate) mod rescale;
-mod search_region;
+pub mod driver;
+mod result;
 mod segments;
 
 pub use bezier::BezierSubdivision;
+pub use driver::{degree_fallback, drive, scale_outward, Rescaling, MAX_SEARCH_DEGREE};
 pub use hull::ControlHull;
 pub use newton::{DerivForm, Newton, Split, DEFAULT_MAX_WORK, EVALS_PER_SPAN, WORK_PER_SPAN};
-pub use rescale::{
-    degree_fallback, enclose_rescaled, scale_outward, Rescaled, Rescaling, MAX_SEARCH_DEGREE,
-};
+pub use result::{CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination};
 pub use search_region::SearchRegion;
-
-/// What a strategy promises about its box.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Guarantee {
-    /// lo <= C(u) <= hi for every u in the domain, rounding included.
-    Verified,
-    /// No containment guarantee (a heuristic, e.g. the thesis's search region).
-    Heuristic,
-}
-
-/// Why a strategy stopped working on a coordinate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[non_exhaustive]
-pub enum Termination {
-    /// Every sub-problem was resolved to the tolerance.
-    #[default]
-    Converged,
-    /// The per-box iteration limit was reached somewhere; the unresolved boxes were enclosed
-    /// as a whole (sound, maybe less tight).
-    IterationLimit,
-    /// The limit on the number of boxes / segments was reached; the rest was enclosed as a
-    /// whole (sound, maybe less tight).
-    BoxLimit,
-    /// The subdivision depth limit was reached (sound, maybe less tight).
-    DepthLimit,
-    /// The work budget (evaluations weighted by their cost, which grows with the degree) was
-    /// spent; what was left was enclosed as a whole (sound, maybe less tight).
-    WorkLimit,
-    /// Nothing to iterate (e.g. the control hull needs no search).
-    Direct,
-}
-
-/// Where a candidate extremum lies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CandidateKind {
-    /// a domain end point
-    EndPoint,
-    /// a non-differentiable knot (multiplicity >= p)
-    Knot,
-    /// a zero of C_j' found by a search
-    Critical,
-    /// a parameter box that could not be resolved (enclosed as a whole)
-    Unresolved,
-    /// a control point (hull strategy)
-    ControlPoint,
-}
-
-/// A parameter interval that contains a point where a coordinate attains its bound.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Extremum {
-    /// parameter interval start
-    pub u_lo: f64,
-    /// parameter interval end
-    pub u_hi: f64,
-    /// whether exactly one zero of C_j' in [u_lo, u_hi] was proved (interval Newton:
-    /// N(X) in the interior of X)
-    pub unique: bool,
-    /// what kind of candidate it is
-    pub kind: CandidateKind,
-}
-
-/// Work counters (the thesis's table columns and more).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Stats {
-    /// interval Newton steps
-    pub newton_iterations: u64,
-    /// evaluations of C' / C'' enclosures
-    pub derivative_evaluations: u64,
-    /// evaluations of C (points or enclosures)
-    pub point_evaluations: u64,
-    /// subdivisions (box splits, de Casteljau splits)
-    pub subdivisions: u64,
-    /// time spent evaluating derivatives
-    pub time_derivatives: Duration,
-    /// total time
-    pub time_total: Duration,
-}
-
-impl Stats {
-    /// Add another set of counters.
-    pub fn add(&mut self, o: &Stats) {
-        self.newton_iterations += o.newton_iterations;
-        self.derivative_evaluations += o.derivative_evaluations;
-        self.point_evaluations += o.point_evaluations;
-        self.subdivisions += o.subdivisions;
-        self.time_derivatives += o.time_derivatives;
-        self.time_total += o.time_total;
-    }
-}
-
-/// The result for one coordinate.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CoordBox {
-    /// outer lower bound
-    pub lo: f64,
-    /// outer upper bound
-    pub hi: f64,
-    /// the curve provably reaches a value <= inner_lo
-    pub inner_lo: f64,
-    /// the curve provably reaches a value >= inner_hi
-    pub inner_hi: f64,
-    /// where the minimum is attained (candidates whose enclosure reaches `lo`)
-    pub argmin: Vec<Extremum>,
-    /// where the maximum is attained
-    pub argmax: Vec<Extremum>,
-    /// work done on this coordinate
-    pub stats: Stats,
-    /// why the search stopped
-    pub termination: Termination,
-}
-
-impl CoordBox {
-    /// Certified overestimation bound: max(inner_lo - lo, hi - inner_hi).
-    pub fn gap(&self) -> f64 {
-        (self.inner_lo - self.lo).max(self.hi - self.inner_hi)
-    }
-}
-
-/// A box enclosure of a curve, one [`CoordBox`] per coordinate.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Enclosure {
-    /// strategy name
-    pub strategy: &'static str,
-    /// whether the containment guarantee holds
-    pub verified: bool,
-    /// per-coordinate results
-    pub coords: Vec<CoordBox>,
-}
-
-impl Enclosure {
-    /// Outer lower corner.
-    pub fn lo(&self) -> Vec<f64> {
-        self.coords.iter().map(|c| c.lo).collect()
-    }
-    /// Outer upper corner.
-    pub fn hi(&self) -> Vec<f64> {
-        self.coords.iter().map(|c| c.hi).collect()
-    }
-    /// Inner lower corner.
-    pub fn inner_lo(&self) -> Vec<f64> {
-        self.coords.iter().map(|c| c.inner_lo).collect()
-    }
-    /// Inner upper corner.
-    pub fn inner_hi(&self) -> Vec<f64> {
-        self.coords.iter().map(|c| c.inner_hi).collect()
-    }
-    /// Counters summed over coordinates.
-    pub fn stats(&self) -> Stats {
-        let mut s = Stats::default();
-        for c in &self.coords {
-            s.add(&c.stats);
-        }
-        s
-    }
-    /// The "worst" termination over coordinates (anything but Converged/Direct wins).
-    pub fn termination(&self) -> Termination {
-        self.coords
-            .iter()
-            .map(|c| c.termination)
-            .find(|t| !matches!(t, Termination::Converged | Termination::Direct))
-            .unwrap_or_else(|| {
-                self.coords
-                    .first()
-                    .map_or(Termination::Direct, |c| c.termination)
-            })
-    }
-    /// Whether the box contains the point (closed box).
-    pub fn contains(&self, x: &[f64]) -> bool {
-        self.coords
-            .iter()
-            .zip(x)
-            .all(|(c, &v)| c.lo <= v && v <= c.hi)
-    }
-}
 
 /// A box-enclosure strategy (one required method, like argmin's solvers).
 pub trait BoxEncloser: Send + Sync {
@@ -202,63 +40,148 @@ pub trait BoxEncloser: Send + Sync {
     fn name(&self) -> &'static str;
     /// What the strategy promises.
     fn guarantee(&self) -> Guarantee;
-    /// Enclose a (valid) curve. Never fails and never panics: when a work limit is reached
-    /// the strategy falls back to a coarser sound bound and says so in `termination`.
-    fn enclose(&self, curve: &NurbsCurve) -> Enclosure;
+    /// The strategy's own algorithm, on a curve the driver has prepared: magnitudes in a
+    /// moderate range, degree <= [`MAX_SEARCH_DEGREE`]. Never fails and never panics: when a
+    /// work limit is reached the strategy falls back to a coarser sound bound and says so in
+    /// `termination`. Implement this one; call [`BoxEncloser::enclose`].
+    fn enclose_prepared(&self, curve: &NurbsCurve) -> Enclosure;
+    /// Enclose any valid curve: [`BoxEncloser::enclose_prepared`] under the driver
+    /// ([`driver::drive`]). The result is an enclosure of `curve` itself.
+    fn enclose(&self, curve: &NurbsCurve) -> Enclosure {
+        drive(self, curve)
+    }
 }
 
-/// Names of all strategies, in the order `--strategy all` uses.
-pub const STRATEGY_NAMES: &[&str] = &[
-    "hull",
-    "bezier",
-    "newton",
-    "newton-thesis",
-    "search-region",
-    "search-region-verified",
-];
+/// What the registry's constructors may set: the tolerance (`None`: each strategy's default)
+/// and the work budget per coordinate of the searching strategies ([`Newton::max_work`],
+/// [`BezierSubdivision::max_work`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// relative tolerance, or the strategy's default
+    pub tol: Option<f64>,
+    /// work budget per coordinate
+    pub max_work: u64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            tol: None,
+            max_work: DEFAULT_MAX_WORK,
+        }
+    }
+}
+
+impl Settings {
+    /// Newton's defaults with these settings.
+    pub fn newton(&self) -> Newton {
+        Newton {
+            max_work: self.max_work,
+            ..self.tol.map_or_else(Newton::default, Newton::with_tol)
+        }
+    }
+    /// The thesis preset with this work budget (its own tolerance, the thesis's).
+    pub fn newton_thesis(&self) -> Newton {
+        Newton {
+            max_work: self.max_work,
+            ..Newton::thesis()
+        }
+    }
+    /// The Bézier subdivision's defaults with these settings.
+    pub fn bezier(&self) -> BezierSubdivision {
+        BezierSubdivision {
+            max_work: self.max_work,
+            ..self
+                .tol
+                .map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol)
+        }
+    }
+}
+
+/// One registered strategy: its name and how to build it from [`Settings`].
+#[derive(Clone, Copy)]
+pub struct Entry {
+    /// the name (`--strategy NAME`)
+    pub name: &'static str,
+    /// the constructor
+    pub build: fn(&Settings) -> Box<dyn BoxEncloser>,
+}
+
+impl std::fmt::Debug for Entry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Entry").field("name", &self.name).finish()
+    }
+}
+
+/// Declares the strategy modules and the registry: `mod FILE { "NAME" => |settings| VALUE, ... }`.
+macro_rules! registry {
+    ($(mod $m:ident { $($name:literal => |$s:pat_param| $build:expr),+ $(,)? })*) => {
+        $(mod $m;)*
+        /// The registry, in the order `--strategy all` uses.
+        pub const REGISTRY: &[Entry] = &[
+            $($(Entry { name: $name, build: |$s: &Settings| Box::new($build) },)+)*
+        ];
+        /// Names of all strategies, in the order `--strategy all` uses.
+        pub const STRATEGY_NAMES: &[&str] = &[$($($name,)+)*];
+    };
+}
+
+// The registry: one line per strategy.
+registry! {
+    mod hull { "hull" => |_| ControlHull }
+    mod bezier { "bezier" => |s| s.bezier() }
+    mod newton {
+        "newton" => |s| s.newton(),
+        // the thesis's own settings (listing `inewtonKNRH`): reproduces its tables
+        "newton-thesis" => |s| Renamed("newton-thesis", s.newton_thesis()),
+    }
+    mod search_region {
+        "search-region" => |s| SearchRegion::thesis(s.newton()),
+        "search-region-verified" => |s| SearchRegion::verified(s.newton()),
+    }
+}
 
 /// The strategy called `name` (see [`STRATEGY_NAMES`]), with tolerance `tol` where the strategy
 /// has one (`None`: its default). `None` if the name is unknown.
 pub fn strategy_by_name(name: &str, tol: Option<f64>) -> Option<Box<dyn BoxEncloser>> {
-    strategy_with_work(name, tol, DEFAULT_MAX_WORK)
+    strategy_with(
+        name,
+        &Settings {
+            tol,
+            ..Settings::default()
+        },
+    )
 }
 
-/// [`strategy_by_name`] with the work budget `max_work` (per coordinate, see
-/// [`Newton::max_work`] and [`BezierSubdivision::max_work`]) of the searching strategies, for
-/// callers that bound the time of one call (the `serve` API).
+/// The strategy called `name` built with `settings`; `None` if the name is unknown.
+pub fn strategy_with(name: &str, settings: &Settings) -> Option<Box<dyn BoxEncloser>> {
+    REGISTRY
+        .iter()
+        .find(|e| e.name == name)
+        .map(|e| (e.build)(settings))
+}
+
+/// [`strategy_by_name`] with the work budget `max_work` (per coordinate) of the searching
+/// strategies, for callers that bound the time of one call (the `serve` API).
 pub fn strategy_with_work(
     name: &str,
     tol: Option<f64>,
     max_work: u64,
 ) -> Option<Box<dyn BoxEncloser>> {
-    // Every strategy is wrapped in `Rescaled`: curves with extreme magnitudes are enclosed
-    // after an exact power-of-two rescaling (see rescale.rs), moderate ones untouched.
-    fn boxed<S: BoxEncloser + 'static>(s: S) -> Option<Box<dyn BoxEncloser>> {
-        Some(Box::new(Rescaled(s)))
-    }
-    let newton = Newton {
-        max_work,
-        ..tol.map_or_else(Newton::default, Newton::with_tol)
-    };
-    let bezier = BezierSubdivision {
-        max_work,
-        ..tol.map_or_else(BezierSubdivision::default, BezierSubdivision::with_tol)
-    };
-    let thesis = Newton {
-        max_work,
-        ..Newton::thesis()
-    };
-    match name {
-        "hull" => boxed(ControlHull),
-        "bezier" => boxed(bezier),
-        "newton" => boxed(newton),
-        // The thesis's own settings (inewtonKNRH: quotient-rule derivatives, split once into
-        // 2p pieces, 20 steps per box; derivative time measured), for reproducing its tables.
-        "newton-thesis" => boxed(Renamed("newton-thesis", thesis)),
-        "search-region" => boxed(SearchRegion::thesis(newton)),
-        "search-region-verified" => boxed(SearchRegion::verified(newton)),
-        _ => None,
-    }
+    strategy_with(name, &Settings { tol, max_work })
+}
+
+/// Every registered strategy built with `settings`, in registry order.
+pub fn all_strategies_with(settings: &Settings) -> Vec<Box<dyn BoxEncloser>> {
+    REGISTRY.iter().map(|e| (e.build)(settings)).collect()
+}
+
+/// All strategies (see [`STRATEGY_NAMES`]).
+pub fn all_strategies(tol: Option<f64>) -> Vec<Box<dyn BoxEncloser>> {
+    all_strategies_with(&Settings {
+        tol,
+        ..Settings::default()
+    })
 }
 
 /// A strategy under another name (a preset of a configurable strategy).
@@ -271,17 +194,9 @@ impl<E: BoxEncloser> BoxEncloser for Renamed<E> {
     fn guarantee(&self) -> Guarantee {
         self.1.guarantee()
     }
-    fn enclose(&self, curve: &NurbsCurve) -> Enclosure {
-        let mut e = self.1.enclose(curve);
+    fn enclose_prepared(&self, curve: &NurbsCurve) -> Enclosure {
+        let mut e = self.1.enclose_prepared(curve);
         e.strategy = self.0;
         e
     }
-}
-
-/// All strategies (see [`STRATEGY_NAMES`]).
-pub fn all_strategies(tol: Option<f64>) -> Vec<Box<dyn BoxEncloser>> {
-    STRATEGY_NAMES
-        .iter()
-        .filter_map(|n| strategy_by_name(n, tol))
-        .collect()
 }

@@ -204,7 +204,7 @@ impl BoxEncloser for Newton {
     fn guarantee(&self) -> Guarantee {
         Guarantee::Verified
     }
-    fn enclose(&self, c: &NurbsCurve) -> Enclosure {
+    fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
         let mut e = Engine::new(c, self);
         let mode = if self.prune {
             SpanMode::Prune

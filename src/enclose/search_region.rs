@@ -102,7 +102,7 @@ impl BoxEncloser for SearchRegion {
             Guarantee::Heuristic
         }
     }
-    fn enclose(&self, c: &NurbsCurve) -> Enclosure {
+    fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
         let mut e = Engine::new(c, &self.newton);
         let ns = e.spans.len();
         let mut modes = vec![SpanMode::Skip; ns];

@@ -35,11 +35,11 @@
 //! Argmin / argmax are reported per span (the whole span [u_k, u_{k+1}]), since the map
 //! t -> u is what overflows here.
 
-use super::{enclose_rescaled, BoxEncloser, CoordBox, Enclosure, Extremum, Termination};
+use super::{drive, BoxEncloser, CoordBox, Enclosure, Extremum, Termination};
+use crate::num::iv;
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::knots::multiplicity;
-use crate::num::iv;
 use inari::Interval;
 
 /// Outer and attained values of one coordinate over one span.
@@ -53,7 +53,7 @@ struct SpanBox {
 }
 
 /// Enclose `c` span by span (see the module docs) with strategy `s`.
-pub fn enclose_by_segments(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
+pub fn enclose_by_segments<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
     let (p, n, d) = (c.degree(), c.num_points() - 1, c.dim());
     let kn = c.knots();
     let (_, b) = c.domain();
@@ -130,8 +130,8 @@ fn sub_down(x: f64, y: Interval) -> f64 {
 
 /// The boxes of every coordinate over span k (module docs), with the pieces' work added to
 /// `coords`.
-fn span_boxes(
-    s: &dyn BoxEncloser,
+fn span_boxes<S: BoxEncloser + ?Sized>(
+    s: &S,
     c: &NurbsCurve,
     hs: &HSpline<Interval>,
     k: usize,
@@ -207,12 +207,8 @@ fn span_boxes(
     let (Some(chi), Some(clo)) = (piece(&phi), piece(&plo)) else {
         return local_hull_boxes(c, k, coords);
     };
-    let ehi = enclose_rescaled(s, &chi);
-    let elo = if exact {
-        ehi.clone()
-    } else {
-        enclose_rescaled(s, &clo)
-    };
+    let ehi = drive(s, &chi);
+    let elo = if exact { ehi.clone() } else { drive(s, &clo) };
     let radius = |q: &[f64], j: usize| -> Interval {
         let (mn, mx) = (0..=p)
             .map(|i| q[i * d + j])

@@ -2,9 +2,9 @@
 //! de Boor corner cutting, basis functions, derivative control points, knot insertion and
 //! Bézier extraction that the whole crate uses, for f64, intervals and MPFR alike.
 
+use crate::num::Scalar;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::knots::find_span;
-use crate::num::Scalar;
 
 /// A (non-rational) B-spline curve whose control points have `hdim` coordinates of type `S`.
 ///

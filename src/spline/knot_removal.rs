@@ -14,12 +14,12 @@
 //! * [`NurbsCurve::inverse_insertion_knot`] — the knot whose insertion creates a given point on
 //!   a leg of the control polygon.
 
-use crate::spline::bspline::HSpline;
-use crate::spline::curve::NurbsCurve;
 use crate::error::EvalError;
 use crate::io::{write_curve, write_error_record, write_num, write_nums, CurveReader};
-use crate::spline::knots::multiplicity;
 use crate::num::{iv, Scalar};
+use crate::spline::bspline::HSpline;
+use crate::spline::curve::NurbsCurve;
+use crate::spline::knots::multiplicity;
 use inari::Interval;
 use thiserror::Error;
 

@@ -9,12 +9,11 @@
 //! explores the curve space instead of the JSON grammar; invalid results (NaN bits, wrong
 //! counts) are typed [`CurveError`]s, which is part of what is tested.
 
-use crate::spline::curve::NurbsCurve;
 use crate::enclose::{
-    all_strategies, BezierSubdivision, BoxEncloser, ControlHull, Enclosure, Guarantee, Newton,
-    Rescaled, SearchRegion,
+    all_strategies, all_strategies_with, BoxEncloser, Enclosure, Guarantee, Settings,
 };
 use crate::error::CurveError;
+use crate::spline::curve::NurbsCurve;
 use crate::testkit::validate::{check_containment, dense_params};
 
 /// Reads bytes from the front; zeros once exhausted (so every input decodes).
@@ -314,38 +313,43 @@ pub fn check_strategies(
         .collect()
 }
 
-/// The verified strategies as their types define them, without the registry's rescaling
-/// wrapper (their intermediates may overflow; they must stay sound anyway).
-pub fn raw_strategies() -> Vec<Box<dyn BoxEncloser>> {
-    vec![
-        Box::new(ControlHull),
-        Box::new(BezierSubdivision::default()),
-        Box::new(Newton::default()),
-        Box::new(SearchRegion::verified(Newton::default())),
-    ]
+/// A strategy without the driver: [`BoxEncloser::enclose`] runs its `enclose_prepared` on
+/// the curve as given (no rescaling, no span pieces, no range facts), so that tests see the
+/// strategy's own arithmetic, whose intermediates may overflow and must stay sound anyway.
+pub struct Raw(pub Box<dyn BoxEncloser>);
+
+impl BoxEncloser for Raw {
+    fn name(&self) -> &'static str {
+        self.0.name()
+    }
+    fn guarantee(&self) -> Guarantee {
+        self.0.guarantee()
+    }
+    fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
+        self.0.enclose_prepared(c)
+    }
+    fn enclose(&self, c: &NurbsCurve) -> Enclosure {
+        self.0.enclose_prepared(c)
+    }
 }
 
-/// Every strategy of [`all_strategies`] (rescaled, like the registry), with work limits a
-/// hundred times smaller than the defaults: a fuzzer then runs many more inputs per second
-/// and reaches the limit fallbacks (which must be sound too) far more often.
+/// The verified registered strategies as [`Raw`] (without the driver).
+pub fn raw_strategies() -> Vec<Box<dyn BoxEncloser>> {
+    all_strategies(None)
+        .into_iter()
+        .filter(|s| s.guarantee() == Guarantee::Verified)
+        .map(|s| Box::new(Raw(s)) as Box<dyn BoxEncloser>)
+        .collect()
+}
+
+/// Every registered strategy with a work budget a hundred times smaller than the default: a
+/// fuzzer then runs many more inputs per second and reaches the limit fallbacks (which must
+/// be sound too) far more often.
 pub fn low_limit_strategies() -> Vec<Box<dyn BoxEncloser>> {
-    let newton = Newton {
-        max_boxes: 40,
+    all_strategies_with(&Settings {
+        tol: None,
         max_work: crate::enclose::DEFAULT_MAX_WORK / 100,
-        ..Newton::default()
-    };
-    let bezier = BezierSubdivision {
-        max_pieces: 200,
-        max_work: crate::enclose::DEFAULT_MAX_WORK / 100,
-        ..BezierSubdivision::default()
-    };
-    vec![
-        Box::new(Rescaled(ControlHull)),
-        Box::new(Rescaled(bezier)),
-        Box::new(Rescaled(newton)),
-        Box::new(Rescaled(SearchRegion::thesis(newton))),
-        Box::new(Rescaled(SearchRegion::verified(newton))),
-    ]
+    })
 }
 
 /// The fuzz target bodies, as plain functions (they panic on a violation, which is what a

@@ -1,10 +1,11 @@
-//! Exact power-of-two rescaling of extreme curves before enclosing them.
+//! The driver every strategy runs under ([`drive`], called by `BoxEncloser::enclose`): exact
+//! power-of-two rescaling of extreme curves before enclosing them.
 //!
 //! A valid curve may have coordinates near 1e±300, weights near 1e±300 or a parameter domain of
 //! length 1e-300. The strategies then work on intermediates that overflow or underflow (the
 //! homogeneous points w_i P_i, derivatives ~ p^2 w^2 P / Δu^2, double-double low parts): the
 //! results stay sound (intervals overflow to ±inf, never to a wrong finite value) but can be
-//! infinite or loose. [`Rescaled`] maps such a curve to an equivalent well-scaled one, encloses
+//! infinite or loose. [`drive`] maps such a curve to an equivalent well-scaled one, encloses
 //! that, and maps the box back.
 //!
 //! # Why the map is exact
@@ -297,10 +298,10 @@ impl Rescaling {
     /// Enclose `c` with `s` through this rescaling: scaled curve(s) enclosed (span by span if
     /// the knots are not moderate), rounded coordinates from the curves rounded down and up,
     /// the result mapped back.
-    pub fn enclose_with(&self, s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
+    pub fn enclose_with<S: BoxEncloser + ?Sized>(&self, s: &S, c: &NurbsCurve) -> Enclosure {
         let run = |cc: &NurbsCurve| {
             if self.knots_moderate {
-                s.enclose(cc)
+                s.enclose_prepared(cc)
             } else {
                 super::segments::enclose_by_segments(s, cc)
             }
@@ -357,8 +358,8 @@ pub const MAX_SEARCH_DEGREE: usize = 1000;
 ///
 /// Inner bounds without evaluating the curve: every u has lo <= C_j(u) <= hi, so the curve
 /// reaches a value <= hi and one >= lo; the attained end values are added by
-/// [`enclose_rescaled`].
-pub fn degree_fallback(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
+/// [`drive`].
+pub fn degree_fallback<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
     let coords = super::hull::control_point_box(c, |_, lo, hi| (hi, lo), Termination::WorkLimit, 0);
     Enclosure {
         strategy: s.name(),
@@ -377,12 +378,12 @@ pub fn degree_fallback(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
 /// reaches a value <= hi and a value >= lo, and `inner_lo = min(inner_lo, hi)`,
 /// `inner_hi = max(inner_hi, lo)` stay valid (a constant coordinate may otherwise get an inner
 /// bound one rounding beyond the exact outer one).
-pub fn enclose_rescaled(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
+pub fn drive<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
     let mut e = if c.degree() > MAX_SEARCH_DEGREE {
         degree_fallback(s, c)
     } else {
         match Rescaling::of(c) {
-            None => s.enclose(c),
+            None => s.enclose_prepared(c),
             Some(r) => r.enclose_with(s, c),
         }
     };
@@ -412,23 +413,6 @@ pub fn enclose_rescaled(s: &dyn BoxEncloser, c: &NurbsCurve) -> Enclosure {
         cb.inner_hi = cb.inner_hi.max(cb.lo).min(cb.hi);
     }
     e
-}
-
-/// A strategy that rescales extreme curves first ([`enclose_rescaled`]); same name and
-/// guarantee as the wrapped strategy. [`super::strategy_by_name`] wraps every strategy in it.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Rescaled<S>(pub S);
-
-impl<S: BoxEncloser> BoxEncloser for Rescaled<S> {
-    fn name(&self) -> &'static str {
-        self.0.name()
-    }
-    fn guarantee(&self) -> Guarantee {
-        self.0.guarantee()
-    }
-    fn enclose(&self, c: &NurbsCurve) -> Enclosure {
-        enclose_rescaled(&self.0, c)
-    }
 }
 
 #[cfg(test)]
@@ -489,8 +473,8 @@ mod tests {
         assert!(r.knot_exp < -600);
         let s = r.apply(&big);
         assert_eq!(s.domain().1, ldexp(1e-200, -r.knot_exp));
-        let e = enclose_rescaled(&ControlHull, &big);
-        let h = ControlHull.enclose(&big);
+        let e = drive(&ControlHull, &big);
+        let h = ControlHull.enclose_prepared(&big);
         // the hull is exact: the rescaled one may only be wider by the subnormal steps
         for j in 0..2 {
             assert!(e.coords[j].lo <= h.coords[j].lo && e.coords[j].hi >= h.coords[j].hi);

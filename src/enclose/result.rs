@@ -1,0 +1,178 @@
+//! What a strategy returns: per coordinate the outer and inner bounds, where the extrema are,
+//! what it cost and why it stopped ([`Enclosure`], [`CoordBox`], [`Stats`], [`Termination`]).
+
+use std::time::Duration;
+
+/// What a strategy promises about its box.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Guarantee {
+    /// lo <= C(u) <= hi for every u in the domain, rounding included.
+    Verified,
+    /// No containment guarantee (a heuristic, e.g. the thesis's search region).
+    Heuristic,
+}
+
+/// Why a strategy stopped working on a coordinate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Termination {
+    /// Every sub-problem was resolved to the tolerance.
+    #[default]
+    Converged,
+    /// The per-box iteration limit was reached somewhere; the unresolved boxes were enclosed
+    /// as a whole (sound, maybe less tight).
+    IterationLimit,
+    /// The limit on the number of boxes / segments was reached; the rest was enclosed as a
+    /// whole (sound, maybe less tight).
+    BoxLimit,
+    /// The subdivision depth limit was reached (sound, maybe less tight).
+    DepthLimit,
+    /// The work budget (evaluations weighted by their cost, which grows with the degree) was
+    /// spent; what was left was enclosed as a whole (sound, maybe less tight).
+    WorkLimit,
+    /// Nothing to iterate (e.g. the control hull needs no search).
+    Direct,
+}
+
+/// Where a candidate extremum lies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CandidateKind {
+    /// a domain end point
+    EndPoint,
+    /// a non-differentiable knot (multiplicity >= p)
+    Knot,
+    /// a zero of C_j' found by a search
+    Critical,
+    /// a parameter box that could not be resolved (enclosed as a whole)
+    Unresolved,
+    /// a control point (hull strategy)
+    ControlPoint,
+}
+
+/// A parameter interval that contains a point where a coordinate attains its bound.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extremum {
+    /// parameter interval start
+    pub u_lo: f64,
+    /// parameter interval end
+    pub u_hi: f64,
+    /// whether exactly one zero of C_j' in [u_lo, u_hi] was proved (interval Newton:
+    /// N(X) in the interior of X)
+    pub unique: bool,
+    /// what kind of candidate it is
+    pub kind: CandidateKind,
+}
+
+/// Work counters (the thesis's table columns and more).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Stats {
+    /// interval Newton steps
+    pub newton_iterations: u64,
+    /// evaluations of C' / C'' enclosures
+    pub derivative_evaluations: u64,
+    /// evaluations of C (points or enclosures)
+    pub point_evaluations: u64,
+    /// subdivisions (box splits, de Casteljau splits)
+    pub subdivisions: u64,
+    /// time spent evaluating derivatives
+    pub time_derivatives: Duration,
+    /// total time
+    pub time_total: Duration,
+}
+
+impl Stats {
+    /// Add another set of counters.
+    pub fn add(&mut self, o: &Stats) {
+        self.newton_iterations += o.newton_iterations;
+        self.derivative_evaluations += o.derivative_evaluations;
+        self.point_evaluations += o.point_evaluations;
+        self.subdivisions += o.subdivisions;
+        self.time_derivatives += o.time_derivatives;
+        self.time_total += o.time_total;
+    }
+}
+
+/// The result for one coordinate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CoordBox {
+    /// outer lower bound
+    pub lo: f64,
+    /// outer upper bound
+    pub hi: f64,
+    /// the curve provably reaches a value <= inner_lo
+    pub inner_lo: f64,
+    /// the curve provably reaches a value >= inner_hi
+    pub inner_hi: f64,
+    /// where the minimum is attained (candidates whose enclosure reaches `lo`)
+    pub argmin: Vec<Extremum>,
+    /// where the maximum is attained
+    pub argmax: Vec<Extremum>,
+    /// work done on this coordinate
+    pub stats: Stats,
+    /// why the search stopped
+    pub termination: Termination,
+}
+
+impl CoordBox {
+    /// Certified overestimation bound: max(inner_lo - lo, hi - inner_hi).
+    pub fn gap(&self) -> f64 {
+        (self.inner_lo - self.lo).max(self.hi - self.inner_hi)
+    }
+}
+
+/// A box enclosure of a curve, one [`CoordBox`] per coordinate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Enclosure {
+    /// strategy name
+    pub strategy: &'static str,
+    /// whether the containment guarantee holds
+    pub verified: bool,
+    /// per-coordinate results
+    pub coords: Vec<CoordBox>,
+}
+
+impl Enclosure {
+    /// Outer lower corner.
+    pub fn lo(&self) -> Vec<f64> {
+        self.coords.iter().map(|c| c.lo).collect()
+    }
+    /// Outer upper corner.
+    pub fn hi(&self) -> Vec<f64> {
+        self.coords.iter().map(|c| c.hi).collect()
+    }
+    /// Inner lower corner.
+    pub fn inner_lo(&self) -> Vec<f64> {
+        self.coords.iter().map(|c| c.inner_lo).collect()
+    }
+    /// Inner upper corner.
+    pub fn inner_hi(&self) -> Vec<f64> {
+        self.coords.iter().map(|c| c.inner_hi).collect()
+    }
+    /// Counters summed over coordinates.
+    pub fn stats(&self) -> Stats {
+        let mut s = Stats::default();
+        for c in &self.coords {
+            s.add(&c.stats);
+        }
+        s
+    }
+    /// The "worst" termination over coordinates (anything but Converged/Direct wins).
+    pub fn termination(&self) -> Termination {
+        self.coords
+            .iter()
+            .map(|c| c.termination)
+            .find(|t| !matches!(t, Termination::Converged | Termination::Direct))
+            .unwrap_or_else(|| {
+                self.coords
+                    .first()
+                    .map_or(Termination::Direct, |c| c.termination)
+            })
+    }
+    /// Whether the box contains the point (closed box).
+    pub fn contains(&self, x: &[f64]) -> bool {
+        self.coords
+            .iter()
+            .zip(x)
+            .all(|(c, &v)| c.lo <= v && v <= c.hi)
+    }
+}
