@@ -296,7 +296,7 @@ fn knot_bits(knots: &[f64]) -> u32 {
     let nz = || knots.iter().filter(|u| **u != 0.0);
     let (Some(hi), Some(lo)) = (
         nz().map(|u| u.abs().log2().floor() as i32 + 1).max(),
-        nz().map(|&u| crate::enclose::rescale::low_exp(u)).min(),
+        nz().map(|&u| crate::enclose::driver::low_exp(u)).min(),
     ) else {
         return 0;
     };
