@@ -11,7 +11,6 @@ use crate::error::CurveError;
 use crate::num::Scalar;
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
-use crate::spline::eval::binom;
 use thiserror::Error;
 
 /// Why a Bézier conversion is not possible.
@@ -37,17 +36,8 @@ pub enum BezierToolError {
     },
 }
 
-/// Binomial coefficient in S, built by the multiplicative recurrence in S itself, so that for
-/// intervals it encloses the exact integer whatever its size.
-pub(crate) fn binom_s<S: Scalar>(n: usize, k: usize) -> S {
-    if n <= 50 {
-        // exact in f64 (C(50, 25) < 2^53): eval's `binom` rounds its product to the integer
-        return S::from_f64(binom(n, k));
-    }
-    (0..k).fold(S::one(), |acc, i| {
-        acc * S::from_usize(n - i) / S::from_usize(i + 1)
-    })
-}
+/// The binomials in S (one copy, in [`crate::num`]); re-exported for the construction tools.
+pub(crate) use crate::num::binom_s;
 
 impl<S: Scalar> BezierSeg<S> {
     /// A polynomial segment over [a, b] from Cartesian control points (`dim` values each,
@@ -168,20 +158,8 @@ impl<S: Scalar> MonomialSeg<S> {
     /// the control points, which is the matrix of the source (for p = 3: rows
     /// 1 -3 3 -1 / 3 -6 3 / 3 -3 / 1) applied row-wise.
     pub fn from_bezier(s: &BezierSeg<S>) -> Self {
-        let h = s.hdim();
         let p = s.degree;
-        let mut diff = s.pts.clone();
-        let mut coeffs = Vec::with_capacity(diff.len());
-        for k in 0..=p {
-            let f = binom_s::<S>(p, k);
-            coeffs.extend((0..h).map(|c| f.clone() * diff[c].clone()));
-            // next forward differences Δ^{k+1} b_i = Δ^k b_{i+1} - Δ^k b_i, i = 0..p-k-1
-            for i in 0..p - k {
-                for c in 0..h {
-                    diff[i * h + c] = diff[(i + 1) * h + c].clone() - diff[i * h + c].clone();
-                }
-            }
-        }
+        let coeffs = crate::spline::bezier::bernstein_to_power(&s.pts, s.hdim());
         MonomialSeg {
             a: s.a,
             b: s.b,
@@ -222,14 +200,12 @@ impl<S: Scalar> MonomialSeg<S> {
     /// "Hornerschema": f = a_g; for i = g-1..0: f = a_i + t f). O(p) per row.
     pub fn eval_horner(&self, t: &S) -> Vec<S> {
         let h = self.hdim();
-        let p = self.degree;
-        let mut f: Vec<S> = self.coeffs[p * h..].to_vec();
-        for i in (0..p).rev() {
-            for (c, fc) in f.iter_mut().enumerate() {
-                *fc = self.coeffs[i * h + c].clone() + t.clone() * fc.clone();
-            }
-        }
-        f
+        (0..h)
+            .map(|c| {
+                let row: Vec<S> = self.coeffs.iter().skip(c).step_by(h).cloned().collect();
+                crate::num::horner(&row, t)
+            })
+            .collect()
     }
 }
 
@@ -434,6 +410,6 @@ mod tests {
     fn large_degree_binomials_enclose() {
         let b: Interval = binom_s(60, 30);
         assert!(b.contains(118264581564861424.0));
-        assert_eq!(binom(10, 3), 120.0);
+        assert_eq!(crate::num::binom(10, 3), 120.0);
     }
 }

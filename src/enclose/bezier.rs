@@ -37,10 +37,11 @@
 use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
-use crate::spline::bspline::{BezierSeg, HSpline};
-use crate::spline::curve::NurbsCurve;
 use crate::num::ddi::Ddi;
 use crate::num::iv;
+use crate::spline::bezier::{cartesian, de_casteljau_eval_in_place, hodograph};
+use crate::spline::bspline::{BezierSeg, HSpline};
+use crate::spline::curve::NurbsCurve;
 use crate::spline::tight::TightEval;
 use inari::Interval;
 use std::time::Instant;
@@ -128,8 +129,9 @@ impl<'a> Values<'a> {
     }
 }
 
-/// f64 Bernstein polynomial value by de Casteljau (only used for estimates; no allocation
-/// up to degree 63).
+/// f64 Bernstein polynomial value by the shared de Casteljau kernel
+/// [`de_casteljau_eval_in_place`] (only used for estimates), on a stack buffer: no allocation
+/// up to degree 63 in this Newton loop.
 fn bern(c: &[f64], t: f64) -> f64 {
     let mut stack = [0.0f64; 64];
     let mut heap;
@@ -140,18 +142,7 @@ fn bern(c: &[f64], t: f64) -> f64 {
         heap = c.to_vec();
         &mut heap
     };
-    for r in 1..b.len() {
-        for i in 0..b.len() - r {
-            b[i] += t * (b[i + 1] - b[i]);
-        }
-    }
-    b.first().copied().unwrap_or(0.0)
-}
-
-/// Bernstein coefficients of the derivative (degree p - 1) with respect to t.
-fn bern_diff(c: &[f64]) -> Vec<f64> {
-    let p = (c.len() - 1) as f64;
-    c.windows(2).map(|w| p * (w[1] - w[0])).collect()
+    de_casteljau_eval_in_place(b, &t)
 }
 
 /// An f64 estimate of a critical point of C_j in (s0, s1) on the coordinate segment `seg`:
@@ -171,8 +162,8 @@ fn critical(seg: &BezierSeg<Interval>, s0: f64, s1: f64) -> Option<f64> {
     if av.len() < 3 {
         return None; // linear: no interior critical point
     }
-    let (a1, w1) = (bern_diff(&av), bern_diff(&wv));
-    let (a2, w2) = (bern_diff(&a1), bern_diff(&w1));
+    let (a1, w1) = (hodograph(&av), hodograph(&wv));
+    let (a2, w2) = (hodograph(&a1), hodograph(&w1));
     let (t0, t1) = ((s0 - a) / (b - a), (s1 - a) / (b - a));
     let mut t = 0.5 * (t0 + t1);
     for _ in 0..40 {
@@ -208,11 +199,10 @@ fn sub_coeffs(seg: &BezierSeg<Interval>, s0: f64, s1: f64, sign: f64) -> Vec<Int
     let t0 = (s0 > a).then(|| (p0 - pa) / (p1 - pa));
     let pts = seg.sub_points(t1.as_ref(), t0.as_ref());
     let s = iv::point(sign);
-    if seg.rational {
-        pts.chunks(2).map(|c| s * (c[0] / c[1])).collect()
-    } else {
-        pts.into_iter().map(|x| s * x).collect()
-    }
+    cartesian(pts, 1, seg.rational)
+        .into_iter()
+        .map(|x| s * x)
+        .collect()
 }
 
 struct Side {
@@ -862,8 +852,8 @@ mod tests {
     #[cfg(feature = "mpfr")]
     #[test]
     fn span_filter_bounds_hold_against_mpfr_segments() {
-        use crate::testkit::gen::{self, Family};
         use crate::num::MPFR_PREC;
+        use crate::testkit::gen::{self, Family};
         use rug::Float;
         let mut r = gen::rng(5);
         let mut checked = 0;

@@ -538,6 +538,12 @@ impl Scalar for Ddi {
         Ddi::exact(x)
     }
 
+    /// The fused Horner step [`Ddi::mul_add`].
+    #[inline]
+    fn horner_step(acc: &Self, t: &Self, c: &Self) -> Self {
+        acc.mul_add(*t, *c)
+    }
+
     /// The corner-cutting step `lo + a (hi - lo)`, as whichever of the two enclosures
     /// `a (hi - lo) + lo` (thesis sec. 5.1) and `(1 - a) lo + a hi` (convex form) has the smaller
     /// radius (both are `Ddi` evaluations of the same real expression, so both enclose it).

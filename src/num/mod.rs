@@ -7,8 +7,10 @@
 
 pub mod ddi;
 pub mod mr;
+mod poly;
 mod scalar;
 
 pub use ddi::Ddi;
 pub use mr::Mr;
+pub use poly::{binom, binom_exact, binom_s, binomials, binomials_s, horner};
 pub use scalar::*;

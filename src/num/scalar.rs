@@ -84,6 +84,13 @@ pub trait Scalar:
     fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
         a.clone() * (hi.clone() - lo.clone()) + lo.clone()
     }
+    /// The Horner step `acc * t + c` of [`crate::num::horner`]. The default is a product and a
+    /// sum (for f64 no FMA: the values stay those of the plain formula); `Ddi` overrides it with
+    /// its fused [`crate::num::Ddi::mul_add`] (one enclosure of the whole step, tighter).
+    #[inline]
+    fn horner_step(acc: &Self, t: &Self, c: &Self) -> Self {
+        acc.clone() * t.clone() + c.clone()
+    }
     /// An f64 interval that contains the value (outward rounded for `rug::Float`).
     fn to_interval(&self) -> Interval;
     /// A representative f64 (midpoint for intervals, nearest for MPFR).

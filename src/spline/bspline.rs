@@ -160,13 +160,11 @@ impl<S: Scalar> HSpline<S> {
         if !self.rational {
             return (ph, dh);
         }
-        let w = ph[d].clone();
-        let wd = dh[d].clone();
-        let pt: Vec<S> = ph[..d].iter().map(|x| x.clone() / w.clone()).collect();
-        let der = (0..d)
-            .map(|j| (dh[j].clone() - wd.clone() * pt[j].clone()) / w.clone())
-            .collect();
-        (pt, der)
+        // C = A / w, C' = (A' - 1 w' C) / w: the shared quotient rule (the factor binom(1, 1)
+        // = 1 is exact, so values are those of (A' - w' C) / w).
+        let mut c = crate::spline::eval::quotient_rule(&[ph, dh], d).into_iter();
+        let pt = c.next().unwrap();
+        (pt, c.next().unwrap())
     }
 
     /// Like [`HSpline::eval_span`] but only for the homogeneous rows listed in `rows` (e.g. one
@@ -337,30 +335,12 @@ impl<S: Scalar> BezierSeg<S> {
         right
     }
 
-    /// de Casteljau subdivision (lecture "Modellierung mit Kurven") at local t: the control points
-    /// of the halves over [0, t] and [t, 1]. Convex combinations in the a*(R1-R2)+R2 form. For
-    /// intervals (also an interval t) both halves enclose the exact halves for every real t in `t`
-    /// (each new point is a polynomial in t and the old points; inclusion isotonicity).
+    /// de Casteljau subdivision at local t: the control points of the halves over [0, t] and
+    /// [t, 1], by the shared kernel [`crate::spline::bezier::de_casteljau_split`] (convex
+    /// combinations in the a*(R1-R2)+R2 form; for intervals, also an interval t, both halves
+    /// enclose the exact halves for every real t in `t`).
     pub fn split_points(&self, t: &S) -> (Vec<S>, Vec<S>) {
-        let h = self.hdim();
-        let p = self.degree;
-        let mut b = self.pts.clone();
-        let mut left = Vec::with_capacity(b.len());
-        let mut right = vec![S::zero(); b.len()];
-        left.extend_from_slice(&b[0..h]);
-        right[p * h..(p + 1) * h].clone_from_slice(&b[p * h..(p + 1) * h]);
-        for r in 1..=p {
-            for i in 0..=p - r {
-                for c in 0..h {
-                    let lo = b[i * h + c].clone();
-                    let hi = b[(i + 1) * h + c].clone();
-                    b[i * h + c] = S::lerp(t, &lo, &hi);
-                }
-            }
-            left.extend_from_slice(&b[0..h]);
-            right[(p - r) * h..(p - r + 1) * h].clone_from_slice(&b[(p - r) * h..(p - r + 1) * h]);
-        }
-        (left, right)
+        crate::spline::bezier::de_casteljau_split(&self.pts, self.hdim(), t)
     }
 
     /// The control points of the piece over the local range [t0, t1] inside [0, 1], by two de
@@ -435,7 +415,8 @@ impl<S: Scalar> BezierSeg<S> {
     }
 }
 
-fn reverse_points<S: Clone>(h: usize, q: &mut [S]) {
+/// Reverse the order of the points of `q` (`h` rows each; rows stay together).
+pub(crate) fn reverse_points<S: Clone>(h: usize, q: &mut [S]) {
     let n = q.len() / h;
     for i in 0..n / 2 {
         for c in 0..h {

@@ -7,12 +7,7 @@ use crate::spline::bspline::{basis_funs, HSpline};
 use crate::spline::curve::NurbsCurve;
 use inari::Interval;
 
-/// Binomial coefficient (small arguments; exact in f64 up to far beyond what is used).
-pub(crate) fn binom(n: usize, k: usize) -> f64 {
-    (0..k)
-        .fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
-        .round()
-}
+use crate::num::binom;
 
 /// Precomputed homogeneous derivative splines A^(l), w^(l), l = 0..=order (thesis eq. 2.7,
 /// applied to the homogeneous curve), for repeated evaluation of C, C', C'', ...
@@ -79,23 +74,7 @@ impl<S: Scalar> CurveEval<S> {
         if !rational {
             return hom;
         }
-        // eq. 3.10: C^(l) = (A^(l) - sum_{i=1}^{l} binom(l,i) w^(i) C^(l-i)) / w
-        let w0 = hom[0][d].clone();
-        let mut out: Vec<Vec<S>> = Vec::with_capacity(k + 1);
-        for l in 0..=k {
-            let mut v: Vec<S> = hom[l][..d].to_vec();
-            for i in 1..=l {
-                let f = S::from_f64(binom(l, i)) * hom[i][d].clone();
-                for (j, vj) in v.iter_mut().enumerate() {
-                    *vj = vj.clone() - f.clone() * out[l - i][j].clone();
-                }
-            }
-            for vj in v.iter_mut() {
-                *vj = vj.clone() / w0.clone();
-            }
-            out.push(v);
-        }
-        out
+        quotient_rule(&hom, d)
     }
 
     /// C^(l)(u) for l = 0..=k at an f64 parameter in the domain.
@@ -252,16 +231,33 @@ impl NurbsCurve {
     }
 }
 
-/// Homogeneous -> Cartesian (thesis helper `Hinv`): divide by the weight row if rational.
-pub fn project<S: Scalar>(mut v: Vec<S>, dim: usize, rational: bool) -> Vec<S> {
-    if rational {
-        let w = v[dim].clone();
-        v.truncate(dim);
-        for x in v.iter_mut() {
-            *x = x.clone() / w.clone();
+/// The rational quotient rule (thesis eq. 3.10, NURBS Book eq. 4.8), the one generic copy:
+/// from the homogeneous derivatives `hom[l]` = (A^(l), w^(l)) (`dim + 1` values each,
+/// l = 0..=k) the Cartesian C^(l) = (A^(l) - sum_{i=1}^{l} binom(l, i) w^(i) C^(l-i)) / w,
+/// l = 0..=k. Each step is a field operation, so for verified types every C^(l) encloses the
+/// exact derivative (binomials exact in f64).
+pub fn quotient_rule<S: Scalar>(hom: &[Vec<S>], d: usize) -> Vec<Vec<S>> {
+    let w0 = hom[0][d].clone();
+    let mut out: Vec<Vec<S>> = Vec::with_capacity(hom.len());
+    for l in 0..hom.len() {
+        let mut v: Vec<S> = hom[l][..d].to_vec();
+        for i in 1..=l {
+            let f = S::from_f64(binom(l, i)) * hom[i][d].clone();
+            for (j, vj) in v.iter_mut().enumerate() {
+                *vj = vj.clone() - f.clone() * out[l - i][j].clone();
+            }
         }
+        for vj in v.iter_mut() {
+            *vj = vj.clone() / w0.clone();
+        }
+        out.push(v);
     }
-    v
+    out
+}
+
+/// Homogeneous -> Cartesian (thesis helper `Hinv`): divide by the weight row if rational.
+pub fn project<S: Scalar>(v: Vec<S>, dim: usize, rational: bool) -> Vec<S> {
+    crate::spline::bezier::cartesian(v, dim, rational)
 }
 
 #[cfg(test)]

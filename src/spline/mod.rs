@@ -3,6 +3,7 @@
 //! segment, point and derivative evaluation, refinement, the tight (~1 ulp) evaluator and knot
 //! removal. Every kernel is written once, generic over [`crate::num::Scalar`].
 
+pub(crate) mod bezier;
 pub(crate) mod bspline;
 pub(crate) mod curve;
 pub(crate) mod eval;
@@ -11,6 +12,10 @@ pub(crate) mod knots;
 pub(crate) mod refine;
 pub(crate) mod tight;
 
+pub use bezier::{
+    bernstein_to_power, cartesian, de_casteljau_eval, de_casteljau_eval_in_place,
+    de_casteljau_split, forward_differences, hodograph, power_from_differences,
+};
 pub use bspline::{basis_funs, knot_quotient, knot_ratio, BezierSeg, HSpline};
 pub use curve::NurbsCurve;
 pub use eval::{project, CurveEval};

@@ -92,19 +92,22 @@ pub struct TightEval {
     generic: OnceLock<Vec<CoordEval>>,
 }
 
-/// Horner's rule in `Ddi` with the fused step [`Ddi::mul_add`] (an empty polynomial is 0).
+/// Horner's rule in `Ddi`: the shared [`crate::num::horner`] (whose `Ddi` step is the fused
+/// [`Ddi::mul_add`]), with the point or set `s` by value.
 #[inline]
-pub(crate) fn horner(c: &[Ddi], s: Ddi) -> Ddi {
-    match c.split_last() {
-        None => Ddi::exact(0.0),
-        Some((&last, rest)) => rest.iter().rev().fold(last, |acc, &ck| acc.mul_add(s, ck)),
-    }
+fn horner(c: &[Ddi], s: Ddi) -> Ddi {
+    crate::num::horner(c, &s)
 }
 
 /// C, C', C'' from homogeneous values (rational: thesis eq. 3.10 for orders 0..=2) in `Ddi`.
 /// `a[l]`, `w[l]` are the l-th derivatives of the coordinate row and the weight row; only the
 /// first `n` orders are computed (n <= 3). For n > 1 the reciprocal 1/w is formed once and
 /// multiplied (one division instead of n; every step is an enclosure, so this stays sound).
+///
+/// A separate copy of the quotient rule on purpose: the generic one,
+/// [`crate::spline::eval::quotient_rule`], divides every order by w and multiplies by the
+/// binomials; this hot path (`coord_at`, `coord_over`, ~50 ns) uses one reciprocal and the
+/// fused [`Ddi::mul_add`], which is tighter and cheaper, and changing it would change results.
 #[inline]
 fn rational_derivs(a: [Ddi; ORDERS], w: Option<[Ddi; ORDERS]>, n: usize) -> [Ddi; ORDERS] {
     let Some(w) = w else { return a };
@@ -139,29 +142,17 @@ impl Taylor {
     fn from_bezier(q: &[Ddi], p: usize, h: usize, len: Ddi, sign: f64) -> Option<Taylor> {
         let n = p + 1;
         // scale[k] = binom(p, k) / len^k, with 1/len formed once (exact for a power of two).
-        // The binomials are exact integers in f64 for p <= 55 (binom(55, 27) < 2^53); beyond
-        // that they are formed in Ddi (enclosures).
+        // The binomials are the shared `binom_s`: exact f64 integers where f64 is (all k for
+        // p <= 56), else enclosed by the recurrence in Ddi. The length scaling is folded into
+        // them (one product per coefficient), which is why this is not `bernstein_to_power`.
         let inv = Ddi::exact(1.0) / len;
         let mut scale = Vec::with_capacity(n);
         let mut invk = Ddi::exact(1.0);
-        let mut binom_int: u64 = 1;
-        let mut binom_ddi = Ddi::exact(1.0);
         for k in 0..=p {
             if k > 0 {
                 invk = invk * inv;
-                if p <= 55 {
-                    // binom(p, k) = binom(p, k-1) (p - k + 1) / k, exact in u64 (< 2^59)
-                    binom_int = binom_int * (p - k + 1) as u64 / k as u64;
-                } else {
-                    binom_ddi = binom_ddi * Ddi::exact((p - k + 1) as f64) / Ddi::exact(k as f64);
-                }
             }
-            let b = if p <= 55 {
-                Ddi::exact(binom_int as f64)
-            } else {
-                binom_ddi
-            };
-            scale.push(b * invk);
+            scale.push(crate::num::binom_s::<Ddi>(p, k) * invk);
         }
         let mut coef = vec![Ddi::exact(0.0); h * ORDERS * n];
         let mut d = vec![Ddi::exact(0.0); n];
@@ -170,11 +161,7 @@ impl Taylor {
                 *di = q[i * h + r];
             }
             // In-place forward differences: afterwards d[k] = Δ^k Q_0.
-            for k in 1..=p {
-                for i in (k..=p).rev() {
-                    d[i] = d[i] - d[i - 1];
-                }
-            }
+            crate::spline::bezier::forward_differences(&mut d);
             // c_k = binom(p, k) Δ^k Q_0 / len^k = Δ^k Q_0 * scale[k].
             for k in 0..=p {
                 coef[r * ORDERS * n + k] = d[k] * scale[k];
@@ -238,13 +225,7 @@ impl TightEval {
             let len = Ddi::diff(seg.b, seg.a);
             if right {
                 let mut q = seg.pts;
-                // reverse the point order (rows stay together)
-                let n = p + 1;
-                for i in 0..n / 2 {
-                    for c in 0..h {
-                        q.swap(i * h + c, (n - 1 - i) * h + c);
-                    }
-                }
+                crate::spline::bspline::reverse_points(h, &mut q);
                 Taylor::from_bezier(&q, p, h, len, -1.0)
             } else {
                 Taylor::from_bezier(&seg.pts, p, h, len, 1.0)

@@ -36,7 +36,7 @@
 use crate::num::{mpfr_prec, ulp, with_mpfr_prec, MPFR_PREC};
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
-use rug::{Assign, Float};
+use rug::Float;
 use std::cmp::Ordering;
 
 /// Subdivision depth limit (boxes of width 2^-MAX_DEPTH of the segment).
@@ -75,17 +75,11 @@ fn fl(x: f64) -> Float {
     Float::with_val(mpfr_prec(), x)
 }
 
-/// Binomial coefficients C(n, 0..=n) as exact MPFR values (integers < 2^256 for n <= 200).
+/// Binomial coefficients C(n, 0..=n) as exact MPFR values (integers < 2^256 for n <= 200):
+/// the shared [`crate::num::binomials_s`] (exact f64 where it fits, else the integer
+/// recurrence in MPFR, exact at this precision).
 fn binomials(n: usize) -> Vec<Float> {
-    let mut v = Vec::with_capacity(n + 1);
-    let mut c = fl(1.0);
-    v.push(c.clone());
-    for k in 1..=n {
-        // C(n,k) = C(n,k-1) (n-k+1) / k: every intermediate is an integer, so exact.
-        c = c * Float::with_val(mpfr_prec(), n - k + 1) / Float::with_val(mpfr_prec(), k);
-        v.push(c.clone());
-    }
-    v
+    crate::num::binomials_s(n)
 }
 
 /// Product of Bernstein polynomials of degrees m and n (degree m + n):
@@ -104,34 +98,24 @@ fn bern_mul(a: &[Float], b: &[Float]) -> Vec<Float> {
         .collect()
 }
 
-/// Derivative of a Bernstein polynomial (w.r.t. the local parameter): n (a_{i+1} - a_i).
+/// Derivative of a Bernstein polynomial (w.r.t. the local parameter): n (a_{i+1} - a_i), the
+/// shared [`crate::spline::bezier::hodograph`].
 fn bern_deriv(a: &[Float]) -> Vec<Float> {
-    let n = a.len() - 1;
-    if n == 0 {
-        return vec![fl(0.0)];
-    }
-    let nf = Float::with_val(mpfr_prec(), n);
-    a.windows(2)
-        .map(|w| nf.clone() * (w[1].clone() - &w[0]))
-        .collect()
+    crate::spline::bezier::hodograph(a)
 }
 
-/// de Casteljau evaluation at t (NURBS Book A1.5), in place without temporaries.
+/// de Casteljau evaluation at t (NURBS Book A1.5): the shared
+/// [`crate::spline::bezier::de_casteljau_eval`] (b_i + t (b_{i+1} - b_i), each operation
+/// rounded once at the working precision).
 fn bern_eval(a: &[Float], t: &Float) -> Float {
-    let mut b = a.to_vec();
-    let mut d = fl(0.0);
-    for r in 1..b.len() {
-        for i in 0..b.len() - r {
-            // b_i += t (b_{i+1} - b_i)
-            d.assign(&b[i + 1] - &b[i]);
-            d *= t;
-            b[i] += &d;
-        }
-    }
-    b.swap_remove(0)
+    crate::spline::bezier::de_casteljau_eval(a, t)
 }
 
 /// de Casteljau split at 1/2 (exact halving; each new coefficient is an average).
+///
+/// A separate copy of the split on purpose: the generic
+/// [`crate::spline::bezier::de_casteljau_split`] forms lo + 1/2 (hi - lo) with two roundings,
+/// this one (lo + hi) / 2 with one (the halving is exact) and without temporaries, in place.
 fn split_half(a: &[Float]) -> (Vec<Float>, Vec<Float>) {
     let n = a.len();
     let mut b = a.to_vec();

@@ -50,8 +50,9 @@
 
 use super::{CandidateKind, Extremum, Side, Stats, Termination};
 use crate::num::ddi::{dist_up, up, Ddi};
+use crate::num::horner;
 use crate::num::Scalar;
-use crate::spline::tight::horner;
+use crate::spline::bezier::power_from_differences;
 
 /// Half-width (in the local parameter t in [0, 1]) of the test-point pairs around root
 /// estimates. The Taylor correction over such a bracket is about |x''| h^2 / 2, far below an
@@ -99,31 +100,28 @@ impl Poly {
                 c[i + 1] - c[i]
             }
         });
-        let dd0 = d[1] - d[0];
-        let x = if p == 3 {
-            // a_1 = 3 Δc_0, a_2 = 3 Δ^2 c_0, a_3 = Δ^3 c_0 = Δc_2 - 2 Δc_1 + Δc_0
-            let three = Ddi::exact(3.0);
-            let a3 = (d[2] - d[1]) - dd0;
-            [c[0], three * d[0], three * dd0, a3]
-        } else {
-            // a_1 = 2 Δc_0, a_2 = Δ^2 c_0
-            [c[0], Ddi::exact(2.0) * d[0], dd0, z]
-        };
+        // a_1 = p Δc_0, a_2 = C(p, 2) Δ^2 c_0, (p = 3) a_3 = Δ^3 c_0 = Δc_2 - 2 Δc_1 + Δc_0,
+        // by the shared kernel from these first differences.
+        let a = power_from_differences(c[0], d[..p].to_vec());
+        let x = std::array::from_fn(|k| a.get(k).copied().unwrap_or(z));
         Poly { p, x, d }
     }
     fn x(&self, t: Ddi) -> Ddi {
-        horner(&self.x[..=self.p], t)
+        horner(&self.x[..=self.p], &t)
     }
     /// x'(t) enclosed (the slow, sharp sign test behind [`Deriv::sign`]).
     fn dx(&self, t: Ddi) -> Ddi {
         let a = &self.x;
         let d1 = [a[1], Ddi::exact(2.0) * a[2], Ddi::exact(3.0) * a[3]];
-        horner(&d1[..self.p], t)
+        horner(&d1[..self.p], &t)
     }
 }
 
 /// x'(t) = b_0 + b_1 t + b_2 t^2 in f64 with an a-priori error bound valid for all t in [0, 1]
 /// (a floating-point filter: one FMA Horner step per coefficient and a comparison).
+/// A separate f64 copy of Horner's rule on purpose: an f64 filter with the error bound below
+/// (which assumes exactly this FMA evaluation order); the generic kernel is [`crate::num::horner`],
+/// used for the `Ddi` fallback [`Poly::dx`].
 ///
 /// Error bound. Let α_k be the exact power coefficients of x, enclosed by the `Ddi` a_k
 /// (|α_k - (hi_k + lo_k)| <= rad_k), and β_k = k α_k those of x'. We use b̂_k = fl(k hi_k):

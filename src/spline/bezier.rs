@@ -1,0 +1,165 @@
+//! Bézier / Bernstein kernels, each written once and generic over [`Scalar`]: de Casteljau
+//! evaluation and subdivision, the hodograph (derivative control points), forward differences
+//! and the Bernstein-to-power basis change, and homogeneous-to-Cartesian conversion of
+//! one-coordinate segments. [`crate::spline::BezierSeg`] and the enclosure strategies call
+//! these; with a verified `S` (intervals, `Ddi`, `Mr`) every result encloses the exact one.
+//!
+//! Control points are stored row-major with `h` homogeneous rows per point (as in
+//! [`crate::spline::BezierSeg`]); the single-row kernels take one polynomial's coefficients.
+
+use crate::num::{binom_s, Scalar};
+
+/// de Casteljau subdivision (lecture "Modellierung mit Kurven") of the p + 1 points `pts` (`h`
+/// rows each) at local t: the control points of the halves over [0, t] and [t, 1]. Convex
+/// combinations by [`Scalar::lerp`] (the thesis's a*(R1-R2)+R2 form; intersected with the
+/// convex form for intervals). For verified types (also an interval t) both halves enclose the
+/// exact halves for every real t in `t` (each new point is a polynomial in t and the old
+/// points; inclusion isotonicity).
+pub fn de_casteljau_split<S: Scalar>(pts: &[S], h: usize, t: &S) -> (Vec<S>, Vec<S>) {
+    let n = pts.len() / h;
+    let p = n - 1;
+    let mut b = pts.to_vec();
+    let mut left = Vec::with_capacity(b.len());
+    let mut right = vec![S::zero(); b.len()];
+    left.extend_from_slice(&b[0..h]);
+    right[p * h..(p + 1) * h].clone_from_slice(&b[p * h..(p + 1) * h]);
+    for r in 1..=p {
+        for i in 0..=p - r {
+            for c in 0..h {
+                let lo = b[i * h + c].clone();
+                let hi = b[(i + 1) * h + c].clone();
+                b[i * h + c] = S::lerp(t, &lo, &hi);
+            }
+        }
+        left.extend_from_slice(&b[0..h]);
+        right[(p - r) * h..(p - r + 1) * h].clone_from_slice(&b[(p - r) * h..(p - r + 1) * h]);
+    }
+    (left, right)
+}
+
+/// de Casteljau evaluation (NURBS Book A1.5) of the Bernstein polynomial with coefficients
+/// `b` at t, in place (`b` is overwritten; no allocation, so callers may pass a stack buffer):
+/// b_i = lerp(t, b_i, b_{i+1}) level by level, the value ends in b_0. An empty polynomial is 0.
+/// For f64 each step is fl(fl(t fl(b_{i+1} - b_i)) + b_i); for verified types the value
+/// encloses the polynomial at every real in `t`.
+#[inline]
+pub fn de_casteljau_eval_in_place<S: Scalar>(b: &mut [S], t: &S) -> S {
+    for r in 1..b.len() {
+        for i in 0..b.len() - r {
+            b[i] = S::lerp(t, &b[i], &b[i + 1]);
+        }
+    }
+    b.first().cloned().unwrap_or_else(S::zero)
+}
+
+/// de Casteljau evaluation of one Bernstein polynomial at t (copying the coefficients; see
+/// [`de_casteljau_eval_in_place`]).
+pub fn de_casteljau_eval<S: Scalar>(c: &[S], t: &S) -> S {
+    de_casteljau_eval_in_place(&mut c.to_vec(), t)
+}
+
+/// The hodograph: Bernstein coefficients of the derivative (degree n - 1, with respect to the
+/// local parameter) of a polynomial of degree n, n (c_{i+1} - c_i) (Farin, *Curves and Surfaces
+/// for CAGD*, derivatives of a Bézier curve). Degree 0 gives the zero polynomial `[0]`.
+/// For verified types each coefficient encloses the exact one (n is exact).
+pub fn hodograph<S: Scalar>(c: &[S]) -> Vec<S> {
+    let n = c.len().saturating_sub(1);
+    if n == 0 {
+        return vec![S::zero()];
+    }
+    let nf = S::from_usize(n);
+    c.windows(2)
+        .map(|w| nf.clone() * (w[1].clone() - w[0].clone()))
+        .collect()
+}
+
+/// Forward differences in place: afterwards `d[k] = Δ^k d_0` (Δ^{k+1} b_i = Δ^k b_{i+1} -
+/// Δ^k b_i), the differences of [`bernstein_to_power`]. One subtraction per entry and level,
+/// the same operations as the triangle scheme of the lecture's basis change.
+pub fn forward_differences<S: Scalar>(d: &mut [S]) {
+    let p = d.len().saturating_sub(1);
+    for k in 1..=p {
+        for i in (k..=p).rev() {
+            d[i] = d[i].clone() - d[i - 1].clone();
+        }
+    }
+}
+
+/// Basis change Bernstein -> power form of the local parameter (lecture "Modellierung mit
+/// Kurven", "Basistransformation", T_{M<-B}; Farin, monomial form of a Bézier curve):
+/// a_k = C(p, k) Δ^k b_0, row-wise for p + 1 points of `h` rows (row-major in, row-major out),
+/// by [`power_from_differences`] on the first differences b_{i+1} - b_i of each row.
+/// For verified types every a_k encloses the exact one.
+pub fn bernstein_to_power<S: Scalar>(pts: &[S], h: usize) -> Vec<S> {
+    let n = pts.len() / h;
+    let mut out = vec![S::zero(); pts.len()];
+    for r in 0..h {
+        let row = |i: usize| pts[i * h + r].clone();
+        let diffs = (1..n).map(|i| row(i) - row(i - 1)).collect();
+        for (k, ak) in power_from_differences(row(0), diffs)
+            .into_iter()
+            .enumerate()
+        {
+            out[k * h + r] = ak;
+        }
+    }
+    out
+}
+
+/// The power coefficients a_0 = b_0, a_k = C(p, k) Δ^k b_0 (k = 1..=p) of one Bernstein
+/// polynomial of degree p from b_0 and its p first differences Δb_0 .. Δb_{p-1} (which the
+/// caller may have formed more accurately, e.g. as exact double-words): the higher differences
+/// by [`forward_differences`], the binomials by [`binom_s`] (exact f64 where f64 is, else
+/// enclosed); a factor C(p, p) = 1 is not multiplied in. For verified types every a_k encloses
+/// the exact one when the given differences enclose the exact differences.
+pub fn power_from_differences<S: Scalar>(b0: S, mut diffs: Vec<S>) -> Vec<S> {
+    let p = diffs.len();
+    forward_differences(&mut diffs);
+    let mut out = Vec::with_capacity(p + 1);
+    out.push(b0);
+    for (i, d) in diffs.into_iter().enumerate() {
+        let k = i + 1;
+        out.push(if k == p { d } else { binom_s::<S>(p, k) * d });
+    }
+    out
+}
+
+/// Homogeneous -> Cartesian (the one copy): points of `dim + 1` values (w P, w) become P =
+/// (w P) / w when `rational` (one division per coordinate, correctly / outward rounded), else
+/// the values (`dim` each) are returned as they are. Works on one point or a row-major list.
+pub fn cartesian<S: Scalar>(homogeneous: Vec<S>, dim: usize, rational: bool) -> Vec<S> {
+    if !rational {
+        return homogeneous;
+    }
+    homogeneous
+        .chunks_exact(dim + 1)
+        .flat_map(|h| {
+            let w = &h[dim];
+            h[..dim].iter().map(move |x| x.clone() / w.clone())
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn power_form_hodograph_and_de_casteljau_agree() {
+        let c = [1.0, -2.0, 4.0, 0.5];
+        let a = bernstein_to_power(&c, 1);
+        // p = 3: a = (b0, 3 Δb0, 3 Δ^2 b0, Δ^3 b0)
+        assert_eq!(a, vec![1.0, -9.0, 27.0, -18.5]);
+        for i in 0..=8 {
+            let t = i as f64 / 8.0;
+            let v = de_casteljau_eval(&c, &t);
+            assert!((crate::num::horner(&a, &t) - v).abs() < 1e-13);
+            let (l, r) = de_casteljau_split(&c, 1, &t);
+            assert_eq!(l[3], r[0]);
+            assert!((l[3] - v).abs() < 1e-13);
+        }
+        assert_eq!(hodograph(&c), vec![-9.0, 18.0, -10.5]);
+        assert_eq!(hodograph(&[2.0]), vec![0.0]);
+        assert_eq!(cartesian(vec![2.0, 4.0, 3.0, 1.0], 1, true), vec![0.5, 3.0]);
+    }
+}
