@@ -565,11 +565,7 @@ impl BezierSubdivision {
                 // coordinate): splitting cannot shrink rounding-dominated widths, so bound the
                 // piece as it is.
                 let wmax = co.iter().fold(0.0f64, |m, x| m.max(x.wid()));
-                let (mlo, mhi) = co
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                        (a.min(x.mid()), b.max(x.mid()))
-                    });
+                let (mlo, mhi) = crate::num::min_max(co.iter().map(|x| x.mid()));
                 if m <= s0 || m >= s1 || mhi - mlo <= 2.0 * wmax {
                     self.finish(vals, j, sg, s0, s1, u, &mut side);
                     continue;
@@ -786,11 +782,7 @@ impl BoxEncloser for BezierSubdivision {
             };
             // The control-point box is verified too, so intersecting with it stays sound and
             // guarantees the sandwich hull ⊇ bezier.
-            let (plo, phi) = (0..=n)
-                .map(|i| c.control_point(i)[j])
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                    (a.min(x), b.max(x))
-                });
+            let (plo, phi) = c.coord_range(j, 0..=n);
             coords.push(CoordBox {
                 lo: (-lo.upper).max(plo),
                 hi: hi.upper.min(phi),

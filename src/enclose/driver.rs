@@ -391,11 +391,7 @@ pub fn drive<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
     let cl = c.clamped_ends();
     let verified = s.guarantee() == Guarantee::Verified;
     for (j, cb) in e.coords.iter_mut().enumerate() {
-        let (plo, phi) = (0..=n)
-            .map(|i| c.control_point(i)[j])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
-                (l.min(x), h.max(x))
-            });
+        let (plo, phi) = c.coord_range(j, 0..=n);
         // (f64::max/min return the non-NaN operand: a NaN bound becomes the hull's)
         cb.lo = cb.lo.max(plo);
         cb.hi = cb.hi.min(phi);

@@ -210,11 +210,7 @@ fn span_boxes<S: BoxEncloser + ?Sized>(
     let ehi = drive(s, &chi);
     let elo = if exact { ehi.clone() } else { drive(s, &clo) };
     let radius = |q: &[f64], j: usize| -> Interval {
-        let (mn, mx) = (0..=p)
-            .map(|i| q[i * d + j])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                (a.min(x), b.max(x))
-            });
+        let (mn, mx) = crate::num::min_max((0..=p).map(|i| q[i * d + j]));
         let r = ((iv::point(mx) - iv::point(mn)) * iv::point(0.5)).sup();
         iv::point(kappa) * iv::point(r)
     };
@@ -262,11 +258,7 @@ fn local_hull_boxes(c: &NurbsCurve, k: usize, coords: &mut [CoordBox]) -> Vec<Sp
     (0..c.dim())
         .map(|j| {
             coords[j].termination = Termination::WorkLimit;
-            let (lo, hi) = (k - p..=k)
-                .map(|i| c.control_point(i)[j])
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                    (a.min(x), b.max(x))
-                });
+            let (lo, hi) = c.coord_range(j, k - p..=k);
             SpanBox {
                 lo,
                 hi,

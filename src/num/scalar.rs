@@ -203,3 +203,12 @@ pub fn ulp(x: f64) -> f64 {
     // next float up minus s: exact (Sterbenz) and equal to the spacing above s.
     f64::from_bits(s.to_bits() + 1) - s
 }
+
+/// (min, max) of f64 values ((inf, -inf) for none; a NaN is skipped, as by `f64::min`).
+pub fn min_max(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    values
+        .into_iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        })
+}

@@ -212,6 +212,13 @@ impl NurbsCurve {
     pub fn domain(&self) -> (f64, f64) {
         (self.knots[self.degree], self.knots[self.num_points()])
     }
+    /// The exact range (min, max) of coordinate j over the control points `points` (indices):
+    /// the control-point box of those points (convex hull property, thesis prop. 2.1; min and
+    /// max of f64 data involve no rounding). The one copy of this kernel.
+    pub fn coord_range(&self, j: usize, points: std::ops::RangeInclusive<usize>) -> (f64, f64) {
+        crate::num::min_max(points.map(|i| self.points[i * self.dim + j]))
+    }
+
     /// Coordinate scale: the largest |control point coordinate| of coordinate j (at least the
     /// smallest positive normal, so it can be used as a divisor).
     pub fn coord_scale(&self, j: usize) -> f64 {
