@@ -1,0 +1,392 @@
+//! The per-span Bernstein back-end ([`super::Newton::bernstein`],
+//! [`super::Newton::bezier_pretest`]; not in the thesis): the Bézier points of the shifted piece C_j - c of one knot span, the
+//! Bernstein coefficients of the derivative numerator F and of F', evaluated over boxes of
+//! the span's local parameter t ([`T`]) by de Casteljau, and the one map from t back to the
+//! curve parameter u ([`SpanPoly::to_u`]).
+
+use super::param::{midpoint, T, U};
+use crate::num::ddi::Ddi;
+use crate::num::mr::Mr;
+use crate::num::{iv, Scalar};
+use crate::spline::bspline::{BezierSeg, HSpline};
+use crate::spline::curve::NurbsCurve;
+use inari::Interval;
+
+/// The Bernstein form of coordinate j on one knot span k = [a, b] = [u_k, u_{k+1}], in [`Mr`]
+/// ([`Newton::bernstein`]; not in the thesis). With t = (u - a) / (b - a):
+/// * `seg`: the homogeneous Bézier points ((x_i - c) w_i, w_i) (rational) or x_i - c of the
+///   shifted piece C_j - c, by Boehm knot insertion on the p + 1 local control points (NURBS
+///   Book A5.1 via [`HSpline::bezier_segment`]; thesis eq. 4.12). c is a local control point
+///   value (the most frequent one): the points of a flat run become exact zeros, so nearly flat
+///   coordinates keep their relative accuracy (the shift changes neither C_j' nor its zeros);
+/// * `f`: F(t) = A_t W - A W_t (rational; A, W the shifted numerator and the weight in t), or
+///   A_t / p (polynomial), in Bernstein form of degree n = 2p - 2 (p - 1). The rational
+///   coefficients: with B_i' B_l - B_i B_l' = (i - l) B_i B_l / (t (1 - t)) for degree-p
+///   Bernstein polynomials and B_i^p B_l^p / (t (1 - t)) = C(p,i) C(p,l) / C(2p-2,i+l-1)
+///   B_{i+l-1}^{2p-2},
+///   F = sum_{i<l} (l - i) C(p,i) C(p,l) / C(2p-2,i+l-1) (a_l w_i - a_i w_l) B_{i+l-1}^{2p-2}
+///   (Farin, "Curves and Surfaces for CAGD", sec. 13 on rational Bézier derivatives; the same
+///   sum as in `Engine::monotone`). C_j' = F / (W^2 (b - a)) (or p F / (b - a)): F has the
+///   sign and the zeros of C_j' on the closed span;
+/// * `df`: F' = n sum (F_{i+1} - F_i) B_i^{n-1} (the hodograph).
+///
+/// Ranges over a box come from the hull of the coefficients restricted to it by de Casteljau
+/// (convex hull property: Bernstein polynomials are >= 0 and sum to 1; for the rational values
+/// the positive weights make the point a convex combination of the Cartesian Bézier points).
+/// Every Mr operation encloses its exact result, so every coefficient encloses the exact one.
+pub(super) struct SpanPoly {
+    /// span index k
+    pub(super) k: usize,
+    /// the shift c (a control point coordinate, exact)
+    c: f64,
+    /// homogeneous Bézier segment of C_j - c over [a, b]
+    seg: BezierSeg<Mr>,
+    /// F, degree n
+    f: BezierSeg<Mr>,
+    /// F', degree n - 1 (one zero coefficient for n = 0)
+    df: BezierSeg<Mr>,
+}
+
+impl SpanPoly {
+    /// The form of coordinate j of `c` on span k; `pair` from [`pair_coefficients`] (rational;
+    /// empty: F is left unknown, ENTIRE).
+    pub(super) fn new(c: &NurbsCurve, j: usize, k: usize, pair: &[Mr]) -> Self {
+        let p = c.degree();
+        let rational = c.is_rational();
+        let shift = span_shift((k - p..=k).map(|i| c.control_point(i)[j]).collect());
+        let seg = shifted_segment(c, j, k, shift);
+        let q = &seg.pts;
+        let fco: Vec<Mr> = if rational && pair.is_empty() {
+            // degree above BERNSTEIN_MAX_DEGREE: F unknown
+            vec![Mr::ENTIRE]
+        } else if rational {
+            let mut d = vec![Mr::from_f64(0.0); 2 * p - 1];
+            for i in 0..p {
+                for l in i + 1..=p {
+                    let (ai, wi, al, wl) = (q[2 * i], q[2 * i + 1], q[2 * l], q[2 * l + 1]);
+                    d[i + l - 1] = d[i + l - 1] + pair[i * (p + 1) + l] * (al * wi - ai * wl);
+                }
+            }
+            d
+        } else {
+            q.windows(2).map(|w| w[1] - w[0]).collect()
+        };
+        let n = fco.len() - 1;
+        let dco: Vec<Mr> = if rational && pair.is_empty() {
+            vec![Mr::ENTIRE]
+        } else if n == 0 {
+            vec![Mr::from_f64(0.0)]
+        } else {
+            let nm = Mr::from_usize(n);
+            fco.windows(2).map(|w| nm * (w[1] - w[0])).collect()
+        };
+        let poly = |pts: Vec<Mr>| BezierSeg {
+            a: seg.a,
+            b: seg.b,
+            degree: pts.len() - 1,
+            dim: 1,
+            rational: false,
+            pts,
+        };
+        SpanPoly {
+            k,
+            c: shift,
+            f: poly(fco),
+            df: poly(dco),
+            seg,
+        }
+    }
+
+    /// The Bézier points of `s` over [t0, t1] inside [0, 1]: de Casteljau at t1 (left part,
+    /// over [0, t1]), then at an enclosure of t0 / t1 (right part of that). For every exact
+    /// parameter in the enclosure the split encloses the exact sub-segment
+    /// ([`BezierSeg::sub_points`]), so the result encloses the points over [t0, t1].
+    fn restrict<S: Scalar>(s: &BezierSeg<S>, t0: f64, t1: f64) -> Vec<S> {
+        let t1s = (t1 < 1.0).then(|| S::from_f64(t1));
+        let t0s = (t0 > 0.0).then(|| S::from_f64(t0) / S::from_f64(t1));
+        s.sub_points(t1s.as_ref(), t0s.as_ref())
+    }
+
+    /// F over the box t = [t0, t1] (at t0 for a point): de Casteljau value, or the
+    /// coefficient hull.
+    pub(super) fn f(&self, t: T) -> Interval {
+        let (t0, t1) = (t.lo, t.hi);
+        if t0 == t1 {
+            return self.f.eval_local(&Mr::from_f64(t0))[0].to_interval();
+        }
+        hull(&Self::restrict(&self.f, t0, t1))
+    }
+
+    /// F' over the box t = [t0, t1] (at t0 for a point).
+    pub(super) fn df(&self, t: T) -> Interval {
+        let (t0, t1) = (t.lo, t.hi);
+        if t0 == t1 {
+            return self.df.eval_local(&Mr::from_f64(t0))[0].to_interval();
+        }
+        hull(&Self::restrict(&self.df, t0, t1))
+    }
+
+    /// The values of the piece C_j over the box t = [t0, t1]: hull of the Cartesian Bézier
+    /// points of the restricted segment, shifted back by c.
+    pub(super) fn values(&self, t: T) -> Interval {
+        let q = Self::restrict(&self.seg, t.lo, t.hi);
+        hull(&cartesian(q, self.seg.rational)) + iv::point(self.c)
+    }
+
+    /// As [`SpanPoly::values`], and C_j at the parameter u(t_mid) (a real in the closed span:
+    /// a value of the piece there), in double-double intervals ([`Ddi`]): for the candidate
+    /// boxes, where the few hundred ulps of the Mr points would show in the bounds.
+    pub(super) fn values_tight(&self, c: &NurbsCurve, j: usize, t: T) -> (Interval, Interval) {
+        let (t0, t1) = (t.lo, t.hi);
+        let seg: BezierSeg<Ddi> = shifted_segment(c, j, self.k, self.c);
+        let r = self.seg.rational;
+        let over = hull(&cartesian(Self::restrict(&seg, t0, t1), r));
+        let at = hull(&cartesian(
+            seg.eval_local(&Ddi::from_f64(midpoint(t0, t1))),
+            r,
+        ));
+        let sh = iv::point(self.c);
+        (over + sh, at + sh)
+    }
+
+    /// The box of the curve parameter u that contains u(t) = a + t (b - a) for every t in the
+    /// box t = [t0, t1] of this span [a, b] = [u_k, u_{k+1}]: the only map from the local
+    /// parameter to the global one.
+    ///
+    /// Rounding: every operation is in outward-rounded interval arithmetic, so `len` encloses
+    /// the exact b - a (its upper bound is +inf if b - a overflows), a + t0 len encloses the
+    /// exact u(t0) and its lower bound is <= u(t0); likewise the upper bound of a + t1 len is
+    /// >= u(t1). As u is increasing, [lo, hi] contains u([t0, t1]). Clamping to [a, b] loses
+    /// nothing, as u(t) is in [a, b] for t in [0, 1], and keeps the box inside the closed span
+    /// (where span k's piece is the curve).
+    pub(super) fn to_u(&self, t: T) -> U {
+        let (a, b) = (self.seg.a, self.seg.b);
+        let len = iv::point(b) - iv::point(a);
+        let lo = (iv::point(a) + iv::point(t.lo) * len).inf();
+        let hi = (iv::point(a) + iv::point(t.hi) * len).sup();
+        U::new(lo.clamp(a, b), hi.clamp(a, b))
+    }
+
+    /// Coordinate j of the span's Bézier points, enclosed: their hull [lo, hi] and whether
+    /// they are non-decreasing / non-increasing (for every choice of the exact points in the
+    /// enclosures: each upper bound <= the next lower bound).
+    ///
+    /// Why this is sound: the new weights of knot insertion are convex combinations of
+    /// positive weights, so positive. A rational Bézier curve with positive weights lies in
+    /// the convex hull of its points (thesis prop. 2.1, on the closed span, the right-end limit
+    /// included), and is monotone if its points are (the argument of `Engine::monotone`).
+    pub(super) fn bezier_points(&self) -> (f64, f64, bool, bool) {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut inc, mut dec) = (true, true);
+        let mut prev = Interval::EMPTY;
+        for x in cartesian(self.seg.pts.clone(), self.seg.rational) {
+            let x = x.to_interval() + iv::point(self.c);
+            if x.is_empty() || x.is_entire() {
+                return (f64::NEG_INFINITY, f64::INFINITY, false, false);
+            }
+            lo = lo.min(x.inf());
+            hi = hi.max(x.sup());
+            if !prev.is_empty() {
+                inc &= x.inf() >= prev.sup();
+                dec &= x.sup() <= prev.inf();
+            }
+            prev = x;
+        }
+        (lo, hi, inc, dec)
+    }
+
+    /// Whether every coefficient enclosure of F contains 0 (and F is not exactly 0): the
+    /// rounding of the Bernstein form swamps F, so no box of the span can be excluded with it
+    /// (e.g. a span of 1e-14 where the Bézier points agree to a few ulps and F, their
+    /// differences, is below their rounding errors).
+    pub(super) fn f_swamped(&self) -> bool {
+        let zero = self.f.pts.iter().all(|x| x.mid() == 0.0 && x.rad() == 0.0);
+        !zero && self.f.pts.iter().all(|x| x.to_interval().contains(0.0))
+    }
+
+    /// Whether F >= 0 / F <= 0 on the whole span (all coefficients of one sign), i.e. C_j
+    /// non-decreasing / non-increasing on the closed span.
+    pub(super) fn f_signs(&self) -> (bool, bool) {
+        let h = hull(&self.f.pts);
+        (h.inf() >= 0.0, h.sup() <= 0.0)
+    }
+}
+
+/// The homogeneous Bézier segment of the shifted piece C_j - c on span k of `c`: rows
+/// ((x_i - c) w_i, w_i) (rational) or x_i - c, by Boehm knot insertion on the p + 1 local
+/// control points ([`HSpline::bezier_segment`]). Each x_i - c is exact for x_i = c (and
+/// within a factor 2 of c, Sterbenz), else enclosed by S.
+fn shifted_segment<S: Scalar>(c: &NurbsCurve, j: usize, k: usize, shift: f64) -> BezierSeg<S> {
+    let p = c.degree();
+    let rational = c.is_rational();
+    let cs = S::from_f64(shift);
+    let mut pts = Vec::with_capacity((p + 1) * (1 + rational as usize));
+    for i in k - p..=k {
+        let x = S::from_f64(c.control_point(i)[j]) - cs.clone();
+        if rational {
+            let w = S::from_f64(c.weight(i));
+            pts.push(x * w.clone());
+            pts.push(w);
+        } else {
+            pts.push(x);
+        }
+    }
+    let local = HSpline {
+        degree: p,
+        knots: c.knots()[k - p..=k + p + 1].to_vec(),
+        dim: 1,
+        rational,
+        pts,
+    };
+    local.bezier_segment(p)
+}
+
+/// The Cartesian points (x_i - c) of homogeneous one-coordinate points.
+fn cartesian<S: Scalar>(q: Vec<S>, rational: bool) -> Vec<S> {
+    if rational {
+        q.chunks_exact(2)
+            .map(|h| h[0].clone() / h[1].clone())
+            .collect()
+    } else {
+        q
+    }
+}
+
+/// Interval hull of enclosures (ENTIRE if any is unbounded).
+fn hull<S: Scalar>(v: &[S]) -> Interval {
+    v.iter()
+        .fold(Interval::EMPTY, |h, x| h.convex_hull(x.to_interval()))
+}
+
+/// The shift c of [`SpanPoly`]: the most frequent of the local control point coordinates
+/// (the smallest such; the median when all differ). Any value is sound; this one makes flat
+/// runs exact zeros.
+fn span_shift(mut xs: Vec<f64>) -> f64 {
+    xs.sort_by(f64::total_cmp);
+    let (mut best, mut run) = (xs[xs.len() / 2], 1);
+    let mut i = 0;
+    while i < xs.len() {
+        let e = i + xs[i..].iter().take_while(|&&x| x == xs[i]).count();
+        if e - i > run {
+            (best, run) = (xs[i], e - i);
+        }
+        i = e;
+    }
+    best
+}
+
+/// `pair[i (p + 1) + l]` = (l - i) C(p, i) C(p, l) / C(2p - 2, i + l - 1) for i < l (see
+/// [`SpanPoly`]), enclosed: binomials by Pascal's rule in [`Mr`] (exact while below 2^53).
+pub(super) fn pair_coefficients(p: usize) -> Vec<Mr> {
+    let binom = |n: usize| {
+        let mut row = vec![Mr::from_f64(1.0)];
+        for _ in 0..n {
+            let mut next = vec![Mr::from_f64(1.0); row.len() + 1];
+            for i in 1..row.len() {
+                next[i] = row[i - 1] + row[i];
+            }
+            row = next;
+        }
+        row
+    };
+    let (bp, b2) = (binom(p), binom(2 * p - 2));
+    let mut pair = vec![Mr::from_f64(0.0); (p + 1) * (p + 1)];
+    for i in 0..p {
+        for l in i + 1..=p {
+            pair[i * (p + 1) + l] = Mr::from_usize(l - i) * bp[i] * bp[l] / b2[i + l - 1];
+        }
+    }
+    pair
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::eval::CurveEval;
+
+    fn curve1(p: usize, knots: Vec<f64>, x: &[f64], w: Option<Vec<f64>>) -> NurbsCurve {
+        NurbsCurve::new(p, knots, x.iter().map(|&v| vec![v]).collect(), w).unwrap()
+    }
+
+    #[test]
+    fn span_poly_derivative_numerator_matches_f64() {
+        // F(t) against A_t W - A W_t (rational) / A_t / p (polynomial) from f64 de Boor
+        // derivatives of the shifted homogeneous rows, scaled to the local parameter.
+        let p = 5;
+        let kn = vec![
+            0., 0., 0., 0., 0., 0., 0.2, 0.45, 0.5, 1., 1., 1., 1., 1., 1.,
+        ];
+        let x: Vec<f64> = (0..9).map(|i| ((i * 37) % 11) as f64 / 7.0 - 0.6).collect();
+        let w: Vec<f64> = (0..9).map(|i| 0.3 + ((i * 5) % 7) as f64).collect();
+        for wt in [None, Some(w)] {
+            let c = curve1(p, kn.clone(), &x, wt);
+            let pair = if c.is_rational() {
+                pair_coefficients(p)
+            } else {
+                Vec::new()
+            };
+            let ev = CurveEval::<f64>::new(&c, 2);
+            let k0 = c.knots().iter().position(|&u| u > 0.0).unwrap() - 1;
+            for k in k0..c.num_points() {
+                let (a, b) = (c.knots()[k], c.knots()[k + 1]);
+                if a == b {
+                    continue;
+                }
+                let sp = SpanPoly::new(&c, 0, k, &pair);
+                for i in 0..=10 {
+                    let t = i as f64 / 10.0;
+                    let u = a + (b - a) * t;
+                    let mut buf = Vec::new();
+                    let rows: &[usize] = if c.is_rational() { &[0, 1] } else { &[0] };
+                    let h0 = ev.level(0).eval_span_rows(k, &u, rows, &mut buf).to_vec();
+                    let h1 = ev
+                        .level(1)
+                        .eval_span_rows(k - 1, &u, rows, &mut buf)
+                        .to_vec();
+                    let (l, sc) = (b - a, if c.is_rational() { 1.0 } else { p as f64 });
+                    let want = if c.is_rational() {
+                        // shifted: A - c W; (A - cW)_t W - (A - cW) W_t = A_t W - A W_t
+                        (h1[0] * h0[1] - h0[0] * h1[1]) * l
+                    } else {
+                        h1[0] * l / sc
+                    };
+                    let got = sp.f(T::new(t, t));
+                    let tol = 1e-12 * (1.0 + want.abs());
+                    assert!(
+                        got.inf() - tol <= want && want <= got.sup() + tol,
+                        "k {k} u {u}: {got:?} vs {want}"
+                    );
+                    // F over a box contains F at its points; F' by a difference quotient
+                    let (t0, t1) = (t.min(0.999), t.min(0.999) + 1e-3);
+                    let (f0, f1) = (sp.f(T::new(t0, t0)).mid(), sp.f(T::new(t1, t1)).mid());
+                    let d = sp.df(T::new(t0, t1));
+                    // mean value theorem: the difference quotient is a value of F'
+                    let q = (f1 - f0) / (t1 - t0);
+                    let e = 1e-9 * (1.0 + q.abs());
+                    assert!(d.inf() - e <= q && q <= d.sup() + e, "{d:?} {q}");
+                    assert!(sp.f(T::new(t0, t1)).contains(f0) && sp.f(T::new(t0, t1)).contains(f1));
+                    // the piece's value at u(t), and u([t0, t1]) covers u(t0), u(t1)
+                    let y = c.point::<f64>(u).unwrap()[0];
+                    let vt = sp.values_tight(&c, 0, T::new(t, t)).1;
+                    assert!(vt.inf() - 1e-12 <= y && y <= vt.sup() + 1e-12, "{vt:?} {y}");
+                    let U { lo, hi } = sp.to_u(T::new(t0, t1));
+                    assert!(lo <= a + t0 * l && a + t1 * l <= hi && a <= lo && hi <= b);
+                }
+                // values over the span contain the f64 points of the piece
+                let v = sp.values(T::new(0.0, 1.0));
+                for i in 0..=10 {
+                    let u = a + (b - a) * i as f64 / 10.0;
+                    let y = c.point::<f64>(u).unwrap()[0];
+                    assert!(v.inf() - 1e-12 <= y && y <= v.sup() + 1e-12, "{v:?} {y}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn span_shift_prefers_flat_runs() {
+        assert_eq!(span_shift(vec![3.0, 1.0, 1.0, 2.0, 1.0]), 1.0);
+        assert_eq!(span_shift(vec![3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(span_shift(vec![-0.5]), -0.5);
+    }
+}
