@@ -243,13 +243,8 @@ fn shifted_segment<S: Scalar>(c: &NurbsCurve, j: usize, k: usize, shift: f64) ->
 
 /// The Cartesian points (x_i - c) of homogeneous one-coordinate points.
 fn cartesian<S: Scalar>(q: Vec<S>, rational: bool) -> Vec<S> {
-    if rational {
-        q.chunks_exact(2)
-            .map(|h| h[0].clone() / h[1].clone())
-            .collect()
-    } else {
-        q
-    }
+    // one coordinate row (and the weight row): the shared kernel with dim = 1
+    crate::spline::bezier::cartesian(q, 1, rational)
 }
 
 /// Interval hull of enclosures (ENTIRE if any is unbounded).

@@ -348,14 +348,7 @@ impl<'a> Engine<'a> {
 
     /// min / max of coordinate j of the local control points P_{k-p} .. P_k (exact).
     fn local_hull(&self, k: usize) -> (f64, f64) {
-        let mut lo = f64::INFINITY;
-        let mut hi = f64::NEG_INFINITY;
-        for i in k - self.p..=k {
-            let x = self.c.control_point(i)[self.j];
-            lo = lo.min(x);
-            hi = hi.max(x);
-        }
-        (lo, hi)
+        self.c.coord_range(self.j, k - self.p..=k)
     }
 
     /// Whether coordinate j of the local control points of span k is non-decreasing /
