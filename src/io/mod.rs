@@ -38,7 +38,8 @@
 //! * `batch` (feature `parallel`): many curves at once, on all cores.
 //!
 //! Every item is also re-exported here, so `nurbs_box::io::parse_curve` and the like are the
-//! paths to use.
+//! paths to use. The two byte scanners (field paths in `position`, array elements in `stream`)
+//! share one lexer, `scan::Lexer`, for strings and escapes.
 
 #[cfg(feature = "parallel")]
 pub mod batch;
@@ -46,6 +47,7 @@ pub mod error;
 pub mod parse;
 mod position;
 pub mod records;
+mod scan;
 pub mod stream;
 
 pub use error::{InputError, Position};

@@ -3,6 +3,7 @@
 
 use super::error::{shorten, InputError, Position};
 use super::parse::DataErr;
+use super::scan::{Lexeme, Lexer};
 
 /// Byte offset of serde_json's (line, column) in `bytes` (column = bytes since the line start).
 fn offset_of(bytes: &[u8], line: usize, column: usize) -> usize {
@@ -36,7 +37,8 @@ fn abs_position(bytes: &[u8], start: Position, off: usize) -> Position {
 }
 
 /// Field path (`knots[3]`, `control_points[1][0]`, `curve`) of byte `off`, found by scanning the
-/// JSON structure before it (strings and escapes tracked; no recursion, any depth).
+/// JSON structure before it (strings and escapes tracked by the shared [`Lexer`]; no recursion,
+/// any depth).
 fn path_at(bytes: &[u8], off: usize) -> String {
     enum Frame {
         Obj {
@@ -48,15 +50,15 @@ fn path_at(bytes: &[u8], off: usize) -> String {
         },
     }
     let mut stack: Vec<Frame> = Vec::new();
-    let (mut in_str, mut esc, mut str_start) = (false, false, 0);
+    let (mut lexer, mut str_start) = (Lexer::default(), 0);
     for (i, &b) in bytes[..off.min(bytes.len())].iter().enumerate() {
-        if in_str {
-            if esc {
-                esc = false;
-            } else if b == b'\\' {
-                esc = true;
-            } else if b == b'"' {
-                in_str = false;
+        let b = match lexer.step(b) {
+            Lexeme::Open => {
+                str_start = i + 1;
+                continue;
+            }
+            Lexeme::InString => continue,
+            Lexeme::Close => {
                 if let Some(Frame::Obj {
                     key,
                     in_value: false,
@@ -64,14 +66,11 @@ fn path_at(bytes: &[u8], off: usize) -> String {
                 {
                     *key = Some((str_start, i));
                 }
+                continue;
             }
-            continue;
-        }
+            Lexeme::Code(b) => b,
+        };
         match b {
-            b'"' => {
-                in_str = true;
-                str_start = i + 1;
-            }
             b'{' => stack.push(Frame::Obj {
                 key: None,
                 in_value: false,

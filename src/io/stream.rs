@@ -3,6 +3,7 @@
 
 use super::error::{InputError, Position};
 use super::parse::{parse_curve_at, ParseOptions};
+use super::scan::{Lexeme, Lexer};
 use crate::spline::curve::NurbsCurve;
 use std::io::{self, BufRead, BufReader, Read};
 
@@ -216,27 +217,19 @@ impl<R: Read> RecordReader<R> {
     /// (not consumed). Returns (bytes, too_long, cut short: the input ended inside a string or
     /// an open bracket, or `None` if the element ended normally or at a balanced end of input).
     fn scan_element(&mut self) -> io::Result<(Vec<u8>, bool, Option<bool>)> {
-        let (mut depth, mut in_str, mut esc) = (0u64, false, false);
+        let (mut depth, mut lexer) = (0u64, Lexer::default());
         let (mut out, mut too_long) = (Vec::new(), false);
         loop {
             if !self.fill()? {
-                return Ok((out, too_long, Some(in_str || depth > 0)));
+                return Ok((out, too_long, Some(lexer.in_string() || depth > 0)));
             }
             let buf = self.inner.buffer();
             let mut end = None;
             for (i, &b) in buf.iter().enumerate() {
-                if in_str {
-                    if esc {
-                        esc = false;
-                    } else if b == b'\\' {
-                        esc = true;
-                    } else if b == b'"' {
-                        in_str = false;
-                    }
-                    continue;
-                }
+                let Lexeme::Code(b) = lexer.step(b) else {
+                    continue; // a string, its quotes included
+                };
                 match b {
-                    b'"' => in_str = true,
                     b'[' | b'{' => depth += 1,
                     b']' if depth == 0 => {
                         end = Some(i);
