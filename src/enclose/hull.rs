@@ -50,7 +50,7 @@ impl BoxEncloser for ControlHull {
 /// Per coordinate j the box [lo, hi] of the control points (exact: min / max of f64 data), with
 /// the inner bounds `inner(j, lo, hi)` (the caller's reason why the curve reaches them),
 /// argmin / argmax at the supports of the extreme control points, and `termination`. O(n d):
-/// shared by [`ControlHull`] and the high-degree fallback (`rescale::degree_fallback`).
+/// shared by [`ControlHull`] and the high-degree fallback (`driver::degree_fallback`).
 pub(crate) fn control_point_box(
     c: &NurbsCurve,
     inner: impl Fn(usize, f64, f64) -> (f64, f64),
