@@ -20,12 +20,11 @@
 //!   is exact); otherwise the segment is kept as a separate curve of its own degree and the
 //!   contour's spline is cut there.
 
-use crate::spline::bspline::BezierSeg;
-use crate::spline::curve::NurbsCurve;
 use crate::enclose::BoxEncloser;
 use crate::error::CurveError;
-use crate::io::{write_nums, write_str};
 use crate::num::iv;
+use crate::spline::bspline::BezierSeg;
+use crate::spline::curve::NurbsCurve;
 use inari::Interval;
 use thiserror::Error;
 use ttf_parser::{Face, GlyphId, OutlineBuilder};
@@ -380,60 +379,6 @@ pub fn glyph_boxes(
         });
     }
     Ok(out)
-}
-
-/// Append one glyph record (one line of `nurbs-box font` output, no newline):
-/// `{"glyph_id","name","verified","curves","lo","hi","inner_lo","inner_hi","stored_bbox",
-/// "control_bbox","loose_by","too_small_by"}`; boxes as [x_min, y_min, x_max, y_max] arrays
-/// (corners as [x, y]), `null` where absent; numbers as in `docs/formats.md`.
-pub fn write_glyph_record(out: &mut Vec<u8>, g: &GlyphBox) {
-    let opt = |out: &mut Vec<u8>, b: Option<[f64; 4]>| match b {
-        Some(b) => write_nums(out, b),
-        None => out.extend_from_slice(b"null"),
-    };
-    out.extend_from_slice(format!("{{\"glyph_id\":{},\"name\":", g.glyph_id).as_bytes());
-    match &g.name {
-        Some(n) => write_str(out, n),
-        None => out.extend_from_slice(b"null"),
-    }
-    out.extend_from_slice(
-        format!(",\"verified\":{},\"curves\":{}", g.verified, g.curves).as_bytes(),
-    );
-    for (key, v) in [
-        ("lo", g.tight_lo),
-        ("hi", g.tight_hi),
-        ("inner_lo", g.inner_lo),
-        ("inner_hi", g.inner_hi),
-    ] {
-        out.extend_from_slice(format!(",\"{key}\":").as_bytes());
-        write_nums(out, v);
-    }
-    out.extend_from_slice(b",\"stored_bbox\":");
-    opt(out, g.stored_bbox);
-    out.extend_from_slice(b",\"control_bbox\":");
-    opt(out, g.control_bbox);
-    out.extend_from_slice(b",\"loose_by\":");
-    write_nums(out, g.loose_by);
-    out.extend_from_slice(b",\"too_small_by\":");
-    write_nums(out, g.too_small_by);
-    out.push(b'}');
-}
-
-/// The `nurbs-box font FILE` command as a library function: one record per glyph with an
-/// outline (see [`write_glyph_record`]) on `out`. Errors: the font cannot be parsed, or
-/// writing fails.
-pub fn run_cli<W: std::io::Write>(
-    font_bytes: &[u8],
-    strategy: &dyn BoxEncloser,
-    out: &mut W,
-) -> Result<(), Box<dyn std::error::Error>> {
-    for g in glyph_boxes(font_bytes, strategy)? {
-        let mut line = Vec::new();
-        write_glyph_record(&mut line, &g);
-        line.push(b'\n');
-        out.write_all(&line)?;
-    }
-    Ok(())
 }
 
 #[cfg(test)]
