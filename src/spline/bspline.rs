@@ -2,9 +2,9 @@
 //! de Boor corner cutting, basis functions, derivative control points, knot insertion and
 //! Bézier extraction that the whole crate uses, for f64, intervals and MPFR alike.
 
+use crate::num::Scalar;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::knots::find_span;
-use crate::num::Scalar;
 
 /// A (non-rational) B-spline curve whose control points have `hdim` coordinates of type `S`.
 ///
@@ -545,7 +545,7 @@ pub fn corner_cut_level<S: Scalar>(
 }
 
 /// Below this magnitude a knot difference cannot overflow (2^1022, half of the f64 range).
-const HALF_MAX: f64 = 4.49423283715578976932e307;
+const HALF_MAX: f64 = 4.494_232_837_155_79e307; // 2^1022 exactly
 
 /// x - a, or x/2 - a/2 when `half` (see [`knot_ratio`]).
 #[inline]
