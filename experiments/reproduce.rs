@@ -15,9 +15,9 @@ mod plots;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use nurbs_box::enclose::{all_strategies, BoxEncloser, Enclosure, Guarantee};
+use nurbs_box::testkit::gen;
 use nurbs_box::testkit::report::Provenance;
 use nurbs_box::testkit::validate::{check_containment, dense_params, gap_ulps};
-use nurbs_box::testkit::gen;
 use nurbs_box::NurbsCurve;
 use rayon::prelude::*;
 use std::fmt::Write as _;
@@ -207,7 +207,8 @@ fn measure_row(
         .curves
         .par_iter()
         .map(|c| {
-            (c.num_points() <= args.ref_max_points).then(|| nurbs_box::testkit::reference::reference_box(c))
+            (c.num_points() <= args.ref_max_points)
+                .then(|| nurbs_box::testkit::reference::reference_box(c))
         })
         .collect();
     let mut rows = Vec::new();

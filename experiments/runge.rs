@@ -14,9 +14,9 @@
 //! Run: `cargo run --release --example runge` (writes `results/runge.md`; `--out PATH` to
 //! write elsewhere, `-` for stdout).
 
-use nurbs_box::enclose::{strategy_by_name, CoordBox};
 use nurbs_box::build::interpolate::{interpolate_cubic, Parametrization};
 use nurbs_box::build::lagrange::LagrangeCurve;
+use nurbs_box::enclose::{strategy_by_name, CoordBox};
 use nurbs_box::testkit::report::Provenance;
 use std::fmt::Write as _;
 

@@ -16,10 +16,10 @@
 //! on a machine shared with other work a speed-up can only show where that number grows.
 
 use clap::Parser;
-use nurbs_box::io::batch::{enclose_batch, enclose_stream, StreamOptions};
 use nurbs_box::enclose::strategy_by_name;
-use nurbs_box::testkit::gen::{self, GenParams, KnotStyle};
+use nurbs_box::io::batch::{enclose_batch, enclose_stream, StreamOptions};
 use nurbs_box::io::{write_curve, RecordReader};
+use nurbs_box::testkit::gen::{self, GenParams, KnotStyle};
 use nurbs_box::NurbsCurve;
 use std::time::{Duration, Instant};
 

@@ -9,8 +9,8 @@
 //! within seconds.
 
 use inari::Interval;
-use nurbs_box::testkit::gen::{self, Family, GenParams};
 use nurbs_box::num::{iv, ulp};
+use nurbs_box::testkit::gen::{self, Family, GenParams};
 use nurbs_box::{basis_funs, project, HSpline, NurbsCurve};
 use proptest::prelude::*;
 use rand::Rng;

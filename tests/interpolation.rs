@@ -6,8 +6,8 @@ use nurbs_box::build::interpolate::{
     interpolate_cubic_with, interpolation_residual, EndCondition, InterpolationOptions,
     Parametrization,
 };
-use nurbs_box::num::iv;
 use nurbs_box::build::tridiagonal::solve_tridiagonal;
+use nurbs_box::num::iv;
 use nurbs_box::NurbsCurve;
 use proptest::prelude::*;
 

@@ -5,9 +5,9 @@
 //! `interpolate --basis lagrange` command.
 
 use inari::Interval;
-use nurbs_box::enclose::strategy_by_name;
 use nurbs_box::build::interpolate::{interpolate_cubic, Parametrization};
 use nurbs_box::build::lagrange::{widen_enclosure, LagrangeCurve};
+use nurbs_box::enclose::strategy_by_name;
 use nurbs_box::num::iv;
 use proptest::prelude::*;
 

@@ -562,7 +562,13 @@ mod mpfr {
                     rb.hi[j]
                 );
                 assert!(
-                    nurbs_box::testkit::reference::inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, scale),
+                    nurbs_box::testkit::reference::inner_reached(
+                        &rb,
+                        j,
+                        cb.inner_lo,
+                        cb.inner_hi,
+                        scale
+                    ),
                     "{name}: {} coordinate {j}: inner [{:e}, {:e}] not reached, exact [{}, {}]",
                     e.strategy,
                     cb.inner_lo,
@@ -849,8 +855,11 @@ fn cli_hostile_lines_between_extreme_curves() {
                             })
                             .collect(),
                     };
-                    let m =
-                        nurbs_box::testkit::validate::check_containment(c, &e, &check_params(c, 20, &[]));
+                    let m = nurbs_box::testkit::validate::check_containment(
+                        c,
+                        &e,
+                        &check_params(c, 20, &[]),
+                    );
                     assert!(
                         m.misses.is_empty(),
                         "line {i} {}: {:?}",

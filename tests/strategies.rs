@@ -21,8 +21,8 @@
 //! seconds.
 
 use nurbs_box::enclose::{all_strategies, strategy_by_name};
-use nurbs_box::testkit::gen::{self, Family, GenParams};
 use nurbs_box::num::{iv, ulp};
+use nurbs_box::testkit::gen::{self, Family, GenParams};
 use nurbs_box::testkit::validate::{check_containment, dense_params};
 use nurbs_box::{BoxEncloser, Enclosure, Guarantee, NurbsCurve, Termination};
 use proptest::prelude::*;

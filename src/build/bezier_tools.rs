@@ -7,11 +7,11 @@
 //! so rational segments are handled by the same code (the conversions are linear maps of the
 //! rows). With `S = Interval` every result encloses the exact converted coefficients.
 
+use crate::error::CurveError;
+use crate::num::Scalar;
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
-use crate::error::CurveError;
 use crate::spline::eval::binom;
-use crate::num::Scalar;
 use thiserror::Error;
 
 /// Why a Bézier conversion is not possible.

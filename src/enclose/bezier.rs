@@ -37,10 +37,10 @@
 use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
-use crate::spline::bspline::{BezierSeg, HSpline};
-use crate::spline::curve::NurbsCurve;
 use crate::num::ddi::Ddi;
 use crate::num::iv;
+use crate::spline::bspline::{BezierSeg, HSpline};
+use crate::spline::curve::NurbsCurve;
 use crate::spline::tight::TightEval;
 use inari::Interval;
 use std::time::Instant;
@@ -862,8 +862,8 @@ mod tests {
     #[cfg(feature = "mpfr")]
     #[test]
     fn span_filter_bounds_hold_against_mpfr_segments() {
-        use crate::testkit::gen::{self, Family};
         use crate::num::MPFR_PREC;
+        use crate::testkit::gen::{self, Family};
         use rug::Float;
         let mut r = gen::rng(5);
         let mut checked = 0;

@@ -31,13 +31,13 @@
 use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
-use crate::spline::bspline::{BezierSeg, HSpline};
-use crate::spline::curve::NurbsCurve;
 use crate::num::ddi::Ddi;
-use crate::spline::eval::CurveEval;
-use crate::spline::knots::multiplicity;
 use crate::num::mr::Mr;
 use crate::num::{iv, Scalar};
+use crate::spline::bspline::{BezierSeg, HSpline};
+use crate::spline::curve::NurbsCurve;
+use crate::spline::eval::CurveEval;
+use crate::spline::knots::multiplicity;
 use crate::spline::tight::TightEval;
 use inari::Interval;
 use std::time::Instant;

@@ -36,10 +36,10 @@
 //! t -> u is what overflows here.
 
 use super::{enclose_rescaled, BoxEncloser, CoordBox, Enclosure, Extremum, Termination};
+use crate::num::iv;
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::knots::multiplicity;
-use crate::num::iv;
 use inari::Interval;
 
 /// Outer and attained values of one coordinate over one span.

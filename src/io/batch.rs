@@ -7,11 +7,11 @@
 //! splitting of the input into records and the writing are sequential, so the work (parsing
 //! included) scales with the threads; memory is bounded by one chunk whatever the input size.
 
-use crate::spline::curve::NurbsCurve;
 use crate::enclose::{BoxEncloser, Enclosure};
 use crate::io::{
     write_enclosure_record, write_error_record, InputError, ParseOptions, RawRecord, RecordReader,
 };
+use crate::spline::curve::NurbsCurve;
 use rayon::prelude::*;
 use std::io::{self, Read, Write};
 use thiserror::Error;

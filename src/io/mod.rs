@@ -28,9 +28,9 @@
 #[cfg(feature = "parallel")]
 pub mod batch;
 
-use crate::spline::curve::NurbsCurve;
 use crate::enclose::{Enclosure, Termination};
 use crate::error::CurveError;
+use crate::spline::curve::NurbsCurve;
 use inari::Interval;
 use serde::de::{self, DeserializeSeed, IgnoredAny, MapAccess, SeqAccess, Visitor};
 use std::cell::RefCell;

@@ -6,18 +6,18 @@
 //! reuse the command line's records ([`write_enclosure_record`], [`write_eval_record`],
 //! [`write_error_record`]) and add fields, never rename them.
 
-use crate::spline::bspline::HSpline;
+use crate::build::knot_vectors::{uniform_clamped, uniform_unclamped};
 use crate::enclose::{
     strategy_with_work, BoxEncloser, CandidateKind, Enclosure, Extremum, Guarantee, STRATEGY_NAMES,
 };
 use crate::error::{CurveError, EvalError};
-use crate::spline::eval::project;
 use crate::io::{
     eval_fields, parse_curve, write_enclosure_record, write_error_record, write_eval_record,
     write_num, write_nums, write_str, InputError,
 };
-use crate::build::knot_vectors::{uniform_clamped, uniform_unclamped};
 use crate::num::iv;
+use crate::spline::bspline::HSpline;
+use crate::spline::eval::project;
 use crate::NurbsCurve;
 use std::time::Instant;
 use thiserror::Error;

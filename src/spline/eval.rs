@@ -1,10 +1,10 @@
 //! NURBS evaluation: points and derivatives, f64 / interval / MPFR, point or interval
 //! parameters.
 
-use crate::spline::bspline::{basis_funs, HSpline};
-use crate::spline::curve::NurbsCurve;
 use crate::error::EvalError;
 use crate::num::{iv, Scalar};
+use crate::spline::bspline::{basis_funs, HSpline};
+use crate::spline::curve::NurbsCurve;
 use inari::Interval;
 
 /// Binomial coefficient (small arguments; exact in f64 up to far beyond what is used).

@@ -3,9 +3,9 @@
 //! is converted back to a [`NurbsCurve`] (so these are *not* exact: use `HSpline<Interval>` for
 //! verified refinement).
 
+use crate::error::EvalError;
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
-use crate::error::EvalError;
 
 fn from_hspline(h: &HSpline<f64>) -> NurbsCurve {
     // Knot insertion keeps weights positive (convex combinations) and the knot vector valid,
@@ -160,8 +160,11 @@ mod tests {
             // verified Bézier extraction encloses the f64 evaluation too
             let hs = HSpline::<Interval>::from_curve(&c).bezier_segment(c.find_span(u));
             let t = (u - hs.a) / (hs.b - hs.a);
-            let v =
-                crate::spline::eval::project(hs.eval_local(&Interval::try_from((t, t)).unwrap()), 2, true);
+            let v = crate::spline::eval::project(
+                hs.eval_local(&Interval::try_from((t, t)).unwrap()),
+                2,
+                true,
+            );
             for j in 0..2 {
                 assert!(v[j].inf() - 1e-12 <= p[j] && p[j] <= v[j].sup() + 1e-12);
                 assert!(enc[j].contains(p[j]));

@@ -41,11 +41,11 @@
 //! Cost (2-D cubic Bézier, `cargo run --release --example tight_speed`): `coord_at` ~50 ns,
 //! `coord_over` on a small box ~150 ns, the lazily built span data ~600 ns once per curve.
 
+use crate::num::ddi::{dist_up, up, Ddi};
+use crate::num::{iv, Scalar};
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
-use crate::num::ddi::{dist_up, up, Ddi};
 use crate::spline::eval::CurveEval;
-use crate::num::{iv, Scalar};
 use inari::Interval;
 use std::sync::OnceLock;
 

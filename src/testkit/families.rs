@@ -4,8 +4,8 @@
 //! Everything here is deterministic (no randomness), so a harness gets the same curves on
 //! every run.
 
-use crate::spline::curve::NurbsCurve;
 use crate::build::interpolate::{interpolate_cubic, InterpolateError, Parametrization};
+use crate::spline::curve::NurbsCurve;
 
 /// A sampled test function f on an interval [x0, x1].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -10,8 +10,8 @@
 //! Every curve returned is valid by construction (the constructor is called and its `Ok` is
 //! asserted; the test `every_family_is_valid_over_many_seeds` checks this over many seeds).
 
-use crate::spline::curve::NurbsCurve;
 use crate::error::CurveError;
+use crate::spline::curve::NurbsCurve;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::ops::RangeInclusive;

@@ -33,9 +33,9 @@
 //! curve jumps, and the one-sided limit of the left piece (which the curve does not attain) is
 //! included, as every strategy that works span by span on closed spans includes it.
 
+use crate::num::{mpfr_prec, ulp, with_mpfr_prec, MPFR_PREC};
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
-use crate::num::{mpfr_prec, ulp, with_mpfr_prec, MPFR_PREC};
 use rug::{Assign, Float};
 use std::cmp::Ordering;
 

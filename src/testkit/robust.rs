@@ -9,12 +9,12 @@
 //! explores the curve space instead of the JSON grammar; invalid results (NaN bits, wrong
 //! counts) are typed [`CurveError`]s, which is part of what is tested.
 
-use crate::spline::curve::NurbsCurve;
 use crate::enclose::{
     all_strategies, BezierSubdivision, BoxEncloser, ControlHull, Enclosure, Guarantee, Newton,
     Rescaled, SearchRegion,
 };
 use crate::error::CurveError;
+use crate::spline::curve::NurbsCurve;
 use crate::testkit::validate::{check_containment, dense_params};
 
 /// Reads bytes from the front; zeros once exhausted (so every input decodes).

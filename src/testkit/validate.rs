@@ -1,10 +1,10 @@
 //! Validation of enclosures: containment checks against verified point enclosures, and
 //! tightness measures. Used by the tests and by the reproduction harness.
 
-use crate::spline::curve::NurbsCurve;
 use crate::enclose::Enclosure;
-use crate::spline::eval::CurveEval;
 use crate::num::iv;
+use crate::spline::curve::NurbsCurve;
+use crate::spline::eval::CurveEval;
 use inari::Interval;
 
 /// A proven containment miss: at `param`, coordinate `coord` of the curve lies in
