@@ -1,5 +1,5 @@
 //! Timing of the interval Newton strategies (release build):
-//! `cargo run --release --example newton_speed`.
+//! `cargo run --release --bin newton_speed`.
 //! Cases: the thesis's largest table case (degree 3, 101 control points, 1-D), the thesis's
 //! degree table (11 points, p = 2..10), random 2-D cubic Béziers; default vs thesis settings.
 use nurbs_box::enclose::{BoxEncloser, Newton, SearchRegion};

@@ -7,7 +7,7 @@
 //! against sampled interval evaluations; this checks against the extremum itself, which sampling
 //! can miss by a hair.
 //!
-//! Run: `cargo run --release --features mpfr --example reference_audit [-- --cases N --seed S
+//! Run: `cargo run --release --features mpfr --bin reference_audit [-- --cases N --seed S
 //! --seconds T --show-worst 1]`, or as in the README `... > results/reference_audit.md` (defaults: 2000 cases, seed 1, no time limit). Prints a summary per strategy
 //! (worst and median distance in ulps of the coordinate scale, terminations) and, for every
 //! violation, the curve as JSON; exits 1 if there was one.

@@ -11,7 +11,7 @@
 //! strategy; the Lagrange boxes are widened by the conversion radius, so they are verified
 //! boxes of the exact Lagrange curves.
 //!
-//! Run: `cargo run --release --example runge` (writes `results/runge.md`; `--out PATH` to
+//! Run: `cargo run --release --bin runge` (writes `results/runge.md`; `--out PATH` to
 //! write elsewhere, `-` for stdout).
 
 use nurbs_box::build::interpolate::{interpolate_cubic, Parametrization};

@@ -1,4 +1,4 @@
-//! Timing of the precision layer: `cargo run --release --example tight_speed`.
+//! Timing of the precision layer: `cargo run --release --bin tight_speed`.
 //!
 //! Measures `TightEval::new`, `coord_at`, `coord_over` (a 1e-12 box around a critical point) on
 //! a 2-D cubic Bézier, and kurbo's (unverified, f64) `CubicBez::bounding_box` as the baseline.

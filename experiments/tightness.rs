@@ -2,7 +2,7 @@
 //! target: every bound of `newton` / `bezier` within 4 ulps of the coordinate scale of the exact
 //! extremum, median <= 1 ulp), per strategy and per `gen` family.
 //!
-//! Run: `cargo run --release --features mpfr --example tightness [-- --curves N --seed S
+//! Run: `cargo run --release --features mpfr --bin tightness [-- --curves N --seed S
 //! --max-points M]` (defaults: 100 curves per family, seed 1, reference for curves with at most
 //! 400 control points). Deterministic given the seed. Prints Markdown tables.
 //!

@@ -19,10 +19,25 @@
 //!   singletons — always true for a line in a quadratic contour, whose midpoint of f32 values
 //!   is exact); otherwise the segment is kept as a separate curve of its own degree and the
 //!   contour's spline is cut there.
+//!
+//! ## Placement of TrueType outlines
+//!
+//! A `glyf` outline is placed as rasterizers place it: shifted horizontally by
+//! `lsb - xMin`, the `hmtx` left side bearing minus the `xMin` stored in the glyph's `glyf`
+//! header, so that the stored `xMin` lands on the left side bearing. For almost every glyph the
+//! two agree and the shift is 0; where a font's `hmtx` and `glyf` disagree, the shifted outline
+//! is the one a user of the font sees. FreeType does this in its TrueType loader
+//! (`ttgload.c`): the phantom point `pp1.x = bbox.xMin - left_bearing` (the stored header
+//! `xMin`), and `TT_Load_Glyph` translates the loaded outline by `-pp1.x` "so that (0,0) is the
+//! glyph's origin", independent of bit 1 of the `head` flags; fontTools' glyph set draws
+//! `glyf` glyphs with the offset `lsb - xMin` likewise. ttf-parser reports the coordinates as
+//! stored, so the shift is applied here ([`glyph_outline`]), and the stored box is shifted
+//! with it ([`GlyphBox::stored_bbox`]) so that the comparison with the verified box is the
+//! one in the font's own frame. The shift is an integer, so the coordinates stay exact. CFF
+//! outlines are used as they are (their `hmtx` side bearing is informational).
 
 use crate::enclose::BoxEncloser;
 use crate::error::CurveError;
-use crate::io::{write_nums, write_str};
 use crate::num::iv;
 use crate::spline::bspline::BezierSeg;
 use crate::spline::curve::NurbsCurve;
@@ -161,12 +176,40 @@ impl OutlineBuilder for Collector {
     }
 }
 
-/// The outline of one glyph (empty for glyphs without one, e.g. the space).
+/// The outline of one glyph (empty for glyphs without one, e.g. the space), placed as
+/// rasterizers place it: a TrueType outline shifted by [`placement_shift`] (see the module
+/// documentation).
 pub fn glyph_outline(face: &Face<'_>, id: GlyphId) -> Outline {
     let mut c = Collector::default();
     face.outline_glyph(id, &mut c);
     c.finish();
+    let dx = placement_shift(face, id);
+    if dx != 0.0 {
+        for p in c
+            .outline
+            .contours
+            .iter_mut()
+            .flatten()
+            .flat_map(|s| s.pts.iter_mut())
+        {
+            // integers of at most 17 bits: the sum is exact
+            p[0] += dx;
+        }
+    }
     c.outline
+}
+
+/// The horizontal shift rasterizers apply to a TrueType (`glyf`) outline: the `hmtx` left
+/// side bearing minus the `xMin` of the glyph's `glyf` header (FreeType's `-pp1.x`, fontTools'
+/// `lsb - xMin`); 0 for CFF outlines and for glyphs without a `glyf` box or side bearing.
+pub fn placement_shift(face: &Face<'_>, id: GlyphId) -> f64 {
+    let Some(glyf) = face.tables().glyf else {
+        return 0.0;
+    };
+    match (face.glyph_hor_side_bearing(id), glyf.bbox(id)) {
+        (Some(lsb), Some(b)) => f64::from(lsb) - f64::from(b.x_min),
+        _ => 0.0,
+    }
 }
 
 /// The segment's control points elevated to degree `p`, if the elevated points are exactly
@@ -249,7 +292,9 @@ pub struct GlyphBox {
     pub glyph_id: u16,
     /// glyph name from the `post` or CFF table, if any
     pub name: Option<String>,
-    /// the box stored in the `glyf` table (integer font units), if the font has one
+    /// the box stored in the `glyf` table (integer font units), if the font has one, shifted
+    /// horizontally like the outline (by [`placement_shift`]; its x_min is then the `hmtx`
+    /// left side bearing)
     pub stored_bbox: Option<[f64; 4]>,
     /// box of all control points (ttf-parser's computed "bbox" is this box)
     pub control_bbox: Option<[f64; 4]>,
@@ -350,12 +395,13 @@ pub fn glyph_boxes(
                 ihi[j] = ihi[j].max(b.inner_hi);
             }
         }
+        let dx = placement_shift(&face, gid);
         let stored_bbox = glyf.and_then(|g| g.bbox(gid)).map(|r| {
             [
-                r.x_min as f64,
-                r.y_min as f64,
-                r.x_max as f64,
-                r.y_max as f64,
+                f64::from(r.x_min) + dx,
+                f64::from(r.y_min),
+                f64::from(r.x_max) + dx,
+                f64::from(r.y_max),
             ]
         });
         let outer = [lo[0], lo[1], hi[0], hi[1]];
@@ -380,60 +426,6 @@ pub fn glyph_boxes(
         });
     }
     Ok(out)
-}
-
-/// Append one glyph record (one line of `nurbs-box font` output, no newline):
-/// `{"glyph_id","name","verified","curves","lo","hi","inner_lo","inner_hi","stored_bbox",
-/// "control_bbox","loose_by","too_small_by"}`; boxes as [x_min, y_min, x_max, y_max] arrays
-/// (corners as [x, y]), `null` where absent; numbers as in `docs/formats.md`.
-pub fn write_glyph_record(out: &mut Vec<u8>, g: &GlyphBox) {
-    let opt = |out: &mut Vec<u8>, b: Option<[f64; 4]>| match b {
-        Some(b) => write_nums(out, b),
-        None => out.extend_from_slice(b"null"),
-    };
-    out.extend_from_slice(format!("{{\"glyph_id\":{},\"name\":", g.glyph_id).as_bytes());
-    match &g.name {
-        Some(n) => write_str(out, n),
-        None => out.extend_from_slice(b"null"),
-    }
-    out.extend_from_slice(
-        format!(",\"verified\":{},\"curves\":{}", g.verified, g.curves).as_bytes(),
-    );
-    for (key, v) in [
-        ("lo", g.tight_lo),
-        ("hi", g.tight_hi),
-        ("inner_lo", g.inner_lo),
-        ("inner_hi", g.inner_hi),
-    ] {
-        out.extend_from_slice(format!(",\"{key}\":").as_bytes());
-        write_nums(out, v);
-    }
-    out.extend_from_slice(b",\"stored_bbox\":");
-    opt(out, g.stored_bbox);
-    out.extend_from_slice(b",\"control_bbox\":");
-    opt(out, g.control_bbox);
-    out.extend_from_slice(b",\"loose_by\":");
-    write_nums(out, g.loose_by);
-    out.extend_from_slice(b",\"too_small_by\":");
-    write_nums(out, g.too_small_by);
-    out.push(b'}');
-}
-
-/// The `nurbs-box font FILE` command as a library function: one record per glyph with an
-/// outline (see [`write_glyph_record`]) on `out`. Errors: the font cannot be parsed, or
-/// writing fails.
-pub fn run_cli<W: std::io::Write>(
-    font_bytes: &[u8],
-    strategy: &dyn BoxEncloser,
-    out: &mut W,
-) -> Result<(), Box<dyn std::error::Error>> {
-    for g in glyph_boxes(font_bytes, strategy)? {
-        let mut line = Vec::new();
-        write_glyph_record(&mut line, &g);
-        line.push(b'\n');
-        out.write_all(&line)?;
-    }
-    Ok(())
 }
 
 #[cfg(test)]

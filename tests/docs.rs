@@ -66,10 +66,13 @@ fn readme_points_to_the_docs() {
     }
 }
 
-/// What the repository's text files are checked for: (description, predicate on one line).
-fn forbidden() -> Vec<(String, Box<dyn Fn(&str) -> bool>)> {
+/// A check on the repository's text files: (description, predicate on one line).
+type LineCheck = (String, Box<dyn Fn(&str) -> bool>);
+
+/// What the repository's text files are checked for.
+fn forbidden() -> Vec<LineCheck> {
     let shared = ["sha", "red"].concat();
-    let literal = |s: String| -> (String, Box<dyn Fn(&str) -> bool>) {
+    let literal = |s: String| -> LineCheck {
         let d = format!("{s:?}");
         (d, Box::new(move |l: &str| l.contains(&s)))
     };

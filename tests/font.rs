@@ -113,3 +113,42 @@ fn letter_o_has_curved_extremes_and_the_stored_box_is_close() {
         "font_parse"
     );
 }
+
+#[test]
+fn truetype_outlines_are_placed_as_freetype_places_them() {
+    // DejaVu Sans Mono has 58 glyphs whose hmtx left side bearing is one unit more than the
+    // glyf xMin; FreeType (FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING) shifts their outlines, simple
+    // and composite, by lsb - xMin. The smallest control-point x FreeType reports:
+    let freetype_min_x = [
+        ("ij", -4.0),
+        ("uni0361", -235.0),
+        ("uni0EB1", -1142.0),
+        ("uni0EB3", -826.0), // composite
+        ("uni1F0A", -403.0), // composite
+    ];
+    let face = Face::parse(FONT, 0).unwrap();
+    let s = strategy_by_name("hull", None).unwrap();
+    let boxes = glyph_boxes(FONT, s.as_ref()).unwrap();
+    for (name, x) in freetype_min_x {
+        let g = boxes
+            .iter()
+            .find(|g| g.name.as_deref() == Some(name))
+            .unwrap();
+        assert_eq!(g.control_bbox.unwrap()[0], x, "{name}");
+        let gid = ttf_parser::GlyphId(g.glyph_id);
+        assert_eq!(nurbs_box::font::placement_shift(&face, gid), 1.0, "{name}");
+    }
+    // the stored box moves with the outline: its x_min is the left side bearing
+    let mut shifted = 0;
+    for g in &boxes {
+        let gid = ttf_parser::GlyphId(g.glyph_id);
+        let lsb = face.glyph_hor_side_bearing(gid).unwrap();
+        assert_eq!(g.stored_bbox.unwrap()[0], f64::from(lsb), "{:?}", g.name);
+        shifted += usize::from(nurbs_box::font::placement_shift(&face, gid) != 0.0);
+    }
+    assert_eq!(shifted, 58);
+    // CFF outlines are not moved
+    let cff = Face::parse(CFF_FONT, 0).unwrap();
+    let o = cff.glyph_index('O').unwrap();
+    assert_eq!(nurbs_box::font::placement_shift(&cff, o), 0.0);
+}

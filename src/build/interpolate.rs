@@ -11,7 +11,6 @@
 use crate::build::knot_vectors::interpolation_knots;
 use crate::build::tridiagonal::{solve_tridiagonal, TridiagonalError};
 use crate::error::{CurveError, EvalError};
-use crate::io::{write_curve, write_error_record};
 use crate::num::iv;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
@@ -438,117 +437,6 @@ pub fn interpolation_residual(
         }
     }
     Ok(worst)
-}
-
-/// One point set read by [`run_cli`]: the points, or why the input could not be read as one.
-type PointSetInput = Result<Vec<Vec<f64>>, (&'static str, String)>;
-
-/// Read point sets (see [`run_cli`] for the accepted forms).
-pub fn parse_point_sets(text: &str) -> Vec<PointSetInput> {
-    use serde_json::Value;
-    fn to_points(v: &Value) -> PointSetInput {
-        let bad = |m: String| Err(("invalid_points", m));
-        let Some(arr) = v.as_array() else {
-            return bad("points: expected a JSON array of points (arrays of numbers)".into());
-        };
-        let mut out = Vec::with_capacity(arr.len());
-        for (i, p) in arr.iter().enumerate() {
-            let Some(coords) = p.as_array() else {
-                return bad(format!(
-                    "points[{i}]: expected an array of numbers, got {p}"
-                ));
-            };
-            let mut q = Vec::with_capacity(coords.len());
-            for (j, x) in coords.iter().enumerate() {
-                match x.as_f64() {
-                    Some(f) => q.push(f),
-                    None => return bad(format!("points[{i}][{j}]: expected a number, got {x}")),
-                }
-            }
-            out.push(q);
-        }
-        Ok(out)
-    }
-    // A list of point sets has arrays at depth 3: [[[x, y], ...], ...].
-    let is_list = |v: &Value| {
-        v.as_array()
-            .and_then(|a| a.first())
-            .and_then(|p| p.as_array())
-            .and_then(|p| p.first())
-            .is_some_and(|x| x.is_array())
-    };
-    let text = text.trim();
-    if text.is_empty() {
-        return Vec::new();
-    }
-    if let Ok(v) = serde_json::from_str::<Value>(text) {
-        return if is_list(&v) {
-            v.as_array().unwrap().iter().map(to_points).collect()
-        } else {
-            vec![to_points(&v)]
-        };
-    }
-    // JSON Lines: one point set per non-blank line; a malformed line keeps its index.
-    text.lines()
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| match serde_json::from_str::<Value>(l) {
-            Ok(v) => to_points(&v),
-            Err(e) => Err(("invalid_json", format!("line is not valid JSON: {e}"))),
-        })
-        .collect()
-}
-
-/// The `nurbs-box interpolate` command as a library function: read point sets from `input`,
-/// interpolate each with natural end conditions and the parametrisation `param`, and write one
-/// curve per line (the curve JSON of `docs/formats.md`, by [`crate::io::write_curve`]) to
-/// `out`, so the output can be piped into `nurbs-box enclose`.
-///
-/// Input: a JSON array of points (one point set, e.g. `[[0,0],[1,2],[3,1]]`), a JSON array of
-/// such arrays (several sets), or JSON Lines with one point set per line (blank lines skipped).
-/// Point sets are numbered from 0 in input order. A set that cannot be interpolated produces no
-/// curve on `out` but a record `{"index": i, "error": {"kind": ..., "message": ...}}` on `err`
-/// (keeping `out` a pure curve stream). Returns `Ok(true)` when every set gave a curve.
-pub fn run_cli<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
-    input: R,
-    param: Parametrization,
-    out: &mut W,
-    err: &mut E,
-) -> std::io::Result<bool> {
-    run_cli_with(input, out, err, |_, pts| {
-        interpolate_cubic(pts, param).map_err(|e| (e.kind(), e.to_string()))
-    })
-}
-
-/// [`run_cli`] with the construction `build(index, points)` in place of the cubic spline (the
-/// Lagrange curves of [`crate::build::lagrange`] use it): same input forms, same output and error
-/// records.
-pub fn run_cli_with<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
-    mut input: R,
-    out: &mut W,
-    err: &mut E,
-    mut build: impl FnMut(usize, &[Vec<f64>]) -> Result<NurbsCurve, (&'static str, String)>,
-) -> std::io::Result<bool> {
-    let mut text = String::new();
-    input.read_to_string(&mut text)?;
-    let mut all_ok = true;
-    for (i, set) in parse_point_sets(&text).into_iter().enumerate() {
-        let res = set.and_then(|pts| build(i, &pts));
-        let mut line = Vec::new();
-        match res {
-            Ok(c) => {
-                write_curve(&mut line, &c);
-                line.push(b'\n');
-                out.write_all(&line)?;
-            }
-            Err((kind, message)) => {
-                all_ok = false;
-                write_error_record(&mut line, i, "", kind, &message);
-                line.push(b'\n');
-                err.write_all(&line)?;
-            }
-        }
-    }
-    Ok(all_ok)
 }
 
 #[cfg(test)]

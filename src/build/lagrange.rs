@@ -461,56 +461,6 @@ pub fn widen_enclosure(e: &Enclosure, radius: &[f64]) -> Enclosure {
     out
 }
 
-/// One report record of `nurbs-box interpolate --basis lagrange --report FILE` (no newline):
-/// `{"index":i,"basis":"lagrange","degree":g,"params":[...],"coefficient_radius":[...]}`.
-pub fn write_report_record(
-    out: &mut Vec<u8>,
-    index: usize,
-    lc: &LagrangeCurve,
-    lb: &LagrangeBezier,
-) {
-    use crate::io::write_nums;
-    out.extend_from_slice(
-        format!(
-            "{{\"index\":{index},\"basis\":\"lagrange\",\"degree\":{},\"params\":",
-            lc.degree()
-        )
-        .as_bytes(),
-    );
-    write_nums(out, lc.params.iter().copied());
-    out.extend_from_slice(b",\"coefficient_radius\":");
-    write_nums(out, lb.radius.iter().copied());
-    out.push(b'}');
-}
-
-/// The `nurbs-box interpolate --basis lagrange` command as a library function: like
-/// [`crate::build::interpolate::run_cli`] (same input forms, one curve line per point set on `out`,
-/// error records on `err`), with the Lagrange curve through each set (parameters by `param`)
-/// converted by [`LagrangeCurve::to_bezier`]. When `report` is given, one
-/// [`write_report_record`] line per converted set goes there: its `coefficient_radius` is what
-/// a box of the written curve must be widened by to enclose the Lagrange curve itself.
-pub fn run_cli<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
-    input: R,
-    param: Parametrization,
-    out: &mut W,
-    err: &mut E,
-    report: Option<&mut dyn std::io::Write>,
-) -> std::io::Result<bool> {
-    let mut rep = Vec::new();
-    let ok = crate::build::interpolate::run_cli_with(input, out, err, |i, pts| {
-        let fail = |e: LagrangeError| (e.kind(), e.to_string());
-        let lc = LagrangeCurve::interpolate(pts, param).map_err(fail)?;
-        let lb = lc.to_bezier().map_err(fail)?;
-        write_report_record(&mut rep, i, &lc, &lb);
-        rep.push(b'\n');
-        Ok(lb.curve)
-    })?;
-    if let Some(r) = report {
-        r.write_all(&rep)?;
-    }
-    Ok(ok)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

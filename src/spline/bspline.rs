@@ -526,7 +526,7 @@ pub fn corner_cut_level<S: Scalar>(
 }
 
 /// Below this magnitude a knot difference cannot overflow (2^1022, half of the f64 range).
-const HALF_MAX: f64 = 4.49423283715578976932e307;
+const HALF_MAX: f64 = 4.494_232_837_155_79e307; // 2^1022 exactly
 
 /// x - a, or x/2 - a/2 when `half` (see [`knot_ratio`]).
 #[inline]

@@ -15,7 +15,6 @@
 //!   a leg of the control polygon.
 
 use crate::error::EvalError;
-use crate::io::{write_curve, write_error_record, write_num, write_nums, CurveReader};
 use crate::num::{iv, Scalar};
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
@@ -502,63 +501,6 @@ fn reinsert(r: &HSpline<Interval>, u: f64, k: usize, p: usize) -> Option<HSpline
         out.knots.insert(last + 1, u);
     }
     Some(out)
-}
-
-/// The `nurbs-box remove-knot` command as a library function: read curves (either stream form
-/// of `docs/formats.md`) from `input`, remove the knot `u` from each as often as
-/// [`NurbsCurve::remove_knot`] allows (at most `times`, default its multiplicity) within `tol`,
-/// and write the resulting curves, one per line, to `out` (pipe into `enclose`). An input that
-/// is not a valid curve, or whose knot cannot be removed at all (not a knot, not interior),
-/// gets an error record on `err` and no curve. When `report` is given, one line per curve
-/// goes there: `{"index":i,"knot":u,"multiplicity":s,"requested":N,"removed":k,
-/// "error_bound":[...]}` (a verified bound per coordinate on how far the curve moved).
-/// Returns `Ok(true)` when every input gave a curve.
-pub fn run_cli<R: std::io::Read, W: std::io::Write, E: std::io::Write>(
-    input: R,
-    u: f64,
-    times: Option<usize>,
-    tol: f64,
-    out: &mut W,
-    err: &mut E,
-    mut report: Option<&mut dyn std::io::Write>,
-) -> std::io::Result<bool> {
-    let mut all_ok = true;
-    for (index, curve) in CurveReader::new(input) {
-        let mut line = Vec::new();
-        let res = curve.map_err(|e| (e.kind(), e.to_string())).and_then(|c| {
-            c.remove_knot(u, times.unwrap_or(usize::MAX), tol)
-                .map_err(|e| (e.kind(), e.to_string()))
-        });
-        match res {
-            Ok(rem) => {
-                write_curve(&mut line, &rem.curve);
-                line.push(b'\n');
-                out.write_all(&line)?;
-                if let Some(rep) = report.as_deref_mut() {
-                    line.clear();
-                    line.extend_from_slice(format!("{{\"index\":{index},\"knot\":").as_bytes());
-                    write_num(&mut line, u);
-                    line.extend_from_slice(
-                        format!(
-                            ",\"multiplicity\":{},\"requested\":{},\"removed\":{},\"error_bound\":",
-                            rem.multiplicity, rem.requested, rem.removed
-                        )
-                        .as_bytes(),
-                    );
-                    write_nums(&mut line, rem.error_bound.iter().copied());
-                    line.extend_from_slice(b"}\n");
-                    rep.write_all(&line)?;
-                }
-            }
-            Err((kind, message)) => {
-                all_ok = false;
-                write_error_record(&mut line, index, "", kind, &message);
-                line.push(b'\n');
-                err.write_all(&line)?;
-            }
-        }
-    }
-    Ok(all_ok)
 }
 
 #[cfg(test)]

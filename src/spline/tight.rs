@@ -38,7 +38,7 @@
 //! Overflow anywhere makes a `Ddi` ENTIRE; then the generic interval kernels are used, so the
 //! result is never wrong (possibly loose, possibly ENTIRE).
 //!
-//! Cost (2-D cubic Bézier, `cargo run --release --example tight_speed`): `coord_at` ~50 ns,
+//! Cost (2-D cubic Bézier, `cargo run --release --bin tight_speed`): `coord_at` ~50 ns,
 //! `coord_over` on a small box ~150 ns, the lazily built span data ~600 ns once per curve.
 
 use crate::num::ddi::{dist_up, up, Ddi};
