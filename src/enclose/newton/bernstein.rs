@@ -155,8 +155,8 @@ impl SpanPoly {
     ///
     /// Rounding: every operation is in outward-rounded interval arithmetic, so `len` encloses
     /// the exact b - a (its upper bound is +inf if b - a overflows), a + t0 len encloses the
-    /// exact u(t0) and its lower bound is <= u(t0); likewise the upper bound of a + t1 len is
-    /// >= u(t1). As u is increasing, [lo, hi] contains u([t0, t1]). Clamping to [a, b] loses
+    /// exact u(t0) and its lower bound is <= u(t0); likewise the upper bound of a + t1 len is at
+    /// least u(t1). As u is increasing, [lo, hi] contains u([t0, t1]). Clamping to [a, b] loses
     /// nothing, as u(t) is in [a, b] for t in [0, 1], and keeps the box inside the closed span
     /// (where span k's piece is the curve).
     pub(super) fn to_u(&self, t: T) -> U {
