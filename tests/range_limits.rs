@@ -157,6 +157,48 @@ fn a_left_limit_at_a_jump_is_not_attained() {
     }
 }
 
+/// What `eval` returns at a knot (`src/guarantees.md`, "Values at knots"): inside the domain the
+/// right limit (the span starting at u), at the right end of the domain the left limit.
+#[test]
+fn values_at_knots_are_the_right_limit_and_the_left_limit_at_the_end() {
+    // jump at 0.5: the left piece tends to 3, C(0.5) = -5 (right piece); C(1) = 0
+    let c = found("jump");
+    let at = |u: f64| c.enclose_point(nurbs_box::num::iv::point(u)).unwrap()[0];
+    let v = at(0.5);
+    assert!(
+        v.inf() == -5.0 && v.sup() == -5.0,
+        "C(0.5) = [{}, {}]",
+        v.inf(),
+        v.sup()
+    );
+    let v = at(1.0);
+    assert!(
+        v.inf() == 0.0 && v.sup() == 0.0,
+        "C(1) = [{}, {}]",
+        v.inf(),
+        v.sup()
+    );
+    let f: Vec<f64> = c.point(0.5).unwrap();
+    assert_eq!(f[0], -5.0);
+    // an unclamped end: the last span's left limit at u_{n+1}
+    let u = NurbsCurve::new(
+        2,
+        vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0],
+        vec![vec![0.0], vec![4.0], vec![0.0]],
+        None,
+    )
+    .unwrap();
+    let (_, b) = u.domain();
+    let v = u.enclose_point(nurbs_box::num::iv::point(b)).unwrap()[0];
+    // C(3) on the span [2, 3] of degree 2: (P_1 + P_2) / 2 = 2
+    assert!(
+        v.inf() <= 2.0 && 2.0 <= v.sup(),
+        "C(b) = [{}, {}]",
+        v.inf(),
+        v.sup()
+    );
+}
+
 #[test]
 fn the_range_limit_family_is_sound() {
     let mut r = gen::rng(0x7a11);
@@ -193,44 +235,17 @@ fn degree_1000_is_bounded_for_every_strategy() {
 #[cfg(feature = "mpfr")]
 mod mpfr {
     use super::*;
-    use nurbs_box::testkit::reference::{inner_reached, reference_box, ulps_outside};
 
-    /// No verified outer bound misses the exact box, every inner bound is reached; with
-    /// `tight`, converged `newton` / `bezier` bounds are within 4 ulps of the scale.
+    /// No verified outer bound misses the exact box, every inner bound is reached
+    /// (`common::check_reference`); with `tight`, converged `newton` / `bezier` bounds are
+    /// within 4 ulps of the scale.
     pub fn against_reference(name: &str, c: &NurbsCurve, encs: &[Enclosure], tight: bool) {
-        let rb = reference_box(c);
-        for e in encs.iter().filter(|e| e.verified) {
-            for j in 0..c.dim() {
-                let cb = &e.coords[j];
-                let scale = c.coord_scale(j);
-                let dlo = ulps_outside(cb.lo, &rb.lo[j], scale, false);
-                let dhi = ulps_outside(cb.hi, &rb.hi[j], scale, true);
+        for (strategy, j, dlo, dhi, term) in common::check_reference(name, c, encs) {
+            if tight && term == Termination::Converged && matches!(strategy, "newton" | "bezier") {
                 assert!(
-                    dlo >= 0.0 && dhi >= 0.0,
-                    "{name}: {} coordinate {j}: [{:e}, {:e}] misses the exact [{}, {}]",
-                    e.strategy,
-                    cb.lo,
-                    cb.hi,
-                    rb.lo[j],
-                    rb.hi[j]
+                    dlo <= 4.0 && dhi <= 4.0,
+                    "{name}: {strategy} {j}: {dlo} / {dhi} ulps"
                 );
-                assert!(
-                    inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, scale),
-                    "{name}: {} coordinate {j}: inner [{:e}, {:e}] not reached, exact [{}, {}]",
-                    e.strategy,
-                    cb.inner_lo,
-                    cb.inner_hi,
-                    rb.lo[j],
-                    rb.hi[j]
-                );
-                let converged = matches!(cb.termination, Termination::Converged);
-                if tight && converged && matches!(e.strategy, "newton" | "bezier") {
-                    assert!(
-                        dlo <= 4.0 && dhi <= 4.0,
-                        "{name}: {} {j}: {dlo} / {dhi} ulps",
-                        e.strategy
-                    );
-                }
             }
         }
     }

@@ -539,64 +539,31 @@ fn fuzz_corpus_replays() {
 #[cfg(feature = "mpfr")]
 mod mpfr {
     use super::*;
-    use nurbs_box::testkit::reference::{reference_box, ulps_outside};
 
-    /// Every verified box contains the 256-bit reference box, and is close to it (see
-    /// `allowed`). `ROBUST_PRINT=1` prints the distances.
+    /// Every verified box contains the exact box and reaches its inner bounds
+    /// (`common::check_reference`), and is close to it (see `allowed`). `ROBUST_PRINT=1` prints
+    /// the distances.
     pub fn check_reference(name: &str, c: &NurbsCurve, encs: &[Enclosure]) {
-        let rb = reference_box(c);
-        for e in encs {
-            for j in 0..c.dim() {
-                let scale = c.coord_scale(j);
-                let cb = &e.coords[j];
-                let dlo = ulps_outside(cb.lo, &rb.lo[j], scale, false);
-                let dhi = ulps_outside(cb.hi, &rb.hi[j], scale, true);
-                assert!(
-                    dlo >= 0.0 && dhi >= 0.0,
-                    "{name}: {} coordinate {j}: box [{:e}, {:e}] misses the exact [{}, {}]",
-                    e.strategy,
-                    cb.lo,
-                    cb.hi,
-                    rb.lo[j],
-                    rb.hi[j]
-                );
-                assert!(
-                    nurbs_box::testkit::reference::inner_reached(
-                        &rb,
-                        j,
-                        cb.inner_lo,
-                        cb.inner_hi,
-                        scale
-                    ),
-                    "{name}: {} coordinate {j}: inner [{:e}, {:e}] not reached, exact [{}, {}]",
-                    e.strategy,
-                    cb.inner_lo,
-                    cb.inner_hi,
-                    rb.lo[j],
-                    rb.hi[j]
-                );
-                if std::env::var("ROBUST_PRINT").is_ok() {
-                    eprintln!(
-                        "{name} {} j={j} {:?} ulps outside: lo {dlo:.3e} hi {dhi:.3e}",
-                        e.strategy, cb.termination
-                    );
-                }
-                // Tightness: the Bézier and the (Bernstein-form) Newton strategies are within a
-                // few ulps of the coordinate scale; the hull is not tight at all.
-                let allowed = match e.strategy {
-                    "hull" => f64::INFINITY,
-                    // the thesis preset keeps the thesis's 20-step limit per box: sound (checked
-                    // above) but it may stop far from the extremum on such curves
-                    "newton-thesis" => f64::INFINITY,
-                    "bezier" | "newton" | "search-region-verified" => 64.0,
-                    _ => 1e11,
-                };
-                assert!(
-                    dlo <= allowed && dhi <= allowed,
-                    "{name}: {} coordinate {j}: {dlo} / {dhi} ulps outside the exact box",
-                    e.strategy
+        for (strategy, j, dlo, dhi, term) in common::check_reference(name, c, encs) {
+            if std::env::var("ROBUST_PRINT").is_ok() {
+                eprintln!(
+                    "{name} {strategy} j={j} {term:?} ulps outside: lo {dlo:.3e} hi {dhi:.3e}"
                 );
             }
+            // Tightness: the Bézier and the (Bernstein-form) Newton strategies are within a
+            // few ulps of the coordinate scale; the hull is not tight at all.
+            let allowed = match strategy {
+                "hull" => f64::INFINITY,
+                // the thesis preset keeps the thesis's 20-step limit per box: sound (checked
+                // above) but it may stop far from the extremum on such curves
+                "newton-thesis" => f64::INFINITY,
+                "bezier" | "newton" | "search-region-verified" => 64.0,
+                _ => 1e11,
+            };
+            assert!(
+                dlo <= allowed && dhi <= allowed,
+                "{name}: {strategy} coordinate {j}: {dlo} / {dhi} ulps outside the exact box"
+            );
         }
     }
 }

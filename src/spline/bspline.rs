@@ -528,6 +528,14 @@ pub fn corner_cut_level<S: Scalar>(
 /// Below this magnitude a knot difference cannot overflow (2^1022, half of the f64 range).
 const HALF_MAX: f64 = 4.494_232_837_155_79e307; // 2^1022 exactly
 
+/// Whether a difference of the knots (or parameters) a and b may overflow f64: |b - a| >= 2^1022
+/// (an f64 difference that rounds to inf compares as >= too; a NaN cannot arise from finite
+/// knots, and would count as overflowing).
+#[inline]
+fn may_overflow(a: f64, b: f64) -> bool {
+    !(b - a).abs().lt(&HALF_MAX)
+}
+
 /// x - a, or x/2 - a/2 when `half` (see [`knot_ratio`]).
 #[inline]
 fn knot_diff<S: Scalar>(x: S, a: f64, half: bool) -> S {
@@ -552,7 +560,7 @@ fn knot_diff<S: Scalar>(x: S, a: f64, half: bool) -> S {
 /// a denominator >= 2^1021 it is far below one ulp of the ratio.
 #[inline]
 pub fn knot_ratio<S: Scalar>(x: &S, a: f64, b: f64) -> S {
-    let half = !(b - a).abs().lt(&HALF_MAX);
+    let half = may_overflow(a, b);
     knot_diff(x.clone(), a, half) / knot_diff(S::from_f64(b), a, half)
 }
 
@@ -560,7 +568,7 @@ pub fn knot_ratio<S: Scalar>(x: &S, a: f64, b: f64) -> S {
 /// difference may overflow (the derivative factors p / (u_{i+p+1} - u_{i+1}) of eq. 2.7).
 #[inline]
 pub fn knot_quotient<S: Scalar>(num: S, a: f64, b: f64) -> S {
-    let half = !(b - a).abs().lt(&HALF_MAX);
+    let half = may_overflow(a, b);
     if half {
         num * S::from_f64(0.5) / knot_diff(S::from_f64(b), a, true)
     } else {
@@ -580,7 +588,7 @@ pub fn basis_funs<S: Scalar>(knots: &[f64], k: usize, u: &S, p: usize) -> Vec<S>
     // All differences below are of the knots u_{k+1-p} ..= u_{k+p} and u in [u_k, u_{k+1}]:
     // halved together when their spread may overflow (see `knot_ratio`); every N is a ratio
     // of such differences, so the common factor cancels.
-    let half = !(knots[k + p] - knots[k + 1 - p]).abs().lt(&HALF_MAX);
+    let half = may_overflow(knots[k + 1 - p], knots[k + p]);
     let d = |x: S, a: f64| knot_diff(x, a, half);
     for j in 1..=p {
         left[j] = d(u.clone(), knots[k + 1 - j]);

@@ -94,3 +94,47 @@ pub fn check_registry(
     }
     out
 }
+
+/// Against the exact (MPFR) box of `c`: every verified enclosure in `encs` contains it and its
+/// inner bounds are reached (both asserted, naming `name`, the strategy and the coordinate).
+/// Returns per verified enclosure and coordinate `(strategy, j, dlo, dhi, termination)`, the
+/// distances of the outer bounds in ulps of the coordinate scale, for the caller's tightness
+/// rule.
+#[cfg(feature = "mpfr")]
+#[allow(dead_code)] // not every test crate checks against the reference
+pub fn check_reference(
+    name: &str,
+    c: &nurbs_box::NurbsCurve,
+    encs: &[nurbs_box::Enclosure],
+) -> Vec<(&'static str, usize, f64, f64, nurbs_box::Termination)> {
+    use nurbs_box::testkit::reference::{inner_reached, reference_box, ulps_outside};
+    let rb = reference_box(c);
+    let mut out = Vec::new();
+    for e in encs.iter().filter(|e| e.verified) {
+        for (j, cb) in e.coords.iter().enumerate() {
+            let scale = c.coord_scale(j);
+            let dlo = ulps_outside(cb.lo, &rb.lo[j], scale, false);
+            let dhi = ulps_outside(cb.hi, &rb.hi[j], scale, true);
+            assert!(
+                dlo >= 0.0 && dhi >= 0.0,
+                "{name}: {} coordinate {j}: box [{:e}, {:e}] misses the exact [{}, {}]",
+                e.strategy,
+                cb.lo,
+                cb.hi,
+                rb.lo[j],
+                rb.hi[j]
+            );
+            assert!(
+                inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, scale),
+                "{name}: {} coordinate {j}: inner [{:e}, {:e}] not reached, exact [{}, {}]",
+                e.strategy,
+                cb.inner_lo,
+                cb.inner_hi,
+                rb.lo[j],
+                rb.hi[j]
+            );
+            out.push((e.strategy, j, dlo, dhi, cb.termination));
+        }
+    }
+    out
+}
