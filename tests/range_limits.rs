@@ -77,7 +77,11 @@ fn end_values_at_the_range_limits_are_exact_attained_bounds() {
         // y: the clamped start value P_0 = 8.453e-321 (subnormal) is attained exactly
         let y = &e.coords[1];
         assert!(y.inner_lo <= 8.453e-321, "{}: {y:?}", s.name());
-        assert!(y.lo >= 5.845e-321, "{}: lo below the control points", s.name());
+        assert!(
+            y.lo >= 5.845e-321,
+            "{}: lo below the control points",
+            s.name()
+        );
         let e = s.enclose(&c2);
         let x = &e.coords[0];
         assert_eq!((x.lo, x.hi), (-f64::MAX, 1e-300), "{}", s.name());
