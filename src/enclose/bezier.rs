@@ -780,14 +780,13 @@ impl BoxEncloser for BezierSubdivision {
             } else {
                 lo.term
             };
-            // The control-point box is verified too, so intersecting with it stays sound and
-            // guarantees the sandwich hull ⊇ bezier.
-            let (plo, phi) = c.coord_range(j, 0..=n);
+            // (The driver intersects the result with the control-point box, which guarantees
+            // the sandwich hull ⊇ bezier: `driver::drive`.)
             coords.push(CoordBox {
-                lo: (-lo.upper).max(plo),
-                hi: hi.upper.min(phi),
-                inner_lo: (-lo.attained).max(plo),
-                inner_hi: hi.attained.min(phi),
+                lo: -lo.upper,
+                hi: hi.upper,
+                inner_lo: -lo.attained,
+                inner_hi: hi.attained,
                 argmin: pick(&mut lo),
                 argmax: pick(&mut hi),
                 stats,
