@@ -27,6 +27,7 @@ pub mod num;
 #[cfg(feature = "serve")]
 pub mod serve;
 pub mod spline;
+pub mod surface;
 #[cfg(feature = "testkit")]
 pub mod testkit;
 
@@ -37,6 +38,7 @@ pub use enclose::{
 pub use error::{CurveError, EvalError};
 pub use io::{curve_to_json, parse_curve, CurveReader, InputError};
 pub use num::{Ddi, Mr, Scalar};
+pub use surface::{NurbsSurface, SurfaceEncloser, SurfaceError};
 pub use spline::{
     basis_funs, find_span, multiplicity, project, BezierSeg, CurveEval, HSpline, NurbsCurve,
     TightEval,

@@ -1,0 +1,209 @@
+//! `bezier`: Bézier patch decomposition (Boehm knot insertion in u and v, NURBS Book A5.6 per
+//! direction), tensor Bernstein bounds and subdivision (de Casteljau in u and v), branch and
+//! bound per coordinate and side.
+//!
+//! * **Bounds.** A Bézier patch lies in the box of its coefficients (tensor Bernstein
+//!   polynomials are >= 0 and sum to 1). For a rational patch with every weight coefficient
+//!   w_rc > 0 the value S_j = A_j / w is a convex combination of the ratios b_rc / w_rc
+//!   (Narkawicz, Garloff, Smith & Muñoz 2012: the range of p / q lies in [min b_i / d_i,
+//!   max b_i / d_i] when every d_i > 0). The coefficients are interval enclosures of the exact
+//!   ones (extraction and subdivision in outward-rounded interval arithmetic), so the bounds
+//!   are the infima / suprema over the intervals. A weight coefficient not provably > 0 gives
+//!   an unbounded patch (sound; it is subdivided or, at the work limit, left to the driver's
+//!   net-box clamp).
+//! * **Attained values.** The corner coefficients are the surface values at the patch corners
+//!   (Zettler & Garloff 1998 vertex test: a bound attained at a corner coefficient is exact), so
+//!   `sup` of a corner ratio bounds an attained value from above: the inner bound.
+//! * **Convergence.** The bounds of a polynomial patch converge quadratically in the patch
+//!   width under subdivision (Garloff 1986); the search stops when the smallest lower bound is
+//!   within `tol` times the coordinate's scale of the best attained value, at the depth limit,
+//!   or at the work limit (sound: the bound is the smallest over all open patches).
+
+use super::{coord_box, enclosure, SurfaceEncloser};
+use crate::enclose::{Enclosure, Guarantee, Settings, Stats, Termination};
+use crate::surface::eval::Patch;
+use crate::surface::model::NurbsSurface;
+use inari::Interval;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// Bézier patch subdivision with Bernstein (ratio) bounds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BezierPatches {
+    /// relative tolerance: stop when a bound is within `tol * scale` of an attained value
+    pub tol: f64,
+    /// patch splits per coordinate and side
+    pub max_work: u64,
+    /// deepest subdivision (halvings per direction)
+    pub max_depth: u32,
+}
+
+impl Default for BezierPatches {
+    fn default() -> Self {
+        BezierPatches {
+            tol: f64::EPSILON,
+            max_work: 2000,
+            max_depth: 40,
+        }
+    }
+}
+
+impl BezierPatches {
+    /// With the registry's settings (tolerance; work budget capped at the default).
+    pub fn with_settings(s: &Settings) -> Self {
+        let d = BezierPatches::default();
+        BezierPatches {
+            tol: s.tol.filter(|t| t.is_finite() && *t >= 0.0).unwrap_or(d.tol),
+            max_work: s.max_work.clamp(1, d.max_work),
+            ..d
+        }
+    }
+}
+
+/// Bounds of coordinate j (times `sign`, so the maximum is a minimum of -S_j) on a patch:
+/// (lower bound, smallest upper bound of a corner value).
+fn bounds(pa: &Patch<Interval>, j: usize, rational: bool, sign: f64) -> (f64, f64) {
+    let d = pa.h - 1;
+    let sg = Interval::try_from((sign, sign)).unwrap_or(Interval::ENTIRE);
+    let val = |c: &[Interval]| -> Interval {
+        if !rational {
+            return sg * c[j];
+        }
+        if c[d].inf() > 0.0 {
+            sg * (c[j] / c[d])
+        } else {
+            Interval::ENTIRE
+        }
+    };
+    let mut lo = f64::INFINITY;
+    for r in 0..=pa.p {
+        for c in 0..=pa.q {
+            lo = lo.min(val(pa.coef(r, c)).inf());
+        }
+    }
+    let mut best = f64::INFINITY;
+    for (r, c) in [(0, 0), (0, pa.q), (pa.p, 0), (pa.p, pa.q)] {
+        best = best.min(val(pa.coef(r, c)).sup());
+    }
+    // a NaN (never expected from a valid surface) must not look like a bound
+    (if lo.is_nan() { f64::NEG_INFINITY } else { lo }, best)
+}
+
+struct Item {
+    lo: f64,
+    depth: u32,
+    patch: Patch<Interval>,
+}
+impl PartialEq for Item {
+    fn eq(&self, o: &Self) -> bool {
+        self.lo.total_cmp(&o.lo) == Ordering::Equal
+    }
+}
+impl Eq for Item {}
+impl PartialOrd for Item {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Item {
+    // BinaryHeap is a max-heap: the smallest lower bound first
+    fn cmp(&self, o: &Self) -> Ordering {
+        o.lo.total_cmp(&self.lo)
+    }
+}
+
+impl BezierPatches {
+    /// Branch and bound for min_j (sign 1) or -max_j (sign -1): (outer, attained, stats,
+    /// termination) in the signed coordinate.
+    fn search(
+        &self,
+        patches: &[Patch<Interval>],
+        j: usize,
+        rational: bool,
+        sign: f64,
+        scale: f64,
+    ) -> (f64, f64, Stats, Termination) {
+        let mut st = Stats::default();
+        let mut heap = BinaryHeap::new();
+        let mut best = f64::INFINITY;
+        for pa in patches {
+            let (lo, b) = bounds(pa, j, rational, sign);
+            best = best.min(b);
+            heap.push(Item {
+                lo,
+                depth: 0,
+                patch: pa.clone(),
+            });
+        }
+        st.point_evaluations += patches.len() as u64;
+        let tol = self.tol * scale;
+        let mut disc = f64::INFINITY; // smallest lower bound of a dropped patch
+        let mut work = 0;
+        while let Some(it) = heap.pop() {
+            // it.lo is the smallest lower bound of every open patch: with the dropped ones it
+            // bounds the whole domain from below
+            let lo = it.lo.min(disc);
+            let term = if it.lo >= best - tol {
+                Some(Termination::Converged)
+            } else if work >= self.max_work {
+                Some(Termination::WorkLimit)
+            } else if it.depth >= self.max_depth {
+                Some(Termination::DepthLimit)
+            } else {
+                None
+            };
+            if let Some(t) = term {
+                return (lo, best, st, t);
+            }
+            work += 1;
+            st.subdivisions += 1;
+            let (a, b) = it.patch.split_u(0.5);
+            for half in [a, b] {
+                let (c, d) = half.split_v(0.5);
+                for ch in [c, d] {
+                    let (clo, cb) = bounds(&ch, j, rational, sign);
+                    st.point_evaluations += 1;
+                    best = best.min(cb);
+                    if clo >= best {
+                        disc = disc.min(clo);
+                    } else {
+                        heap.push(Item {
+                            lo: clo,
+                            depth: it.depth + 1,
+                            patch: ch,
+                        });
+                    }
+                }
+            }
+        }
+        (disc, best, st, Termination::Converged)
+    }
+}
+
+impl SurfaceEncloser for BezierPatches {
+    fn name(&self) -> &'static str {
+        "bezier"
+    }
+    fn guarantee(&self) -> Guarantee {
+        Guarantee::Verified
+    }
+    fn enclose_prepared(&self, s: &NurbsSurface) -> Enclosure {
+        let t0 = std::time::Instant::now();
+        let patches = s.bezier_patches();
+        let rational = s.is_rational();
+        let mut coords: Vec<_> = (0..s.dim())
+            .map(|j| {
+                let scale = s.coord_scale(j);
+                let (lo, ilo, mut st, t1) = self.search(&patches, j, rational, 1.0, scale);
+                let (nhi, nihi, st2, t2) = self.search(&patches, j, rational, -1.0, scale);
+                st.add(&st2);
+                let term = if t1 == Termination::Converged { t2 } else { t1 };
+                coord_box(lo, -nhi, ilo, -nihi, st, term)
+            })
+            .collect();
+        if let Some(c) = coords.first_mut() {
+            c.stats.time_total = t0.elapsed();
+        }
+        enclosure(self.name(), true, coords)
+    }
+}
