@@ -54,3 +54,143 @@ pub fn random_surface(seed: u64, p: usize, q: usize, extra: usize, rational: boo
     });
     NurbsSurface::new(p, q, ku, kv, net, w).expect("a valid random surface")
 }
+
+/// A Bézier patch of degrees (p, q) on [0, 1]^2 from its coefficient net (and weights).
+pub fn bezier_patch(
+    p: usize,
+    q: usize,
+    net: Vec<Vec<Vec<f64>>>,
+    weights: Option<Vec<Vec<f64>>>,
+) -> NurbsSurface {
+    let k = |d: usize| {
+        let mut v = vec![0.0; d + 1];
+        v.extend(vec![1.0; d + 1]);
+        v
+    };
+    NurbsSurface::new(p, q, k(p), k(q), net, weights).expect("a valid Bézier patch")
+}
+
+/// The net (x, y, z) with x, y the identity parametrisation (Bernstein coefficients r/p, c/q)
+/// and z_rc given.
+fn graph(p: usize, q: usize, z: impl Fn(usize, usize) -> f64) -> Vec<Vec<Vec<f64>>> {
+    (0..=p)
+        .map(|r| {
+            (0..=q)
+                .map(|c| vec![r as f64 / p as f64, c as f64 / q as f64, z(r, c)])
+                .collect()
+        })
+        .collect()
+}
+
+/// Quarter circle (x, y, w) from angle `a - 45°` to `a + 45°` on the unit circle as a rational
+/// quadratic Bézier curve (weights 1, cos 45°, 1).
+fn arc(a: f64) -> [(f64, f64, f64); 3] {
+    let h = std::f64::consts::FRAC_PI_4;
+    let r = std::f64::consts::FRAC_1_SQRT_2;
+    let m = 1.0 / r; // the middle control point is at distance 1 / cos 45°
+    [
+        ((a - h).cos(), (a - h).sin(), 1.0),
+        (m * a.cos(), m * a.sin(), r),
+        ((a + h).cos(), (a + h).sin(), 1.0),
+    ]
+}
+
+/// Named test surfaces with known extremes, for the tests, the harness and the benches:
+/// `(name, surface, exact box as (lo, hi) per coordinate where known in closed form)`.
+#[allow(clippy::type_complexity)]
+pub fn families() -> Vec<(&'static str, NurbsSurface, Option<Vec<(f64, f64)>>)> {
+    let unit = Some(vec![(0.0, 1.0); 3]);
+    let mut out = Vec::new();
+    // S = (u, v, u v)
+    out.push((
+        "bilinear",
+        bezier_patch(1, 1, graph(1, 1, |r, c| (r * c) as f64), None),
+        unit.clone(),
+    ));
+    // z = (u - 1/2)^2 - (v - 1/2)^2: a saddle at the centre, extremes on the boundary
+    let a = [0.25, -0.25, 0.25];
+    out.push((
+        "saddle",
+        bezier_patch(2, 2, graph(2, 2, |r, c| a[r] - a[c]), None),
+        Some(vec![(0.0, 1.0), (0.0, 1.0), (-0.25, 0.25)]),
+    ));
+    // z = 16 u (1 - u) v (1 - v): an interior maximum 1 at (1/2, 1/2), net maximum 4
+    out.push((
+        "bump",
+        bezier_patch(2, 2, graph(2, 2, |r, c| if r == 1 && c == 1 { 4.0 } else { 0.0 }), None),
+        unit.clone(),
+    ));
+    // z = 4 u (1 - u): a ridge (maximum 1 on the whole line u = 1/2)
+    out.push((
+        "ridge",
+        bezier_patch(2, 1, graph(2, 1, |r, _| if r == 1 { 2.0 } else { 0.0 }), None),
+        unit.clone(),
+    ));
+    // an octant of the unit sphere: the row at u = 1 collapses to the pole (0, 0, 1)
+    let mer = [(1.0, 0.0, 1.0), (1.0, 1.0, std::f64::consts::FRAC_1_SQRT_2), (0.0, 1.0, 1.0)];
+    let rot = mer;
+    let (mut net, mut w) = (Vec::new(), Vec::new());
+    for &(x, z, wm) in &mer {
+        net.push(rot.iter().map(|&(c, s, _)| vec![x * c, x * s, z]).collect());
+        w.push(rot.iter().map(|&(_, _, wr)| wm * wr).collect());
+    }
+    out.push(("sphere_pole", bezier_patch(2, 2, net, Some(w)), unit.clone()));
+    // a torus patch (R = 2, r = 1) around the outer equator: x has an interior maximum 3 at
+    // (1/2, 1/2), a rational patch
+    let (tube, rot) = (arc(0.0), arc(0.0));
+    let (mut net, mut w) = (Vec::new(), Vec::new());
+    for &(ct, st, wt) in &tube {
+        let rho = 2.0 + ct; // (ρ, z) = (R + r cos θ, r sin θ) in homogeneous form per point
+        net.push(rot.iter().map(|&(c, s, _)| vec![rho * c, rho * s, st]).collect());
+        w.push(rot.iter().map(|&(_, _, wr)| wt * wr).collect());
+    }
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    out.push((
+        "torus",
+        bezier_patch(2, 2, net, Some(w)),
+        Some(vec![((2.0 + h) * h, 3.0), (-3.0 * h, 3.0 * h), (-h, h)]),
+    ));
+    out.push(("random_bicubic", random_surface(1, 3, 3, 0, false), None));
+    out.push(("random_rational", random_surface(2, 3, 2, 3, true), None));
+    // unclamped (uniform) knots in both directions
+    let s = random_surface(3, 2, 3, 2, false);
+    let uni = |n: usize| (0..n).map(|i| i as f64).collect::<Vec<_>>();
+    let us = NurbsSurface::new(
+        2,
+        3,
+        uni(s.rows() + 3),
+        uni(s.cols() + 4),
+        s.control_points(),
+        None,
+    )
+    .expect("valid");
+    out.push(("unclamped", us, None));
+    // a kink: knot 0.5 of multiplicity p = 2 in u
+    let net: Vec<Vec<Vec<f64>>> = (0..5)
+        .map(|i| {
+            (0..3)
+                .map(|j| vec![i as f64, j as f64, [0.0, 1.0, 3.0, 1.0, 0.0][i] - j as f64 * 0.5])
+                .collect()
+        })
+        .collect();
+    out.push((
+        "kink",
+        NurbsSurface::new(2, 2, vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.], vec![0., 0., 0., 1., 1., 1.], net, None)
+            .expect("valid"),
+        None,
+    ));
+    // extreme magnitudes
+    let big = random_surface(4, 2, 2, 1, true);
+    let scaled = |f: f64| {
+        let net: Vec<Vec<Vec<f64>>> = big
+            .control_points()
+            .into_iter()
+            .map(|r| r.into_iter().map(|p| p.into_iter().map(|x| x * f).collect()).collect())
+            .collect();
+        NurbsSurface::new(2, 2, big.knots_u().to_vec(), big.knots_v().to_vec(), net, big.weights_nested())
+            .expect("valid")
+    };
+    out.push(("huge", scaled(1e300), None));
+    out.push(("tiny", scaled(1e-300), None));
+    out
+}

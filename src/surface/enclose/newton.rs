@@ -227,6 +227,44 @@ impl Evaluators {
     }
 }
 
+/// The parameter lines enclosed as curves (clamped domain sides and knot lines of
+/// multiplicity >= the degree), per direction.
+struct Covered {
+    u: Vec<f64>,
+    v: Vec<f64>,
+}
+
+impl Covered {
+    fn covers_u(&self, x: f64) -> bool {
+        self.u.contains(&x)
+    }
+    fn covers_v(&self, y: f64) -> bool {
+        self.v.contains(&y)
+    }
+}
+
+fn cuts(a: f64, b: f64, kinks: &[f64], unclamped: [bool; 2]) -> Vec<f64> {
+    let mut v: Vec<f64> = kinks.to_vec();
+    if !unclamped[0] {
+        v.push(a);
+    }
+    if !unclamped[1] {
+        v.push(b);
+    }
+    v
+}
+
+/// A point candidate (the end of a monotone degenerate box): its verified value.
+fn point_min(s: &NurbsSurface, u: f64, v: f64, t: usize, x: &mut Target, st: &mut Stats) {
+    st.point_evaluations += 1;
+    let e = s
+        .enclose_derivative(u, v, 0, 0)
+        .map(|p| signed(p[t / 2], sign_of(t)))
+        .unwrap_or(Interval::ENTIRE);
+    x.lo = x.lo.min(e.inf());
+    x.best = x.best.min(e.sup());
+}
+
 impl SurfaceNewton {
     /// The boundary and knot-line curves (outer bounds; inner bounds where attained).
     fn lines(&self, s: &NurbsSurface, tg: &mut [Target], st: &mut [Stats]) -> [bool; 4] {
@@ -333,6 +371,10 @@ impl SurfaceNewton {
                 }
             }
         }
+        let lines = Covered {
+            u: cuts(a, b, &s.kink_knots_u(), [unclamped[0], unclamped[1]]),
+            v: cuts(c, d, &s.kink_knots_v(), [unclamped[2], unclamped[3]]),
+        };
         let mut boxes = 0u64;
         while let Some(cell) = q.pop_front() {
             if boxes >= self.max_boxes {
@@ -352,6 +394,7 @@ impl SurfaceNewton {
             st.derivative_evaluations += 1;
             let (fu, fv) = (cell.u.0 == cell.u.1, cell.v.0 == cell.v.1);
             let mut alive = Vec::new();
+            let mut reduced: Vec<Cell> = Vec::new();
             for &t in &cell.alive {
                 let (j, sg) = (t / 2, sign_of(t));
                 let x = &mut tg[t];
@@ -362,6 +405,47 @@ impl SurfaceNewton {
                     continue;
                 }
                 let [gu, gv] = e.grad[j];
+                // Monotone in u on X (signed S_u >= 0 or <= 0, zero allowed): for every v the
+                // minimum over [u0, u1] is at one side, so the minimum over X is on that edge
+                // of X. A covered line (a clamped boundary or a knot line, enclosed as a
+                // curve) drops X; otherwise the edge is searched as a degenerate box. The same
+                // in v; on a degenerate box the minimum is at an end point.
+                let (su, sv) = (signed(gu, sg), signed(gv, sg));
+                let mono = |g: Interval, x0: f64, x1: f64| {
+                    if g.inf() >= 0.0 {
+                        Some(x0)
+                    } else if g.sup() <= 0.0 {
+                        Some(x1)
+                    } else {
+                        None
+                    }
+                };
+                if let Some(x) = mono(su, cell.u.0, cell.u.1).filter(|_| !fu) {
+                    if fv {
+                        point_min(s, x, cell.v.0, t, &mut tg[t], st);
+                    } else if !lines.covers_u(x) {
+                        reduced.push(Cell {
+                            u: (x, x),
+                            alive: vec![t],
+                            parent: e.value.clone(),
+                            ..cell.clone()
+                        });
+                    }
+                    continue;
+                }
+                if let Some(y) = mono(sv, cell.v.0, cell.v.1).filter(|_| !fv) {
+                    if fu {
+                        point_min(s, cell.u.0, y, t, &mut tg[t], st);
+                    } else if !lines.covers_v(y) {
+                        reduced.push(Cell {
+                            v: (y, y),
+                            alive: vec![t],
+                            parent: e.value.clone(),
+                            ..cell.clone()
+                        });
+                    }
+                    continue;
+                }
                 let zero_u = fu || gu.contains(0.0);
                 let zero_v = fv || gv.contains(0.0);
                 if !(zero_u && zero_v) {
@@ -386,6 +470,7 @@ impl SurfaceNewton {
                 }
                 alive.push(t);
             }
+            q.extend(reduced);
             if alive.is_empty() {
                 continue;
             }
