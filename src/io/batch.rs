@@ -11,7 +11,9 @@ use crate::enclose::{BoxEncloser, Enclosure};
 use crate::io::{
     write_enclosure_record, write_error_record, InputError, ParseOptions, RawRecord, RecordReader,
 };
+use crate::io::Shape;
 use crate::spline::curve::NurbsCurve;
+use crate::surface::SurfaceEncloser;
 use rayon::prelude::*;
 use std::io::{self, Read, Write};
 use thiserror::Error;
@@ -111,6 +113,39 @@ where
     W: Write,
     F: Fn(usize, Result<NurbsCurve, InputError>, &mut Vec<u8>) -> bool + Sync,
 {
+    process_with(input, out, opts, RawRecord::parse, work)
+}
+
+/// [`process_stream`] for a mixed stream of curves and surfaces: `work` gets each record as a
+/// [`Shape`] ([`RawRecord::parse_shape`]).
+pub fn process_shapes<R, W, F>(
+    input: R,
+    out: W,
+    opts: &StreamOptions,
+    work: F,
+) -> Result<StreamSummary, StreamError>
+where
+    R: Read,
+    W: Write,
+    F: Fn(usize, Result<Shape, InputError>, &mut Vec<u8>) -> bool + Sync,
+{
+    process_with(input, out, opts, RawRecord::parse_shape, work)
+}
+
+/// The pipeline, with the record parser `parse`.
+fn process_with<R, W, T, P, F>(
+    input: R,
+    out: W,
+    opts: &StreamOptions,
+    parse: P,
+    work: F,
+) -> Result<StreamSummary, StreamError>
+where
+    R: Read,
+    W: Write,
+    P: Fn(&RawRecord, &ParseOptions) -> Result<T, InputError> + Sync,
+    F: Fn(usize, Result<T, InputError>, &mut Vec<u8>) -> bool + Sync,
+{
     let pool = thread_pool(opts.threads)?;
     let mut reader = RecordReader::with_options(input, &opts.parse);
     let mut out = io::BufWriter::with_capacity(1 << 16, out);
@@ -138,7 +173,7 @@ where
                 .par_iter()
                 .map(|r| {
                     let mut buf = Vec::new();
-                    let ok = work(r.index, r.parse(&opts.parse), &mut buf);
+                    let ok = work(r.index, parse(r, &opts.parse), &mut buf);
                     (buf, ok)
                 })
                 .collect()
@@ -264,7 +299,67 @@ pub fn input_error_line(index: usize, e: &InputError, buf: &mut Vec<u8>) {
     buf.push(b'\n');
 }
 
-/// The `enclose` pipeline: [`process_stream`] with [`enclose_records`].
+/// One surface strategy per requested name: `Err(name)` when the name has no surface
+/// version (the curve-only strategies); such a surface gets an `unsupported_strategy` error
+/// record for it.
+pub type SurfaceStrategies = Vec<Result<Box<dyn SurfaceEncloser>, &'static str>>;
+
+/// The output lines of `enclose` for one record of a mixed stream: a curve as
+/// [`enclose_records`], a surface with `surface_strategies` (same record fields).
+pub fn enclose_shape_records(
+    index: usize,
+    shape: Result<Shape, InputError>,
+    strategies: &[Box<dyn BoxEncloser>],
+    surface_strategies: &[Result<Box<dyn SurfaceEncloser>, &'static str>],
+    timings: bool,
+    buf: &mut Vec<u8>,
+) -> bool {
+    let s = match shape {
+        Ok(Shape::Surface(s)) => s,
+        Ok(Shape::Curve(c)) => return enclose_records(index, Ok(c), strategies, timings, buf),
+        Err(e) => return enclose_records(index, Err(e), strategies, timings, buf),
+    };
+    let mut ok = true;
+    for st in surface_strategies {
+        match st {
+            Ok(st) => match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| st.enclose(&s))) {
+                Ok(e) => write_enclosure_record(buf, index, &e, timings),
+                Err(_) => {
+                    ok = false;
+                    let extra = format!("\"strategy\":\"{}\"", st.name());
+                    let text = format!(
+                        "internal error: strategy {} failed on this surface; please report it with the surface",
+                        st.name()
+                    );
+                    write_error_record(buf, index, &extra, "internal_error", &text);
+                }
+            },
+            Err(name) => {
+                ok = false;
+                let extra = format!("\"strategy\":\"{name}\"");
+                let text = format!(
+                    "strategy: {name} encloses curves only; the surface strategies are {}",
+                    crate::surface::SURFACE_STRATEGY_NAMES.join(", ")
+                );
+                write_error_record(buf, index, &extra, "unsupported_strategy", &text);
+            }
+        }
+        buf.push(b'\n');
+    }
+    ok
+}
+
+/// The surface strategies of the same names as `strategies` (default settings).
+pub fn surface_counterparts(strategies: &[Box<dyn BoxEncloser>]) -> SurfaceStrategies {
+    strategies
+        .iter()
+        .map(|s| crate::surface::surface_strategy_by_name(s.name(), None).ok_or(s.name()))
+        .collect()
+}
+
+/// The `enclose` pipeline on a mixed stream: [`process_shapes`] with
+/// [`enclose_shape_records`]; surfaces get the surface strategies of the same names
+/// ([`surface_counterparts`]).
 pub fn enclose_stream<R: Read, W: Write>(
     input: R,
     out: W,
@@ -272,8 +367,9 @@ pub fn enclose_stream<R: Read, W: Write>(
     opts: &StreamOptions,
     timings: bool,
 ) -> Result<StreamSummary, StreamError> {
-    process_stream(input, out, opts, |index, curve, buf| {
-        enclose_records(index, curve, strategies, timings, buf)
+    let surf = surface_counterparts(strategies);
+    process_shapes(input, out, opts, |index, shape, buf| {
+        enclose_shape_records(index, shape, strategies, &surf, timings, buf)
     })
 }
 

@@ -2,6 +2,7 @@
 //! [`Position`] (line and column in the input).
 
 use crate::error::CurveError;
+use crate::surface::SurfaceError;
 use std::fmt;
 use thiserror::Error;
 
@@ -87,6 +88,27 @@ pub enum InputError {
         /// end of the curve object
         at: Position,
     },
+    /// A required field of a surface is absent.
+    #[error(
+        "{field}: missing field; a surface needs \"degree_u\", \"degree_v\", \"knots_u\", \"knots_v\" and \"control_points\" ({at})"
+    )]
+    MissingSurfaceField {
+        /// the field
+        field: &'static str,
+        /// end of the surface object
+        at: Position,
+    },
+    /// A field of the other kind of object: a curve field in a surface (`degree`, `knots`) or
+    /// the other way round.
+    #[error("{field:?}: not a field of a {kind}; a surface has \"degree_u\", \"degree_v\", \"knots_u\", \"knots_v\", \"control_points\" and optional \"weights\", a curve \"degree\", \"knots\", \"control_points\" and optional \"weights\" ({at})")]
+    MixedFields {
+        /// the field name
+        field: &'static str,
+        /// `curve` or `surface`: what the object is (by its other fields)
+        kind: &'static str,
+        /// end of the object
+        at: Position,
+    },
     /// A field the format does not define (see
     /// [`ParseOptions::allow_unknown_fields`](super::ParseOptions::allow_unknown_fields)).
     #[error("{field:?}: unknown field; a curve has \"degree\", \"knots\", \"control_points\" and optional \"weights\" ({at})")]
@@ -107,8 +129,10 @@ pub enum InputError {
     /// `degree` is not a non-negative integer that fits the machine (negative, fractional,
     /// astronomically large). Zero and values too large for the control points are reported
     /// by the curve check ([`CurveError`]).
-    #[error("degree: expected an integer >= 1, got {got} ({at})")]
+    #[error("{field}: expected an integer >= 1, got {got} ({at})")]
     InvalidDegree {
+        /// the field (`degree`, `degree_u`, `degree_v`)
+        field: &'static str,
         /// the value as written
         got: String,
         /// position
@@ -147,6 +171,9 @@ pub enum InputError {
     /// Well-formed JSON, but not a valid NURBS curve.
     #[error(transparent)]
     Curve(#[from] CurveError),
+    /// Well-formed JSON, but not a valid NURBS surface.
+    #[error(transparent)]
+    Surface(#[from] SurfaceError),
 }
 
 impl InputError {
@@ -169,6 +196,9 @@ impl InputError {
             InputError::TrailingData { .. } => "trailing_data",
             InputError::Io(_) => "io_error",
             InputError::Curve(e) => e.kind(),
+            InputError::Surface(e) => e.kind(),
+            InputError::MissingSurfaceField { .. } => "missing_field",
+            InputError::MixedFields { .. } => "unknown_field",
         }
     }
 }

@@ -4,6 +4,9 @@
 //!   [`NurbsCurve`](crate::spline::curve::NurbsCurve), or into an
 //!   [`InputError`] that names the field and position (`knots[3]: expected a number, got a
 //!   string "x" (line 1, column 40)`).
+//! * [`parse_record`] does the same for the records of a mixed stream: a curve or a
+//!   [`NurbsSurface`](crate::surface::NurbsSurface) (an object with `degree_u`), as a
+//!   [`Shape`].
 //! * [`RecordReader`] splits a stream (a file or stdin) into the raw bytes of one curve each, in
 //!   bounded memory, for both stream forms (JSON Lines, or one JSON array of curves);
 //!   [`CurveReader`] also parses them.
@@ -51,9 +54,9 @@ mod scan;
 pub mod stream;
 
 pub use error::{InputError, Position};
-pub use parse::{parse_curve, parse_curve_at, ParseOptions};
+pub use parse::{parse_curve, parse_curve_at, parse_record, parse_record_at, ParseOptions, Shape};
 pub use records::{
-    curve_to_json, eval_fields, termination_name, write_curve, write_enclosure_record,
+    curve_to_json, eval_fields, surface_eval_fields, write_surface_eval_record, termination_name, write_curve, write_enclosure_record,
     write_error_record, write_eval_record, write_num, write_nums, write_str,
 };
 pub use stream::{read_curves, CurveReader, RawRecord, RecordReader, StreamForm};

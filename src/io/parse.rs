@@ -4,6 +4,7 @@
 use super::error::{shorten, InputError, Position};
 use super::position::convert_error;
 use crate::spline::curve::NurbsCurve;
+use crate::surface::NurbsSurface;
 use serde::de::{self, DeserializeSeed, IgnoredAny, MapAccess, SeqAccess, Visitor};
 use std::cell::RefCell;
 use std::fmt;
@@ -38,6 +39,12 @@ enum Loc {
     Field(&'static str),
     Elem(&'static str, usize),
     Coord(usize, usize),
+    /// `control_points[i][j]` of a surface (its coordinates are `Coord3`)
+    Point2(usize, usize),
+    Coord3(usize, usize, usize),
+    /// `weights[i]` of a surface (its elements are `Elem2`)
+    Row(&'static str, usize),
+    Elem2(&'static str, usize, usize),
 }
 
 impl fmt::Display for Loc {
@@ -46,7 +53,10 @@ impl fmt::Display for Loc {
             Loc::Curve => f.write_str("curve"),
             Loc::Field(s) => f.write_str(s),
             Loc::Elem(s, i) => write!(f, "{s}[{i}]"),
-            Loc::Coord(i, j) => write!(f, "control_points[{i}][{j}]"),
+            Loc::Coord(i, j) | Loc::Point2(i, j) => write!(f, "control_points[{i}][{j}]"),
+            Loc::Coord3(i, j, k) => write!(f, "control_points[{i}][{j}][{k}]"),
+            Loc::Row(s, i) => write!(f, "{s}[{i}]"),
+            Loc::Elem2(s, i, j) => write!(f, "{s}[{i}][{j}]"),
         }
     }
 }
@@ -61,7 +71,9 @@ pub(super) enum DataErr {
     Missing(&'static str),
     Unknown(String),
     Duplicate(&'static str),
-    Degree(String),
+    Degree(&'static str, String),
+    MissingSurface(&'static str),
+    Mixed(&'static str, &'static str),
 }
 
 type Slot<'a> = &'a RefCell<Option<DataErr>>;
@@ -189,7 +201,9 @@ struct Nums<'a> {
 impl Nums<'_> {
     fn expected(&self) -> &'static str {
         match self.loc {
-            Loc::Elem("control_points", _) => "an array of coordinates (numbers)",
+            Loc::Elem("control_points", _) | Loc::Point2(..) => {
+                "an array of coordinates (numbers)"
+            }
             _ => "an array of numbers",
         }
     }
@@ -198,6 +212,8 @@ impl Nums<'_> {
         match self.loc {
             Loc::Field(f) => Loc::Elem(f, i),
             Loc::Elem(_, k) => Loc::Coord(k, i),
+            Loc::Point2(a, b) => Loc::Coord3(a, b, i),
+            Loc::Row(f, a) => Loc::Elem2(f, a, i),
             other => other,
         }
     }
@@ -257,10 +273,10 @@ seed_via_any! {
 impl<'de> Visitor<'de> for Degree<'_> {
     type Value = usize;
     fn visit_u64<E: de::Error>(self, v: u64) -> Result<usize, E> {
-        usize::try_from(v).map_err(|_| fail(self.slot, DataErr::Degree(v.to_string())))
+        usize::try_from(v).map_err(|_| fail(self.slot, DataErr::Degree(self.field(), v.to_string())))
     }
     fn visit_i64<E: de::Error>(self, v: i64) -> Result<usize, E> {
-        usize::try_from(v).map_err(|_| fail(self.slot, DataErr::Degree(v.to_string())))
+        usize::try_from(v).map_err(|_| fail(self.slot, DataErr::Degree(self.field(), v.to_string())))
     }
     fn visit_f64<E: de::Error>(self, v: f64) -> Result<usize, E> {
         // Exact: an integral f64 below 2^53 converts without rounding; larger ones are
@@ -268,22 +284,39 @@ impl<'de> Visitor<'de> for Degree<'_> {
         if v.fract() == 0.0 && (0.0..9007199254740992.0).contains(&v) {
             self.visit_u64(v as u64)
         } else {
-            Err(fail(self.slot, DataErr::Degree(v.to_string())))
+            Err(fail(self.slot, DataErr::Degree(self.field(), v.to_string())))
         }
     }
     reject!(text, unit, map, seq);
 }
 
-/// A key of the curve object.
+impl Degree<'_> {
+    fn field(&self) -> &'static str {
+        match self.loc {
+            Loc::Field(f) => f,
+            _ => "degree",
+        }
+    }
+}
+
+/// A key of the curve (or surface) object.
 enum Key {
     Degree,
     Knots,
     ControlPoints,
     Weights,
+    DegreeU,
+    DegreeV,
+    KnotsU,
+    KnotsV,
     Other(String),
 }
 
-struct KeySeed;
+/// `surfaces`: the surface keys are known (the record parser); otherwise they are unknown
+/// fields, as for [`parse_curve`].
+struct KeySeed {
+    surfaces: bool,
+}
 
 impl<'de> DeserializeSeed<'de> for KeySeed {
     type Value = Key;
@@ -303,23 +336,174 @@ impl<'de> Visitor<'de> for KeySeed {
             "knots" => Key::Knots,
             "control_points" => Key::ControlPoints,
             "weights" => Key::Weights,
+            "degree_u" if self.surfaces => Key::DegreeU,
+            "degree_v" if self.surfaces => Key::DegreeV,
+            "knots_u" if self.surfaces => Key::KnotsU,
+            "knots_v" if self.surfaces => Key::KnotsV,
             other => Key::Other(shorten(other, 40)),
         })
     }
 }
 
-/// The fields of a curve object, before validation.
+/// An element that is a number (of a curve) or an array of numbers (of a surface).
+#[derive(Debug)]
+enum Elem {
+    N(f64),
+    V(Vec<f64>),
+}
+
+/// One element of `control_points` or `weights` when the object may be either kind: a number
+/// (reported at `num_loc`) or an array of numbers (at `seq_loc`, elements below it).
+struct NumOrSeq<'a> {
+    slot: Slot<'a>,
+    num_loc: Loc,
+    seq_loc: Loc,
+}
+
+impl NumOrSeq<'_> {
+    fn expected(&self) -> &'static str {
+        "a number or an array of numbers"
+    }
+}
+
+seed_via_any!(NumOrSeq, Elem);
+
+impl<'de> Visitor<'de> for NumOrSeq<'_> {
+    type Value = Elem;
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Elem, E> {
+        Ok(Elem::N(v))
+    }
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Elem, E> {
+        Ok(Elem::N(v as f64))
+    }
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Elem, E> {
+        Ok(Elem::N(v as f64))
+    }
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Elem, A::Error> {
+        Nums {
+            slot: self.slot,
+            loc: self.seq_loc,
+            nullable: false,
+        }
+        .visit_seq(seq)
+        .map(|v| Elem::V(v.unwrap_or_default()))
+    }
+    fn visit_bool<E: de::Error>(self, v: bool) -> Result<Elem, E> {
+        Err(wrong(self.slot, self.num_loc, self.expected(), format!("the boolean {v}")))
+    }
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<Elem, E> {
+        let got = format!("a string {:?}", shorten(v, 40));
+        Err(wrong(self.slot, self.num_loc, self.expected(), got))
+    }
+    fn visit_unit<E: de::Error>(self) -> Result<Elem, E> {
+        Err(wrong(self.slot, self.num_loc, self.expected(), "null".into()))
+    }
+    fn visit_map<A: MapAccess<'de>>(self, _: A) -> Result<Elem, A::Error> {
+        Err(wrong(self.slot, self.num_loc, self.expected(), "an object".into()))
+    }
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.expected())
+    }
+}
+
+/// A sequence of [`NumOrSeq`] elements: `control_points[i]` (`row = Some(i)`) or `weights`.
+struct Elems<'a> {
+    slot: Slot<'a>,
+    loc: Loc,
+    row: Option<usize>,
+    nullable: bool,
+}
+
+impl Elems<'_> {
+    fn expected(&self) -> &'static str {
+        match self.row {
+            Some(_) => "a point (array of numbers) or a row of points (array of arrays)",
+            None => "an array of weights (numbers, or rows of numbers)",
+        }
+    }
+}
+
+seed_via_any!(Elems, Option<Vec<Elem>>);
+
+impl<'de> Visitor<'de> for Elems<'_> {
+    type Value = Option<Vec<Elem>>;
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        let mut v = Vec::new();
+        loop {
+            let k = v.len();
+            let (num_loc, seq_loc) = match self.row {
+                Some(i) => (Loc::Coord(i, k), Loc::Point2(i, k)),
+                None => (Loc::Elem("weights", k), Loc::Row("weights", k)),
+            };
+            let seed = NumOrSeq {
+                slot: self.slot,
+                num_loc,
+                seq_loc,
+            };
+            match seq.next_element_seed(seed)? {
+                Some(e) => v.push(e),
+                None => return Ok(Some(v)),
+            }
+        }
+    }
+    fn visit_unit<E: de::Error>(self) -> Result<Self::Value, E> {
+        if self.nullable {
+            Ok(None)
+        } else {
+            Err(wrong(self.slot, self.loc, self.expected(), "null".into()))
+        }
+    }
+    reject!(text, map, numbers);
+}
+
+seed_via_any! {
+    /// `control_points` when the object may be a curve or a surface.
+    Net -> Vec<Vec<Elem>>, "an array of points (arrays of numbers) or of rows of points"
+}
+
+impl<'de> Visitor<'de> for Net<'_> {
+    type Value = Vec<Vec<Elem>>;
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        let mut v = Vec::new();
+        while let Some(p) = seq.next_element_seed(Elems {
+            slot: self.slot,
+            loc: Loc::Elem("control_points", v.len()),
+            row: Some(v.len()),
+            nullable: false,
+        })? {
+            v.push(p.unwrap_or_default());
+        }
+        Ok(v)
+    }
+    reject!(text, unit, map, numbers);
+}
+
+/// A parsed and validated input record: a curve or a surface.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// an object with `degree`
+    Curve(NurbsCurve),
+    /// an object with `degree_u` (and the other surface fields)
+    Surface(NurbsSurface),
+}
+
+/// The fields of an object, before validation.
 struct RawCurve {
-    degree: usize,
-    knots: Vec<f64>,
-    control_points: Vec<Vec<f64>>,
-    weights: Option<Vec<f64>>,
+    degree: Option<usize>,
+    knots: Option<Vec<f64>>,
+    degree_u: Option<usize>,
+    degree_v: Option<usize>,
+    knots_u: Option<Vec<f64>>,
+    knots_v: Option<Vec<f64>>,
+    control_points: Vec<Vec<Elem>>,
+    weights: Option<Vec<Elem>>,
 }
 
 struct CurveSeed<'a> {
     slot: Slot<'a>,
     loc: Loc,
     allow_unknown: bool,
+    surfaces: bool,
 }
 
 impl CurveSeed<'_> {
@@ -335,6 +519,7 @@ impl<'de> Visitor<'de> for CurveSeed<'_> {
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<RawCurve, A::Error> {
         let slot = self.slot;
         let (mut degree, mut knots, mut points, mut weights) = (None, None, None, None);
+        let (mut du, mut dv, mut ku, mut kv) = (None, None, None, None);
         fn once<T, E: de::Error>(
             slot: Slot<'_>,
             dst: &mut Option<T>,
@@ -347,38 +532,62 @@ impl<'de> Visitor<'de> for CurveSeed<'_> {
             *dst = Some(v);
             Ok(())
         }
-        while let Some(key) = map.next_key_seed(KeySeed)? {
+        let nums = |name: &'static str| Nums {
+            slot,
+            loc: Loc::Field(name),
+            nullable: false,
+        };
+        while let Some(key) = map.next_key_seed(KeySeed {
+            surfaces: self.surfaces,
+        })? {
             match key {
-                Key::Degree => {
-                    let loc = Loc::Field("degree");
-                    once(
-                        slot,
-                        &mut degree,
-                        "degree",
-                        map.next_value_seed(Degree { slot, loc })?,
-                    )?
-                }
-                Key::Knots => {
-                    let seed = Nums {
-                        slot,
-                        loc: Loc::Field("knots"),
-                        nullable: false,
+                Key::Degree | Key::DegreeU | Key::DegreeV => {
+                    let (name, dst) = match key {
+                        Key::Degree => ("degree", &mut degree),
+                        Key::DegreeU => ("degree_u", &mut du),
+                        _ => ("degree_v", &mut dv),
                     };
-                    let v = map.next_value_seed(seed)?.unwrap_or_default();
-                    once(slot, &mut knots, "knots", v)?
+                    let loc = Loc::Field(name);
+                    once(slot, dst, name, map.next_value_seed(Degree { slot, loc })?)?
+                }
+                Key::Knots | Key::KnotsU | Key::KnotsV => {
+                    let (name, dst) = match key {
+                        Key::Knots => ("knots", &mut knots),
+                        Key::KnotsU => ("knots_u", &mut ku),
+                        _ => ("knots_v", &mut kv),
+                    };
+                    let v = map.next_value_seed(nums(name))?.unwrap_or_default();
+                    once(slot, dst, name, v)?
                 }
                 Key::ControlPoints => {
                     let loc = Loc::Field("control_points");
-                    let v = map.next_value_seed(Points { slot, loc })?;
+                    let v = if self.surfaces {
+                        map.next_value_seed(Net { slot, loc })?
+                    } else {
+                        map.next_value_seed(Points { slot, loc })?
+                            .into_iter()
+                            .map(|p| p.into_iter().map(Elem::N).collect())
+                            .collect()
+                    };
                     once(slot, &mut points, "control_points", v)?
                 }
                 Key::Weights => {
-                    let seed = Nums {
-                        slot,
-                        loc: Loc::Field("weights"),
-                        nullable: true,
+                    let v = if self.surfaces {
+                        map.next_value_seed(Elems {
+                            slot,
+                            loc: Loc::Field("weights"),
+                            row: None,
+                            nullable: true,
+                        })?
+                    } else {
+                        let seed = Nums {
+                            slot,
+                            loc: Loc::Field("weights"),
+                            nullable: true,
+                        };
+                        map.next_value_seed(seed)?
+                            .map(|w| w.into_iter().map(Elem::N).collect())
                     };
-                    let v = map.next_value_seed(seed)?;
                     once(slot, &mut weights, "weights", v)?
                 }
                 Key::Other(name) => {
@@ -389,15 +598,130 @@ impl<'de> Visitor<'de> for CurveSeed<'_> {
                 }
             }
         }
-        let missing = |f| fail::<A::Error>(slot, DataErr::Missing(f));
+        let surface = du.is_some() || dv.is_some() || ku.is_some() || kv.is_some();
+        let fail_with = |e| fail::<A::Error>(slot, e);
+        if surface {
+            if !self.allow_unknown {
+                for (f, present) in [("degree", degree.is_some()), ("knots", knots.is_some())] {
+                    if present {
+                        return Err(fail_with(DataErr::Mixed(f, "surface")));
+                    }
+                }
+            }
+            for (f, present) in [
+                ("degree_u", du.is_some()),
+                ("degree_v", dv.is_some()),
+                ("knots_u", ku.is_some()),
+                ("knots_v", kv.is_some()),
+                ("control_points", points.is_some()),
+            ] {
+                if !present {
+                    return Err(fail_with(DataErr::MissingSurface(f)));
+                }
+            }
+        } else {
+            let missing = |f| fail::<A::Error>(slot, DataErr::Missing(f));
+            degree.ok_or_else(|| missing("degree"))?;
+            knots.as_ref().ok_or_else(|| missing("knots"))?;
+            points.as_ref().ok_or_else(|| missing("control_points"))?;
+        }
         Ok(RawCurve {
-            degree: degree.ok_or_else(|| missing("degree"))?,
-            knots: knots.ok_or_else(|| missing("knots"))?,
-            control_points: points.ok_or_else(|| missing("control_points"))?,
+            degree,
+            knots,
+            degree_u: du,
+            degree_v: dv,
+            knots_u: ku,
+            knots_v: kv,
+            control_points: points.unwrap_or_default(),
             weights: weights.flatten(),
         })
     }
     reject!(text, unit, numbers, seq);
+}
+
+/// The wrong-kind element of a curve or surface array (`want_seq`: a surface wants arrays).
+fn shape_error(path: String, want_seq: bool, e: &Elem) -> DataErr {
+    DataErr::WrongType {
+        path,
+        expected: if want_seq {
+            "an array of numbers (a surface's point or row of weights)"
+        } else {
+            "a number (a curve's coordinate or weight)"
+        },
+        got: match e {
+            Elem::N(x) => format!("the number {x}"),
+            Elem::V(_) => "an array".into(),
+        },
+    }
+}
+
+impl RawCurve {
+    /// Split into the curve or surface fields; a wrong-kind element is a [`DataErr`].
+    fn into_shape(self) -> Result<Result<Shape, InputError>, DataErr> {
+        if let (Some(p), Some(knots)) = (self.degree, self.knots.clone()) {
+            if self.degree_u.is_none() && self.degree_v.is_none() && self.knots_u.is_none() && self.knots_v.is_none() {
+                let mut pts = Vec::with_capacity(self.control_points.len());
+                for (i, row) in self.control_points.into_iter().enumerate() {
+                    let mut pt = Vec::with_capacity(row.len());
+                    for (j, e) in row.into_iter().enumerate() {
+                        match e {
+                            Elem::N(x) => pt.push(x),
+                            other => return Err(shape_error(Loc::Coord(i, j).to_string(), false, &other)),
+                        }
+                    }
+                    pts.push(pt);
+                }
+                let w = match self.weights {
+                    None => None,
+                    Some(w) => Some(
+                        w.into_iter()
+                            .enumerate()
+                            .map(|(i, e)| match e {
+                                Elem::N(x) => Ok(x),
+                                other => Err(shape_error(format!("weights[{i}]"), false, &other)),
+                            })
+                            .collect::<Result<Vec<f64>, DataErr>>()?,
+                    ),
+                };
+                return Ok(NurbsCurve::new(p, knots, pts, w)
+                    .map(Shape::Curve)
+                    .map_err(InputError::from));
+            }
+        }
+        let mut net = Vec::with_capacity(self.control_points.len());
+        for (i, row) in self.control_points.into_iter().enumerate() {
+            let mut r = Vec::with_capacity(row.len());
+            for (j, e) in row.into_iter().enumerate() {
+                match e {
+                    Elem::V(v) => r.push(v),
+                    other => return Err(shape_error(Loc::Coord(i, j).to_string(), true, &other)),
+                }
+            }
+            net.push(r);
+        }
+        let w = match self.weights {
+            None => None,
+            Some(w) => Some(
+                w.into_iter()
+                    .enumerate()
+                    .map(|(i, e)| match e {
+                        Elem::V(v) => Ok(v),
+                        other => Err(shape_error(format!("weights[{i}]"), true, &other)),
+                    })
+                    .collect::<Result<Vec<Vec<f64>>, DataErr>>()?,
+            ),
+        };
+        Ok(NurbsSurface::new(
+            self.degree_u.unwrap_or(0),
+            self.degree_v.unwrap_or(0),
+            self.knots_u.unwrap_or_default(),
+            self.knots_v.unwrap_or_default(),
+            net,
+            w,
+        )
+        .map(Shape::Surface)
+        .map_err(InputError::from))
+    }
 }
 
 /// Parse one curve object (the whole of `bytes`, surrounding whitespace allowed) and validate it.
@@ -412,28 +736,87 @@ pub fn parse_curve(bytes: &[u8]) -> Result<NurbsCurve, InputError> {
 }
 
 /// [`parse_curve`] for a record that starts at `start` of a larger input, with options.
+/// Surface fields are unknown fields here (see [`parse_record_at`] for mixed streams).
 pub fn parse_curve_at(
     bytes: &[u8],
     start: Position,
     opts: &ParseOptions,
 ) -> Result<NurbsCurve, InputError> {
+    match parse_at(bytes, start, opts, false)? {
+        Shape::Curve(c) => Ok(c),
+        // unreachable: without the surface keys every object is a curve or an error
+        Shape::Surface(_) => Err(InputError::UnknownField {
+            field: "degree_u".into(),
+            at: start,
+        }),
+    }
+}
+
+/// Parse one object of a mixed stream: a curve (`degree`) or a surface (`degree_u`,
+/// `degree_v`, `knots_u`, `knots_v`, a net `control_points[i][j]`, optional `weights[i][j]`),
+/// validated; errors name the field and position as for curves.
+pub fn parse_record_at(
+    bytes: &[u8],
+    start: Position,
+    opts: &ParseOptions,
+) -> Result<Shape, InputError> {
+    parse_at(bytes, start, opts, true)
+}
+
+/// [`parse_record_at`] from line 1, column 1.
+pub fn parse_record(bytes: &[u8]) -> Result<Shape, InputError> {
+    parse_record_at(bytes, Position { line: 1, column: 1 }, &ParseOptions::default())
+}
+
+fn parse_at(
+    bytes: &[u8],
+    start: Position,
+    opts: &ParseOptions,
+    surfaces: bool,
+) -> Result<Shape, InputError> {
     let slot = RefCell::new(None);
     let mut de = serde_json::Deserializer::from_slice(bytes);
     let seed = CurveSeed {
         slot: &slot,
         loc: Loc::Curve,
         allow_unknown: opts.allow_unknown_fields,
+        surfaces,
     };
     let raw = seed
         .deserialize(&mut de)
         .and_then(|raw| de.end().map(|()| raw))
         .map_err(|e| convert_error(bytes, start, &e, slot.take()))?;
-    Ok(NurbsCurve::new(
-        raw.degree,
-        raw.knots,
-        raw.control_points,
-        raw.weights,
-    )?)
+    match raw.into_shape() {
+        Ok(r) => r,
+        Err(d) => {
+            // a shape error found after the whole object was read: positioned at its end
+            let e = <serde_json::Error as de::Error>::custom("invalid curve");
+            let mut err = convert_error(bytes, start, &e, Some(d));
+            let end = end_position(bytes, start);
+            if let InputError::WrongType { at, .. } = &mut err {
+                *at = end;
+            }
+            Err(err)
+        }
+    }
+}
+
+/// The position just after the last non-whitespace byte of the record.
+fn end_position(bytes: &[u8], start: Position) -> Position {
+    let n = bytes
+        .iter()
+        .rposition(|b| !b.is_ascii_whitespace())
+        .map_or(0, |i| i + 1);
+    let (mut line, mut column) = (start.line, start.column);
+    for &b in &bytes[..n] {
+        if b == b'\n' {
+            line += 1;
+            column = 1;
+        } else {
+            column += 1;
+        }
+    }
+    Position { line, column }
 }
 
 #[cfg(test)]

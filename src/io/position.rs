@@ -175,7 +175,9 @@ pub(super) fn convert_error(
             DataErr::Missing(field) => InputError::MissingField { field, at },
             DataErr::Unknown(field) => InputError::UnknownField { field, at },
             DataErr::Duplicate(field) => InputError::DuplicateField { field, at },
-            DataErr::Degree(got) => InputError::InvalidDegree { got, at },
+            DataErr::Degree(field, got) => InputError::InvalidDegree { field, got, at },
+            DataErr::MissingSurface(field) => InputError::MissingSurfaceField { field, at },
+            DataErr::Mixed(field, kind) => InputError::MixedFields { field, kind, at },
         };
     }
     let msg = e.to_string();

@@ -154,6 +154,11 @@ pub fn write_eval_record(
     out.extend_from_slice(format!("{{\"index\":{index},\"param\":").as_bytes());
     write_num(out, param);
     out.extend_from_slice(format!(",\"derivative\":{derivative},\"lo\":").as_bytes());
+    write_lo_hi(out, value);
+}
+
+/// The `lo` array (already opened), `"hi"` and the closing brace of an eval record.
+fn write_lo_hi(out: &mut Vec<u8>, value: &[Interval]) {
     let ends = |x: &Interval| {
         if x.is_empty() {
             (f64::NEG_INFINITY, f64::INFINITY)
@@ -165,6 +170,22 @@ pub fn write_eval_record(
     out.extend_from_slice(b",\"hi\":");
     write_nums(out, value.iter().map(|x| ends(x).1));
     out.push(b'}');
+}
+
+/// Append a surface `eval` record (no newline):
+/// `{"index","param":[U,V],"derivative":[K,L],"lo","hi"}` from the enclosure `value` of
+/// d^(K+L) S / du^K dv^L at (U, V).
+pub fn write_surface_eval_record(
+    out: &mut Vec<u8>,
+    index: usize,
+    param: (f64, f64),
+    derivative: (usize, usize),
+    value: &[Interval],
+) {
+    out.extend_from_slice(format!("{{\"index\":{index},").as_bytes());
+    out.extend_from_slice(surface_eval_fields(param, derivative).as_bytes());
+    out.extend_from_slice(b",\"lo\":");
+    write_lo_hi(out, value);
 }
 
 /// Append an error record (no newline): `{"index": i, <extra fields>, "error": {"kind",
@@ -188,6 +209,16 @@ pub fn eval_fields(param: f64, derivative: usize) -> String {
     let mut out = b"\"param\":".to_vec();
     write_num(&mut out, param);
     out.extend_from_slice(format!(",\"derivative\":{derivative}").as_bytes());
+    String::from_utf8(out).expect("ASCII")
+}
+
+/// The `"param":[U,V],"derivative":[K,L]` fields of surface eval records.
+pub fn surface_eval_fields(param: (f64, f64), derivative: (usize, usize)) -> String {
+    let mut out = b"\"param\":".to_vec();
+    write_nums(&mut out, [param.0, param.1]);
+    out.extend_from_slice(
+        format!(",\"derivative\":[{},{}]", derivative.0, derivative.1).as_bytes(),
+    );
     String::from_utf8(out).expect("ASCII")
 }
 

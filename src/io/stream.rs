@@ -2,7 +2,7 @@
 //! into the raw bytes of one curve each, in bounded memory; [`CurveReader`] also parses them.
 
 use super::error::{InputError, Position};
-use super::parse::{parse_curve_at, ParseOptions};
+use super::parse::{parse_curve_at, parse_record_at, ParseOptions, Shape};
 use super::scan::{Lexeme, Lexer};
 use crate::spline::curve::NurbsCurve;
 use std::io::{self, BufRead, BufReader, Read};
@@ -32,6 +32,14 @@ impl RawRecord {
     pub fn parse(&self, opts: &ParseOptions) -> Result<NurbsCurve, InputError> {
         match &self.bytes {
             Ok(b) => parse_curve_at(b, self.start, opts),
+            Err(e) => Err(e.clone()),
+        }
+    }
+
+    /// Parse and validate the record as a curve or a surface (mixed streams).
+    pub fn parse_shape(&self, opts: &ParseOptions) -> Result<Shape, InputError> {
+        match &self.bytes {
+            Ok(b) => parse_record_at(b, self.start, opts),
             Err(e) => Err(e.clone()),
         }
     }

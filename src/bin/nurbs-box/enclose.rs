@@ -3,7 +3,8 @@
 use crate::{default_strategy, run_stream, Fatal, InputArgs, Outcome};
 use clap::Args;
 use nurbs_box::enclose::{strategy_by_name, BoxEncloser, STRATEGY_NAMES};
-use nurbs_box::io::batch::enclose_records;
+use nurbs_box::io::batch::{enclose_shape_records, SurfaceStrategies};
+use nurbs_box::surface::{surface_strategy_by_name, SURFACE_STRATEGY_NAMES};
 
 #[derive(Args, Debug)]
 pub(crate) struct EncloseArgs {
@@ -46,8 +47,26 @@ pub(crate) fn run(a: EncloseArgs) -> Result<Outcome, Fatal> {
             })
         })
         .collect::<Result<_, _>>()?;
+    // surfaces: the surface strategies of the same names (`all`: every surface strategy); a
+    // curve-only name gives surfaces an `unsupported_strategy` record
+    let surface_names: Vec<&str> = if name == "all" {
+        SURFACE_STRATEGY_NAMES.to_vec()
+    } else {
+        names.clone()
+    };
+    let surfaces: SurfaceStrategies = surface_names
+        .iter()
+        .map(|n| {
+            surface_strategy_by_name(n, a.tol).ok_or_else(|| {
+                strategies
+                    .iter()
+                    .find(|s| s.name() == *n)
+                    .map_or("unknown", |s| s.name())
+            })
+        })
+        .collect();
     let timings = a.timings;
-    run_stream(&a.input, |index, curve, buf| {
-        enclose_records(index, curve, &strategies, timings, buf)
+    run_stream(&a.input, |index, shape, buf| {
+        enclose_shape_records(index, shape, &strategies, &surfaces, timings, buf)
     })
 }

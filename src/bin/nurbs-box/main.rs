@@ -23,9 +23,8 @@ mod serve;
 
 use clap::{Args, Parser, Subcommand};
 use nurbs_box::enclose::STRATEGY_NAMES;
-use nurbs_box::io::batch::{process_stream, StreamError, StreamOptions, StreamSummary};
-use nurbs_box::io::{InputError, ParseOptions};
-use nurbs_box::NurbsCurve;
+use nurbs_box::io::batch::{process_shapes, StreamError, StreamOptions, StreamSummary};
+use nurbs_box::io::{InputError, ParseOptions, Shape};
 use std::fs::File;
 use std::io::{self, Read};
 use std::path::PathBuf;
@@ -141,7 +140,7 @@ pub(crate) fn open_input(path: &PathBuf) -> Result<(Box<dyn Read + Send>, Option
 /// Run `work` on every curve of the input in parallel, writing to stdout in input order.
 pub(crate) fn run_stream<F>(args: &InputArgs, work: F) -> Result<Outcome, Fatal>
 where
-    F: Fn(usize, Result<NurbsCurve, InputError>, &mut Vec<u8>) -> bool + Sync,
+    F: Fn(usize, Result<Shape, InputError>, &mut Vec<u8>) -> bool + Sync,
 {
     let (input, total_bytes) = open_input(&args.input)?;
     let opts = StreamOptions {
@@ -154,7 +153,7 @@ where
         },
         ..StreamOptions::default()
     };
-    match process_stream(input, io::stdout().lock(), &opts, work) {
+    match process_shapes(input, io::stdout().lock(), &opts, work) {
         Ok(StreamSummary { failed: 0, .. }) => Ok(Outcome::AllOk),
         Ok(_) => Ok(Outcome::SomeErrors),
         // The reader of our output went away (`| head`): stop quietly.
