@@ -459,11 +459,14 @@ impl SurfaceNewton {
                         }
                         Kraw::Unique(ru, rv) => {
                             st.newton_iterations += 1;
-                            let v = self.refine(&ev, j, ru, rv, cell.ku, cell.kv, st);
-                            let x = &mut tg[t];
-                            x.lo = x.lo.min(signed(v.0, sg).inf());
-                            x.best = x.best.min(signed(v.1, sg).sup());
-                            continue;
+                            let tol = self.tol * scale[j];
+                            if let Some(v) = self.refine(&ev, j, sg, tol, ru, rv, cell.ku, cell.kv, st) {
+                                let x = &mut tg[t];
+                                x.lo = x.lo.min(signed(v.0, sg).inf());
+                                x.best = x.best.min(signed(v.1, sg).sup());
+                                continue;
+                            }
+                            // not contracted to the tolerance: bisect as undecided
                         }
                         Kraw::Unknown => st.newton_iterations += 1,
                     }
@@ -527,25 +530,29 @@ impl SurfaceNewton {
     }
 
     /// Contract a box proved to hold exactly one zero of grad S_j (X <- K(X) ∩ X while it
-    /// shrinks): (value enclosure over the final box, tight value at its centre).
+    /// shrinks): (value enclosure over the final box, tight value at its centre), or `None`
+    /// if the value enclosure is still wider than `tol` beyond the centre value (the caller
+    /// bisects then).
     #[allow(clippy::too_many_arguments)]
     fn refine(
         &self,
         ev: &Evaluators,
         j: usize,
+        sg: f64,
+        tol: f64,
         mut xu: Interval,
         mut xv: Interval,
         ku: usize,
         kv: usize,
         st: &mut Stats,
-    ) -> (Interval, Interval) {
+    ) -> Option<(Interval, Interval)> {
         let mut e = ev.eval(xu, xv, ku, kv);
         for _ in 0..60 {
             st.newton_iterations += 1;
             st.derivative_evaluations += 1;
             match krawczyk(xu, xv, e.c, e.grad_c[j], e.hess[j]) {
                 Kraw::Unique(a, b) => {
-                    let shrunk = a.wid() < 0.5 * xu.wid() || b.wid() < 0.5 * xv.wid();
+                    let shrunk = a.wid() < xu.wid() || b.wid() < xv.wid();
                     xu = a;
                     xv = b;
                     e = ev.eval(xu, xv, ku, kv);
@@ -557,7 +564,8 @@ impl SurfaceNewton {
                 _ => break,
             }
         }
-        (e.value[j], e.centre[j])
+        let (v, c) = (signed(e.value[j], sg), signed(e.centre[j], sg));
+        (v.inf() >= c.sup() - tol).then_some((e.value[j], e.centre[j]))
     }
 }
 

@@ -1,0 +1,253 @@
+//! Surfaces: containment and tightness of every surface strategy against dense verified
+//! sampling and closed forms, the CLI and parser contract, hostile input.
+
+mod common;
+
+use inari::Interval;
+use nurbs_box::io::{parse_record, Shape};
+use nurbs_box::num::ulp;
+use nurbs_box::surface::enclose::all_surface_strategies;
+use nurbs_box::surface::gen::{families, random_surface};
+use nurbs_box::surface::{surface_strategy_by_name, NurbsSurface, SURFACE_STRATEGY_NAMES};
+use nurbs_box::enclose::{Enclosure, Settings, Termination};
+use proptest::prelude::*;
+
+/// Verified point enclosures on an n x n grid of the domain plus the Greville-like midpoints.
+fn samples(s: &NurbsSurface, n: usize) -> Vec<Vec<Interval>> {
+    let ((a, b), (c, d)) = s.domain();
+    let mut out = Vec::with_capacity((n + 1) * (n + 1));
+    for i in 0..=n {
+        for j in 0..=n {
+            let u = if i == n { b } else { a + (b - a) * i as f64 / n as f64 };
+            let v = if j == n { d } else { c + (d - c) * j as f64 / n as f64 };
+            out.push(s.enclose_derivative(u, v, 0, 0).unwrap());
+        }
+    }
+    out
+}
+
+/// Containment (no sample provably outside the box) and consistency of the inner bounds
+/// (lo <= inner_lo, inner_hi <= hi, and some sample comes within `slack` of each inner bound).
+fn check(name: &str, s: &NurbsSurface, e: &Enclosure, pts: &[Vec<Interval>], slack: f64) {
+    assert!(e.verified, "{name} {}", e.strategy);
+    for (j, cb) in e.coords.iter().enumerate() {
+        assert!(cb.lo.is_finite() && cb.hi.is_finite(), "{name} {}", e.strategy);
+        assert!(cb.lo <= cb.inner_lo && cb.inner_hi <= cb.hi, "{name} {} {j}", e.strategy);
+        let mut smin = f64::INFINITY;
+        let mut smax = f64::NEG_INFINITY;
+        for p in pts {
+            assert!(
+                p[j].sup() >= cb.lo && p[j].inf() <= cb.hi,
+                "{name} {}: coordinate {j} sample [{}, {}] outside [{}, {}]",
+                e.strategy,
+                p[j].inf(),
+                p[j].sup(),
+                cb.lo,
+                cb.hi
+            );
+            smin = smin.min(p[j].inf());
+            smax = smax.max(p[j].sup());
+        }
+        let sl = slack * s.coord_scale(j);
+        assert!(smin <= cb.inner_lo + sl, "{name} {} {j}: min sample {smin} vs inner {}", e.strategy, cb.inner_lo);
+        assert!(smax >= cb.inner_hi - sl, "{name} {} {j}: max sample {smax} vs inner {}", e.strategy, cb.inner_hi);
+    }
+}
+
+#[test]
+fn every_strategy_contains_dense_samples_of_every_family() {
+    for (name, s, exact) in families() {
+        let pts = samples(&s, 48);
+        for st in all_surface_strategies(&Settings::default()) {
+            let e = st.enclose(&s);
+            // the grid has spacing 1/48: the surface comes within ~1e-2 of every extremum there
+            let slack = if st.name() == "hull" { 10.0 } else { 2e-2 };
+            check(name, &s, &e, &pts, slack);
+            if let Some(ex) = &exact {
+                for (j, cb) in e.coords.iter().enumerate() {
+                    // the closed forms hold up to the rounding of the control points (1e-15)
+                    let t = 4e-15 * s.coord_scale(j);
+                    assert!(cb.lo <= ex[j].0 + t && ex[j].1 - t <= cb.hi, "{name} {} {j}", st.name());
+                    if st.name() != "hull" {
+                        assert!(cb.inner_lo >= ex[j].0 - t && cb.inner_hi <= ex[j].1 + t, "{name} {} {j}: false inner bound", st.name());
+                        assert!(cb.inner_lo <= ex[j].0 + t && cb.inner_hi >= ex[j].1 - t, "{name} {} {j}: loose inner bound", st.name());
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn newton_and_bezier_are_tight() {
+    for (name, s, _) in families() {
+        for (st, rel) in [("newton", 8.0 * f64::EPSILON), ("bezier", 1e-13)] {
+            let e = surface_strategy_by_name(st, None).unwrap().enclose(&s);
+            for (j, cb) in e.coords.iter().enumerate() {
+                let scale = s.coord_scale(j);
+                assert!(
+                    cb.gap() <= rel * scale + ulp(scale),
+                    "{name} {st} {j}: gap {} ({:?})",
+                    cb.gap(),
+                    cb.termination
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn interior_maximum_ridge_and_pole_are_exact() {
+    let fam = families();
+    let get = |n: &str| fam.iter().find(|f| f.0 == n).unwrap().1.clone();
+    let newton = surface_strategy_by_name("newton", None).unwrap();
+    // the bump's interior maximum 1 (net maximum 4) and the ridge's maximum 1 on a line
+    for name in ["bump", "ridge"] {
+        let e = newton.enclose(&get(name));
+        assert!(e.coords[2].hi - 1.0 <= 2.0 * f64::EPSILON, "{name} {}", e.coords[2].hi);
+        assert!(e.coords[2].inner_hi <= 1.0 && e.coords[2].inner_hi >= 1.0 - 2.0 * f64::EPSILON);
+        assert_ne!(e.coords[2].termination, Termination::WorkLimit, "{name}");
+    }
+    // the sphere octant: the pole row collapses to (0, 0, 1), z reaches 1 exactly there
+    let e = newton.enclose(&get("sphere_pole"));
+    assert_eq!((e.coords[2].hi, e.coords[2].inner_hi), (1.0, 1.0));
+    assert_eq!(e.coords[0].lo, 0.0);
+    // the bezier strategy gets the bump from the vertex test after one subdivision
+    let b = surface_strategy_by_name("bezier", None).unwrap().enclose(&get("bump"));
+    assert_eq!((b.coords[2].hi, b.coords[2].inner_hi), (1.0, 1.0));
+}
+
+#[test]
+fn parser_errors_are_typed_and_positioned() {
+    let ok = r#"{"degree_u": 2, "degree_v": 1, "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 1, 1], "control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 2], [1, 1, 2]], [[2, 0, 0], [2, 1, 0]]], "weights": [[1, 1], [0.5, 0.5], [1, 1]]}"#;
+    let Shape::Surface(s) = parse_record(ok.as_bytes()).unwrap() else {
+        panic!("a surface")
+    };
+    assert_eq!((s.rows(), s.cols(), s.dim()), (3, 2, 3));
+    // a curve in the same parser
+    assert!(matches!(
+        parse_record(br#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0], [1]]}"#),
+        Ok(Shape::Curve(_))
+    ));
+    let cases: &[(&str, &str, &str, &str)] = &[
+        (r#"[[1, 0, 2], [1, 1, 2]]"#, r#"[[1, 0, 2]]"#, "ragged_net", "control_points[1]:"),
+        (r#"[1, 1, 2]]"#, r#"[1, 1, "y"]]"#, "wrong_type", "control_points[1][1][2]:"),
+        (r#"[1, 1, 2]]"#, r#"[1, 1, 2, 3]]"#, "dimension_mismatch", "control_points[1][1]:"),
+        (r#"[1, 1, 2]]"#, r#"[1, 1, 1e400]]"#, "number_out_of_range", "control_points[1][1][2]:"),
+        (r#"[0, 0, 1, 1]"#, r#"[0, 0, 1]"#, "knot_count", "knots_v:"),
+        (r#"[0, 0, 0, 1, 1, 1]"#, r#"[0, 0, 0.5, 0.2, 1, 1]"#, "decreasing_knots", "knots_u[3]"),
+        (r#"[0.5, 0.5]"#, r#"[0.5, 0]"#, "invalid_weight", "weights[1][1]"),
+        (r#"[0.5, 0.5]"#, r#"[0.5]"#, "weight_count", "weights[1]"),
+        (r#"[[1, 1], [0.5, 0.5], [1, 1]]"#, r#"[1, 0.5, 1]"#, "wrong_type", "weights[0]"),
+        (r#""degree_v": 1"#, r#""degree_v": -1"#, "invalid_degree", "degree_v"),
+        (r#""degree_v": 1"#, r#""degree_v": 1, "degree": 1"#, "unknown_field", "\"degree\""),
+        (r#""degree_v": 1"#, r#""degree_v": 1, "colour": 1"#, "unknown_field", "\"colour\""),
+        (r#""degree_v": 1, "#, "", "missing_field", "degree_v"),
+        (r#""degree_v": 1"#, r#""degree_v": 1, "degree_v": 1"#, "duplicate_field", "degree_v"),
+    ];
+    for &(from, to, kind, start) in cases {
+        assert!(ok.contains(from), "{from}");
+        let bad = ok.replacen(from, to, 1);
+        let e = parse_record(bad.as_bytes()).expect_err(&bad);
+        assert_eq!(e.kind(), kind, "{bad}: {e}");
+        assert!(e.to_string().starts_with(start), "{bad}: {e}");
+    }
+    // the curve parser still rejects surface fields as before
+    let e = nurbs_box::io::parse_curve(ok.as_bytes()).unwrap_err();
+    assert_eq!(e.kind(), "unknown_field");
+}
+
+#[test]
+fn cli_encloses_and_evaluates_mixed_streams() {
+    let input = concat!(
+        r#"{"degree_u": 2, "degree_v": 1, "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 1, 1], "control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 2], [1, 1, 2]], [[2, 0, 0], [2, 1, 0]]], "weights": [[1, 1], [0.5, 0.5], [1, 1]]}"#,
+        "\n",
+        r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0, 5], [2, -1]]}"#,
+        "\n"
+    );
+    let (code, out, _) = common::run_bin(&["enclose"], input.as_bytes());
+    assert_eq!(code, 0, "{out}");
+    let lines: Vec<serde_json::Value> = out.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines.len(), 2);
+    assert_eq!(lines[0]["strategy"], "newton");
+    // the maximum of z: 2 * 2 u (1 - u) * 0.5 / (1 - u + u^2 ...) = 2/3 at u = 1/2
+    let hi = lines[0]["hi"][2].as_f64().unwrap();
+    let ihi = lines[0]["inner_hi"][2].as_f64().unwrap();
+    assert!(ihi <= 2.0 / 3.0 + 1e-16 && hi >= 2.0 / 3.0 - 1e-16 && hi - ihi <= 4e-16, "{hi} {ihi}");
+    let (code, out, _) = common::run_bin(&["enclose", "--strategy", "search-region"], input.as_bytes());
+    assert_eq!(code, 1);
+    assert!(out.lines().next().unwrap().contains("unsupported_strategy"), "{out}");
+    let (code, out, _) = common::run_bin(&["enclose", "--strategy", "all"], input.as_bytes());
+    assert_eq!(code, 0);
+    assert_eq!(out.lines().count(), SURFACE_STRATEGY_NAMES.len() + nurbs_box::enclose::STRATEGY_NAMES.len());
+    let (code, out, _) = common::run_bin(
+        &["eval", "--param", "0.5,0.25", "--derivative", "0,1"],
+        input.as_bytes(),
+    );
+    assert_eq!(code, 0, "{out}");
+    let l: Vec<&str> = out.lines().collect();
+    let r: serde_json::Value = serde_json::from_str(l[0]).unwrap();
+    assert_eq!(r["param"], serde_json::json!([0.5, 0.25]));
+    assert_eq!(r["derivative"], serde_json::json!([0, 1]));
+    // S_v = (0, 1, 0): y = v along the columns
+    assert_eq!(r["lo"], serde_json::json!([-0.0, 1.0, -0.0]));
+    assert!(l[1].starts_with(r#"{"index":1,"param":0.5,"derivative":0,"#), "{}", l[1]);
+    let (code, out, _) = common::run_bin(&["eval", "--param", "2,0"], input.as_bytes());
+    assert_eq!(code, 1);
+    assert!(out.contains("param_out_of_domain"));
+    let (code, _, err) = common::run_bin(&["eval", "--param", "0.5,x"], input.as_bytes());
+    assert_eq!(code, 2, "{err}");
+}
+
+/// Containment on random nets for every strategy, and newton's certified gap.
+fn prop_check(s: &NurbsSurface) {
+    let pts = samples(s, 12);
+    for st in all_surface_strategies(&Settings::default()) {
+        let e = st.enclose(s);
+        check("random", s, &e, &pts, 10.0);
+        if st.name() == "newton" && e.termination() == Termination::Converged {
+            for (j, cb) in e.coords.iter().enumerate() {
+                assert!(
+                    cb.gap() <= 8.0 * f64::EPSILON * s.coord_scale(j) + ulp(s.coord_scale(j)),
+                    "coordinate {j}: [{}, {}] inner [{}, {}] of {s:?}",
+                    cb.lo,
+                    cb.hi,
+                    cb.inner_lo,
+                    cb.inner_hi
+                );
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(common::config(24))]
+
+    #[test]
+    fn random_nets_are_contained(seed in any::<u64>(), p in 1usize..4, q in 1usize..4, extra in 0usize..3, rational in any::<bool>()) {
+        prop_check(&random_surface(seed, p, q, extra, rational));
+    }
+
+    /// Hostile JSON: byte mutations of a valid surface record never panic the parser, and a
+    /// record that still parses is enclosed without panicking.
+    #[test]
+    fn hostile_json_never_panics(cuts in proptest::collection::vec((0usize..400, any::<u8>()), 1..6), trunc in 0usize..400) {
+        let ok = br#"{"degree_u": 2, "degree_v": 1, "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 1, 1], "control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 2], [1, 1, 2]], [[2, 0, 0], [2, 1, 0]]], "weights": [[1, 1], [0.5, 0.5], [1, 1]]}"#;
+        let mut b = ok.to_vec();
+        for (i, x) in cuts {
+            let i = i % b.len();
+            // mostly structural bytes and digits, sometimes anything
+            let alphabet = b"[]{},:0123456789.-e\"x ";
+            b[i] = if x < 200 { alphabet[x as usize % alphabet.len()] } else { x };
+        }
+        if trunc < b.len() && trunc % 3 == 0 {
+            b.truncate(trunc);
+        }
+        if let Ok(Shape::Surface(s)) = parse_record(&b) {
+            for st in all_surface_strategies(&Settings { max_work: 200, ..Settings::default() }) {
+                let e = st.enclose(&s);
+                prop_assert!(e.coords.iter().all(|c| c.lo <= c.hi));
+            }
+        }
+    }
+}
