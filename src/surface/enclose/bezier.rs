@@ -89,6 +89,23 @@ fn bounds(pa: &Patch<Interval>, j: usize, rational: bool, sign: f64) -> (f64, f6
     (if lo.is_nan() { f64::NEG_INFINITY } else { lo }, best)
 }
 
+/// The patch of coordinate j alone: rows (w P_j, w), or (P_j).
+fn coordinate_patch(pa: &Patch<Interval>, j: usize, rational: bool) -> Patch<Interval> {
+    let d = pa.h - 1;
+    let mut pts = Vec::with_capacity((pa.p + 1) * (pa.q + 1) * (1 + rational as usize));
+    for c in pa.pts.chunks(pa.h) {
+        pts.push(c[j]);
+        if rational {
+            pts.push(c[d]);
+        }
+    }
+    Patch {
+        h: 1 + rational as usize,
+        pts,
+        ..pa.clone()
+    }
+}
+
 struct Item {
     lo: f64,
     depth: u32,
@@ -194,8 +211,11 @@ impl SurfaceEncloser for BezierPatches {
         let mut coords: Vec<_> = (0..s.dim())
             .map(|j| {
                 let scale = s.coord_scale(j);
-                let (lo, ilo, mut st, t1) = self.search(&patches, j, rational, 1.0, scale);
-                let (nhi, nihi, st2, t2) = self.search(&patches, j, rational, -1.0, scale);
+                // the search subdivides coordinate j (and the weight row) only
+                let pj: Vec<Patch<Interval>> =
+                    patches.iter().map(|pa| coordinate_patch(pa, j, rational)).collect();
+                let (lo, ilo, mut st, t1) = self.search(&pj, 0, rational, 1.0, scale);
+                let (nhi, nihi, st2, t2) = self.search(&pj, 0, rational, -1.0, scale);
                 st.add(&st2);
                 let term = if t1 == Termination::Converged { t2 } else { t1 };
                 coord_box(lo, -nhi, ilo, -nihi, st, term)
