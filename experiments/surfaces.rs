@@ -29,12 +29,23 @@ fn check(s: &NurbsSurface, n: usize, tallies: &mut [Tally]) {
     let pts: Vec<Vec<inari::Interval>> = (0..=n)
         .flat_map(|i| (0..=n).map(move |j| (i, j)))
         .map(|(i, j)| {
-            let u = if i == n { b } else { a + (b - a) * i as f64 / n as f64 };
-            let v = if j == n { d } else { c + (d - c) * j as f64 / n as f64 };
+            let u = if i == n {
+                b
+            } else {
+                a + (b - a) * i as f64 / n as f64
+            };
+            let v = if j == n {
+                d
+            } else {
+                c + (d - c) * j as f64 / n as f64
+            };
             s.enclose_derivative(u, v, 0, 0).expect("in the domain")
         })
         .collect();
-    for (k, st) in all_surface_strategies(&Settings::default()).iter().enumerate() {
+    for (k, st) in all_surface_strategies(&Settings::default())
+        .iter()
+        .enumerate()
+    {
         let t = Instant::now();
         let e = st.enclose(s);
         let el = t.elapsed().as_secs_f64();
@@ -51,7 +62,11 @@ fn check(s: &NurbsSurface, n: usize, tallies: &mut [Tally]) {
             for p in &pts {
                 ty.checks += 1;
                 // a miss only when the sample's enclosure lies wholly outside the box
-                if p[j].sup() < cb.lo || p[j].inf() > cb.hi || cb.inner_lo < cb.lo || cb.inner_hi > cb.hi {
+                if p[j].sup() < cb.lo
+                    || p[j].inf() > cb.hi
+                    || cb.inner_lo < cb.lo
+                    || cb.inner_hi > cb.hi
+                {
                     ty.misses += 1;
                 }
             }
@@ -115,7 +130,11 @@ fn main() {
         }
     }
     writeln!(md, "\n## Families (interior extrema, saddle, ridge, sphere pole, torus, unclamped, kink, extreme magnitudes)\n").unwrap();
-    writeln!(md, "| family | strategy | checks | misses | gap (ulps) | terminated | time |").unwrap();
+    writeln!(
+        md,
+        "| family | strategy | checks | misses | gap (ulps) | terminated | time |"
+    )
+    .unwrap();
     writeln!(md, "|---|---|---|---|---|---|---|").unwrap();
     for (name, s, _) in families() {
         let mut t = vec![Tally::default(); names.len()];
@@ -129,7 +148,11 @@ fn main() {
                 ty.checks,
                 ty.misses,
                 ty.worst_gap_ulps,
-                if ty.converged == 1 { "converged" } else { "work/depth limit" },
+                if ty.converged == 1 {
+                    "converged"
+                } else {
+                    "work/depth limit"
+                },
                 1e3 * ty.time
             )
             .unwrap();
@@ -137,7 +160,11 @@ fn main() {
     }
     // the bicubic 4 x 4 patch: median time per strategy over random patches, as a ratio to
     // the control-net box, measured in this run
-    writeln!(md, "\n## Bicubic 4 x 4 patch: time against the control-net box\n").unwrap();
+    writeln!(
+        md,
+        "\n## Bicubic 4 x 4 patch: time against the control-net box\n"
+    )
+    .unwrap();
     writeln!(md, "Median time per call, 3-D polynomial bicubic Bézier patches (random nets in [-1, 1]^3), measured in this run.\n").unwrap();
     writeln!(md, "| patches | strategy | median time | ratio to hull |").unwrap();
     writeln!(md, "|---|---|---|---|").unwrap();
@@ -163,9 +190,11 @@ fn main() {
         for st in all_surface_strategies(&Settings::default()) {
             let per: Vec<f64> = set
                 .iter()
-                .map(|s| median_time(reps, || {
-                    std::hint::black_box(st.enclose(std::hint::black_box(s)));
-                }))
+                .map(|s| {
+                    median_time(reps, || {
+                        std::hint::black_box(st.enclose(std::hint::black_box(s)));
+                    })
+                })
                 .collect();
             let mut v = per.clone();
             v.sort_by(f64::total_cmp);
@@ -184,7 +213,11 @@ fn main() {
             .unwrap();
         }
     }
-    writeln!(md, "\nContainment misses of verified strategies: {total_misses}.").unwrap();
+    writeln!(
+        md,
+        "\nContainment misses of verified strategies: {total_misses}."
+    )
+    .unwrap();
     std::fs::create_dir_all("results").expect("results/");
     std::fs::write("results/surfaces.md", &md).expect("write results/surfaces.md");
     print!("{md}");

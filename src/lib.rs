@@ -38,8 +38,8 @@ pub use enclose::{
 pub use error::{CurveError, EvalError};
 pub use io::{curve_to_json, parse_curve, CurveReader, InputError};
 pub use num::{Ddi, Mr, Scalar};
-pub use surface::{NurbsSurface, SurfaceEncloser, SurfaceError};
 pub use spline::{
     basis_funs, find_span, multiplicity, project, BezierSeg, CurveEval, HSpline, NurbsCurve,
     TightEval,
 };
+pub use surface::{NurbsSurface, SurfaceEncloser, SurfaceError};

@@ -4,12 +4,12 @@
 mod common;
 
 use inari::Interval;
+use nurbs_box::enclose::{Enclosure, Settings, Termination};
 use nurbs_box::io::{parse_record, Shape};
 use nurbs_box::num::ulp;
 use nurbs_box::surface::enclose::all_surface_strategies;
 use nurbs_box::surface::gen::{families, random_surface};
 use nurbs_box::surface::{surface_strategy_by_name, NurbsSurface, SURFACE_STRATEGY_NAMES};
-use nurbs_box::enclose::{Enclosure, Settings, Termination};
 use proptest::prelude::*;
 
 /// Verified point enclosures on an n x n grid of the domain plus the Greville-like midpoints.
@@ -18,8 +18,16 @@ fn samples(s: &NurbsSurface, n: usize) -> Vec<Vec<Interval>> {
     let mut out = Vec::with_capacity((n + 1) * (n + 1));
     for i in 0..=n {
         for j in 0..=n {
-            let u = if i == n { b } else { a + (b - a) * i as f64 / n as f64 };
-            let v = if j == n { d } else { c + (d - c) * j as f64 / n as f64 };
+            let u = if i == n {
+                b
+            } else {
+                a + (b - a) * i as f64 / n as f64
+            };
+            let v = if j == n {
+                d
+            } else {
+                c + (d - c) * j as f64 / n as f64
+            };
             out.push(s.enclose_derivative(u, v, 0, 0).unwrap());
         }
     }
@@ -31,8 +39,16 @@ fn samples(s: &NurbsSurface, n: usize) -> Vec<Vec<Interval>> {
 fn check(name: &str, s: &NurbsSurface, e: &Enclosure, pts: &[Vec<Interval>], slack: f64) {
     assert!(e.verified, "{name} {}", e.strategy);
     for (j, cb) in e.coords.iter().enumerate() {
-        assert!(cb.lo.is_finite() && cb.hi.is_finite(), "{name} {}", e.strategy);
-        assert!(cb.lo <= cb.inner_lo && cb.inner_hi <= cb.hi, "{name} {} {j}", e.strategy);
+        assert!(
+            cb.lo.is_finite() && cb.hi.is_finite(),
+            "{name} {}",
+            e.strategy
+        );
+        assert!(
+            cb.lo <= cb.inner_lo && cb.inner_hi <= cb.hi,
+            "{name} {} {j}",
+            e.strategy
+        );
         let mut smin = f64::INFINITY;
         let mut smax = f64::NEG_INFINITY;
         for p in pts {
@@ -49,8 +65,18 @@ fn check(name: &str, s: &NurbsSurface, e: &Enclosure, pts: &[Vec<Interval>], sla
             smax = smax.max(p[j].sup());
         }
         let sl = slack * s.coord_scale(j);
-        assert!(smin <= cb.inner_lo + sl, "{name} {} {j}: min sample {smin} vs inner {}", e.strategy, cb.inner_lo);
-        assert!(smax >= cb.inner_hi - sl, "{name} {} {j}: max sample {smax} vs inner {}", e.strategy, cb.inner_hi);
+        assert!(
+            smin <= cb.inner_lo + sl,
+            "{name} {} {j}: min sample {smin} vs inner {}",
+            e.strategy,
+            cb.inner_lo
+        );
+        assert!(
+            smax >= cb.inner_hi - sl,
+            "{name} {} {j}: max sample {smax} vs inner {}",
+            e.strategy,
+            cb.inner_hi
+        );
     }
 }
 
@@ -67,10 +93,22 @@ fn every_strategy_contains_dense_samples_of_every_family() {
                 for (j, cb) in e.coords.iter().enumerate() {
                     // the closed forms hold up to the rounding of the control points (1e-15)
                     let t = 4e-15 * s.coord_scale(j);
-                    assert!(cb.lo <= ex[j].0 + t && ex[j].1 - t <= cb.hi, "{name} {} {j}", st.name());
+                    assert!(
+                        cb.lo <= ex[j].0 + t && ex[j].1 - t <= cb.hi,
+                        "{name} {} {j}",
+                        st.name()
+                    );
                     if st.name() != "hull" {
-                        assert!(cb.inner_lo >= ex[j].0 - t && cb.inner_hi <= ex[j].1 + t, "{name} {} {j}: false inner bound", st.name());
-                        assert!(cb.inner_lo <= ex[j].0 + t && cb.inner_hi >= ex[j].1 - t, "{name} {} {j}: loose inner bound", st.name());
+                        assert!(
+                            cb.inner_lo >= ex[j].0 - t && cb.inner_hi <= ex[j].1 + t,
+                            "{name} {} {j}: false inner bound",
+                            st.name()
+                        );
+                        assert!(
+                            cb.inner_lo <= ex[j].0 + t && cb.inner_hi >= ex[j].1 - t,
+                            "{name} {} {j}: loose inner bound",
+                            st.name()
+                        );
                     }
                 }
             }
@@ -104,7 +142,11 @@ fn interior_maximum_ridge_and_pole_are_exact() {
     // the bump's interior maximum 1 (net maximum 4) and the ridge's maximum 1 on a line
     for name in ["bump", "ridge"] {
         let e = newton.enclose(&get(name));
-        assert!(e.coords[2].hi - 1.0 <= 2.0 * f64::EPSILON, "{name} {}", e.coords[2].hi);
+        assert!(
+            e.coords[2].hi - 1.0 <= 2.0 * f64::EPSILON,
+            "{name} {}",
+            e.coords[2].hi
+        );
         assert!(e.coords[2].inner_hi <= 1.0 && e.coords[2].inner_hi >= 1.0 - 2.0 * f64::EPSILON);
         assert_ne!(e.coords[2].termination, Termination::WorkLimit, "{name}");
     }
@@ -113,7 +155,9 @@ fn interior_maximum_ridge_and_pole_are_exact() {
     assert_eq!((e.coords[2].hi, e.coords[2].inner_hi), (1.0, 1.0));
     assert_eq!(e.coords[0].lo, 0.0);
     // the bezier strategy gets the bump from the vertex test after one subdivision
-    let b = surface_strategy_by_name("bezier", None).unwrap().enclose(&get("bump"));
+    let b = surface_strategy_by_name("bezier", None)
+        .unwrap()
+        .enclose(&get("bump"));
     assert_eq!((b.coords[2].hi, b.coords[2].inner_hi), (1.0, 1.0));
 }
 
@@ -130,20 +174,75 @@ fn parser_errors_are_typed_and_positioned() {
         Ok(Shape::Curve(_))
     ));
     let cases: &[(&str, &str, &str, &str)] = &[
-        (r#"[[1, 0, 2], [1, 1, 2]]"#, r#"[[1, 0, 2]]"#, "ragged_net", "control_points[1]:"),
-        (r#"[1, 1, 2]]"#, r#"[1, 1, "y"]]"#, "wrong_type", "control_points[1][1][2]:"),
-        (r#"[1, 1, 2]]"#, r#"[1, 1, 2, 3]]"#, "dimension_mismatch", "control_points[1][1]:"),
-        (r#"[1, 1, 2]]"#, r#"[1, 1, 1e400]]"#, "number_out_of_range", "control_points[1][1][2]:"),
+        (
+            r#"[[1, 0, 2], [1, 1, 2]]"#,
+            r#"[[1, 0, 2]]"#,
+            "ragged_net",
+            "control_points[1]:",
+        ),
+        (
+            r#"[1, 1, 2]]"#,
+            r#"[1, 1, "y"]]"#,
+            "wrong_type",
+            "control_points[1][1][2]:",
+        ),
+        (
+            r#"[1, 1, 2]]"#,
+            r#"[1, 1, 2, 3]]"#,
+            "dimension_mismatch",
+            "control_points[1][1]:",
+        ),
+        (
+            r#"[1, 1, 2]]"#,
+            r#"[1, 1, 1e400]]"#,
+            "number_out_of_range",
+            "control_points[1][1][2]:",
+        ),
         (r#"[0, 0, 1, 1]"#, r#"[0, 0, 1]"#, "knot_count", "knots_v:"),
-        (r#"[0, 0, 0, 1, 1, 1]"#, r#"[0, 0, 0.5, 0.2, 1, 1]"#, "decreasing_knots", "knots_u[3]"),
-        (r#"[0.5, 0.5]"#, r#"[0.5, 0]"#, "invalid_weight", "weights[1][1]"),
+        (
+            r#"[0, 0, 0, 1, 1, 1]"#,
+            r#"[0, 0, 0.5, 0.2, 1, 1]"#,
+            "decreasing_knots",
+            "knots_u[3]",
+        ),
+        (
+            r#"[0.5, 0.5]"#,
+            r#"[0.5, 0]"#,
+            "invalid_weight",
+            "weights[1][1]",
+        ),
         (r#"[0.5, 0.5]"#, r#"[0.5]"#, "weight_count", "weights[1]"),
-        (r#"[[1, 1], [0.5, 0.5], [1, 1]]"#, r#"[1, 0.5, 1]"#, "wrong_type", "weights[0]"),
-        (r#""degree_v": 1"#, r#""degree_v": -1"#, "invalid_degree", "degree_v"),
-        (r#""degree_v": 1"#, r#""degree_v": 1, "degree": 1"#, "unknown_field", "\"degree\""),
-        (r#""degree_v": 1"#, r#""degree_v": 1, "colour": 1"#, "unknown_field", "\"colour\""),
+        (
+            r#"[[1, 1], [0.5, 0.5], [1, 1]]"#,
+            r#"[1, 0.5, 1]"#,
+            "wrong_type",
+            "weights[0]",
+        ),
+        (
+            r#""degree_v": 1"#,
+            r#""degree_v": -1"#,
+            "invalid_degree",
+            "degree_v",
+        ),
+        (
+            r#""degree_v": 1"#,
+            r#""degree_v": 1, "degree": 1"#,
+            "unknown_field",
+            "\"degree\"",
+        ),
+        (
+            r#""degree_v": 1"#,
+            r#""degree_v": 1, "colour": 1"#,
+            "unknown_field",
+            "\"colour\"",
+        ),
         (r#""degree_v": 1, "#, "", "missing_field", "degree_v"),
-        (r#""degree_v": 1"#, r#""degree_v": 1, "degree_v": 1"#, "duplicate_field", "degree_v"),
+        (
+            r#""degree_v": 1"#,
+            r#""degree_v": 1, "degree_v": 1"#,
+            "duplicate_field",
+            "degree_v",
+        ),
     ];
     for &(from, to, kind, start) in cases {
         assert!(ok.contains(from), "{from}");
@@ -167,19 +266,34 @@ fn cli_encloses_and_evaluates_mixed_streams() {
     );
     let (code, out, _) = common::run_bin(&["enclose"], input.as_bytes());
     assert_eq!(code, 0, "{out}");
-    let lines: Vec<serde_json::Value> = out.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    let lines: Vec<serde_json::Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
     assert_eq!(lines.len(), 2);
     assert_eq!(lines[0]["strategy"], "newton");
     // the maximum of z: 2 * 2 u (1 - u) * 0.5 / (1 - u + u^2 ...) = 2/3 at u = 1/2
     let hi = lines[0]["hi"][2].as_f64().unwrap();
     let ihi = lines[0]["inner_hi"][2].as_f64().unwrap();
-    assert!(ihi <= 2.0 / 3.0 + 1e-16 && hi >= 2.0 / 3.0 - 1e-16 && hi - ihi <= 4e-16, "{hi} {ihi}");
-    let (code, out, _) = common::run_bin(&["enclose", "--strategy", "search-region"], input.as_bytes());
+    assert!(
+        ihi <= 2.0 / 3.0 + 1e-16 && hi >= 2.0 / 3.0 - 1e-16 && hi - ihi <= 4e-16,
+        "{hi} {ihi}"
+    );
+    let (code, out, _) = common::run_bin(
+        &["enclose", "--strategy", "search-region"],
+        input.as_bytes(),
+    );
     assert_eq!(code, 1);
-    assert!(out.lines().next().unwrap().contains("unsupported_strategy"), "{out}");
+    assert!(
+        out.lines().next().unwrap().contains("unsupported_strategy"),
+        "{out}"
+    );
     let (code, out, _) = common::run_bin(&["enclose", "--strategy", "all"], input.as_bytes());
     assert_eq!(code, 0);
-    assert_eq!(out.lines().count(), SURFACE_STRATEGY_NAMES.len() + nurbs_box::enclose::STRATEGY_NAMES.len());
+    assert_eq!(
+        out.lines().count(),
+        SURFACE_STRATEGY_NAMES.len() + nurbs_box::enclose::STRATEGY_NAMES.len()
+    );
     let (code, out, _) = common::run_bin(
         &["eval", "--param", "0.5,0.25", "--derivative", "0,1"],
         input.as_bytes(),
@@ -191,7 +305,11 @@ fn cli_encloses_and_evaluates_mixed_streams() {
     assert_eq!(r["derivative"], serde_json::json!([0, 1]));
     // S_v = (0, 1, 0): y = v along the columns
     assert_eq!(r["lo"], serde_json::json!([-0.0, 1.0, -0.0]));
-    assert!(l[1].starts_with(r#"{"index":1,"param":0.5,"derivative":0,"#), "{}", l[1]);
+    assert!(
+        l[1].starts_with(r#"{"index":1,"param":0.5,"derivative":0,"#),
+        "{}",
+        l[1]
+    );
     let (code, out, _) = common::run_bin(&["eval", "--param", "2,0"], input.as_bytes());
     assert_eq!(code, 1);
     assert!(out.contains("param_out_of_domain"));

@@ -8,10 +8,10 @@
 //! included) scales with the threads; memory is bounded by one chunk whatever the input size.
 
 use crate::enclose::{BoxEncloser, Enclosure};
+use crate::io::Shape;
 use crate::io::{
     write_enclosure_record, write_error_record, InputError, ParseOptions, RawRecord, RecordReader,
 };
-use crate::io::Shape;
 use crate::spline::curve::NurbsCurve;
 use crate::surface::SurfaceEncloser;
 use rayon::prelude::*;
@@ -322,18 +322,20 @@ pub fn enclose_shape_records(
     let mut ok = true;
     for st in surface_strategies {
         match st {
-            Ok(st) => match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| st.enclose(&s))) {
-                Ok(e) => write_enclosure_record(buf, index, &e, timings),
-                Err(_) => {
-                    ok = false;
-                    let extra = format!("\"strategy\":\"{}\"", st.name());
-                    let text = format!(
+            Ok(st) => {
+                match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| st.enclose(&s))) {
+                    Ok(e) => write_enclosure_record(buf, index, &e, timings),
+                    Err(_) => {
+                        ok = false;
+                        let extra = format!("\"strategy\":\"{}\"", st.name());
+                        let text = format!(
                         "internal error: strategy {} failed on this surface; please report it with the surface",
                         st.name()
                     );
-                    write_error_record(buf, index, &extra, "internal_error", &text);
+                        write_error_record(buf, index, &extra, "internal_error", &text);
+                    }
                 }
-            },
+            }
             Err(name) => {
                 ok = false;
                 let extra = format!("\"strategy\":\"{name}\"");

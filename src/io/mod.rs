@@ -56,7 +56,8 @@ pub mod stream;
 pub use error::{InputError, Position};
 pub use parse::{parse_curve, parse_curve_at, parse_record, parse_record_at, ParseOptions, Shape};
 pub use records::{
-    curve_to_json, eval_fields, surface_eval_fields, write_surface_eval_record, termination_name, write_curve, write_enclosure_record,
-    write_error_record, write_eval_record, write_num, write_nums, write_str,
+    curve_to_json, eval_fields, surface_eval_fields, termination_name, write_curve,
+    write_enclosure_record, write_error_record, write_eval_record, write_num, write_nums,
+    write_str, write_surface_eval_record,
 };
 pub use stream::{read_curves, CurveReader, RawRecord, RecordReader, StreamForm};

@@ -201,9 +201,7 @@ struct Nums<'a> {
 impl Nums<'_> {
     fn expected(&self) -> &'static str {
         match self.loc {
-            Loc::Elem("control_points", _) | Loc::Point2(..) => {
-                "an array of coordinates (numbers)"
-            }
+            Loc::Elem("control_points", _) | Loc::Point2(..) => "an array of coordinates (numbers)",
             _ => "an array of numbers",
         }
     }
@@ -273,10 +271,12 @@ seed_via_any! {
 impl<'de> Visitor<'de> for Degree<'_> {
     type Value = usize;
     fn visit_u64<E: de::Error>(self, v: u64) -> Result<usize, E> {
-        usize::try_from(v).map_err(|_| fail(self.slot, DataErr::Degree(self.field(), v.to_string())))
+        usize::try_from(v)
+            .map_err(|_| fail(self.slot, DataErr::Degree(self.field(), v.to_string())))
     }
     fn visit_i64<E: de::Error>(self, v: i64) -> Result<usize, E> {
-        usize::try_from(v).map_err(|_| fail(self.slot, DataErr::Degree(self.field(), v.to_string())))
+        usize::try_from(v)
+            .map_err(|_| fail(self.slot, DataErr::Degree(self.field(), v.to_string())))
     }
     fn visit_f64<E: de::Error>(self, v: f64) -> Result<usize, E> {
         // Exact: an integral f64 below 2^53 converts without rounding; larger ones are
@@ -284,7 +284,10 @@ impl<'de> Visitor<'de> for Degree<'_> {
         if v.fract() == 0.0 && (0.0..9007199254740992.0).contains(&v) {
             self.visit_u64(v as u64)
         } else {
-            Err(fail(self.slot, DataErr::Degree(self.field(), v.to_string())))
+            Err(fail(
+                self.slot,
+                DataErr::Degree(self.field(), v.to_string()),
+            ))
         }
     }
     reject!(text, unit, map, seq);
@@ -389,17 +392,32 @@ impl<'de> Visitor<'de> for NumOrSeq<'_> {
         .map(|v| Elem::V(v.unwrap_or_default()))
     }
     fn visit_bool<E: de::Error>(self, v: bool) -> Result<Elem, E> {
-        Err(wrong(self.slot, self.num_loc, self.expected(), format!("the boolean {v}")))
+        Err(wrong(
+            self.slot,
+            self.num_loc,
+            self.expected(),
+            format!("the boolean {v}"),
+        ))
     }
     fn visit_str<E: de::Error>(self, v: &str) -> Result<Elem, E> {
         let got = format!("a string {:?}", shorten(v, 40));
         Err(wrong(self.slot, self.num_loc, self.expected(), got))
     }
     fn visit_unit<E: de::Error>(self) -> Result<Elem, E> {
-        Err(wrong(self.slot, self.num_loc, self.expected(), "null".into()))
+        Err(wrong(
+            self.slot,
+            self.num_loc,
+            self.expected(),
+            "null".into(),
+        ))
     }
     fn visit_map<A: MapAccess<'de>>(self, _: A) -> Result<Elem, A::Error> {
-        Err(wrong(self.slot, self.num_loc, self.expected(), "an object".into()))
+        Err(wrong(
+            self.slot,
+            self.num_loc,
+            self.expected(),
+            "an object".into(),
+        ))
     }
     fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.expected())
@@ -659,14 +677,24 @@ impl RawCurve {
     /// Split into the curve or surface fields; a wrong-kind element is a [`DataErr`].
     fn into_shape(self) -> Result<Result<Shape, InputError>, DataErr> {
         if let (Some(p), Some(knots)) = (self.degree, self.knots.clone()) {
-            if self.degree_u.is_none() && self.degree_v.is_none() && self.knots_u.is_none() && self.knots_v.is_none() {
+            if self.degree_u.is_none()
+                && self.degree_v.is_none()
+                && self.knots_u.is_none()
+                && self.knots_v.is_none()
+            {
                 let mut pts = Vec::with_capacity(self.control_points.len());
                 for (i, row) in self.control_points.into_iter().enumerate() {
                     let mut pt = Vec::with_capacity(row.len());
                     for (j, e) in row.into_iter().enumerate() {
                         match e {
                             Elem::N(x) => pt.push(x),
-                            other => return Err(shape_error(Loc::Coord(i, j).to_string(), false, &other)),
+                            other => {
+                                return Err(shape_error(
+                                    Loc::Coord(i, j).to_string(),
+                                    false,
+                                    &other,
+                                ))
+                            }
                         }
                     }
                     pts.push(pt);
@@ -765,7 +793,11 @@ pub fn parse_record_at(
 
 /// [`parse_record_at`] from line 1, column 1.
 pub fn parse_record(bytes: &[u8]) -> Result<Shape, InputError> {
-    parse_record_at(bytes, Position { line: 1, column: 1 }, &ParseOptions::default())
+    parse_record_at(
+        bytes,
+        Position { line: 1, column: 1 },
+        &ParseOptions::default(),
+    )
 }
 
 fn parse_at(

@@ -121,7 +121,12 @@ impl<S: Scalar> Net<S> {
     /// The net of d/du (thesis eq. 2.7 applied to the rows: the curve kernel
     /// [`HSpline::derivative`]); degree p - 1, knots u_1 .. u_{m-1}.
     pub fn du(&self) -> Self {
-        Net::from_u_curve(self.as_u_curve().derivative(), self.q, self.kv.clone(), self.h)
+        Net::from_u_curve(
+            self.as_u_curve().derivative(),
+            self.q,
+            self.kv.clone(),
+            self.h,
+        )
     }
 
     /// The net of d/dv (the same on the transposed net).
@@ -341,7 +346,8 @@ impl<S: Scalar> SurfaceEval<S> {
         self.levels[0][0].as_ref().expect("level 0 exists")
     }
 
-    /// S^(a,b) (Cartesian, `dim` values) for a <= k, b <= l, a + b <= total (the others
+    /// S^(a,b) (Cartesian, `dim` values) for a <= k, b <= l, a + b <= total (`orders` =
+    /// (k, l, total); the others
     /// `None`), at (u, v) in the spans (`ku`, `kv`) of the surface. For interval u, v inside
     /// the closed spans every value encloses the derivative over all of them.
     ///
@@ -354,9 +360,7 @@ impl<S: Scalar> SurfaceEval<S> {
         kv: usize,
         u: &S,
         v: &S,
-        k: usize,
-        l: usize,
-        total: usize,
+        (k, l, total): (usize, usize, usize),
     ) -> Vec<Vec<Option<Vec<S>>>> {
         let h = self.dim + self.rational as usize;
         let hom: Vec<Vec<Option<Vec<S>>>> = (0..=k)
@@ -417,9 +421,7 @@ impl<S: Scalar> SurfaceEval<S> {
             n.span_v(v),
             &S::from_f64(u),
             &S::from_f64(v),
-            k,
-            l,
-            k + l,
+            (k, l, k + l),
         );
         Ok(all[k][l].take().expect("requested"))
     }
@@ -642,7 +644,9 @@ mod tests {
             let c = pa.coef(0, 0);
             let w = c[3];
             for k in 0..3 {
-                assert!((c[k] / w).contains(corner[k]) || ((c[k] / w).mid() - corner[k]).abs() < 1e-12);
+                assert!(
+                    (c[k] / w).contains(corner[k]) || ((c[k] / w).mid() - corner[k]).abs() < 1e-12
+                );
             }
             let (l, r) = pa.split_u(0.5);
             let (l2, _) = r.split_v(0.25);
@@ -652,19 +656,20 @@ mod tests {
             let kv = n.span_v(0.5 * (pa.v.0 + pa.v.1));
             let bu = iv::span(pa.u.0, pa.u.1);
             let bv = iv::span(pa.v.0, pa.v.1);
-            let encl = e.derivs_in_span(ku, kv, &bu, &bv, 1, 1, 2);
+            let encl = e.derivs_in_span(ku, kv, &bu, &bv, (1, 1, 2));
             for i in 0..=4 {
                 for j in 0..=4 {
                     let u = pa.u.0 + (pa.u.1 - pa.u.0) * i as f64 / 4.0;
                     let v = pa.v.0 + (pa.v.1 - pa.v.0) * j as f64 / 4.0;
                     let f: Vec<Interval> = e
-                        .derivs_in_span(ku, kv, &iv::point(u), &iv::point(v), 1, 1, 2)
+                        .derivs_in_span(ku, kv, &iv::point(u), &iv::point(v), (1, 1, 2))
                         .into_iter()
                         .flatten()
                         .flatten()
                         .flatten()
                         .collect();
-                    let g: Vec<Interval> = encl.iter().flatten().flatten().flatten().copied().collect();
+                    let g: Vec<Interval> =
+                        encl.iter().flatten().flatten().flatten().copied().collect();
                     for (a, b) in f.iter().zip(&g) {
                         assert!(b.inf() <= a.inf() && a.sup() <= b.sup());
                     }

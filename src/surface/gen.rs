@@ -117,31 +117,53 @@ pub fn families() -> Vec<(&'static str, NurbsSurface, Option<Vec<(f64, f64)>>)> 
     // z = 16 u (1 - u) v (1 - v): an interior maximum 1 at (1/2, 1/2), net maximum 4
     out.push((
         "bump",
-        bezier_patch(2, 2, graph(2, 2, |r, c| if r == 1 && c == 1 { 4.0 } else { 0.0 }), None),
+        bezier_patch(
+            2,
+            2,
+            graph(2, 2, |r, c| if r == 1 && c == 1 { 4.0 } else { 0.0 }),
+            None,
+        ),
         unit.clone(),
     ));
     // z = 4 u (1 - u): a ridge (maximum 1 on the whole line u = 1/2)
     out.push((
         "ridge",
-        bezier_patch(2, 1, graph(2, 1, |r, _| if r == 1 { 2.0 } else { 0.0 }), None),
+        bezier_patch(
+            2,
+            1,
+            graph(2, 1, |r, _| if r == 1 { 2.0 } else { 0.0 }),
+            None,
+        ),
         unit.clone(),
     ));
     // an octant of the unit sphere: the row at u = 1 collapses to the pole (0, 0, 1)
-    let mer = [(1.0, 0.0, 1.0), (1.0, 1.0, std::f64::consts::FRAC_1_SQRT_2), (0.0, 1.0, 1.0)];
+    let mer = [
+        (1.0, 0.0, 1.0),
+        (1.0, 1.0, std::f64::consts::FRAC_1_SQRT_2),
+        (0.0, 1.0, 1.0),
+    ];
     let rot = mer;
     let (mut net, mut w) = (Vec::new(), Vec::new());
     for &(x, z, wm) in &mer {
         net.push(rot.iter().map(|&(c, s, _)| vec![x * c, x * s, z]).collect());
         w.push(rot.iter().map(|&(_, _, wr)| wm * wr).collect());
     }
-    out.push(("sphere_pole", bezier_patch(2, 2, net, Some(w)), unit.clone()));
+    out.push((
+        "sphere_pole",
+        bezier_patch(2, 2, net, Some(w)),
+        unit.clone(),
+    ));
     // a torus patch (R = 2, r = 1) around the outer equator: x has an interior maximum 3 at
     // (1/2, 1/2), a rational patch
     let (tube, rot) = (arc(0.0), arc(0.0));
     let (mut net, mut w) = (Vec::new(), Vec::new());
     for &(ct, st, wt) in &tube {
         let rho = 2.0 + ct; // (ρ, z) = (R + r cos θ, r sin θ) in homogeneous form per point
-        net.push(rot.iter().map(|&(c, s, _)| vec![rho * c, rho * s, st]).collect());
+        net.push(
+            rot.iter()
+                .map(|&(c, s, _)| vec![rho * c, rho * s, st])
+                .collect(),
+        );
         w.push(rot.iter().map(|&(_, _, wr)| wt * wr).collect());
     }
     let h = std::f64::consts::FRAC_1_SQRT_2;
@@ -169,14 +191,27 @@ pub fn families() -> Vec<(&'static str, NurbsSurface, Option<Vec<(f64, f64)>>)> 
     let net: Vec<Vec<Vec<f64>>> = (0..5)
         .map(|i| {
             (0..3)
-                .map(|j| vec![i as f64, j as f64, [0.0, 1.0, 3.0, 1.0, 0.0][i] - j as f64 * 0.5])
+                .map(|j| {
+                    vec![
+                        i as f64,
+                        j as f64,
+                        [0.0, 1.0, 3.0, 1.0, 0.0][i] - j as f64 * 0.5,
+                    ]
+                })
                 .collect()
         })
         .collect();
     out.push((
         "kink",
-        NurbsSurface::new(2, 2, vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.], vec![0., 0., 0., 1., 1., 1.], net, None)
-            .expect("valid"),
+        NurbsSurface::new(
+            2,
+            2,
+            vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.],
+            vec![0., 0., 0., 1., 1., 1.],
+            net,
+            None,
+        )
+        .expect("valid"),
         None,
     ));
     // extreme magnitudes
@@ -185,10 +220,21 @@ pub fn families() -> Vec<(&'static str, NurbsSurface, Option<Vec<(f64, f64)>>)> 
         let net: Vec<Vec<Vec<f64>>> = big
             .control_points()
             .into_iter()
-            .map(|r| r.into_iter().map(|p| p.into_iter().map(|x| x * f).collect()).collect())
+            .map(|r| {
+                r.into_iter()
+                    .map(|p| p.into_iter().map(|x| x * f).collect())
+                    .collect()
+            })
             .collect();
-        NurbsSurface::new(2, 2, big.knots_u().to_vec(), big.knots_v().to_vec(), net, big.weights_nested())
-            .expect("valid")
+        NurbsSurface::new(
+            2,
+            2,
+            big.knots_u().to_vec(),
+            big.knots_v().to_vec(),
+            net,
+            big.weights_nested(),
+        )
+        .expect("valid")
     };
     out.push(("huge", scaled(1e300), None));
     out.push(("tiny", scaled(1e-300), None));

@@ -59,7 +59,9 @@ pub enum SurfaceError {
         j: usize,
     },
     /// Points of different dimensions.
-    #[error("control_points[{i}][{j}]: has {got} coordinates, but control_points[0][0] has {expected}")]
+    #[error(
+        "control_points[{i}][{j}]: has {got} coordinates, but control_points[0][0] has {expected}"
+    )]
     DimensionMismatch {
         /// row
         i: usize,
@@ -114,12 +116,16 @@ fn direction_message(dir: Dir, e: &CurveError) -> String {
     };
     match e {
         CurveError::InvalidDegree(d) => format!("degree_{s}: expected an integer >= 1, got {d}"),
-        CurveError::TooFewControlPoints { degree, needed, got } => format!(
+        CurveError::TooFewControlPoints {
+            degree,
+            needed,
+            got,
+        } => format!(
             "control_points: degree_{s} = {degree} needs at least {needed} {along}, got {got}"
         ),
-        CurveError::KnotCount { expected, got } => format!(
-            "knots_{s}: expected {expected} knots ({along} + degree_{s} + 1), got {got}"
-        ),
+        CurveError::KnotCount { expected, got } => {
+            format!("knots_{s}: expected {expected} knots ({along} + degree_{s} + 1), got {got}")
+        }
         other => {
             let m = other.to_string();
             let m = m.replace("knots[", &format!("knots_{s}["));
@@ -452,7 +458,11 @@ mod tests {
 
     pub(crate) fn net(rows: usize, cols: usize) -> Vec<Vec<Vec<f64>>> {
         (0..rows)
-            .map(|i| (0..cols).map(|j| vec![i as f64, j as f64, (i * j) as f64]).collect())
+            .map(|i| {
+                (0..cols)
+                    .map(|j| vec![i as f64, j as f64, (i * j) as f64])
+                    .collect()
+            })
             .collect()
     }
 
@@ -490,7 +500,14 @@ mod tests {
         };
         let mut ragged = net(3, 2);
         ragged[1].pop();
-        let (k, m) = e(NurbsSurface::new(2, 1, k2.clone(), k1.clone(), ragged, None));
+        let (k, m) = e(NurbsSurface::new(
+            2,
+            1,
+            k2.clone(),
+            k1.clone(),
+            ragged,
+            None,
+        ));
         assert_eq!(k, "ragged_net");
         assert!(m.starts_with("control_points[1]"), "{m}");
         let mut bad = net(3, 2);
@@ -498,19 +515,50 @@ mod tests {
         let (k, m) = e(NurbsSurface::new(2, 1, k2.clone(), k1.clone(), bad, None));
         assert_eq!(k, "non_finite_coordinate");
         assert!(m.starts_with("control_points[2][1][0]"), "{m}");
-        let (k, m) = e(NurbsSurface::new(2, 1, k2[1..].to_vec(), k1.clone(), net(3, 2), None));
+        let (k, m) = e(NurbsSurface::new(
+            2,
+            1,
+            k2[1..].to_vec(),
+            k1.clone(),
+            net(3, 2),
+            None,
+        ));
         assert_eq!(k, "knot_count");
         assert!(m.starts_with("knots_u:"), "{m}");
         let mut kv = k1.clone();
         kv[2] = -1.0;
         let (k, m) = e(NurbsSurface::new(2, 1, k2.clone(), kv, net(3, 2), None));
         assert_eq!(k, "decreasing_knots");
-        assert!(m.starts_with("knots_v[2]") && m.contains("knots_v[1]"), "{m}");
-        let (k, m) = e(NurbsSurface::new(0, 1, k2.clone(), k1.clone(), net(3, 2), None));
+        assert!(
+            m.starts_with("knots_v[2]") && m.contains("knots_v[1]"),
+            "{m}"
+        );
+        let (k, m) = e(NurbsSurface::new(
+            0,
+            1,
+            k2.clone(),
+            k1.clone(),
+            net(3, 2),
+            None,
+        ));
         assert_eq!((k, m.starts_with("degree_u")), ("invalid_degree", true));
-        let (k, _) = e(NurbsSurface::new(2, 1, k2.clone(), k1.clone(), net(3, 2), Some(vec![vec![1., 1.]; 2])));
+        let (k, _) = e(NurbsSurface::new(
+            2,
+            1,
+            k2.clone(),
+            k1.clone(),
+            net(3, 2),
+            Some(vec![vec![1., 1.]; 2]),
+        ));
         assert_eq!(k, "weight_count");
-        let (k, m) = e(NurbsSurface::new(2, 1, k2.clone(), k1.clone(), net(3, 2), Some(vec![vec![1., 1.], vec![1., 0.], vec![1., 1.]])));
+        let (k, m) = e(NurbsSurface::new(
+            2,
+            1,
+            k2.clone(),
+            k1.clone(),
+            net(3, 2),
+            Some(vec![vec![1., 1.], vec![1., 0.], vec![1., 1.]]),
+        ));
         assert_eq!(k, "invalid_weight");
         assert!(m.starts_with("weights[1][1]"), "{m}");
         let mut dm = net(3, 2);
@@ -518,11 +566,35 @@ mod tests {
         let (k, m) = e(NurbsSurface::new(2, 1, k2.clone(), k1.clone(), dm, None));
         assert_eq!(k, "dimension_mismatch");
         assert!(m.starts_with("control_points[1][0]"), "{m}");
-        let (k, m) = e(NurbsSurface::new(2, 1, k2.clone(), k1.clone(), net(2, 2), None));
-        assert!(k == "too_few_control_points" || k == "knot_count", "{k} {m}");
-        let (k, _) = e(NurbsSurface::new(2, 1, k2, vec![0., 1., 1., 2.], net(3, 2), None));
+        let (k, m) = e(NurbsSurface::new(
+            2,
+            1,
+            k2.clone(),
+            k1.clone(),
+            net(2, 2),
+            None,
+        ));
+        assert!(
+            k == "too_few_control_points" || k == "knot_count",
+            "{k} {m}"
+        );
+        let (k, _) = e(NurbsSurface::new(
+            2,
+            1,
+            k2,
+            vec![0., 1., 1., 2.],
+            net(3, 2),
+            None,
+        ));
         assert_eq!(k, "empty_domain");
-        let (k, _) = e(NurbsSurface::new(usize::MAX, 1, vec![], vec![], vec![], None));
+        let (k, _) = e(NurbsSurface::new(
+            usize::MAX,
+            1,
+            vec![],
+            vec![],
+            vec![],
+            None,
+        ));
         assert!(!k.is_empty());
     }
 }

@@ -49,7 +49,9 @@ pub(crate) fn run(a: EvalArgs) -> Result<Outcome, Fatal> {
         }
     }
     let (k, l) = match pair::<u8>(&a.derivative) {
-        Some((k, l)) if k <= 50 && l.unwrap_or(0) <= 50 => (usize::from(k), usize::from(l.unwrap_or(0))),
+        Some((k, l)) if k <= 50 && l.unwrap_or(0) <= 50 => {
+            (usize::from(k), usize::from(l.unwrap_or(0)))
+        }
         _ => {
             return Err(Fatal(format!(
                 "--derivative: expected K or K,L with 0 <= K, L <= 50, got {}",
@@ -67,7 +69,13 @@ pub(crate) fn run(a: EvalArgs) -> Result<Outcome, Fatal> {
     })
 }
 
-fn eval_curve(index: usize, c: &NurbsCurve, params: &[(f64, Option<f64>)], k: usize, buf: &mut Vec<u8>) -> bool {
+fn eval_curve(
+    index: usize,
+    c: &NurbsCurve,
+    params: &[(f64, Option<f64>)],
+    k: usize,
+    buf: &mut Vec<u8>,
+) -> bool {
     // K = 0: the double-double evaluator gives ~1-ulp boxes (src/tight.rs); built once
     // per curve, only when needed.
     let tight = (k == 0).then(|| TightEval::new(c));
@@ -117,9 +125,10 @@ fn eval_surface(
             Ok(x) => write_surface_eval_record(buf, index, (u, v), kl, &x),
             Err(e) => {
                 ok = false;
-                let msg = e
-                    .to_string()
-                    .replace("the curve's domain", "the surface's domain in this direction");
+                let msg = e.to_string().replace(
+                    "the curve's domain",
+                    "the surface's domain in this direction",
+                );
                 write_error_record(buf, index, &surface_eval_fields((u, v), kl), e.kind(), &msg);
             }
         }

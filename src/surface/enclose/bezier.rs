@@ -53,7 +53,10 @@ impl BezierPatches {
     pub fn with_settings(s: &Settings) -> Self {
         let d = BezierPatches::default();
         BezierPatches {
-            tol: s.tol.filter(|t| t.is_finite() && *t >= 0.0).unwrap_or(d.tol),
+            tol: s
+                .tol
+                .filter(|t| t.is_finite() && *t >= 0.0)
+                .unwrap_or(d.tol),
             max_work: s.max_work.clamp(1, d.max_work),
             ..d
         }
@@ -212,8 +215,10 @@ impl SurfaceEncloser for BezierPatches {
             .map(|j| {
                 let scale = s.coord_scale(j);
                 // the search subdivides coordinate j (and the weight row) only
-                let pj: Vec<Patch<Interval>> =
-                    patches.iter().map(|pa| coordinate_patch(pa, j, rational)).collect();
+                let pj: Vec<Patch<Interval>> = patches
+                    .iter()
+                    .map(|pa| coordinate_patch(pa, j, rational))
+                    .collect();
                 let (lo, ilo, mut st, t1) = self.search(&pj, 0, rational, 1.0, scale);
                 let (nhi, nihi, st2, t2) = self.search(&pj, 0, rational, -1.0, scale);
                 st.add(&st2);

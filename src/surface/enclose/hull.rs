@@ -20,11 +20,17 @@ impl SurfaceEncloser for NetHull {
         let corners = corner_values(s);
         let inner: Vec<(f64, f64)> = (0..s.dim())
             .map(|j| {
-                corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
-                    (lo.min(c[j].sup()), hi.max(c[j].inf()))
-                })
+                corners
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+                        (lo.min(c[j].sup()), hi.max(c[j].inf()))
+                    })
             })
             .collect();
-        enclosure(self.name(), true, net_box(s, &inner, Termination::Direct, 4))
+        enclosure(
+            self.name(),
+            true,
+            net_box(s, &inner, Termination::Direct, 4),
+        )
     }
 }

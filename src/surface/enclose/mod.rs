@@ -8,8 +8,8 @@
 //! The strategies: [`NetHull`] (`hull`), [`BezierPatches`] (`bezier`), [`SurfaceNewton`]
 //! (`newton`). Adding one is one file and one line in the registry below.
 
-use crate::enclose::{CoordBox, Enclosure, Guarantee, Settings, Stats, Termination};
 use crate::enclose::MAX_SEARCH_DEGREE;
+use crate::enclose::{CoordBox, Enclosure, Guarantee, Settings, Stats, Termination};
 use crate::num::iv;
 use crate::surface::model::NurbsSurface;
 use inari::Interval;
@@ -48,7 +48,9 @@ pub struct SurfaceEntry {
 
 impl std::fmt::Debug for SurfaceEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SurfaceEntry").field("name", &self.name).finish()
+        f.debug_struct("SurfaceEntry")
+            .field("name", &self.name)
+            .finish()
     }
 }
 
@@ -73,10 +75,7 @@ pub const SURFACE_STRATEGY_NAMES: &[&str] = &["hull", "bezier", "newton"];
 
 /// The surface strategy called `name` with `settings`; `None` if there is none of that name
 /// (the curve-only strategies `newton-thesis`, `search-region`, `search-region-verified`).
-pub fn surface_strategy_with(
-    name: &str,
-    settings: &Settings,
-) -> Option<Box<dyn SurfaceEncloser>> {
+pub fn surface_strategy_with(name: &str, settings: &Settings) -> Option<Box<dyn SurfaceEncloser>> {
     SURFACE_REGISTRY
         .iter()
         .find(|e| e.name == name)
@@ -96,7 +95,10 @@ pub fn surface_strategy_by_name(name: &str, tol: Option<f64>) -> Option<Box<dyn 
 
 /// Every surface strategy built with `settings`.
 pub fn all_surface_strategies(settings: &Settings) -> Vec<Box<dyn SurfaceEncloser>> {
-    SURFACE_REGISTRY.iter().map(|e| (e.build)(settings)).collect()
+    SURFACE_REGISTRY
+        .iter()
+        .map(|e| (e.build)(settings))
+        .collect()
 }
 
 /// The one place a surface [`CoordBox`] is built (argmin / argmax stay empty: the curve's
@@ -122,7 +124,11 @@ pub(crate) fn coord_box(
 }
 
 /// The one place a surface [`Enclosure`] is built.
-pub(crate) fn enclosure(strategy: &'static str, verified: bool, coords: Vec<CoordBox>) -> Enclosure {
+pub(crate) fn enclosure(
+    strategy: &'static str,
+    verified: bool,
+    coords: Vec<CoordBox>,
+) -> Enclosure {
     Enclosure {
         strategy,
         verified,
@@ -167,9 +173,12 @@ pub(crate) fn corner_values(s: &NurbsSurface) -> Vec<Vec<Interval>> {
     for (u, ul) in [(a, false), (b, true)] {
         for (v, vl) in [(c, false), (d, true)] {
             match (s.exact_row_at(u, ul), s.exact_column_at(v, vl)) {
-                (Some(r), Some(k)) => {
-                    out.push(s.control_point(r, k).iter().map(|&x| iv::point(x)).collect())
-                }
+                (Some(r), Some(k)) => out.push(
+                    s.control_point(r, k)
+                        .iter()
+                        .map(|&x| iv::point(x))
+                        .collect(),
+                ),
                 _ => out.push(
                     s.enclose_derivative(u, v, 0, 0)
                         .unwrap_or_else(|_| vec![Interval::ENTIRE; s.dim()]),

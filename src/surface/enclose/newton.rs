@@ -72,7 +72,10 @@ impl SurfaceNewton {
         let d = SurfaceNewton::default();
         SurfaceNewton {
             curve: s.newton(),
-            tol: s.tol.filter(|t| t.is_finite() && *t >= 0.0).unwrap_or(d.tol),
+            tol: s
+                .tol
+                .filter(|t| t.is_finite() && *t >= 0.0)
+                .unwrap_or(d.tol),
             ..d
         }
     }
@@ -147,7 +150,7 @@ fn krawczyk(xu: Interval, xv: Interval, c: (f64, f64), g: [Interval; 2], h: [Int
         for col in 0..2 {
             let yj = p(y[r][0]) * jm[0][col] + p(y[r][1]) * jm[1][col];
             let m = p(if r == col { 1.0 } else { 0.0 }) - yj;
-            acc = acc + m * dx[col];
+            acc += m * dx[col];
         }
         k[r] = acc;
     }
@@ -183,13 +186,13 @@ impl Evaluators {
     fn eval(&self, xu: Interval, xv: Interval, ku: usize, kv: usize) -> BoxEval {
         let c = (xu.mid(), xv.mid());
         let c = (c.0.clamp(xu.inf(), xu.sup()), c.1.clamp(xv.inf(), xv.sup()));
-        let all = self.iv.derivs_in_span(ku, kv, &xu, &xv, 2, 2, 2);
+        let all = self.iv.derivs_in_span(ku, kv, &xu, &xv, (2, 2, 2));
         let at = self
             .iv
-            .derivs_in_span(ku, kv, &iv::point(c.0), &iv::point(c.1), 1, 1, 1);
-        let dd = self
-            .dd
-            .derivs_in_span(ku, kv, &Ddi::from_f64(c.0), &Ddi::from_f64(c.1), 0, 0, 0);
+            .derivs_in_span(ku, kv, &iv::point(c.0), &iv::point(c.1), (1, 1, 1));
+        let dd =
+            self.dd
+                .derivs_in_span(ku, kv, &Ddi::from_f64(c.0), &Ddi::from_f64(c.1), (0, 0, 0));
         let g = |a: usize, b: usize| all[a][b].as_ref().expect("a + b <= 2");
         let d = g(0, 0).len();
         let sc: Vec<Interval> = (0..d)
@@ -220,7 +223,9 @@ impl Evaluators {
             value,
             centre: sc,
             grad: (0..d).map(|j| [g(1, 0)[j], g(0, 1)[j]]).collect(),
-            hess: (0..d).map(|j| [g(2, 0)[j], g(1, 1)[j], g(0, 2)[j]]).collect(),
+            hess: (0..d)
+                .map(|j| [g(2, 0)[j], g(1, 1)[j], g(0, 2)[j]])
+                .collect(),
             grad_c: (0..d).map(|j| [gc(1, 0, j), gc(0, 1, j)]).collect(),
             c,
         }
@@ -274,7 +279,11 @@ impl SurfaceNewton {
         for (dir, surf) in [(0, s), (1, &t)] {
             let ((lo, hi), _) = surf.domain();
             let mut cuts = vec![lo];
-            cuts.extend(if dir == 0 { s.kink_knots_u() } else { s.kink_knots_v() });
+            cuts.extend(if dir == 0 {
+                s.kink_knots_u()
+            } else {
+                s.kink_knots_v()
+            });
             cuts.push(hi);
             let mut rows: Vec<(usize, bool)> = Vec::new();
             for &x in &cuts {
@@ -460,7 +469,9 @@ impl SurfaceNewton {
                         Kraw::Unique(ru, rv) => {
                             st.newton_iterations += 1;
                             let tol = self.tol * scale[j];
-                            if let Some(v) = self.refine(&ev, j, sg, tol, ru, rv, cell.ku, cell.kv, st) {
+                            if let Some(v) =
+                                self.refine(&ev, j, sg, tol, ru, rv, cell.ku, cell.kv, st)
+                            {
                                 let x = &mut tg[t];
                                 x.lo = x.lo.min(signed(v.0, sg).inf());
                                 x.best = x.best.min(signed(v.1, sg).sup());
