@@ -167,7 +167,38 @@ fn ratio_summary() {
     }
 }
 
-criterion_group!(benches, kurbo_side_by_side, knot_sweep, degree_sweep);
+/// Surfaces: every surface strategy on a bicubic 4 x 4 Bézier patch (random net in [-1, 1]^3)
+/// and on a rational biquadratic patch; `hull` is the control-net box, the baseline of the
+/// time ratio in `results/surfaces.md`.
+fn surfaces(c: &mut Criterion) {
+    use nurbs_box::surface::enclose::all_surface_strategies;
+    use nurbs_box::surface::gen::random_surface;
+    let mut g = c.benchmark_group("surface");
+    g.sample_size(10);
+    let cases = [
+        ("bicubic_4x4", random_surface(77, 3, 3, 0, false)),
+        (
+            "rational_biquadratic_5x5",
+            random_surface(78, 2, 2, 2, true),
+        ),
+    ];
+    for (label, s) in &cases {
+        for st in all_surface_strategies(&nurbs_box::enclose::Settings::default()) {
+            g.bench_with_input(BenchmarkId::new(st.name(), label), s, |b, s| {
+                b.iter(|| st.enclose(black_box(s)))
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    kurbo_side_by_side,
+    knot_sweep,
+    degree_sweep,
+    surfaces
+);
 
 fn main() {
     benches();

@@ -328,3 +328,118 @@ pub fn coordinate_functions(path: &Path, c: &NurbsCurve, enc: &Enclosure, foot: 
     })();
     report(path, r);
 }
+
+/// A surface as iso-curves (u = const and v = const, `n` each) projected to the coordinates
+/// (`a`, `b`), its control net points, and the boxes of `encs` (one rectangle each).
+pub fn surface_figure(
+    path: &Path,
+    s: &nurbs_box::NurbsSurface,
+    encs: &[Enclosure],
+    (a, b): (usize, usize),
+    foot: &str,
+) {
+    let r = (|| -> Res {
+        let root = SVGBackend::new(path, (900, 760)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let (main, foot_area) = root.split_vertically(735);
+        footer(&foot_area, foot)?;
+        let ((u0, u1), (v0, v1)) = s.domain();
+        let n = 12;
+        let m = 200;
+        let at = |t: usize, k: usize| t as f64 / k as f64;
+        let mut lines: Vec<Vec<(f64, f64)>> = Vec::new();
+        for i in 0..=n {
+            for dir in 0..2 {
+                let line = (0..=m)
+                    .filter_map(|k| {
+                        let (u, v) = if dir == 0 {
+                            (u0 + (u1 - u0) * at(i, n), v0 + (v1 - v0) * at(k, m))
+                        } else {
+                            (u0 + (u1 - u0) * at(k, m), v0 + (v1 - v0) * at(i, n))
+                        };
+                        s.point::<f64>(u.min(u1), v.min(v1))
+                            .ok()
+                            .map(|p| (p[a], p[b]))
+                    })
+                    .collect();
+                lines.push(line);
+            }
+        }
+        let net: Vec<(f64, f64)> = (0..s.rows())
+            .flat_map(|i| (0..s.cols()).map(move |j| (i, j)))
+            .map(|(i, j)| (s.control_point(i, j)[a], s.control_point(i, j)[b]))
+            .collect();
+        let bx = |e: &Enclosure, j: usize| [e.coords[j].lo, e.coords[j].hi];
+        let (x0, x1) = range(
+            net.iter()
+                .map(|p| p.0)
+                .chain(encs.iter().flat_map(|e| bx(e, a))),
+        );
+        let (y0, y1) = range(
+            net.iter()
+                .map(|p| p.1)
+                .chain(encs.iter().flat_map(|e| bx(e, b))),
+        );
+        let (mx, my) = ((x1 - x0) * 0.05, (y1 - y0) * 0.05);
+        let names = ["x", "y", "z"];
+        let mut chart = ChartBuilder::on(&main)
+            .caption(
+                format!(
+                    "NURBS surface (degrees {}, {}; {} x {} net): iso-curves in the {}-{} projection and its boxes",
+                    s.degree_u(),
+                    s.degree_v(),
+                    s.rows(),
+                    s.cols(),
+                    names.get(a).unwrap_or(&"?"),
+                    names.get(b).unwrap_or(&"?")
+                ),
+                ("sans-serif", 18),
+            )
+            .margin(15)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(x0 - mx..x1 + mx, y0 - my..y1 + my)?;
+        chart
+            .configure_mesh()
+            .x_desc(*names.get(a).unwrap_or(&"?"))
+            .y_desc(*names.get(b).unwrap_or(&"?"))
+            .draw()?;
+        for (k, l) in lines.into_iter().enumerate() {
+            let s = chart.draw_series(LineSeries::new(l, COLORS[0].mix(0.8)))?;
+            if k == 0 {
+                s.label("iso-curves u, v = const")
+                    .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], COLORS[0]));
+            }
+        }
+        chart
+            .draw_series(
+                net.iter()
+                    .map(|&p| Circle::new(p, 3, BLACK.mix(0.4).filled())),
+            )?
+            .label("control net")
+            .legend(|(x, y)| Circle::new((x + 10, y), 3, BLACK.mix(0.4).filled()));
+        for (k, e) in encs.iter().enumerate() {
+            let c = COLORS[(3 + k) % COLORS.len()];
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [
+                        (e.coords[a].lo, e.coords[b].lo),
+                        (e.coords[a].hi, e.coords[b].hi),
+                    ],
+                    c.stroke_width(2),
+                )))?
+                .label(format!("{} box", e.strategy))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .border_style(BLACK)
+            .background_style(WHITE.mix(0.85))
+            .draw()?;
+        root.present()?;
+        Ok(())
+    })();
+    report(path, r);
+}

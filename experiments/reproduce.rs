@@ -11,6 +11,7 @@
 
 #[path = "plots.rs"]
 mod plots;
+mod surface_sweep;
 
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -705,6 +706,13 @@ fn main() {
         mdp.display(),
         args.out.display()
     );
+    // surfaces: sweep over degree and net size, families, containment checks
+    // (results/surfaces.md, results/surface_figure.svg)
+    let surface_misses = surface_sweep::run(false, &args.out);
+    if surface_misses > 0 {
+        eprintln!("\n!!! CONTAINMENT FAILURE: verified surface strategies missed {surface_misses} times !!!");
+        std::process::exit(1);
+    }
     if verified_misses > 0 {
         eprintln!("\n!!! CONTAINMENT FAILURE: verified strategies missed the curve {verified_misses} times !!!");
         for r in rows.iter().filter(|r| r.verified && r.misses > 0) {

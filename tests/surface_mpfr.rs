@@ -17,7 +17,12 @@ fn reference(s: &NurbsSurface) -> Vec<(Float, Float)> {
     let ((a, b), (c, d)) = s.domain();
     let dim = s.dim();
     let mut out: Vec<(Float, Float)> = (0..dim)
-        .map(|_| (Float::with_val(256, f64::INFINITY), Float::with_val(256, f64::NEG_INFINITY)))
+        .map(|_| {
+            (
+                Float::with_val(256, f64::INFINITY),
+                Float::with_val(256, f64::NEG_INFINITY),
+            )
+        })
         .collect();
     let take = |j: usize, x: &Float, out: &mut Vec<(Float, Float)>| {
         if *x < out[j].0 {
@@ -54,8 +59,10 @@ fn reference(s: &NurbsSurface) -> Vec<(Float, Float)> {
             let (v0, v1) = (net.kv[kv], net.kv[kv + 1]);
             for i in 1..g {
                 for k in 1..g {
-                    let u = Float::with_val(256, u0) + (Float::with_val(256, u1) - u0) * i as f64 / g as f64;
-                    let v = Float::with_val(256, v0) + (Float::with_val(256, v1) - v0) * k as f64 / g as f64;
+                    let u = Float::with_val(256, u0)
+                        + (Float::with_val(256, u1) - u0) * i as f64 / g as f64;
+                    let v = Float::with_val(256, v0)
+                        + (Float::with_val(256, v1) - v0) * k as f64 / g as f64;
                     let val = ev.derivs_in_span(ku, kv, &u, &v, (0, 0, 0));
                     for j in 0..dim {
                         take(j, &val[0][0].as_ref().unwrap()[j], &mut out);
@@ -105,7 +112,10 @@ fn strategies_contain_the_reference_and_newton_is_within_ulps() {
         .map(|f| (f.0.to_string(), f.1))
         .collect();
     for seed in 0..6 {
-        surfaces.push((format!("random{seed}"), random_surface(500 + seed, 1 + (seed as usize % 3), 2, 1, seed % 2 == 0)));
+        surfaces.push((
+            format!("random{seed}"),
+            random_surface(500 + seed, 1 + (seed as usize % 3), 2, 1, seed % 2 == 0),
+        ));
     }
     let mut worst = 0.0f64;
     for (name, s) in &surfaces {
@@ -116,15 +126,34 @@ fn strategies_contain_the_reference_and_newton_is_within_ulps() {
                 let scale = s.coord_scale(j);
                 let dlo = ulps_outside(cb.lo, &r[j].0, scale, false);
                 let dhi = ulps_outside(cb.hi, &r[j].1, scale, true);
-                assert!(dlo >= 0.0 && dhi >= 0.0, "{name} {} {j}: [{}, {}] misses [{}, {}]", st.name(), cb.lo, cb.hi, r[j].0, r[j].1);
+                assert!(
+                    dlo >= 0.0 && dhi >= 0.0,
+                    "{name} {} {j}: [{}, {}] misses [{}, {}]",
+                    st.name(),
+                    cb.lo,
+                    cb.hi,
+                    r[j].0,
+                    r[j].1
+                );
                 // inner bounds are attained values: beyond the reference only if the search
                 // missed an extremum (then the outer-bound check above is the weaker one)
                 let ilo = ulps_outside(cb.inner_lo, &r[j].0, scale, true);
                 let ihi = ulps_outside(cb.inner_hi, &r[j].1, scale, false);
-                assert!(ilo >= 0.0 && ihi >= 0.0, "{name} {} {j}: inner [{}, {}] beyond [{}, {}]", st.name(), cb.inner_lo, cb.inner_hi, r[j].0, r[j].1);
+                assert!(
+                    ilo >= 0.0 && ihi >= 0.0,
+                    "{name} {} {j}: inner [{}, {}] beyond [{}, {}]",
+                    st.name(),
+                    cb.inner_lo,
+                    cb.inner_hi,
+                    r[j].0,
+                    r[j].1
+                );
                 if st.name() == "newton" {
                     worst = worst.max(dlo).max(dhi);
-                    assert!(dlo <= 4.0 && dhi <= 4.0, "{name} newton {j}: {dlo} / {dhi} ulps from the reference");
+                    assert!(
+                        dlo <= 4.0 && dhi <= 4.0,
+                        "{name} newton {j}: {dlo} / {dhi} ulps from the reference"
+                    );
                 }
             }
         }

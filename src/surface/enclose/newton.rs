@@ -558,7 +558,14 @@ impl SurfaceNewton {
         st: &mut Stats,
     ) -> Option<(Interval, Interval)> {
         let mut e = ev.eval(xu, xv, ku, kv);
+        let settled = |e: &BoxEval| {
+            let (v, c) = (signed(e.value[j], sg), signed(e.centre[j], sg));
+            v.inf() >= c.sup() - tol
+        };
         for _ in 0..60 {
+            if settled(&e) {
+                break;
+            }
             st.newton_iterations += 1;
             st.derivative_evaluations += 1;
             match krawczyk(xu, xv, e.c, e.grad_c[j], e.hess[j]) {
@@ -575,8 +582,7 @@ impl SurfaceNewton {
                 _ => break,
             }
         }
-        let (v, c) = (signed(e.value[j], sg), signed(e.centre[j], sg));
-        (v.inf() >= c.sup() - tol).then_some((e.value[j], e.centre[j]))
+        settled(&e).then_some((e.value[j], e.centre[j]))
     }
 }
 
