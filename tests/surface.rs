@@ -369,3 +369,27 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn high_degree_stays_bounded_and_sound() {
+    // degree 40 x 2: the budgets scale down with the cost of an evaluation
+    let s = random_surface(9, 40, 2, 0, true);
+    let pts = samples(&s, 10);
+    for st in all_surface_strategies(&Settings::default()) {
+        let e = st.enclose(&s);
+        check("degree 40", &s, &e, &pts, 10.0);
+    }
+    // above the search degree: the control-net box, reported as a work limit
+    let n = 1002;
+    let net: Vec<Vec<Vec<f64>>> = (0..n)
+        .map(|i| vec![vec![(i as f64).sin(), 0.0], vec![(i as f64).cos(), 1.0]])
+        .collect();
+    let mut ku = vec![0.0; n];
+    ku.extend(vec![1.0; n]);
+    let s = NurbsSurface::new(n - 1, 1, ku, vec![0., 0., 1., 1.], net, None).unwrap();
+    let e = surface_strategy_by_name("newton", None)
+        .unwrap()
+        .enclose(&s);
+    assert_eq!(e.termination(), Termination::WorkLimit);
+    assert_eq!((e.coords[1].lo, e.coords[1].hi), (0.0, 1.0));
+}

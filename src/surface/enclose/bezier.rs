@@ -32,7 +32,7 @@ use std::collections::BinaryHeap;
 pub struct BezierPatches {
     /// relative tolerance: stop when a bound is within `tol * scale` of an attained value
     pub tol: f64,
-    /// patch splits per coordinate and side
+    /// patch splits per coordinate and side for a bicubic patch (scaled to the degree)
     pub max_work: u64,
     /// deepest subdivision (halvings per direction)
     pub max_depth: u32,
@@ -135,8 +135,10 @@ impl Ord for Item {
 impl BezierPatches {
     /// Branch and bound for min_j (sign 1) or -max_j (sign -1): (outer, attained, stats,
     /// termination) in the signed coordinate.
+    #[allow(clippy::too_many_arguments)]
     fn search(
         &self,
+        budget: u64,
         patches: &[Patch<Interval>],
         j: usize,
         rational: bool,
@@ -165,7 +167,7 @@ impl BezierPatches {
             let lo = it.lo.min(disc);
             let term = if it.lo >= best - tol {
                 Some(Termination::Converged)
-            } else if work >= self.max_work {
+            } else if work >= budget {
                 Some(Termination::WorkLimit)
             } else if it.depth >= self.max_depth {
                 Some(Termination::DepthLimit)
@@ -219,8 +221,9 @@ impl SurfaceEncloser for BezierPatches {
                     .iter()
                     .map(|pa| coordinate_patch(pa, j, rational))
                     .collect();
-                let (lo, ilo, mut st, t1) = self.search(&pj, 0, rational, 1.0, scale);
-                let (nhi, nihi, st2, t2) = self.search(&pj, 0, rational, -1.0, scale);
+                let budget = super::scaled_budget(self.max_work, s);
+                let (lo, ilo, mut st, t1) = self.search(budget, &pj, 0, rational, 1.0, scale);
+                let (nhi, nihi, st2, t2) = self.search(budget, &pj, 0, rational, -1.0, scale);
                 st.add(&st2);
                 let term = if t1 == Termination::Converged { t2 } else { t1 };
                 coord_box(lo, -nhi, ilo, -nihi, st, term)

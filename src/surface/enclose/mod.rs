@@ -101,6 +101,16 @@ pub fn all_surface_strategies(settings: &Settings) -> Vec<Box<dyn SurfaceEnclose
         .collect()
 }
 
+/// The budget `max` (set for a bicubic patch) scaled to the cost of one evaluation of `s`:
+/// a tensor de Boor step costs ~(p + 1)^2 (q + 1) + (q + 1)^2 corner cuts, 80 for p = q = 3,
+/// so a degree-1000 surface gets a budget of a few evaluations (then the sound fallback)
+/// instead of minutes of work.
+pub(crate) fn scaled_budget(max: u64, s: &NurbsSurface) -> u64 {
+    let (p, q) = (s.degree_u() as u64 + 1, s.degree_v() as u64 + 1);
+    let cost = (p * p * q + q * q).max(p * q * q + p * p).max(1);
+    max.saturating_mul(80) / cost
+}
+
 /// The one place a surface [`CoordBox`] is built (argmin / argmax stay empty: the curve's
 /// [`crate::Extremum`] holds a u range only).
 pub(crate) fn coord_box(

@@ -49,7 +49,8 @@ pub struct SurfaceNewton {
     /// relative tolerance: a box whose value cannot beat the best attained value by more
     /// than `tol * scale` is settled
     pub tol: f64,
-    /// budget of interior box evaluations (all coordinates together)
+    /// budget of interior box evaluations (all coordinates together) for a bicubic patch,
+    /// scaled to the degree (see `scaled_budget`)
     pub max_boxes: u64,
     /// deepest bisection (halvings of a span side)
     pub max_depth: u32,
@@ -385,8 +386,9 @@ impl SurfaceNewton {
             v: cuts(c, d, &s.kink_knots_v(), [unclamped[2], unclamped[3]]),
         };
         let mut boxes = 0u64;
+        let budget = super::scaled_budget(self.max_boxes, s);
         while let Some(cell) = q.pop_front() {
-            if boxes >= self.max_boxes {
+            if boxes >= budget {
                 // budget spent: the parent's enclosures of what is left (sound)
                 for &t in &cell.alive {
                     let x = &mut tg[t];
@@ -469,9 +471,11 @@ impl SurfaceNewton {
                         Kraw::Unique(ru, rv) => {
                             st.newton_iterations += 1;
                             let tol = self.tol * scale[j];
-                            if let Some(v) =
-                                self.refine(&ev, j, sg, tol, ru, rv, cell.ku, cell.kv, st)
-                            {
+                            let (refined, evals) =
+                                self.refine(&ev, j, sg, tol, ru, rv, cell.ku, cell.kv, st);
+                            // the contraction's evaluations count against the budget too
+                            boxes += evals;
+                            if let Some(v) = refined {
                                 let x = &mut tg[t];
                                 x.lo = x.lo.min(signed(v.0, sg).inf());
                                 x.best = x.best.min(signed(v.1, sg).sup());
@@ -556,8 +560,9 @@ impl SurfaceNewton {
         ku: usize,
         kv: usize,
         st: &mut Stats,
-    ) -> Option<(Interval, Interval)> {
+    ) -> (Option<(Interval, Interval)>, u64) {
         let mut e = ev.eval(xu, xv, ku, kv);
+        let mut evals = 1;
         let settled = |e: &BoxEval| {
             let (v, c) = (signed(e.value[j], sg), signed(e.centre[j], sg));
             v.inf() >= c.sup() - tol
@@ -574,6 +579,7 @@ impl SurfaceNewton {
                     xu = a;
                     xv = b;
                     e = ev.eval(xu, xv, ku, kv);
+                    evals += 1;
                     if !shrunk {
                         break;
                     }
@@ -582,7 +588,7 @@ impl SurfaceNewton {
                 _ => break,
             }
         }
-        settled(&e).then_some((e.value[j], e.centre[j]))
+        (settled(&e).then_some((e.value[j], e.centre[j])), evals)
     }
 }
 
