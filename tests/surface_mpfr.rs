@@ -108,7 +108,9 @@ fn reference(s: &NurbsSurface) -> Vec<(Float, Float)> {
 fn strategies_contain_the_reference_and_newton_is_within_ulps() {
     let mut surfaces: Vec<(String, NurbsSurface)> = families()
         .into_iter()
-        .filter(|f| f.0 != "unclamped")
+        // (unclamped sides have no exact row curve for the reference; extreme weights are
+        // covered by tests/surface.rs)
+        .filter(|f| f.0 != "unclamped" && f.0 != "extreme_weights")
         .map(|f| (f.0.to_string(), f.1))
         .collect();
     for seed in 0..6 {

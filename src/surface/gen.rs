@@ -237,6 +237,27 @@ pub fn families() -> Vec<(&'static str, NurbsSurface, Option<Vec<(f64, f64)>>)> 
         .expect("valid")
     };
     out.push(("huge", scaled(1e300), None));
+    // weights from 1e-150 to 1e150 (the homogeneous products span 1e-300 .. 1e300)
+    let w: Vec<Vec<f64>> = (0..big.rows())
+        .map(|i| {
+            (0..big.cols())
+                .map(|j| if (i + j) % 2 == 0 { 1e150 } else { 1e-150 })
+                .collect()
+        })
+        .collect();
+    out.push((
+        "extreme_weights",
+        NurbsSurface::new(
+            2,
+            2,
+            big.knots_u().to_vec(),
+            big.knots_v().to_vec(),
+            big.control_points(),
+            Some(w),
+        )
+        .expect("valid"),
+        None,
+    ));
     out.push(("tiny", scaled(1e-300), None));
     out
 }

@@ -27,7 +27,8 @@
 //!   that stay undecided are bisected in the direction that contributes most to the width of
 //!   V (so a ridge, a line of critical points where Krawczyk can never decide, is cut into
 //!   thin strips across it rather than squares).
-//! * **Bounded work.** At the box budget or the depth limit the undecided boxes are enclosed
+//! * **Bounded work.** A coordinate that ends at a limit is intersected with the `bezier`
+//!   strategy's bounds (both sound; see `enclose_prepared`). At the box budget or the depth limit the undecided boxes are enclosed
 //!   by their interval values V (the parent's, already computed): still sound, and tight
 //!   where the boxes are small (a ridge ends in strips of width 2^-depth of its span, whose
 //!   mean value enclosures exceed the ridge value by O(width^2)), never the control-net box.
@@ -523,10 +524,11 @@ impl SurfaceNewton {
             };
             st.subdivisions += 1;
             let halves = if split_u {
-                let m = 0.5 * (cell.u.0 + cell.u.1);
+                // halves first: no overflow for knots near ±f64::MAX; m stays in the box
+                let m = (0.5 * cell.u.0 + 0.5 * cell.u.1).clamp(cell.u.0, cell.u.1);
                 [((cell.u.0, m), cell.v), ((m, cell.u.1), cell.v)]
             } else {
-                let m = 0.5 * (cell.v.0 + cell.v.1);
+                let m = (0.5 * cell.v.0 + 0.5 * cell.v.1).clamp(cell.v.0, cell.v.1);
                 [(cell.u, (cell.v.0, m)), (cell.u, (m, cell.v.1))]
             };
             for (u, v) in halves {
@@ -627,7 +629,7 @@ impl SurfaceEncloser for SurfaceNewton {
         self.interior(s, unclamped, &mut tg, &mut shared);
         st[0].add(&shared);
         st[0].time_total = t0.elapsed();
-        let coords = (0..d)
+        let mut coords: Vec<_> = (0..d)
             .map(|j| {
                 let (mn, mx) = (tg[2 * j], tg[2 * j + 1]);
                 let term = match mn.term {
@@ -637,6 +639,26 @@ impl SurfaceEncloser for SurfaceNewton {
                 coord_box(mn.lo, -mx.lo, mn.best, -mx.best, st[j], term)
             })
             .collect();
+        // A coordinate left at a work limit is intersected with the Bézier strategy's bounds
+        // (both boxes are verified outer bounds, both inner bounds attained values): its
+        // coefficient-ratio bounds need no derivatives and stay tight where the interval
+        // derivatives of a badly conditioned rational surface are too wide to decide anything.
+        if coords
+            .iter()
+            .any(|c| c.termination != Termination::Converged)
+        {
+            let b = super::BezierPatches::default().enclose_prepared(s);
+            for (c, bc) in coords.iter_mut().zip(&b.coords) {
+                if c.termination == Termination::Converged {
+                    continue;
+                }
+                c.lo = c.lo.max(bc.lo);
+                c.hi = c.hi.min(bc.hi);
+                c.inner_lo = c.inner_lo.min(bc.inner_lo);
+                c.inner_hi = c.inner_hi.max(bc.inner_hi);
+                c.stats.add(&bc.stats);
+            }
+        }
         enclosure(self.name(), true, coords)
     }
 }
