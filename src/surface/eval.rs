@@ -204,6 +204,23 @@ impl<S: Scalar> Net<S> {
         }
     }
 
+    /// Insert the knot u `r` times along u (the curve's Boehm insertion, NURBS Book A5.1, on
+    /// the rows: NURBS Book A5.3 SurfaceKnotIns in u). In interval arithmetic the new net
+    /// encloses the exact one; `u` must lie in the u domain.
+    pub fn insert_knot_u(&self, u: f64, r: usize) -> Self {
+        Net::from_u_curve(
+            self.as_u_curve().insert_knot(u, r),
+            self.q,
+            self.kv.clone(),
+            self.h,
+        )
+    }
+
+    /// Insert the knot v `r` times along v (on the transposed net).
+    pub fn insert_knot_v(&self, v: f64, r: usize) -> Self {
+        self.transposed().insert_knot_u(v, r).transposed()
+    }
+
     /// The non-empty spans along u: indices k with u_k < u_{k+1}, p <= k <= n.
     pub fn spans_u(&self) -> Vec<usize> {
         (self.p..self.rows)
@@ -628,6 +645,26 @@ mod tests {
             let y: Vec<f64> = c.point(v).unwrap();
             for k in 0..3 {
                 assert!((x[k] - y[k]).abs() < 1e-13);
+            }
+        }
+    }
+
+    #[test]
+    fn knot_insertion_keeps_the_surface() {
+        let s = crate::surface::gen::random_surface(5, 2, 3, 2, true);
+        let n = Net::<Interval>::of(&s);
+        let m = n.insert_knot_u(0.37, 2).insert_knot_v(0.61, 1);
+        assert_eq!((m.rows, m.cols), (n.rows + 2, n.cols + 1));
+        for i in 0..=6 {
+            for j in 0..=6 {
+                let (u, v) = (i as f64 / 6.0, j as f64 / 6.0);
+                let a = n.eval_block(n.span_u(u), n.span_v(v), &iv::point(u), &iv::point(v));
+                let b = m.eval_block(m.span_u(u), m.span_v(v), &iv::point(u), &iv::point(v));
+                for (x, y) in a.iter().zip(&b) {
+                    // both enclose the same exact homogeneous point
+                    assert!(!x.intersection(*y).is_empty(), "{u} {v}");
+                    assert!(y.wid() < 1e-13);
+                }
             }
         }
     }
