@@ -20,7 +20,7 @@
 //! Anything non-finite (overflow, NaN, division by a set that may contain 0) gives
 //! [`Mr::ENTIRE`].
 
-use crate::num::ddi::{up, Ddi, ETA16, U1};
+use crate::num::ddi::{dist_up, up, Ddi, ETA16, U1};
 use crate::num::Scalar;
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -47,6 +47,17 @@ impl Mr {
         } else {
             Mr::ENTIRE
         }
+    }
+
+    /// An enclosure of the real interval [lo, hi] (finite lo <= hi; otherwise ENTIRE): the
+    /// centre c = RN(lo/2 + hi/2) kept in [lo, hi] (halves first: no overflow), the radius an
+    /// upper bound of max(c - lo, hi - c) ([`dist_up`]), so [c - r, c + r] contains [lo, hi].
+    pub fn from_bounds(lo: f64, hi: f64) -> Mr {
+        if lo.partial_cmp(&hi).is_none_or(|o| o.is_gt()) {
+            return Mr::ENTIRE; // (also for a NaN end)
+        }
+        let c = (0.5 * lo + 0.5 * hi).clamp(lo, hi);
+        Mr::checked(c, dist_up(c, lo).max(dist_up(hi, c)))
     }
 
     /// Centre.

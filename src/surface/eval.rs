@@ -489,10 +489,10 @@ impl NurbsSurface {
             .collect())
     }
 
-    /// All Bézier patches of the surface (one per pair of non-empty spans) in interval
-    /// arithmetic: each encloses the exact patch coefficients.
-    pub fn bezier_patches(&self) -> Vec<Patch<Interval>> {
-        let n = Net::<Interval>::of(self);
+    /// All Bézier patches of the surface (one per pair of non-empty spans) in any [`Scalar`];
+    /// for a verified type each encloses the exact patch coefficients.
+    pub fn bezier_patches<S: Scalar>(&self) -> Vec<Patch<S>> {
+        let n = Net::<S>::of(self);
         let (su, sv) = (n.spans_u(), n.spans_v());
         let mut out = Vec::with_capacity(su.len() * sv.len());
         for &ku in &su {
@@ -672,7 +672,7 @@ mod tests {
     #[test]
     fn patches_and_interval_boxes_enclose_samples() {
         let s = crate::surface::gen::random_surface(3, 2, 3, 2, true);
-        let patches = s.bezier_patches();
+        let patches = s.bezier_patches::<Interval>();
         let e = SurfaceEval::<Interval>::new(&s, 1, 1, 2);
         let n = e.net().clone();
         for pa in &patches {

@@ -21,6 +21,7 @@
 
 use super::{coord_box, enclosure, SurfaceEncloser};
 use crate::enclose::{Enclosure, Guarantee, Settings, Stats, Termination};
+use crate::num::Scalar;
 use crate::surface::eval::Patch;
 use crate::surface::model::NurbsSurface;
 use inari::Interval;
@@ -69,11 +70,13 @@ fn bounds(pa: &Patch<Interval>, j: usize, rational: bool, sign: f64) -> (f64, f6
     let d = pa.h - 1;
     let sg = Interval::try_from((sign, sign)).unwrap_or(Interval::ENTIRE);
     let val = |c: &[Interval]| -> Interval {
+        let cj = c[j].to_interval();
         if !rational {
-            return sg * c[j];
+            return sg * cj;
         }
-        if c[d].inf() > 0.0 {
-            sg * (c[j] / c[d])
+        let w = c[d].to_interval();
+        if w.inf() > 0.0 {
+            sg * (cj / w)
         } else {
             Interval::ENTIRE
         }
@@ -211,7 +214,9 @@ impl SurfaceEncloser for BezierPatches {
     }
     fn enclose_prepared(&self, s: &NurbsSurface) -> Enclosure {
         let t0 = std::time::Instant::now();
-        let patches = s.bezier_patches();
+        // (Interval, not the faster Mr: Mr's radii after many subdivisions cost tens of ulps
+        // at the vertex test)
+        let patches = s.bezier_patches::<Interval>();
         let rational = s.is_rational();
         let mut coords: Vec<_> = (0..s.dim())
             .map(|j| {
