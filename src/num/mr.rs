@@ -205,6 +205,30 @@ impl Scalar for Mr {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn from_bounds_encloses_the_range() {
+        let cases = [
+            (0.0, 1.0),
+            (0.1, 0.30000000000000004),
+            (-f64::MAX, f64::MAX),
+            (f64::from_bits(1), f64::from_bits(3)),
+            (1e300, 1e300),
+            (-2.5, -2.5),
+            (0.49999999999999994, 0.5),
+        ];
+        for (a, b) in cases {
+            let x = Mr::from_bounds(a, b).to_interval();
+            assert!(
+                x.inf() <= a && b <= x.sup(),
+                "[{a}, {b}] -> [{}, {}]",
+                x.inf(),
+                x.sup()
+            );
+        }
+        assert_eq!(Mr::from_bounds(1.0, 0.0), Mr::ENTIRE);
+        assert_eq!(Mr::from_bounds(f64::NAN, 0.0), Mr::ENTIRE);
+    }
+
     use super::*;
     use crate::spline::bspline::HSpline;
     use crate::spline::curve::NurbsCurve;
