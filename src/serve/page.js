@@ -6,6 +6,10 @@
   const $ = (id) => document.getElementById(id);
   const canvas = $('canvas');
   const ctx = canvas.getContext('2d');
+  // The grid lies on a canvas of its own under the editor's: it is redrawn only when the view
+  // changes, so an edit repaints (and the browser rasterizes) only what moves.
+  const gridCanvas = $('grid-layer');
+  const gridCtx = gridCanvas.getContext('2d', { alpha: false });
   const COLORS = {
     hull: '#7f7f7f', bezier: '#1f77b4', newton: '#d62728', 'newton-thesis': '#ff7f0e',
     'search-region': '#9467bd', 'search-region-verified': '#2ca02c',
@@ -331,11 +335,13 @@
   function resize() {
     const dpr = window.devicePixelRatio || 1;
     const [w, h] = size();
-    if (canvas.width !== Math.round(w * dpr) || canvas.height !== Math.round(h * dpr)) {
-      canvas.width = Math.round(w * dpr);
-      canvas.height = Math.round(h * dpr);
+    for (const [c, g] of [[canvas, ctx], [gridCanvas, gridCtx]]) {
+      if (c.width !== Math.round(w * dpr) || c.height !== Math.round(h * dpr)) {
+        c.width = Math.round(w * dpr);
+        c.height = Math.round(h * dpr);
+      }
+      g.setTransform(dpr, 0, 0, dpr, 0, 0);
     }
-    ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   }
 
   // ---------------------------------------------------------------- drawing
@@ -346,7 +352,20 @@
     return (f <= 1 ? 1 : f <= 2 ? 2 : f <= 5 ? 5 : 10) * e;
   }
 
-  function drawGrid(w, h) {
+  let gridKey = '';
+
+  // The grid layer, redrawn only when its key (view, size, toggle) changes.
+  function drawGridLayer(w, h) {
+    const on = $('show-grid').checked;
+    const key = [on, w, h, window.devicePixelRatio || 1, state.view.ox, state.view.oy, state.view.s, state.dim].join(' ');
+    if (key === gridKey) return;
+    gridKey = key;
+    gridCtx.fillStyle = '#fff';
+    gridCtx.fillRect(0, 0, w, h);
+    if (on) drawGrid(gridCtx, w, h);
+  }
+
+  function drawGrid(ctx, w, h) {
     const step = niceStep(40 / state.view.s);
     const [x0, y1] = toWorld(0, 0), [x1, y0] = toWorld(w, h);
     const xs = [], ys = [];
@@ -499,22 +518,41 @@
   // when the browser rasterises the canvas); index labels up to MAX_LABELS points, or with
   // the coordinates.
   const MAX_LABELS = 30;
+  // A control point (a disc of radius 4.5 with a dark rim) drawn once into a small bitmap per
+  // fill and pixel ratio; drawing 100 points is then 100 bitmap copies, which the browser
+  // rasterizes far faster than 100 anti-aliased arcs.
+  const POINT_SPRITE_RADIUS = 6;
+  const sprites = new Map();
+  function pointSprite(weighted, dpr) {
+    const key = `${weighted} ${dpr}`;
+    let c = sprites.get(key);
+    if (!c) {
+      const r = POINT_SPRITE_RADIUS;
+      c = document.createElement('canvas');
+      c.width = c.height = Math.ceil(2 * r * dpr);
+      const g = c.getContext('2d');
+      g.setTransform(dpr, 0, 0, dpr, 0, 0);
+      g.beginPath();
+      g.arc(r, r, 4.5, 0, 2 * Math.PI);
+      g.fillStyle = weighted ? '#f5b041' : '#fff';
+      g.fill();
+      g.strokeStyle = '#333';
+      g.lineWidth = 1;
+      g.stroke();
+      sprites.set(key, c);
+    }
+    return c;
+  }
+
   function drawPoints() {
     const active = state.drag ? state.drag.i : state.hover;
-    for (const weighted of [false, true]) {
-      ctx.beginPath();
-      state.points.forEach((p, i) => {
-        if ((state.weights[i] !== 1) !== weighted || i === active) return;
-        const [x, y] = toPx(p);
-        ctx.moveTo(x + 4.5, y);
-        ctx.arc(x, y, 4.5, 0, 2 * Math.PI);
-      });
-      ctx.fillStyle = weighted ? '#f5b041' : '#fff';
-      ctx.fill();
-      ctx.strokeStyle = '#333';
-      ctx.lineWidth = 1;
-      ctx.stroke();
-    }
+    const dpr = window.devicePixelRatio || 1;
+    const r = POINT_SPRITE_RADIUS;
+    state.points.forEach((p, i) => {
+      if (i === active) return;
+      const [x, y] = toPx(p);
+      ctx.drawImage(pointSprite(state.weights[i] !== 1, dpr), x - r, y - r, 2 * r, 2 * r);
+    });
     if (active >= 0 && active < state.points.length) dot(state.points[active], 6, '#fff', '#d62728');
     const coords = $('show-coords').checked;
     if (!coords && state.points.length > MAX_LABELS) return;
@@ -533,7 +571,7 @@
     const [w, h] = size();
     if (!state.view.oy) state.view.oy = h - 90;
     ctx.clearRect(0, 0, w, h);
-    if ($('show-grid').checked) drawGrid(w, h);
+    drawGridLayer(w, h);
     if ($('show-knots').checked) drawKnots(w, h);
     const res = state.result;
     if (res) {
