@@ -77,12 +77,52 @@
 
   // ---------------------------------------------------------------- requests
 
-  function setMessage(text, isError = false) {
+  // `later`: the status line may be rewritten with the next text update (see scheduleText)
+  // instead of now; state.message always holds the latest text.
+  function setMessage(text, isError = false, later = false) {
     state.message = text;
     state.isError = isError;
+    if (later) {
+      scheduleText();
+    } else {
+      renderStatus();
+    }
+  }
+
+  function renderStatus() {
     const el = $('status');
-    el.textContent = text;
-    el.classList.toggle('error', isError);
+    if (el.textContent !== state.message) el.textContent = state.message;
+    el.classList.toggle('error', state.isError);
+  }
+
+  // The text views of a result (the strategy table, the status line) change with every edit.
+  // While a point is dragged they are rewritten at most every TEXT_INTERVAL_MS, and always
+  // after the last edit: a reader cannot follow faster, and every rewrite costs the browser a
+  // layout and a paint of the panel, which would delay the next box. The canvas, box included,
+  // is redrawn on every edit.
+  const TEXT_INTERVAL_MS = 100;
+  let textTimer = null, textPending = false, lastText = -Infinity;
+
+  function scheduleText() {
+    textPending = true;
+    const since = performance.now() - lastText;
+    if (since >= TEXT_INTERVAL_MS) {
+      flushText();
+    } else if (!textTimer) {
+      textTimer = setTimeout(flushText, TEXT_INTERVAL_MS - since);
+    }
+  }
+
+  function flushText() {
+    if (textTimer) {
+      clearTimeout(textTimer);
+      textTimer = null;
+    }
+    if (!textPending) return;
+    textPending = false;
+    lastText = performance.now();
+    renderResult();
+    renderStatus();
   }
 
   // Requests go over one WebSocket when it is open (a message costs a fraction of a
@@ -223,11 +263,11 @@
     if (r.ok) {
       const rec = mainRecord();
       const t = rec ? ` (${rec.strategy}: ${fmt(rec.time_s * 1e3, 3)} ms on the server)` : '';
-      setMessage(`Box verified; round trip ${ms.toFixed(2)} ms${t}.`);
+      setMessage(`Box verified; round trip ${ms.toFixed(2)} ms${t}.`, false, true);
     } else {
       setMessage(r.json.error.message, true);
+      renderResult();
     }
-    renderResult();
     if (r.ok && $('show-deboor').checked) await evalOnce();
   }
 
@@ -352,17 +392,21 @@
     return (f <= 1 ? 1 : f <= 2 ? 2 : f <= 5 ? 5 : 10) * e;
   }
 
-  let gridKey = '';
+  let layerKey = '';
 
-  // The grid layer, redrawn only when its key (view, size, toggle) changes.
-  function drawGridLayer(w, h) {
-    const on = $('show-grid').checked;
-    const key = [on, w, h, window.devicePixelRatio || 1, state.view.ox, state.view.oy, state.view.s, state.dim].join(' ');
-    if (key === gridKey) return;
-    gridKey = key;
+  // The layer under the editor's canvas: the grid and the knot vector, redrawn only when what
+  // they show changes (view, size, toggles, knots, the parameter marker).
+  function drawStaticLayer(w, h) {
+    const grid = $('show-grid').checked, knots = $('show-knots').checked;
+    const key = JSON.stringify([grid, knots, w, h, window.devicePixelRatio || 1, state.view, state.dim,
+      knots ? [state.knots, state.degree, state.points.length, state.knotsCustom, state.knotKind,
+        state.evalResult && state.evalResult.param] : 0]);
+    if (key === layerKey) return;
+    layerKey = key;
     gridCtx.fillStyle = '#fff';
     gridCtx.fillRect(0, 0, w, h);
-    if (on) drawGrid(gridCtx, w, h);
+    if (grid) drawGrid(gridCtx, w, h);
+    if (knots) drawKnots(gridCtx, w, h);
   }
 
   function drawGrid(ctx, w, h) {
@@ -458,7 +502,7 @@
     ctx.stroke();
   }
 
-  function drawKnots(w, h) {
+  function drawKnots(ctx, w, h) {
     const k = state.knots;
     if (!k.length) return;
     const [a, b] = [k[0], k[k.length - 1]];
@@ -467,9 +511,15 @@
     const X = (u) => x0 + (b > a ? ((u - a) / (b - a)) * (x1 - x0) : 0);
     ctx.strokeStyle = '#ccc';
     ctx.lineWidth = 2;
-    line(X(a), y, X(b), y);
+    ctx.beginPath();
+    ctx.moveTo(X(a), y);
+    ctx.lineTo(X(b), y);
+    ctx.stroke();
     ctx.strokeStyle = '#444';
-    line(X(da), y, X(db), y);
+    ctx.beginPath();
+    ctx.moveTo(X(da), y);
+    ctx.lineTo(X(db), y);
+    ctx.stroke();
     ctx.lineWidth = 1;
     ctx.fillStyle = '#444';
     ctx.font = '10px ui-monospace, monospace';
@@ -571,8 +621,7 @@
     const [w, h] = size();
     if (!state.view.oy) state.view.oy = h - 90;
     ctx.clearRect(0, 0, w, h);
-    drawGridLayer(w, h);
-    if ($('show-knots').checked) drawKnots(w, h);
+    drawStaticLayer(w, h);
     const res = state.result;
     if (res) {
       const main = mainRecord();
@@ -915,6 +964,7 @@
       while (structuralRuns > 0 || inFlight) {
         await (inFlight || new Promise((r) => setTimeout(r, 2)));
       }
+      flushText();
     },
   };
 
