@@ -6,6 +6,10 @@
   const $ = (id) => document.getElementById(id);
   const canvas = $('canvas');
   const ctx = canvas.getContext('2d');
+  // The grid lies on a canvas of its own under the editor's: it is redrawn only when the view
+  // changes, so an edit repaints (and the browser rasterizes) only what moves.
+  const gridCanvas = $('grid-layer');
+  const gridCtx = gridCanvas.getContext('2d', { alpha: false });
   const COLORS = {
     hull: '#7f7f7f', bezier: '#1f77b4', newton: '#d62728', 'newton-thesis': '#ff7f0e',
     'search-region': '#9467bd', 'search-region-verified': '#2ca02c',
@@ -73,12 +77,52 @@
 
   // ---------------------------------------------------------------- requests
 
-  function setMessage(text, isError = false) {
+  // `later`: the status line may be rewritten with the next text update (see scheduleText)
+  // instead of now; state.message always holds the latest text.
+  function setMessage(text, isError = false, later = false) {
     state.message = text;
     state.isError = isError;
+    if (later) {
+      scheduleText();
+    } else {
+      renderStatus();
+    }
+  }
+
+  function renderStatus() {
     const el = $('status');
-    el.textContent = text;
-    el.classList.toggle('error', isError);
+    if (el.textContent !== state.message) el.textContent = state.message;
+    el.classList.toggle('error', state.isError);
+  }
+
+  // The text views of a result (the strategy table, the status line) change with every edit.
+  // While a point is dragged they are rewritten at most every TEXT_INTERVAL_MS, and always
+  // after the last edit: a reader cannot follow faster, and every rewrite costs the browser a
+  // layout and a paint of the panel, which would delay the next box. The canvas, box included,
+  // is redrawn on every edit.
+  const TEXT_INTERVAL_MS = 100;
+  let textTimer = null, textPending = false, lastText = -Infinity;
+
+  function scheduleText() {
+    textPending = true;
+    const since = performance.now() - lastText;
+    if (since >= TEXT_INTERVAL_MS) {
+      flushText();
+    } else if (!textTimer) {
+      textTimer = setTimeout(flushText, TEXT_INTERVAL_MS - since);
+    }
+  }
+
+  function flushText() {
+    if (textTimer) {
+      clearTimeout(textTimer);
+      textTimer = null;
+    }
+    if (!textPending) return;
+    textPending = false;
+    lastText = performance.now();
+    renderResult();
+    renderStatus();
   }
 
   // Requests go over one WebSocket when it is open (a message costs a fraction of a
@@ -219,11 +263,11 @@
     if (r.ok) {
       const rec = mainRecord();
       const t = rec ? ` (${rec.strategy}: ${fmt(rec.time_s * 1e3, 3)} ms on the server)` : '';
-      setMessage(`Box verified; round trip ${ms.toFixed(2)} ms${t}.`);
+      setMessage(`Box verified; round trip ${ms.toFixed(2)} ms${t}.`, false, true);
     } else {
       setMessage(r.json.error.message, true);
+      renderResult();
     }
-    renderResult();
     if (r.ok && $('show-deboor').checked) await evalOnce();
   }
 
@@ -331,11 +375,13 @@
   function resize() {
     const dpr = window.devicePixelRatio || 1;
     const [w, h] = size();
-    if (canvas.width !== Math.round(w * dpr) || canvas.height !== Math.round(h * dpr)) {
-      canvas.width = Math.round(w * dpr);
-      canvas.height = Math.round(h * dpr);
+    for (const [c, g] of [[canvas, ctx], [gridCanvas, gridCtx]]) {
+      if (c.width !== Math.round(w * dpr) || c.height !== Math.round(h * dpr)) {
+        c.width = Math.round(w * dpr);
+        c.height = Math.round(h * dpr);
+      }
+      g.setTransform(dpr, 0, 0, dpr, 0, 0);
     }
-    ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   }
 
   // ---------------------------------------------------------------- drawing
@@ -346,7 +392,24 @@
     return (f <= 1 ? 1 : f <= 2 ? 2 : f <= 5 ? 5 : 10) * e;
   }
 
-  function drawGrid(w, h) {
+  let layerKey = '';
+
+  // The layer under the editor's canvas: the grid and the knot vector, redrawn only when what
+  // they show changes (view, size, toggles, knots, the parameter marker).
+  function drawStaticLayer(w, h) {
+    const grid = $('show-grid').checked, knots = $('show-knots').checked;
+    const key = JSON.stringify([grid, knots, w, h, window.devicePixelRatio || 1, state.view, state.dim,
+      knots ? [state.knots, state.degree, state.points.length, state.knotsCustom, state.knotKind,
+        state.evalResult && state.evalResult.param] : 0]);
+    if (key === layerKey) return;
+    layerKey = key;
+    gridCtx.fillStyle = '#fff';
+    gridCtx.fillRect(0, 0, w, h);
+    if (grid) drawGrid(gridCtx, w, h);
+    if (knots) drawKnots(gridCtx, w, h);
+  }
+
+  function drawGrid(ctx, w, h) {
     const step = niceStep(40 / state.view.s);
     const [x0, y1] = toWorld(0, 0), [x1, y0] = toWorld(w, h);
     const xs = [], ys = [];
@@ -439,7 +502,7 @@
     ctx.stroke();
   }
 
-  function drawKnots(w, h) {
+  function drawKnots(ctx, w, h) {
     const k = state.knots;
     if (!k.length) return;
     const [a, b] = [k[0], k[k.length - 1]];
@@ -448,9 +511,15 @@
     const X = (u) => x0 + (b > a ? ((u - a) / (b - a)) * (x1 - x0) : 0);
     ctx.strokeStyle = '#ccc';
     ctx.lineWidth = 2;
-    line(X(a), y, X(b), y);
+    ctx.beginPath();
+    ctx.moveTo(X(a), y);
+    ctx.lineTo(X(b), y);
+    ctx.stroke();
     ctx.strokeStyle = '#444';
-    line(X(da), y, X(db), y);
+    ctx.beginPath();
+    ctx.moveTo(X(da), y);
+    ctx.lineTo(X(db), y);
+    ctx.stroke();
     ctx.lineWidth = 1;
     ctx.fillStyle = '#444';
     ctx.font = '10px ui-monospace, monospace';
@@ -499,22 +568,41 @@
   // when the browser rasterises the canvas); index labels up to MAX_LABELS points, or with
   // the coordinates.
   const MAX_LABELS = 30;
+  // A control point (a disc of radius 4.5 with a dark rim) drawn once into a small bitmap per
+  // fill and pixel ratio; drawing 100 points is then 100 bitmap copies, which the browser
+  // rasterizes far faster than 100 anti-aliased arcs.
+  const POINT_SPRITE_RADIUS = 6;
+  const sprites = new Map();
+  function pointSprite(weighted, dpr) {
+    const key = `${weighted} ${dpr}`;
+    let c = sprites.get(key);
+    if (!c) {
+      const r = POINT_SPRITE_RADIUS;
+      c = document.createElement('canvas');
+      c.width = c.height = Math.ceil(2 * r * dpr);
+      const g = c.getContext('2d');
+      g.setTransform(dpr, 0, 0, dpr, 0, 0);
+      g.beginPath();
+      g.arc(r, r, 4.5, 0, 2 * Math.PI);
+      g.fillStyle = weighted ? '#f5b041' : '#fff';
+      g.fill();
+      g.strokeStyle = '#333';
+      g.lineWidth = 1;
+      g.stroke();
+      sprites.set(key, c);
+    }
+    return c;
+  }
+
   function drawPoints() {
     const active = state.drag ? state.drag.i : state.hover;
-    for (const weighted of [false, true]) {
-      ctx.beginPath();
-      state.points.forEach((p, i) => {
-        if ((state.weights[i] !== 1) !== weighted || i === active) return;
-        const [x, y] = toPx(p);
-        ctx.moveTo(x + 4.5, y);
-        ctx.arc(x, y, 4.5, 0, 2 * Math.PI);
-      });
-      ctx.fillStyle = weighted ? '#f5b041' : '#fff';
-      ctx.fill();
-      ctx.strokeStyle = '#333';
-      ctx.lineWidth = 1;
-      ctx.stroke();
-    }
+    const dpr = window.devicePixelRatio || 1;
+    const r = POINT_SPRITE_RADIUS;
+    state.points.forEach((p, i) => {
+      if (i === active) return;
+      const [x, y] = toPx(p);
+      ctx.drawImage(pointSprite(state.weights[i] !== 1, dpr), x - r, y - r, 2 * r, 2 * r);
+    });
     if (active >= 0 && active < state.points.length) dot(state.points[active], 6, '#fff', '#d62728');
     const coords = $('show-coords').checked;
     if (!coords && state.points.length > MAX_LABELS) return;
@@ -533,8 +621,7 @@
     const [w, h] = size();
     if (!state.view.oy) state.view.oy = h - 90;
     ctx.clearRect(0, 0, w, h);
-    if ($('show-grid').checked) drawGrid(w, h);
-    if ($('show-knots').checked) drawKnots(w, h);
+    drawStaticLayer(w, h);
     const res = state.result;
     if (res) {
       const main = mainRecord();
@@ -877,6 +964,7 @@
       while (structuralRuns > 0 || inFlight) {
         await (inFlight || new Promise((r) => setTimeout(r, 2)));
       }
+      flushText();
     },
   };
 
