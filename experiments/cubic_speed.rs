@@ -21,7 +21,11 @@ fn main() {
     } else {
         args.iter().map(|s| s.as_str()).collect()
     };
-    let reps = if args.is_empty() { 5 } else { 1 };
+    // (REPS=N repeats more, for a profiler)
+    let reps = std::env::var("REPS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(if args.is_empty() { 5 } else { 1 });
     for name in names {
         let s = strategy_by_name(name, None).unwrap();
         let mut best = f64::INFINITY;

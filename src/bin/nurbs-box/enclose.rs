@@ -47,6 +47,8 @@ pub(crate) fn run(a: EncloseArgs) -> Result<Outcome, Fatal> {
         })
         .collect::<Result<_, _>>()?;
     let timings = a.timings;
+    // the strategies read the clock only when asked (it costs more than a cubic's box)
+    nurbs_box::enclose::set_timing(timings);
     run_stream(&a.input, |index, curve, buf| {
         enclose_records(index, curve, &strategies, timings, buf)
     })

@@ -541,7 +541,7 @@ impl<'a> Engine<'a> {
     /// (handled above) or at a knot with a non-decreasing span on the left and a span on the
     /// right that is not non-decreasing: exactly the knots the rule below adds.
     pub(crate) fn coord(&mut self, j: usize, order: &[usize], modes: &[SpanMode]) -> CoordBox {
-        let t0 = Instant::now();
+        let t0 = crate::enclose::Clock::start();
         self.j = j;
         self.stats = Stats::default();
         self.poly = None;
