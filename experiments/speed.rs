@@ -199,10 +199,14 @@ fn counters(strategies: &[Box<dyn BoxEncloser>], nc: &[NurbsCurve]) -> String {
         }
         let _ = write!(
             s,
-            "`{}`: {} newton steps, {} derivative evaluations; ",
+            "`{}`: {} cheap exits, {} float-first proofs, {} fallbacks to the general search \
+             ({} interval Newton steps, {} subdivisions); ",
             st.name(),
+            sum.fast_exits,
+            sum.fast_proofs,
+            sum.fast_fallbacks,
             sum.newton_iterations,
-            sum.derivative_evaluations
+            sum.subdivisions
         );
     }
     s

@@ -769,23 +769,22 @@ pub(crate) fn fast_sides(c: &NurbsCurve, j: usize, max_gap: f64) -> [Option<(Sid
 /// The coordinate box from the two sign-adjusted sides (max side `hi`, min side `lo`) over the
 /// domain [a, b]: outer bounds, attained values, and the candidates reaching them.
 pub(crate) fn coord_box(
-    mut hi: Side,
-    mut lo: Side,
+    hi: Side,
+    lo: Side,
     a: f64,
     b: f64,
     time: std::time::Duration,
 ) -> CoordBox {
-    // (consumes the candidate list)
     // If no recorded candidate reaches the attained value (it came from an end coefficient of
     // a piece pruned right away), the whole domain is reported: it certainly contains the
     // argument of the extremum.
-    let pick = |s: &mut Side| {
-        let at = s.attained;
-        let mut v = std::mem::take(&mut s.cands)
-            .into_iter()
-            .filter(|(x, _)| *x >= at)
-            .map(|(_, e)| e)
-            .collect::<super::Extrema>();
+    let pick = |s: &Side| {
+        let mut v = super::Extrema::new();
+        for (x, e) in &s.cands {
+            if *x >= s.attained {
+                v.push(*e);
+            }
+        }
         if v.is_empty() {
             v.push(Extremum {
                 u_lo: a,
@@ -811,8 +810,8 @@ pub(crate) fn coord_box(
         hi: hi.upper,
         inner_lo: -lo.attained,
         inner_hi: hi.attained,
-        argmin: pick(&mut lo),
-        argmax: pick(&mut hi),
+        argmin: pick(&lo),
+        argmax: pick(&hi),
         stats,
         termination: term,
     }
