@@ -174,6 +174,58 @@ fn main() {
             .collect();
         line(format!("| {p} | {} | {} |", a.join(" | "), b.join(" | ")));
     }
+    // The CLI pipeline on one thread: parse, enclose, write JSON Lines (what `nurbs-box enclose`
+    // does), on a mixed batch, relative to `hull` (which is parse + write).
+    let batch = mixed_batch(if quick { 400 } else { 2000 });
+    if let Some(i) = args.iter().position(|a| a == "--write-batch") {
+        if let Some(path) = args.get(i + 1) {
+            match std::fs::write(path, &batch) {
+                Ok(()) => eprintln!("wrote the mixed batch to {path}"),
+                Err(e) => eprintln!("could not write {path}: {e}"),
+            }
+        }
+    }
+    let stream = |s: &Box<dyn BoxEncloser>| {
+        let opts = nurbs_box::io::batch::StreamOptions {
+            threads: 1,
+            ..Default::default()
+        };
+        let strategies = [strategy_by_name(s.name(), None).expect("registered")];
+        best(reps.min(5), &mut || {
+            let mut out = Vec::with_capacity(batch.len() * 2);
+            nurbs_box::io::batch::enclose_stream(
+                batch.as_slice(),
+                &mut out,
+                &strategies,
+                &opts,
+                false,
+            )
+            .expect("stream");
+            out.len() as f64
+        })
+    };
+    let th = stream(&strategies[0]);
+    let nlines = batch.iter().filter(|&&b| b == b'\n').count();
+    line(String::new());
+    line(format!(
+        "The `enclose` pipeline on one thread (parse, enclose, write JSON Lines, in memory) on a \
+         mixed batch of {nlines} curves (2-D quadratic and cubic Béziers as in fonts, and the \
+         test families: B-splines, NURBS, extreme weights and magnitudes, high degree), \
+         relative to `hull` (parse + write):"
+    ));
+    line(String::new());
+    line("| strategy | time per curve | ratio to `hull` | goal |".into());
+    line("|---|---|---|---|".into());
+    for s in &strategies {
+        let t = if s.name() == "hull" { th } else { stream(s) };
+        line(format!(
+            "| `{}` | {:.2} µs | {:.2}x | {} |",
+            s.name(),
+            t / nlines as f64 * 1e6,
+            t / th,
+            if s.name() == "hull" { "" } else { "<= 2x" }
+        ));
+    }
     line(String::new());
     line(format!(
         "Fast-path counters of `newton` and `bezier` on the {NCUBIC} cubics (coordinate sides, \
@@ -187,6 +239,30 @@ fn main() {
         Ok(()) => eprintln!("wrote {out}"),
         Err(e) => eprintln!("could not write {out}: {e}"),
     }
+}
+
+/// A mixed JSON Lines batch of `n` curves: half 2-D quadratic and cubic Béziers (font
+/// outlines), half from the test families (every family but the range limits, in turn).
+fn mixed_batch(n: usize) -> Vec<u8> {
+    use nurbs_box::testkit::gen::Family;
+    let mut r = ChaCha8Rng::seed_from_u64(11);
+    let mut out = Vec::new();
+    for i in 0..n {
+        let c = if i % 2 == 0 {
+            let p = if i % 4 == 0 { 3 } else { 2 };
+            let pts = (0..=p)
+                .map(|_| vec![r.random_range(0.0..2048.0), r.random_range(0.0..2048.0)])
+                .collect();
+            let mut k = vec![0.0; p + 1];
+            k.extend(vec![1.0; p + 1]);
+            NurbsCurve::new(p, k, pts, None).expect("a valid Bézier curve")
+        } else {
+            Family::ALL[(i / 2) % Family::ALL.len()].curve(&mut r)
+        };
+        out.extend_from_slice(nurbs_box::curve_to_json(&c).as_bytes());
+        out.push(b'\n');
+    }
+    out
 }
 
 /// The fast-path counters summed over the cubics, per strategy.

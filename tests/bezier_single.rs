@@ -167,7 +167,12 @@ fn check_dense(c: &NurbsCurve) -> Result<(), String> {
         check_args(c, e)?;
     }
     for pair in [0, 2] {
-        for (j, (f, g)) in encs[pair].coords.iter().zip(&encs[pair + 1].coords).enumerate() {
+        for (j, (f, g)) in encs[pair]
+            .coords
+            .iter()
+            .zip(&encs[pair + 1].coords)
+            .enumerate()
+        {
             let tol = 2.0 * nurbs_box::num::ulp(c.coord_scale(j));
             let ok = f.lo >= g.lo - tol && f.hi <= g.hi + tol; // (false for NaN)
             if !ok {
@@ -209,9 +214,16 @@ fn newton_counts_its_fast_paths() {
         proofs += st.fast_proofs;
         exits += st.fast_exits;
         falls += st.fast_fallbacks;
-        assert_eq!(st.fast_proofs + st.fast_exits + st.fast_fallbacks, 4, "{st:?}");
+        assert_eq!(
+            st.fast_proofs + st.fast_exits + st.fast_fallbacks,
+            4,
+            "{st:?}"
+        );
     }
-    assert!(proofs > 100 && exits > 100 && falls < 20, "{proofs} {exits} {falls}");
+    assert!(
+        proofs > 100 && exits > 100 && falls < 20,
+        "{proofs} {exits} {falls}"
+    );
     // the thesis preset never takes it
     let c = bezier(vec![vec![0.0], vec![1.0], vec![1.0], vec![0.0]], 0.0, 1.0);
     let st = Newton::thesis().enclose(&c).stats();
