@@ -134,9 +134,12 @@ pub struct Stats {
     /// coordinate sides resolved by a cheap exit (the extreme control value is an attained end
     /// value: exact, no search)
     pub fast_exits: u64,
-    /// coordinate sides proven by the float-first path (f64 root estimates, then proofs)
+    /// proven by the float-first path (f64 zero estimates, then proofs): coordinate sides of
+    /// a single quadratic / cubic Bézier segment, and spans of the Newton search whose
+    /// complement of the tiny zero boxes was excluded
     pub fast_proofs: u64,
-    /// coordinate sides where the fast path was tried and the general search ran
+    /// where the float-first path could not prove everything and the general search ran:
+    /// coordinate sides (`bezier`), spans (`newton`)
     pub fast_fallbacks: u64,
     /// time spent evaluating derivatives (zero unless timing was asked for: [`set_timing`],
     /// [`crate::enclose::Newton::time_derivatives`])

@@ -131,7 +131,12 @@ pub struct Newton {
     /// strategy (f64 root estimates of C_j', proven signs of C_j' around them, root
     /// counting, a double-double Taylor enclosure over each tiny bracket:
     /// `crate::enclose::bezier` `fast_sides`). A coordinate whose two sides are not both
-    /// proven within two ulps goes through the interval Newton search as before. Counted in
+    /// proven within two ulps goes through the interval Newton search, which then also
+    /// starts float first: per span, f64 estimates of the zeros of C_j' (Bernstein
+    /// subdivision), a tiny box around each for the interval Newton steps (the first one
+    /// proves the zero unique), and the rest of the span excluded by the sign of the enclosed
+    /// Bernstein coefficients of the derivative numerator; only what is not excluded is
+    /// searched from the whole box as before (`Engine::seed_float_first`). Counted in
     /// `Stats::fast_exits` / `fast_proofs` / `fast_fallbacks`.
     pub fast_path: bool,
 }
@@ -252,11 +257,7 @@ impl BoxEncloser for Newton {
             let first = [extreme_point(c, j, true), extreme_point(c, j, false)];
             let order = e.order_with_first(&first);
             modes.iter_mut().for_each(|m| *m = mode);
-            let mut cb = e.coord(j, &order, modes);
-            if self.fast_path {
-                cb.stats.fast_fallbacks += 2;
-            }
-            coords.push(cb);
+            coords.push(e.coord(j, &order, modes));
         }
         Enclosure {
             strategy: self.name(),
