@@ -185,7 +185,7 @@ fn main() {
             }
         }
     }
-    let stream = |s: &Box<dyn BoxEncloser>| {
+    let stream = |s: &dyn BoxEncloser| {
         let opts = nurbs_box::io::batch::StreamOptions {
             threads: 1,
             ..Default::default()
@@ -204,7 +204,7 @@ fn main() {
             out.len() as f64
         })
     };
-    let th = stream(&strategies[0]);
+    let th = stream(strategies[0].as_ref());
     let nlines = batch.iter().filter(|&&b| b == b'\n').count();
     line(String::new());
     line(format!(
@@ -217,7 +217,11 @@ fn main() {
     line("| strategy | time per curve | ratio to `hull` | goal |".into());
     line("|---|---|---|---|".into());
     for s in &strategies {
-        let t = if s.name() == "hull" { th } else { stream(s) };
+        let t = if s.name() == "hull" {
+            th
+        } else {
+            stream(s.as_ref())
+        };
         line(format!(
             "| `{}` | {:.2} µs | {:.2}x | {} |",
             s.name(),

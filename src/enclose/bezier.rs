@@ -696,8 +696,8 @@ impl FastPath {
 ///
 /// 1. Cheap exit (any curve): if the largest (smallest) control coordinate is the value of a
 ///    clamped end, that end value is attained (`NurbsCurve::clamped_ends`: C = P_0 / P_n
-///    exactly there) and bounds the curve (convex hull property, thesis prop. 2.1; weights
-///    > 0): the exact extremum, with no rounding at all. This covers every coordinate whose
+///    exactly there) and bounds the curve (convex hull property, thesis prop. 2.1; positive
+///    weights): the exact extremum, with no rounding at all. This covers every coordinate whose
 ///    control values are monotone, and fonts, whose designers put on-curve points at the
 ///    extrema.
 /// 2. For a single polynomial Bézier segment of degree 2 or 3 (`n == p`, both ends clamped, no

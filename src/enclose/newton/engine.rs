@@ -534,7 +534,7 @@ impl<'a> Engine<'a> {
             Some(sp) => sp.zero_estimates(&mut est, 2 * self.p + 2),
             None => false,
         };
-        if !ok || !(a == 0.0 && b == 1.0) {
+        if !(ok && a == 0.0 && b == 1.0) {
             self.est = est;
             return false;
         }
