@@ -6,8 +6,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 /// Candidate locations of one side of a coordinate ([`CoordBox::argmin`] / `argmax`): inline
-/// storage for the usual one or two candidates (no heap allocation), a slice to read.
-pub type Extrema = SmallVec<[Extremum; 2]>;
+/// storage for the usual single candidate (no heap allocation; ties spill to the heap), a
+/// slice to read.
+pub type Extrema = SmallVec<[Extremum; 1]>;
 
 /// The per-coordinate results of an [`Enclosure`]: inline storage up to three coordinates (no
 /// heap allocation for 2-D and 3-D curves), a slice to read.
