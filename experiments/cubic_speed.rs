@@ -40,7 +40,17 @@ fn main() {
             continue;
         }
         // the thesis's largest case: p = 3, 101 control points, 1-D
-        let big = nurbs_box::testkit::gen::thesis_curve_1d(101, 3, 101).unwrap();
+        // (BIG_P=p: one 2-D rational span of degree p instead, as in the speed report)
+        let big = match std::env::var("BIG_P")
+            .ok()
+            .and_then(|p| p.parse::<usize>().ok())
+        {
+            Some(p) => {
+                nurbs_box::testkit::gen::thesis_curve_2d_nurbs_with(p + 1, p, 100 + p as u64)
+                    .unwrap()
+            }
+            None => nurbs_box::testkit::gen::thesis_curve_1d(101, 3, 101).unwrap(),
+        };
         let mut best = f64::INFINITY;
         for _ in 0..reps * 20 {
             let t = Instant::now();
