@@ -634,7 +634,7 @@ impl BezierSubdivision {
 /// (|t_b - t_a| >= 2^1022), which adds at most 2^-1075 / 2^1021 to α̂, far below η (and the
 /// driver only passes moderate knot vectors here: `rescale`, `segments`). A non-finite
 /// coefficient would void the bound, so it sends the span to the interval path.
-fn span_filter(
+pub(crate) fn span_filter(
     c: &NurbsCurve,
     q: &BezierSeg<f64>,
     k: usize,

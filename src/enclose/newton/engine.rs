@@ -13,6 +13,7 @@ use super::{DerivForm, Newton, Split, BERNSTEIN_MAX_DEGREE, EVALS_PER_SPAN, WORK
 use crate::enclose::{CandidateKind, CoordBox, Stats, Termination};
 use crate::num::iv;
 use crate::num::mr::Mr;
+use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
 use crate::spline::knots::multiplicity;
@@ -55,7 +56,11 @@ struct ZeroBox {
 pub(crate) struct Engine<'a> {
     c: &'a NurbsCurve,
     s: &'a Newton,
-    ev: CurveEval<Interval>,
+    /// interval de Boor on the derivative splines, built on first use (a search in the local
+    /// parameter through the span's Bernstein form never needs it)
+    ev: std::cell::OnceCell<CurveEval<Interval>>,
+    /// the curve in f64 for the float-first span prune (non-rational), built on first use
+    hf: std::cell::OnceCell<HSpline<f64>>,
     p: usize,
     d: usize,
     rational: bool,
@@ -102,7 +107,8 @@ impl<'a> Engine<'a> {
         Engine {
             c,
             s,
-            ev: CurveEval::new(c, 2),
+            ev: std::cell::OnceCell::new(),
+            hf: std::cell::OnceCell::new(),
             p,
             d: c.dim(),
             rational: c.is_rational(),
@@ -146,8 +152,10 @@ impl<'a> Engine<'a> {
             if l > self.p {
                 return (iv::point(0.0), iv::point(0.0));
             }
+            let c = self.c;
             let v = self
                 .ev
+                .get_or_init(|| CurveEval::new(c, 2))
                 .level(l)
                 .eval_span_rows(k - l, &u, &[self.j], &mut self.buf);
             let w = if l == 0 {
@@ -160,8 +168,10 @@ impl<'a> Engine<'a> {
         if l > self.p {
             return (iv::point(0.0), iv::point(0.0));
         }
+        let c = self.c;
         let v = self
             .ev
+            .get_or_init(|| CurveEval::new(c, 2))
             .level(l)
             .eval_span_rows(k - l, &u, &[self.j, self.d], &mut self.buf);
         (v[0], v[1])
@@ -690,6 +700,24 @@ impl<'a> Engine<'a> {
                 if inc || dec {
                     status[si] = Status::Mono { inc, dec };
                     continue;
+                }
+            }
+            if self.s.fast_path && mode == SpanMode::Prune && !self.rational && want_poly {
+                // Float first: the span's f64 Bézier points with the a-priori error bound of
+                // knot insertion (`bezier::span_filter`, its proof there; checked against
+                // MPFR segments in its test) bound the span's values; inside the values the
+                // curve attains on both sides, the span is covered as with the `Mr` Bézier
+                // hull below, without building that form.
+                let c = self.c;
+                let hf = self.hf.get_or_init(|| HSpline::<f64>::from_curve(c));
+                let q = hf.bezier_segment(k);
+                let hi = crate::enclose::bezier::span_filter(c, &q, k, j, 1.0, false);
+                let lo = crate::enclose::bezier::span_filter(c, &q, k, j, -1.0, false);
+                if let (Some((ub, _)), Some((nlb, _))) = (hi, lo) {
+                    if -nlb >= acc.inner_lo && ub <= acc.inner_hi {
+                        self.stats.fast_exits += 1;
+                        continue;
+                    }
                 }
             }
             if want_poly {
