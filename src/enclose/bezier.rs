@@ -209,7 +209,7 @@ pub(crate) struct Side {
     attained: f64,
     /// upper bound so far (sign-adjusted)
     upper: f64,
-    cands: smallvec::SmallVec<[(f64, Extremum); 4]>,
+    cands: Vec<(f64, Extremum)>,
     stats: Stats,
     term: Termination,
 }

@@ -132,8 +132,9 @@ pub struct Stats {
     pub point_evaluations: u64,
     /// subdivisions (box splits, de Casteljau splits)
     pub subdivisions: u64,
-    /// coordinate sides resolved by a cheap exit (the extreme control value is an attained end
-    /// value: exact, no search)
+    /// resolved by a cheap exit: coordinate sides whose extreme control value is an attained
+    /// end value (exact, no search), and spans of the Newton search pruned by their f64 Bézier
+    /// points with an a-priori error bound
     pub fast_exits: u64,
     /// proven by the float-first path (f64 zero estimates, then proofs): coordinate sides of
     /// a single quadratic / cubic Bézier segment, and spans of the Newton search whose
