@@ -21,9 +21,18 @@ fn main() {
     } else {
         args.iter().map(|s| s.as_str()).collect()
     };
-    let reps = if args.is_empty() { 5 } else { 1 };
+    // (REPS=N repeats more, for a profiler)
+    let reps = std::env::var("REPS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(if args.is_empty() { 5 } else { 1 });
     for name in names {
         let s = strategy_by_name(name, None).unwrap();
+        let cs = if std::env::var_os("BIG_ONLY").is_some() {
+            &cs[..1]
+        } else {
+            &cs[..]
+        };
         let mut best = f64::INFINITY;
         for _ in 0..reps {
             let t = Instant::now();
@@ -32,8 +41,21 @@ fn main() {
             best = best.min(t.elapsed().as_secs_f64() / cs.len() as f64);
         }
         println!("{name}: {:.0} ns per cubic", best * 1e9);
+        if std::env::var_os("CUBICS_ONLY").is_some() {
+            continue;
+        }
         // the thesis's largest case: p = 3, 101 control points, 1-D
-        let big = nurbs_box::testkit::gen::thesis_curve_1d(101, 3, 101).unwrap();
+        // (BIG_P=p: one 2-D rational span of degree p instead, as in the speed report)
+        let big = match std::env::var("BIG_P")
+            .ok()
+            .and_then(|p| p.parse::<usize>().ok())
+        {
+            Some(p) => {
+                nurbs_box::testkit::gen::thesis_curve_2d_nurbs_with(p + 1, p, 100 + p as u64)
+                    .unwrap()
+            }
+            None => nurbs_box::testkit::gen::thesis_curve_1d(101, 3, 101).unwrap(),
+        };
         let mut best = f64::INFINITY;
         for _ in 0..reps * 20 {
             let t = Instant::now();
@@ -41,5 +63,8 @@ fn main() {
             best = best.min(t.elapsed().as_secs_f64());
         }
         println!("{name}: {:.1} µs on p = 3, 101 points", best * 1e6);
+        if std::env::var_os("STATS").is_some() {
+            println!("{:?}", s.enclose(&big).stats());
+        }
     }
 }

@@ -531,6 +531,8 @@ fn strategy_table(rows: &[Row], sweep: Sweep, names: &[&'static str]) -> String 
 
 fn main() {
     let args = Args::parse();
+    // the tables report the time spent in derivative evaluations as a fraction of the total
+    nurbs_box::enclose::set_timing(true);
     let prov = Provenance::collect();
     std::fs::create_dir_all(&args.out).expect("create output directory");
     let strategies = all_strategies(None);

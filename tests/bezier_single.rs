@@ -1,18 +1,27 @@
-//! The `bezier` strategy's fast path for single polynomial Bézier segments of degree 2 and 3
-//! (src/enclose/bezier/single.rs): soundness and tightness against the 256-bit reference on
-//! random, structured and near-degenerate quadratics and cubics, compared with the general
-//! branch and bound (`fast_path: false`).
+//! The float-first fast path for single polynomial Bézier segments of degree 2 and 3
+//! (src/enclose/bezier/single.rs, shared by `bezier` and `newton` through `fast_sides`, with the
+//! cheap exits): soundness and tightness against the 256-bit reference on random, structured
+//! and near-degenerate quadratics and cubics (double roots of C', extrema at the ends, flat
+//! coordinates), each strategy compared with its general search (`fast_path: false`: the
+//! branch and bound, the interval Newton search).
 
-use nurbs_box::enclose::BezierSubdivision;
+use nurbs_box::enclose::{BezierSubdivision, Newton};
 use nurbs_box::{BoxEncloser, Enclosure, NurbsCurve};
 use rand::{Rng, SeedableRng};
 
-/// The registered strategy (`BezierSubdivision::default()`, whose `enclose` runs under the
-/// driver like the registry's) and the same without the fast path.
-fn strategies() -> [Box<dyn BoxEncloser>; 2] {
+mod common;
+
+/// The registered strategies with the fast path (their defaults, whose `enclose` runs under
+/// the driver like the registry's), each followed by the same without it.
+fn strategies() -> [Box<dyn BoxEncloser>; 4] {
     [
         Box::new(BezierSubdivision::default()),
         Box::new(BezierSubdivision {
+            fast_path: false,
+            ..Default::default()
+        }),
+        Box::new(Newton::default()),
+        Box::new(Newton {
             fast_path: false,
             ..Default::default()
         }),
@@ -146,6 +155,81 @@ fn hand_made_cases() {
     assert!(x.u_lo <= 3.0 && 3.0 <= x.u_hi, "{x:?}");
 }
 
+/// Without the reference: every variant's box contains the interval enclosures of the curve at
+/// dense parameters (a miss is proven when a point's enclosure lies beyond a bound), and each
+/// fast variant's outer bounds are within two ulps of the scale of its general search's.
+fn check_dense(c: &NurbsCurve) -> Result<(), String> {
+    use nurbs_box::testkit::robust::{check_enclosure, check_params};
+    let params = check_params(c, 200, &[]);
+    let encs: Vec<Enclosure> = strategies().iter().map(|s| s.enclose(c)).collect();
+    for (s, e) in strategies().iter().zip(&encs) {
+        check_enclosure(c, e, s.guarantee(), &params).map_err(|m| format!("{}: {m}", s.name()))?;
+        check_args(c, e)?;
+    }
+    for pair in [0, 2] {
+        for (j, (f, g)) in encs[pair]
+            .coords
+            .iter()
+            .zip(&encs[pair + 1].coords)
+            .enumerate()
+        {
+            let tol = 2.0 * nurbs_box::num::ulp(c.coord_scale(j));
+            let ok = f.lo >= g.lo - tol && f.hi <= g.hi + tol; // (false for NaN)
+            if !ok {
+                return Err(format!(
+                    "variant {pair} coord {j}: fast [{}, {}] looser than general [{}, {}]\n{}",
+                    f.lo,
+                    f.hi,
+                    g.lo,
+                    g.hi,
+                    nurbs_box::curve_to_json(c)
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest::proptest! {
+    #![proptest_config(common::config(64))]
+    /// Random and structured quadratics / cubics (see [`random_single`]) by dense sampling.
+    #[test]
+    fn single_segments_contain_dense_samples(seed in proptest::prelude::any::<u64>()) {
+        let c = random_single(&mut rand_chacha::ChaCha8Rng::seed_from_u64(seed));
+        if let Err(m) = check_dense(&c) {
+            proptest::prop_assert!(false, "{m}");
+        }
+    }
+}
+
+#[test]
+fn newton_counts_its_fast_paths() {
+    let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+    let (mut proofs, mut exits, mut falls) = (0, 0, 0);
+    for _ in 0..200 {
+        let p: Vec<Vec<f64>> = (0..4)
+            .map(|_| vec![r.random_range(-100.0..100.0), r.random_range(-100.0..100.0)])
+            .collect();
+        let st = Newton::default().enclose(&bezier(p, 0.0, 1.0)).stats();
+        proofs += st.fast_proofs;
+        exits += st.fast_exits;
+        falls += st.fast_fallbacks;
+        assert_eq!(
+            st.fast_proofs + st.fast_exits + st.fast_fallbacks,
+            4,
+            "{st:?}"
+        );
+    }
+    assert!(
+        proofs > 100 && exits > 100 && falls < 20,
+        "{proofs} {exits} {falls}"
+    );
+    // the thesis preset never takes it
+    let c = bezier(vec![vec![0.0], vec![1.0], vec![1.0], vec![0.0]], 0.0, 1.0);
+    let st = Newton::thesis().enclose(&c).stats();
+    assert_eq!(st.fast_proofs + st.fast_exits + st.fast_fallbacks, 0);
+}
+
 #[cfg(feature = "mpfr")]
 mod mpfr {
     use super::*;
@@ -198,15 +282,22 @@ mod mpfr {
             }
             dist.push(d);
         }
-        for (i, (&f, &g)) in dist[0].iter().zip(&dist[1]).enumerate() {
-            let ok = f <= FAST_MAX_ULPS.max(g); // (false for NaN)
-            if !ok {
-                return Err(format!(
-                    "bound {i}: {f} ulps outside the exact box (general path: {g})\n{curve}"
-                ));
+        for pair in [0, 2] {
+            for (i, (&f, &g)) in dist[pair].iter().zip(&dist[pair + 1]).enumerate() {
+                let ok = f <= FAST_MAX_ULPS.max(g); // (false for NaN)
+                if !ok {
+                    return Err(format!(
+                        "variant {pair} bound {i}: {f} ulps outside the exact box \
+                         (general path: {g})\n{curve}"
+                    ));
+                }
             }
         }
-        Ok(dist.swap_remove(0))
+        // (both fast variants' distances)
+        let newton = dist.swap_remove(2);
+        let mut d = dist.swap_remove(0);
+        d.extend(newton);
+        Ok(d)
     }
 
     // (default proptest config: 256 cases, or PROPTEST_CASES)

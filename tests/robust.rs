@@ -814,8 +814,8 @@ fn cli_hostile_lines_between_extreme_curves() {
                                 hi,
                                 inner_lo: hi,
                                 inner_hi: lo,
-                                argmin: vec![],
-                                argmax: vec![],
+                                argmin: Default::default(),
+                                argmax: Default::default(),
                                 stats: Default::default(),
                                 termination: Termination::Converged,
                             })

@@ -44,7 +44,6 @@ use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
 use crate::spline::tight::TightEval;
 use inari::Interval;
-use std::time::Instant;
 
 mod single;
 
@@ -205,7 +204,7 @@ fn sub_coeffs(seg: &BezierSeg<Interval>, s0: f64, s1: f64, sign: f64) -> Vec<Int
         .collect()
 }
 
-struct Side {
+pub(crate) struct Side {
     /// largest lower end of enclosures of values the curve attains (sign-adjusted)
     attained: f64,
     /// upper bound so far (sign-adjusted)
@@ -216,11 +215,11 @@ struct Side {
 }
 
 impl Side {
-    fn new() -> Side {
+    pub(crate) fn new() -> Side {
         Side {
             attained: f64::NEG_INFINITY,
             upper: f64::NEG_INFINITY,
-            cands: Vec::new(),
+            cands: Default::default(),
             stats: Stats::default(),
             term: Termination::Converged,
         }
@@ -635,7 +634,7 @@ impl BezierSubdivision {
 /// (|t_b - t_a| >= 2^1022), which adds at most 2^-1075 / 2^1021 to α̂, far below η (and the
 /// driver only passes moderate knot vectors here: `rescale`, `segments`). A non-finite
 /// coefficient would void the bound, so it sends the span to the interval path.
-fn span_filter(
+pub(crate) fn span_filter(
     c: &NurbsCurve,
     q: &BezierSeg<f64>,
     k: usize,
@@ -672,6 +671,152 @@ fn end_kind(c: &NurbsCurve, s: f64) -> CandidateKind {
     }
 }
 
+/// Which path resolved a coordinate side of a single polynomial segment ([`fast_sides`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum FastPath {
+    /// the extreme control coordinate is an end value: exact, attained, no search
+    CheapExit,
+    /// proven by the root-isolating fast path (`single`)
+    Proof,
+}
+
+impl FastPath {
+    /// Count the side in the stats of the side that took this path.
+    pub(crate) fn count(self, s: &mut Side) {
+        match self {
+            FastPath::CheapExit => s.stats.fast_exits += 1,
+            FastPath::Proof => s.stats.fast_proofs += 1,
+        }
+    }
+}
+
+/// The float-first part shared by `bezier` and `newton` for coordinate j: per side
+/// `[max, min]` a resolved, sign-adjusted [`Side`] with the path that resolved it, or `None`
+/// where the caller's general search must run.
+///
+/// 1. Cheap exit (any curve): if the largest (smallest) control coordinate is the value of a
+///    clamped end, that end value is attained (`NurbsCurve::clamped_ends`: C = P_0 / P_n
+///    exactly there) and bounds the curve (convex hull property, thesis prop. 2.1; positive
+///    weights): the exact extremum, with no rounding at all. This covers every coordinate whose
+///    control values are monotone, and fonts, whose designers put on-curve points at the
+///    extrema.
+/// 2. For a single polynomial Bézier segment of degree 2 or 3 (`n == p`, both ends clamped, no
+///    weights: a plain quadratic / cubic Bézier), the root-isolating fast path (`single`,
+///    whose module docs carry its proof and error bounds): f64 root estimates of C_j', proven
+///    derivative signs (an f64 filter with an a-priori error bound, `Ddi` where it is unsure),
+///    root counting, and a `Ddi` Taylor enclosure over each tiny bracket. It returns nothing
+///    unless both asked sides are proven with a certified gap <= `max_gap`.
+pub(crate) fn fast_sides(c: &NurbsCurve, j: usize, max_gap: f64) -> [Option<(Side, FastPath)>; 2] {
+    let (p, n) = (c.degree(), c.num_points() - 1);
+    let (a, b) = c.domain();
+    let cl = c.clamped_ends();
+    let pts = c.points_flat();
+    let d = c.dim();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for x in pts.iter().skip(j).step_by(d) {
+        lo = lo.min(*x);
+        hi = hi.max(*x);
+    }
+    let (x0, xn) = (pts[j], pts[n * d + j]);
+    // Shortcut: the extreme control coordinate is an exactly attained end value.
+    let shortcut = |sign: f64, m: f64| -> Option<(Side, FastPath)> {
+        let u = if cl[0] && x0 == m {
+            a
+        } else if cl[1] && xn == m {
+            b
+        } else {
+            return None;
+        };
+        let mut s = Side::new();
+        s.attain_f64(sign * m);
+        s.bound(
+            sign * m,
+            Extremum {
+                u_lo: u,
+                u_hi: u,
+                unique: false,
+                kind: CandidateKind::EndPoint,
+            },
+        );
+        Some((s, FastPath::CheapExit))
+    };
+    let mut out = [shortcut(1.0, hi), shortcut(-1.0, lo)];
+    let need = [out[0].is_none(), out[1].is_none()];
+    let single_segment = !c.is_rational() && n == p && cl == [true, true] && (2..=3).contains(&p);
+    if single_segment && need.contains(&true) {
+        let mut v = [Ddi::exact(0.0); 4];
+        for (i, x) in v.iter_mut().enumerate().take(p + 1) {
+            *x = Ddi::exact(pts[i * d + j]);
+        }
+        let seg = single::Segment {
+            c: &v[..=p],
+            a,
+            b,
+            end_kinds: [CandidateKind::EndPoint; 2],
+            right_attained: true,
+        };
+        if let Some([h, l]) = single::coord_sides(&seg, max_gap, need) {
+            for (o, sd) in out.iter_mut().zip([h, l]) {
+                if o.is_none() {
+                    *o = Some((sd, FastPath::Proof));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The coordinate box from the two sign-adjusted sides (max side `hi`, min side `lo`) over the
+/// domain [a, b]: outer bounds, attained values, and the candidates reaching them.
+pub(crate) fn coord_box(
+    hi: Side,
+    lo: Side,
+    a: f64,
+    b: f64,
+    time: std::time::Duration,
+) -> CoordBox {
+    // If no recorded candidate reaches the attained value (it came from an end coefficient of
+    // a piece pruned right away), the whole domain is reported: it certainly contains the
+    // argument of the extremum.
+    let pick = |s: &Side| {
+        let mut v = super::Extrema::new();
+        for (x, e) in &s.cands {
+            if *x >= s.attained {
+                v.push(*e);
+            }
+        }
+        if v.is_empty() {
+            v.push(Extremum {
+                u_lo: a,
+                u_hi: b,
+                unique: false,
+                kind: CandidateKind::Unresolved,
+            });
+        }
+        v
+    };
+    let mut stats = hi.stats;
+    stats.add(&lo.stats);
+    stats.time_total = time;
+    let term = if hi.term != Termination::Converged {
+        hi.term
+    } else {
+        lo.term
+    };
+    // (The driver intersects the result with the control-point box, which guarantees the
+    // sandwich hull ⊇ bezier: `driver::drive`.)
+    CoordBox {
+        lo: -lo.upper,
+        hi: hi.upper,
+        inner_lo: -lo.attained,
+        inner_hi: hi.attained,
+        argmin: pick(&lo),
+        argmax: pick(&hi),
+        stats,
+        termination: term,
+    }
+}
+
 impl BoxEncloser for BezierSubdivision {
     fn name(&self) -> &'static str {
         "bezier"
@@ -680,118 +825,34 @@ impl BoxEncloser for BezierSubdivision {
         Guarantee::Verified
     }
     fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
-        let (p, n) = (c.degree(), c.num_points() - 1);
-        // Clamped ends have exactly known values P_0 / P_n (see `NurbsCurve::clamped_ends`).
         let (a, b) = c.domain();
-        let cl = c.clamped_ends();
-        let ends = [cl[0].then_some((0, a)), cl[1].then_some((n, b))];
         // Built only when some coordinate side needs a search.
         let mut ctx: Option<Ctx> = None;
-        // A single polynomial Bézier segment of degree 2 or 3 (e.g. a 2-D cubic Bézier) goes
-        // through the root-isolating fast path first (`single`), which falls back here when it
-        // cannot prove a tight result.
-        let single_segment =
-            !c.is_rational() && n == p && cl == [true, true] && (2..=3).contains(&p);
-        let mut coords = Vec::with_capacity(c.dim());
-        let mut clock = Instant::now();
+        let mut coords = super::Coords::new();
+        let mut clock = super::Clock::start();
         for j in 0..c.dim() {
-            // (time per coordinate: one clock read per coordinate boundary, ~35 ns each)
-            let t1 = clock;
-            // Shortcut: the extreme control coordinate is an exactly attained end value, so the
-            // control-point bound is attained: the exact extremum, no rounding.
-            let shortcut = |sign: f64| -> Option<Side> {
-                let m = (0..=n)
-                    .map(|i| sign * c.control_point(i)[j])
-                    .fold(f64::NEG_INFINITY, f64::max);
-                let &(_, u) = ends
-                    .iter()
-                    .flatten()
-                    .find(|&&(i, _)| sign * c.control_point(i)[j] == m)?;
-                let mut s = Side::new();
-                s.attain_f64(m);
-                let kind = CandidateKind::EndPoint;
-                s.bound(
-                    m,
-                    Extremum {
-                        u_lo: u,
-                        u_hi: u,
-                        unique: false,
-                        kind,
-                    },
-                );
-                Some(s)
+            // Cheap exits, and for a single quadratic / cubic Bézier segment the
+            // root-isolating fast path (`fast_sides`), which falls back to the branch and
+            // bound below when it cannot prove a tight result.
+            let [f_hi, f_lo] = if self.fast_path {
+                fast_sides(c, j, self.max_gap(c, j))
+            } else {
+                [None, None]
             };
-            let mut short = [shortcut(1.0), shortcut(-1.0)];
-            let need = [short[0].is_none(), short[1].is_none()];
-            let mut fast = None;
-            if single_segment && need.contains(&true) {
-                let mut v = [Ddi::exact(0.0); 4];
-                for (i, x) in v.iter_mut().enumerate().take(p + 1) {
-                    *x = Ddi::exact(c.control_point(i)[j]);
-                }
-                let seg = single::Segment {
-                    c: &v[..=p],
-                    a,
-                    b,
-                    end_kinds: [CandidateKind::EndPoint; 2],
-                    right_attained: true,
-                };
-                fast = single::coord_sides(&seg, self.max_gap(c, j), need);
-            }
-            let mut side = |k: usize, sign: f64| -> Side {
-                if let Some(s) = short[k].take() {
+            let mut side = |f: Option<(Side, FastPath)>, sign: f64| -> Side {
+                if let Some((mut s, path)) = f {
+                    path.count(&mut s);
                     return s;
                 }
-                if let Some(sides) = &mut fast {
-                    return std::mem::replace(&mut sides[k], Side::new());
-                }
                 let ctx = ctx.get_or_insert_with(|| Ctx::new(c, self.fast_path));
-                self.maximize(ctx, j, sign)
+                let mut s = self.maximize(ctx, j, sign);
+                s.stats.fast_fallbacks += 1;
+                s
             };
-            let mut hi = side(0, 1.0);
-            let mut lo = side(1, -1.0);
-            // (consumes the candidate list: the collect can reuse its allocation in place)
-            // If no recorded candidate reaches the attained value (it came from an end
-            // coefficient of a piece pruned right away), the whole domain is reported: it
-            // certainly contains the argument of the extremum.
-            let pick = |s: &mut Side| {
-                let at = s.attained;
-                let mut v = std::mem::take(&mut s.cands)
-                    .into_iter()
-                    .filter(|(x, _)| *x >= at)
-                    .map(|(_, e)| e)
-                    .collect::<Vec<_>>();
-                if v.is_empty() {
-                    v.push(Extremum {
-                        u_lo: a,
-                        u_hi: b,
-                        unique: false,
-                        kind: CandidateKind::Unresolved,
-                    });
-                }
-                v
-            };
-            let mut stats = hi.stats;
-            stats.add(&lo.stats);
-            clock = Instant::now();
-            stats.time_total = clock - t1;
-            let term = if hi.term != Termination::Converged {
-                hi.term
-            } else {
-                lo.term
-            };
-            // (The driver intersects the result with the control-point box, which guarantees
-            // the sandwich hull ⊇ bezier: `driver::drive`.)
-            coords.push(CoordBox {
-                lo: -lo.upper,
-                hi: hi.upper,
-                inner_lo: -lo.attained,
-                inner_hi: hi.attained,
-                argmin: pick(&mut lo),
-                argmax: pick(&mut hi),
-                stats,
-                termination: term,
-            });
+            let hi = side(f_hi, 1.0);
+            let lo = side(f_lo, -1.0);
+            // (time per coordinate, when asked for: one clock read per coordinate boundary)
+            coords.push(coord_box(hi, lo, a, b, clock.lap()));
         }
         Enclosure {
             strategy: self.name(),

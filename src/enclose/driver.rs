@@ -74,6 +74,7 @@ const WEIGHT_WINDOW: i32 = 30;
 const KNOT_WINDOW: i32 = 30;
 
 /// The binary exponent e with |x| in [2^(e-1), 2^e), for finite non-zero x (0 for 0).
+#[inline]
 fn exponent(x: f64) -> i32 {
     let x = x.abs();
     if x == 0.0 || !x.is_finite() {
@@ -191,7 +192,9 @@ fn knot_scaling(c: &NurbsCurve) -> (i32, bool) {
     // b/2 - a/2 cannot overflow; halving may round only for subnormals (irrelevant here:
     // the exponent is only a choice, exactness is checked on the knots themselves)
     let want = exponent(0.5 * b - 0.5 * a) + 1;
-    let max_e = kn.iter().map(|&u| exponent(u)).max().unwrap_or(0);
+    // (knots are non-decreasing, so the largest |u| is at an end; `exponent` is monotone in
+    // |u|: one look instead of a pass)
+    let max_e = exponent(kn[0]).max(exponent(kn[kn.len() - 1]));
     if want.abs() <= KNOT_WINDOW && max_e <= KNOT_MAX_EXP {
         return (0, true);
     }
@@ -225,8 +228,19 @@ impl Rescaling {
                     .fold(0.0f64, |m, x| m.max(x.abs())),
             )
         };
-        // (checked first without allocating: moderate curves are the common case)
-        let coords_moderate = (0..d).all(|j| coord_e(j).abs() <= COORD_WINDOW);
+        // (checked first without allocating, in one pass over the points: moderate curves are
+        // the common case; the per-coordinate exponents are recomputed below only when needed)
+        let coords_moderate = if d <= 4 {
+            let mut m = [0.0f64; 4];
+            for p in pts.chunks_exact(d) {
+                for (mj, x) in m.iter_mut().zip(p) {
+                    *mj = mj.max(x.abs());
+                }
+            }
+            m[..d].iter().all(|&x| exponent(x).abs() <= COORD_WINDOW)
+        } else {
+            (0..d).all(|j| coord_e(j).abs() <= COORD_WINDOW)
+        };
         let mut weight_exp = 0;
         if let Some(w) = c.weights() {
             let e = exponent(w.iter().fold(0.0f64, |m, &x| m.max(x)));

@@ -3,10 +3,11 @@
 //! combination of the P_i). Computed exactly: min/max of f64 values involve no rounding.
 
 use super::{
-    BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
+    BoxEncloser, CandidateKind, Clock, CoordBox, Coords, Enclosure, Extremum, Guarantee, Stats,
+    Termination,
 };
 use crate::spline::curve::NurbsCurve;
-use std::time::Instant;
+use smallvec::smallvec;
 
 /// Box of the control points; inner bound: the curve's end points (enclosed with intervals).
 #[derive(Debug, Clone, Copy, Default)]
@@ -20,17 +21,27 @@ impl BoxEncloser for ControlHull {
         Guarantee::Verified
     }
     fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
-        let t0 = Instant::now();
+        let t0 = Clock::start();
         // The end points are reached by the curve: their enclosures' upper (lower) ends bound
-        // a value the curve attains from above (below).
-        let [ea, eb] = c.end_values();
+        // a value the curve attains from above (below). At a clamped end the end value is the
+        // end control point exactly (`NurbsCurve::clamped_ends`): no evaluation, no allocation.
+        let cl = c.clamped_ends();
+        let n = c.num_points() - 1;
+        let ends = (!(cl[0] && cl[1])).then(|| c.end_values());
+        let end = |k: usize, j: usize| -> (f64, f64) {
+            match &ends {
+                Some(e) => (e[k][j].inf(), e[k][j].sup()),
+                None => {
+                    let x = c.control_point(if k == 0 { 0 } else { n })[j];
+                    (x, x)
+                }
+            }
+        };
         let mut coords = control_point_box(
             c,
             |j, lo, hi| {
-                (
-                    ea[j].sup().min(eb[j].sup()).max(lo),
-                    ea[j].inf().max(eb[j].inf()).min(hi),
-                )
+                let ((a_lo, a_hi), (b_lo, b_hi)) = (end(0, j), end(1, j));
+                (a_hi.min(b_hi).max(lo), a_lo.max(b_lo).min(hi))
             },
             Termination::Direct,
             2,
@@ -56,7 +67,7 @@ pub(crate) fn control_point_box(
     inner: impl Fn(usize, f64, f64) -> (f64, f64),
     termination: Termination,
     point_evaluations: u64,
-) -> Vec<CoordBox> {
+) -> Coords {
     let (a, b) = c.domain();
     // Only the control points whose basis functions are non-zero somewhere on the domain
     // matter: all of them for a valid curve (each N_{i,p} has support meeting [u_p, u_{n+1}]).
@@ -69,35 +80,37 @@ pub(crate) fn control_point_box(
             kind: CandidateKind::ControlPoint,
         }
     };
-    (0..c.dim())
-        .map(|j| {
-            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-            let (mut ilo, mut ihi) = (0, 0);
-            for i in 0..c.num_points() {
-                let x = c.control_point(i)[j];
-                if x < lo {
-                    lo = x;
-                    ilo = i;
-                }
-                if x > hi {
-                    hi = x;
-                    ihi = i;
-                }
+    let d = c.dim();
+    let pts = c.points_flat();
+    let mut out = Coords::new();
+    for j in 0..d {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut ilo, mut ihi) = (0, 0);
+        for (i, x) in pts.iter().skip(j).step_by(d).enumerate() {
+            let x = *x;
+            if x < lo {
+                lo = x;
+                ilo = i;
             }
-            let (inner_lo, inner_hi) = inner(j, lo, hi);
-            CoordBox {
-                lo,
-                hi,
-                inner_lo,
-                inner_hi,
-                argmin: vec![at(ilo)],
-                argmax: vec![at(ihi)],
-                stats: Stats {
-                    point_evaluations,
-                    ..Default::default()
-                },
-                termination,
+            if x > hi {
+                hi = x;
+                ihi = i;
             }
-        })
-        .collect()
+        }
+        let (inner_lo, inner_hi) = inner(j, lo, hi);
+        out.push(CoordBox {
+            lo,
+            hi,
+            inner_lo,
+            inner_hi,
+            argmin: smallvec![at(ilo)],
+            argmax: smallvec![at(ihi)],
+            stats: Stats {
+                point_evaluations,
+                ..Default::default()
+            },
+            termination,
+        });
+    }
+    out
 }

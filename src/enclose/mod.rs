@@ -31,7 +31,10 @@ pub use bezier::BezierSubdivision;
 pub use driver::{degree_fallback, drive, scale_outward, Rescaling, MAX_SEARCH_DEGREE};
 pub use hull::ControlHull;
 pub use newton::{DerivForm, Newton, Split, DEFAULT_MAX_WORK, EVALS_PER_SPAN, WORK_PER_SPAN};
-pub use result::{CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination};
+pub use result::{
+    set_timing, timing, CandidateKind, Clock, CoordBox, Coords, Enclosure, Extrema, Extremum,
+    Guarantee, Stats, Termination,
+};
 pub use search_region::SearchRegion;
 
 /// A box-enclosure strategy (one required method, like argmin's solvers).

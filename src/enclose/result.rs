@@ -1,7 +1,65 @@
 //! What a strategy returns: per coordinate the outer and inner bounds, where the extrema are,
 //! what it cost and why it stopped ([`Enclosure`], [`CoordBox`], [`Stats`], [`Termination`]).
 
-use std::time::Duration;
+use smallvec::SmallVec;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// Candidate locations of one side of a coordinate ([`CoordBox::argmin`] / `argmax`): inline
+/// storage for the usual single candidate (no heap allocation; ties spill to the heap), a
+/// slice to read.
+pub type Extrema = SmallVec<[Extremum; 1]>;
+
+/// The per-coordinate results of an [`Enclosure`]: inline storage up to three coordinates (no
+/// heap allocation for 2-D and 3-D curves), a slice to read.
+pub type Coords = SmallVec<[CoordBox; 3]>;
+
+/// Whether the strategies read the clock (`Stats::time_total`, `Stats::time_derivatives`).
+static TIMING: AtomicBool = AtomicBool::new(false);
+
+/// Ask every strategy to measure its time (`Stats::time_total`, and `time_derivatives` of
+/// the strategies that split it out), process-wide. Off by default: two clock reads per
+/// coordinate cost more than a whole cubic's box. The command line's `--timings` and the
+/// reproduction harness switch it on; `Newton::time_derivatives` still decides the
+/// per-evaluation timing of the Newton search.
+pub fn set_timing(on: bool) {
+    TIMING.store(on, Ordering::Relaxed);
+}
+
+/// Whether timing was asked for ([`set_timing`]).
+pub fn timing() -> bool {
+    TIMING.load(Ordering::Relaxed)
+}
+
+/// A stopwatch that reads the clock only when timing was asked for ([`set_timing`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Clock(Option<Instant>);
+
+impl Clock {
+    /// Start (a clock read if timing is on, nothing otherwise).
+    #[inline]
+    pub fn start() -> Clock {
+        Clock(timing().then(Instant::now))
+    }
+    /// Time since the start, and restart; zero when timing is off.
+    #[inline]
+    pub fn lap(&mut self) -> Duration {
+        match &mut self.0 {
+            Some(t) => {
+                let now = Instant::now();
+                let d = now - *t;
+                *t = now;
+                d
+            }
+            None => Duration::ZERO,
+        }
+    }
+    /// Time since the start; zero when timing is off.
+    #[inline]
+    pub fn elapsed(&self) -> Duration {
+        self.0.map_or(Duration::ZERO, |t| t.elapsed())
+    }
+}
 
 /// What a strategy promises about its box.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -74,9 +132,21 @@ pub struct Stats {
     pub point_evaluations: u64,
     /// subdivisions (box splits, de Casteljau splits)
     pub subdivisions: u64,
-    /// time spent evaluating derivatives
+    /// resolved by a cheap exit: coordinate sides whose extreme control value is an attained
+    /// end value (exact, no search), and spans of the Newton search pruned by their f64 Bézier
+    /// points with an a-priori error bound
+    pub fast_exits: u64,
+    /// proven by the float-first path (f64 zero estimates, then proofs): coordinate sides of
+    /// a single quadratic / cubic Bézier segment, and spans of the Newton search whose
+    /// complement of the tiny zero boxes was excluded
+    pub fast_proofs: u64,
+    /// where the float-first path could not prove everything and the general search ran:
+    /// coordinate sides (`bezier`), spans (`newton`)
+    pub fast_fallbacks: u64,
+    /// time spent evaluating derivatives (zero unless timing was asked for: [`set_timing`],
+    /// [`crate::enclose::Newton::time_derivatives`])
     pub time_derivatives: Duration,
-    /// total time
+    /// total time (zero unless timing was asked for: [`set_timing`])
     pub time_total: Duration,
 }
 
@@ -87,6 +157,9 @@ impl Stats {
         self.derivative_evaluations += o.derivative_evaluations;
         self.point_evaluations += o.point_evaluations;
         self.subdivisions += o.subdivisions;
+        self.fast_exits += o.fast_exits;
+        self.fast_proofs += o.fast_proofs;
+        self.fast_fallbacks += o.fast_fallbacks;
         self.time_derivatives += o.time_derivatives;
         self.time_total += o.time_total;
     }
@@ -104,9 +177,9 @@ pub struct CoordBox {
     /// the curve provably reaches a value >= inner_hi
     pub inner_hi: f64,
     /// where the minimum is attained (candidates whose enclosure reaches `lo`)
-    pub argmin: Vec<Extremum>,
+    pub argmin: Extrema,
     /// where the maximum is attained
-    pub argmax: Vec<Extremum>,
+    pub argmax: Extrema,
     /// work done on this coordinate
     pub stats: Stats,
     /// why the search stopped
@@ -128,7 +201,7 @@ pub struct Enclosure {
     /// whether the containment guarantee holds
     pub verified: bool,
     /// per-coordinate results
-    pub coords: Vec<CoordBox>,
+    pub coords: Coords,
 }
 
 impl Enclosure {

@@ -58,14 +58,14 @@ pub fn enclose_by_segments<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> En
     let kn = c.knots();
     let (_, b) = c.domain();
     let hs = HSpline::<Interval>::from_curve(c);
-    let mut coords: Vec<CoordBox> = (0..d)
+    let mut coords: super::Coords = (0..d)
         .map(|_| CoordBox {
             lo: f64::INFINITY,
             hi: f64::NEG_INFINITY,
             inner_lo: f64::INFINITY,
             inner_hi: f64::NEG_INFINITY,
-            argmin: Vec::new(),
-            argmax: Vec::new(),
+            argmin: Default::default(),
+            argmax: Default::default(),
             stats: Default::default(),
             termination: Termination::Direct,
         })

@@ -105,7 +105,9 @@ pub fn termination_name(t: Termination) -> String {
 /// With `timings`, stats also has `time_total_s` and `time_derivatives_s` (off by default so
 /// that output is reproducible).
 pub fn write_enclosure_record(out: &mut Vec<u8>, index: usize, e: &Enclosure, timings: bool) {
-    out.extend_from_slice(format!("{{\"index\":{index},\"strategy\":").as_bytes());
+    use std::io::Write as _;
+    // (written into `out` directly: no allocation per record; writing to a Vec cannot fail)
+    let _ = write!(out, "{{\"index\":{index},\"strategy\":");
     write_str(out, e.strategy);
     out.extend_from_slice(if e.verified {
         b",\"verified\":true,\"lo\":"
@@ -120,17 +122,15 @@ pub fn write_enclosure_record(out: &mut Vec<u8>, index: usize, e: &Enclosure, ti
     out.extend_from_slice(b",\"inner_hi\":");
     write_nums(out, e.coords.iter().map(|c| sound(c.inner_hi, Side::Low)));
     let s = e.stats();
-    out.extend_from_slice(
-        format!(
-            ",\"stats\":{{\"newton_iterations\":{},\"derivative_evaluations\":{},\
-             \"point_evaluations\":{},\"subdivisions\":{},\"termination\":\"{}\"",
-            s.newton_iterations,
-            s.derivative_evaluations,
-            s.point_evaluations,
-            s.subdivisions,
-            termination_name(e.termination())
-        )
-        .as_bytes(),
+    let _ = write!(
+        out,
+        ",\"stats\":{{\"newton_iterations\":{},\"derivative_evaluations\":{},\
+         \"point_evaluations\":{},\"subdivisions\":{},\"termination\":\"{}\"",
+        s.newton_iterations,
+        s.derivative_evaluations,
+        s.point_evaluations,
+        s.subdivisions,
+        termination_name(e.termination())
     );
     if timings {
         out.extend_from_slice(b",\"time_total_s\":");

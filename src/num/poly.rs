@@ -14,6 +14,18 @@ pub fn binom_exact(n: usize, k: usize) -> Option<f64> {
         return Some(0.0);
     }
     let k = k.min(n - k);
+    if n < 2048 {
+        // (the same in u64, much faster than u128 division: c <= 2^53 before each step and
+        // n - i < 2^11, so c (n - i) < 2^64)
+        let mut c: u64 = 1;
+        for i in 0..k {
+            c = c * (n - i) as u64 / (i as u64 + 1);
+            if c > 1u64 << 53 {
+                return None;
+            }
+        }
+        return Some(c as f64);
+    }
     let mut c: u128 = 1;
     for i in 0..k {
         c = c.checked_mul((n - i) as u128)? / (i as u128 + 1);

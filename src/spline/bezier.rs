@@ -113,15 +113,25 @@ pub fn bernstein_to_power<S: Scalar>(pts: &[S], h: usize) -> Vec<S> {
 /// enclosed); a factor C(p, p) = 1 is not multiplied in. For verified types every a_k encloses
 /// the exact one when the given differences enclose the exact differences.
 pub fn power_from_differences<S: Scalar>(b0: S, mut diffs: Vec<S>) -> Vec<S> {
-    let p = diffs.len();
-    forward_differences(&mut diffs);
-    let mut out = Vec::with_capacity(p + 1);
+    power_from_differences_in_place(&mut diffs);
+    let mut out = Vec::with_capacity(diffs.len() + 1);
     out.push(b0);
-    for (i, d) in diffs.into_iter().enumerate() {
-        let k = i + 1;
-        out.push(if k == p { d } else { binom_s::<S>(p, k) * d });
-    }
+    out.extend(diffs);
     out
+}
+
+/// [`power_from_differences`] in place, without allocating (callers may pass a stack
+/// buffer): the p first differences Δb_0 .. Δb_{p-1} become the power coefficients
+/// a_1 .. a_p (a_0 = b_0 is the caller's).
+pub fn power_from_differences_in_place<S: Scalar>(diffs: &mut [S]) {
+    let p = diffs.len();
+    forward_differences(diffs);
+    for (i, d) in diffs.iter_mut().enumerate() {
+        let k = i + 1;
+        if k != p {
+            *d = binom_s::<S>(p, k) * d.clone();
+        }
+    }
 }
 
 /// Homogeneous -> Cartesian (the one copy): points of `dim + 1` values (w P, w) become P =

@@ -66,6 +66,8 @@ pub(crate) fn run(a: EncloseArgs) -> Result<Outcome, Fatal> {
         })
         .collect();
     let timings = a.timings;
+    // the strategies read the clock only when asked (it costs more than a cubic's box)
+    nurbs_box::enclose::set_timing(timings);
     run_stream(&a.input, |index, shape, buf| {
         enclose_shape_records(index, shape, &strategies, &surfaces, timings, buf)
     })

@@ -52,7 +52,7 @@ use super::{CandidateKind, Extremum, Side, Stats, Termination};
 use crate::num::ddi::{dist_up, up, Ddi};
 use crate::num::horner;
 use crate::num::Scalar;
-use crate::spline::bezier::power_from_differences;
+use crate::spline::bezier::power_from_differences_in_place;
 
 /// Half-width (in the local parameter t in [0, 1]) of the test-point pairs around root
 /// estimates. The Taylor correction over such a bracket is about |x''| h^2 / 2, far below an
@@ -101,9 +101,10 @@ impl Poly {
             }
         });
         // a_1 = p Δc_0, a_2 = C(p, 2) Δ^2 c_0, (p = 3) a_3 = Δ^3 c_0 = Δc_2 - 2 Δc_1 + Δc_0,
-        // by the shared kernel from these first differences.
-        let a = power_from_differences(c[0], d[..p].to_vec());
-        let x = std::array::from_fn(|k| a.get(k).copied().unwrap_or(z));
+        // by the shared kernel from these first differences (on the stack).
+        let mut x = [c[0], z, z, z];
+        x[1..=p].copy_from_slice(&d[..p]);
+        power_from_differences_in_place(&mut x[1..=p]);
         Poly { p, x, d }
     }
     fn x(&self, t: Ddi) -> Ddi {

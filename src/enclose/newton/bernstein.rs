@@ -204,12 +204,113 @@ impl SpanPoly {
         !zero && self.f.pts.iter().all(|x| x.to_interval().contains(0.0))
     }
 
+    /// Float first: f64 estimates of the zeros of F in (0, 1), from the midpoints of its
+    /// coefficients, sorted, pushed to `out`; `false` if there seem to be more than `max`
+    /// (or the coefficients are not finite). Nothing about soundness depends on them: they
+    /// only place the tiny boxes of the Newton search (`Engine::search`), which proves or
+    /// excludes everything itself.
+    ///
+    /// Bernstein subdivision with sign-change counts (variation diminishing property: a
+    /// polynomial has no more zeros in (0, 1) than its Bernstein coefficients have sign
+    /// changes; Farin, "Curves and Surfaces for CAGD"): a piece with no change is dropped, a
+    /// piece with one change holds one simple zero of the f64 polynomial, located by Newton's
+    /// method safeguarded by bisection; pieces with more changes are halved (to width 2^-20,
+    /// then located like one-change pieces: a near-double zero), at most 8 (max + 1) pieces.
+    pub(super) fn zero_estimates(&self, out: &mut Vec<f64>, max: usize) -> bool {
+        let c: Vec<f64> = self.f.pts.iter().map(|x| x.mid()).collect();
+        if c.len() < 2 || !c.iter().all(|x| x.is_finite()) {
+            return false;
+        }
+        let dc = crate::spline::bezier::hodograph(&c);
+        let changes = |v: &[f64]| {
+            let mut n = 0;
+            let mut last = 0.0f64;
+            for &x in v {
+                if x != 0.0 {
+                    if last != 0.0 && (x > 0.0) != (last > 0.0) {
+                        n += 1;
+                    }
+                    last = x;
+                }
+            }
+            n
+        };
+        let mut stack = vec![(0.0f64, 1.0f64, c.clone())];
+        // (at most 8 (max + 1) pieces examined: noise-level coefficients of a nearly flat F
+        // would otherwise split without end; then no estimates, the search runs as before)
+        let mut pieces = 0;
+        while let Some((t0, t1, v)) = stack.pop() {
+            pieces += 1;
+            if pieces > 8 * (max + 1) {
+                return false;
+            }
+            let n = changes(&v);
+            if n == 0 {
+                continue;
+            }
+            if n == 1 || t1 - t0 <= 1.0 / 1_048_576.0 {
+                if out.len() >= max {
+                    return false;
+                }
+                out.push(locate(&c, &dc, t0, t1));
+                continue;
+            }
+            let (l, r) = crate::spline::bezier::de_casteljau_split(&v, 1, &0.5);
+            let m = 0.5 * (t0 + t1);
+            stack.push((m, t1, r));
+            stack.push((t0, m, l));
+        }
+        out.sort_by(f64::total_cmp);
+        true
+    }
+
     /// Whether F >= 0 / F <= 0 on the whole span (all coefficients of one sign), i.e. C_j
     /// non-decreasing / non-increasing on the closed span.
     pub(super) fn f_signs(&self) -> (bool, bool) {
         let h = hull(&self.f.pts);
         (h.inf() >= 0.0, h.sup() <= 0.0)
     }
+}
+
+/// A zero of the f64 Bernstein polynomial `c` (derivative coefficients `dc`) in [t0, t1],
+/// where the sign changes once: Newton's method from the midpoint, a bisection step whenever
+/// it leaves the bracket (an estimate only; see [`SpanPoly::zero_estimates`]).
+fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64) -> f64 {
+    let mut stack = [0.0f64; 64];
+    let mut eval = |v: &[f64], t: f64| -> f64 {
+        if v.len() <= 64 {
+            let b = &mut stack[..v.len()];
+            b.copy_from_slice(v);
+            crate::spline::bezier::de_casteljau_eval_in_place(b, &t)
+        } else {
+            crate::spline::bezier::de_casteljau_eval(v, &t)
+        }
+    };
+    let f0 = eval(c, t0);
+    let mut t = 0.5 * (t0 + t1);
+    for _ in 0..60 {
+        let ft = eval(c, t);
+        if ft == 0.0 {
+            return t;
+        }
+        // keep the bracket: the zero is between the ends of opposite sign
+        if (ft > 0.0) == (f0 > 0.0) {
+            t0 = t;
+        } else {
+            t1 = t;
+        }
+        let d = eval(dc, t);
+        let mut nt = t - ft / d;
+        if !(nt > t0 && nt < t1) {
+            nt = 0.5 * (t0 + t1);
+        }
+        if (nt - t).abs() <= 2.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE) || t1 - t0 <= 0.0
+        {
+            return nt;
+        }
+        t = nt;
+    }
+    t
 }
 
 /// The homogeneous Bézier segment of the shifted piece C_j - c on span k of `c`: rows

@@ -8,11 +8,12 @@
 
 use super::acc::{Acc, Cand};
 use super::bernstein::{pair_coefficients, SpanPoly};
-use super::param::{can_split, midpoint, SpanParam, T, U};
+use super::param::{can_split, midpoint, Space, SpanParam, T, U};
 use super::{DerivForm, Newton, Split, BERNSTEIN_MAX_DEGREE, EVALS_PER_SPAN, WORK_PER_SPAN};
 use crate::enclose::{CandidateKind, CoordBox, Stats, Termination};
 use crate::num::iv;
 use crate::num::mr::Mr;
+use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
 use crate::spline::knots::multiplicity;
@@ -55,7 +56,11 @@ struct ZeroBox {
 pub(crate) struct Engine<'a> {
     c: &'a NurbsCurve,
     s: &'a Newton,
-    ev: CurveEval<Interval>,
+    /// interval de Boor on the derivative splines, built on first use (a search in the local
+    /// parameter through the span's Bernstein form never needs it)
+    ev: std::cell::OnceCell<CurveEval<Interval>>,
+    /// the curve in f64 for the float-first span prune (non-rational), built on first use
+    hf: std::cell::OnceCell<HSpline<f64>>,
     p: usize,
     d: usize,
     rational: bool,
@@ -69,6 +74,8 @@ pub(crate) struct Engine<'a> {
     buf: Vec<Interval>,
     /// Newton box stack
     stack: Vec<(f64, f64)>,
+    /// scratch for the f64 zero estimates of the float-first seeding
+    est: Vec<f64>,
     /// coordinate currently worked on
     j: usize,
     /// Bernstein form of the span being worked on ([`Newton::bezier_pretest`],
@@ -100,7 +107,8 @@ impl<'a> Engine<'a> {
         Engine {
             c,
             s,
-            ev: CurveEval::new(c, 2),
+            ev: std::cell::OnceCell::new(),
+            hf: std::cell::OnceCell::new(),
             p,
             d: c.dim(),
             rational: c.is_rational(),
@@ -109,6 +117,7 @@ impl<'a> Engine<'a> {
             tight: TightEval::new(c),
             buf: Vec::with_capacity(2 * (p + 1)),
             stack: Vec::new(),
+            est: Vec::new(),
             j: 0,
             poly: None,
             bern: s.bernstein && (1..=BERNSTEIN_MAX_DEGREE).contains(&p),
@@ -143,8 +152,10 @@ impl<'a> Engine<'a> {
             if l > self.p {
                 return (iv::point(0.0), iv::point(0.0));
             }
+            let c = self.c;
             let v = self
                 .ev
+                .get_or_init(|| CurveEval::new(c, 2))
                 .level(l)
                 .eval_span_rows(k - l, &u, &[self.j], &mut self.buf);
             let w = if l == 0 {
@@ -157,8 +168,10 @@ impl<'a> Engine<'a> {
         if l > self.p {
             return (iv::point(0.0), iv::point(0.0));
         }
+        let c = self.c;
         let v = self
             .ev
+            .get_or_init(|| CurveEval::new(c, 2))
             .level(l)
             .eval_span_rows(k - l, &u, &[self.j, self.d], &mut self.buf);
         (v[0], v[1])
@@ -394,7 +407,9 @@ impl<'a> Engine<'a> {
             iv::span(h0, h1)
         };
         self.stack.clear();
-        self.stack.push((a, b));
+        if !(s.fast_path && space == Space::Local && self.seed_float_first(k, a, b)) {
+            self.stack.push((a, b));
+        }
         let mut boxes = 0usize;
         let mut splits = 0u32;
         while let Some((mut x0, mut x1)) = self.stack.pop() {
@@ -504,6 +519,78 @@ impl<'a> Engine<'a> {
         term
     }
 
+    /// Float first, prove after ([`Newton::fast_path`], Bernstein search of span k over the
+    /// local parameter [a, b] = [0, 1]): seed the Newton stack with a partition of [a, b]
+    /// instead of the whole span. f64 estimates r_i of the zeros of F
+    /// ([`SpanPoly::zero_estimates`]) get tiny boxes [r_i - h, r_i + h] (h = 2^-30, far above
+    /// the error of an estimate of a simple zero), which go on the stack: the first interval
+    /// Newton step on such a box proves a zero there unique (N(X) in the interior of X, the
+    /// test of the loop below; Moore; Hansen thm. 9.6.8) and the following steps shrink it to
+    /// machine precision. Each gap between the boxes (and the ends) is excluded if the
+    /// enclosure of F over it (hull of its Bernstein coefficients restricted to the gap by
+    /// de Casteljau in `Mr`, every coefficient enclosing the exact one: the rounding error is
+    /// inside the enclosure, no separate a-priori bound needed) excludes 0, after at most
+    /// two halvings. If some gap is not excluded, nothing is pushed and the whole span is
+    /// searched as without the seeding (the fallback). Sound: the boxes and gaps cover
+    /// [a, b], and a dropped gap holds no zero of F, i.e. of C_j' (same sign and zeros on the
+    /// closed span). Returns whether the stack was seeded; counts the span in
+    /// `Stats::fast_proofs` (seeded) or `Stats::fast_fallbacks` (estimates, but a gap not
+    /// excluded).
+    fn seed_float_first(&mut self, k: usize, a: f64, b: f64) -> bool {
+        const H: f64 = 1.0 / 1_073_741_824.0; // 2^-30
+        let mut est = std::mem::take(&mut self.est);
+        est.clear();
+        let ok = match self.span_poly(k) {
+            Some(sp) => sp.zero_estimates(&mut est, 2 * self.p + 2),
+            None => false,
+        };
+        if !(ok && a == 0.0 && b == 1.0) {
+            self.est = est;
+            return false;
+        }
+        // boxes, merged where they overlap, inside [a, b]
+        let mut bx: Vec<(f64, f64)> = Vec::with_capacity(est.len());
+        for &r in &est {
+            let (lo, hi) = ((r - H).max(a), (r + H).min(b));
+            match bx.last_mut() {
+                Some(last) if lo <= last.1 => last.1 = last.1.max(hi),
+                _ => bx.push((lo, hi)),
+            }
+        }
+        self.est = est;
+        let mut gaps: Vec<(f64, f64, u32)> = Vec::with_capacity(bx.len() + 1);
+        let mut left = a;
+        for &(lo, hi) in &bx {
+            if lo > left {
+                gaps.push((left, lo, 0));
+            }
+            left = hi;
+        }
+        if left < b {
+            gaps.push((left, b, 0));
+        }
+        while let Some((g0, g1, depth)) = gaps.pop() {
+            let fg = self.f(k, SpanParam::Local(T::new(g0, g1)));
+            if !fg.is_empty() && !fg.contains(0.0) {
+                continue; // no zero of F in [g0, g1]
+            }
+            let m = midpoint(g0, g1);
+            if depth < 2 && g0 < m && m < g1 {
+                gaps.push((g0, m, depth + 1));
+                gaps.push((m, g1, depth + 1));
+            } else {
+                // Not excluded: search the whole span as without the seeding (a gap whose
+                // end is next to a zero just outside it would make the Newton steps crawl
+                // towards that end).
+                self.stats.fast_fallbacks += 1;
+                return false;
+            }
+        }
+        self.stack.extend(bx);
+        self.stats.fast_proofs += 1;
+        true
+    }
+
     /// Push the pieces of [x0, x1] (split rule) on the stack. Piece ends are rounded f64 values
     /// forced to be monotone, and the first and last are x0 and x1: the pieces cover [x0, x1].
     fn split_box(&mut self, x0: f64, x1: f64) {
@@ -541,7 +628,7 @@ impl<'a> Engine<'a> {
     /// (handled above) or at a knot with a non-decreasing span on the left and a span on the
     /// right that is not non-decreasing: exactly the knots the rule below adds.
     pub(crate) fn coord(&mut self, j: usize, order: &[usize], modes: &[SpanMode]) -> CoordBox {
-        let t0 = Instant::now();
+        let t0 = crate::enclose::Clock::start();
         self.j = j;
         self.stats = Stats::default();
         self.poly = None;
@@ -613,6 +700,24 @@ impl<'a> Engine<'a> {
                 if inc || dec {
                     status[si] = Status::Mono { inc, dec };
                     continue;
+                }
+            }
+            if self.s.fast_path && mode == SpanMode::Prune && !self.rational && want_poly {
+                // Float first: the span's f64 Bézier points with the a-priori error bound of
+                // knot insertion (`bezier::span_filter`, its proof there; checked against
+                // MPFR segments in its test) bound the span's values; inside the values the
+                // curve attains on both sides, the span is covered as with the `Mr` Bézier
+                // hull below, without building that form.
+                let c = self.c;
+                let hf = self.hf.get_or_init(|| HSpline::<f64>::from_curve(c));
+                let q = hf.bezier_segment(k);
+                let hi = crate::enclose::bezier::span_filter(c, &q, k, j, 1.0, false);
+                let lo = crate::enclose::bezier::span_filter(c, &q, k, j, -1.0, false);
+                if let (Some((ub, _)), Some((nlb, _))) = (hi, lo) {
+                    if -nlb >= acc.inner_lo && ub <= acc.inner_hi {
+                        self.stats.fast_exits += 1;
+                        continue;
+                    }
                 }
             }
             if want_poly {

@@ -125,6 +125,22 @@ pub struct Newton {
     pub bernstein: bool,
     /// Measure the time spent in derivative evaluations (two clock reads per evaluation).
     pub time_derivatives: bool,
+    /// Float first, prove after (not in the thesis; off in [`Newton::thesis`]): per coordinate
+    /// side, the cheap exit (the extreme control value is an attained end value) and, for a
+    /// single quadratic / cubic Bézier segment, the root-isolating proof of the `bezier`
+    /// strategy (f64 root estimates of C_j', proven signs of C_j' around them, root
+    /// counting, a double-double Taylor enclosure over each tiny bracket:
+    /// `crate::enclose::bezier` `fast_sides`). A coordinate whose two sides are not both
+    /// proven within two ulps goes through the interval Newton search, which then also
+    /// starts float first: per span, f64 estimates of the zeros of C_j' (Bernstein
+    /// subdivision), a tiny box around each for the interval Newton steps (the first one
+    /// proves the zero unique), and the rest of the span excluded by the sign of the enclosed
+    /// Bernstein coefficients of the derivative numerator; only what is not excluded is
+    /// searched from the whole box as before (`Engine::seed_float_first`). Spans of
+    /// non-rational curves are first pruned by their f64 Bézier points with the a-priori
+    /// knot-insertion error bound of `bezier::span_filter`. Counted in `Stats::fast_exits` /
+    /// `fast_proofs` / `fast_fallbacks`.
+    pub fast_path: bool,
 }
 
 /// Default of [`Newton::max_work`] (a few tenths of a second of interval evaluations: one unit, a
@@ -160,6 +176,7 @@ impl Default for Newton {
             bezier_pretest: true,
             bernstein: true,
             time_derivatives: false,
+            fast_path: true,
         }
     }
 }
@@ -187,6 +204,7 @@ impl Newton {
             bezier_pretest: false,
             bernstein: false,
             time_derivatives: true,
+            fast_path: false,
         }
     }
 
@@ -209,23 +227,40 @@ impl BoxEncloser for Newton {
         Guarantee::Verified
     }
     fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
-        let mut e = Engine::new(c, self);
         let mode = if self.prune {
             SpanMode::Prune
         } else {
             SpanMode::Search
         };
-        let mut modes = vec![mode; e.spans.len()];
-        let coords = (0..c.dim())
-            .map(|j| {
-                // Search the spans around the extreme control points first: their candidates
-                // make the box big early, so pruning skips more of the others.
-                let first = [extreme_point(c, j, true), extreme_point(c, j, false)];
-                let order = e.order_with_first(&first);
-                modes.iter_mut().for_each(|m| *m = mode);
-                e.coord(j, &order, &modes)
-            })
-            .collect();
+        // Built only when some coordinate needs the search.
+        let mut engine: Option<(Engine, Vec<SpanMode>)> = None;
+        let (a, b) = c.domain();
+        let mut coords = super::Coords::new();
+        for j in 0..c.dim() {
+            if self.fast_path {
+                let clock = super::Clock::start();
+                let gap = 2.0 * crate::num::ulp(c.coord_scale(j));
+                if let [Some((mut hi, ph)), Some((mut lo, pl))] =
+                    super::bezier::fast_sides(c, j, gap)
+                {
+                    ph.count(&mut hi);
+                    pl.count(&mut lo);
+                    coords.push(super::bezier::coord_box(hi, lo, a, b, clock.elapsed()));
+                    continue;
+                }
+            }
+            let (e, modes) = engine.get_or_insert_with(|| {
+                let e = Engine::new(c, self);
+                let n = e.spans.len();
+                (e, vec![mode; n])
+            });
+            // Search the spans around the extreme control points first: their candidates
+            // make the box big early, so pruning skips more of the others.
+            let first = [extreme_point(c, j, true), extreme_point(c, j, false)];
+            let order = e.order_with_first(&first);
+            modes.iter_mut().for_each(|m| *m = mode);
+            coords.push(e.coord(j, &order, modes));
+        }
         Enclosure {
             strategy: self.name(),
             verified: true,

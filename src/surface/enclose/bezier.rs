@@ -213,7 +213,7 @@ impl SurfaceEncloser for BezierPatches {
         Guarantee::Verified
     }
     fn enclose_prepared(&self, s: &NurbsSurface) -> Enclosure {
-        let t0 = std::time::Instant::now();
+        let t0 = crate::enclose::Clock::start();
         // (Interval, not the faster Mr: Mr's radii after many subdivisions cost tens of ulps
         // at the vertex test)
         let patches = s.bezier_patches::<Interval>();

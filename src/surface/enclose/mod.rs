@@ -126,8 +126,8 @@ pub(crate) fn coord_box(
         hi,
         inner_lo,
         inner_hi,
-        argmin: Vec::new(),
-        argmax: Vec::new(),
+        argmin: Default::default(),
+        argmax: Default::default(),
         stats,
         termination,
     }
@@ -142,7 +142,7 @@ pub(crate) fn enclosure(
     Enclosure {
         strategy,
         verified,
-        coords,
+        coords: coords.into_iter().collect(),
     }
 }
 

@@ -635,7 +635,7 @@ impl SurfaceEncloser for SurfaceNewton {
         Guarantee::Verified
     }
     fn enclose_prepared(&self, s: &NurbsSurface) -> Enclosure {
-        let t0 = std::time::Instant::now();
+        let t0 = crate::enclose::Clock::start();
         let d = s.dim();
         let mut tg = vec![
             Target {
