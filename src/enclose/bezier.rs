@@ -791,6 +791,8 @@ impl BoxEncloser for BezierSubdivision {
                 argmax: pick(&mut hi),
                 stats,
                 termination: term,
+                optimal_lo: false,
+                optimal_hi: false,
             });
         }
         Enclosure {

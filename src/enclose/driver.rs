@@ -378,7 +378,17 @@ pub fn degree_fallback<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclos
 /// reaches a value <= hi and a value >= lo, and `inner_lo = min(inner_lo, hi)`,
 /// `inner_hi = max(inner_hi, lo)` stay valid (a constant coordinate may otherwise get an inner
 /// bound one rounding beyond the exact outer one).
+///
+/// Last, every verified result gets its optimality certificates `optimal_lo` / `optimal_hi`
+/// ([`super::certify`], the one place for every strategy); `drive_with(s, c, false)` skips
+/// them (all `false`), which is how the cost of certification is measured.
 pub fn drive<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
+    drive_with(s, c, true)
+}
+
+/// [`drive`] with the certification switched on (`certify`, the default) or off (every
+/// `optimal_lo` / `optimal_hi` stays `false`).
+pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool) -> Enclosure {
     let mut e = if c.degree() > MAX_SEARCH_DEGREE {
         degree_fallback(s, c)
     } else {
@@ -407,6 +417,14 @@ pub fn drive<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
         }
         cb.inner_lo = cb.inner_lo.min(cb.hi).max(cb.lo);
         cb.inner_hi = cb.inner_hi.max(cb.lo).min(cb.hi);
+    }
+    if certify {
+        super::certify::certify(c, &mut e);
+    } else {
+        for cb in &mut e.coords {
+            cb.optimal_lo = false;
+            cb.optimal_hi = false;
+        }
     }
     e
 }
