@@ -80,14 +80,14 @@ fn rational_circle_extrema_at_knots() {
         .into_iter()
         .map(|p| vec![cx + r * p[0], cy + r * p[1]])
         .collect();
-    let sc = NurbsCurve::new(2, c.knots().to_vec(), pts, Some(vec![1., s, 1., s, 1., s, 1., s, 1.]))
-        .unwrap();
-    assert_optimal_certified(
-        "scaled circle",
-        &sc,
-        &[cx - r, cy - r],
-        &[cx + r, cy + r],
-    );
+    let sc = NurbsCurve::new(
+        2,
+        c.knots().to_vec(),
+        pts,
+        Some(vec![1., s, 1., s, 1., s, 1., s, 1.]),
+    )
+    .unwrap();
+    assert_optimal_certified("scaled circle", &sc, &[cx - r, cy - r], &[cx + r, cy + r]);
 }
 
 #[test]

@@ -48,10 +48,12 @@
 //! strategy's bound that is one ulp above RU(M) stays, with `optimal_hi = false` (it is not
 //! optimal, and the flag says so honestly). A heuristic strategy always reports `false`.
 
-use super::{CoordBox, Enclosure, Extremum};
-use crate::num::{Ddi, Exact, Scalar};
+use super::{CandidateKind, CoordBox, Enclosure, Extremum};
+use crate::num::{iv, Ddi, Exact, Scalar};
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
+use crate::spline::knots::multiplicity;
+use inari::Interval;
 use std::cmp::Ordering;
 
 /// Candidates per side that are examined (in the strategy's order).
@@ -69,8 +71,11 @@ pub const EXACT_MAX_DEGREE: usize = 24;
 pub const ZIV_BITS: [u32; 3] = [120, 240, 480];
 /// How often a side's bound may be lowered by one ulp (after a proof that max <= next_down).
 pub const MAX_LOWERINGS: usize = 2;
+/// A lowering is tried only when some value seen has an upper end within this many doubles
+/// of the bound.
+pub const LOWER_WITHIN_ULPS: usize = 4;
 /// Parameter boxes per lowering proof (branch and bound over the whole domain).
-pub const MAX_BOXES: usize = 400;
+pub const MAX_BOXES: usize = 200;
 /// Bisection depth per span in a lowering proof.
 const MAX_DEPTH: u32 = 64;
 /// Exact concavity arguments per lowering proof.
@@ -97,6 +102,7 @@ pub fn certify(c: &NurbsCurve, e: &mut Enclosure) {
 /// Lazily built evaluators of the curve (double-double with two derivative levels, exact).
 struct Evals<'a> {
     c: &'a NurbsCurve,
+    iv: Option<CurveEval<Interval>>,
     ddi: Option<CurveEval<Ddi>>,
     exact: Option<CurveEval<Exact>>,
 }
@@ -105,6 +111,7 @@ impl<'a> Evals<'a> {
     fn new(c: &'a NurbsCurve) -> Self {
         Evals {
             c,
+            iv: None,
             ddi: None,
             exact: None,
         }
@@ -151,7 +158,14 @@ impl<'a> Evals<'a> {
 
     /// g, g', g'' (k = 2) or g (k = 0) of the polynomial (or rational) piece of span `span`,
     /// exactly at the rational u (which the caller keeps in the closed span).
-    fn exact_in(&mut self, span: usize, j: usize, sign: f64, u: &Exact, k: usize) -> Option<Vec<Exact>> {
+    fn exact_in(
+        &mut self,
+        span: usize,
+        j: usize,
+        sign: f64,
+        u: &Exact,
+        k: usize,
+    ) -> Option<Vec<Exact>> {
         if self.c.degree() > EXACT_MAX_DEGREE {
             return None;
         }
@@ -160,17 +174,49 @@ impl<'a> Evals<'a> {
         let v = e.derivs_in_span(span, u, k);
         Some(
             v.into_iter()
-                .map(|d| if sign < 0.0 { -d[j].clone() } else { d[j].clone() })
+                .map(|d| {
+                    if sign < 0.0 {
+                        -d[j].clone()
+                    } else {
+                        d[j].clone()
+                    }
+                })
                 .collect(),
         )
     }
 
-    /// g, g', g'' of the piece of span `span` over the parameter set `u` (a point or an
-    /// interval inside the closed span), in Ddi: rigorous enclosures.
-    fn ddi_in(&mut self, span: usize, j: usize, sign: f64, u: Ddi) -> Vec<Ddi> {
+    /// C_j(u) exactly when u is a clamped end of the domain: the end control point
+    /// ([`NurbsCurve::clamped_ends`]; the last span's piece there is the curve's value).
+    fn clamped_end_value(&self, j: usize, u: f64) -> Option<f64> {
+        let (a, b) = self.c.domain();
+        let cl = self.c.clamped_ends();
+        if u == a && cl[0] {
+            Some(self.c.control_point(0)[j])
+        } else if u == b && cl[1] {
+            Some(self.c.control_point(self.c.num_points() - 1)[j])
+        } else {
+            None
+        }
+    }
+
+    /// g, g', g'' (k = 2) of the piece of span `span` over the interval `u` inside the closed
+    /// span, in f64 interval arithmetic (inari: outward rounding): the cheap first tier of the
+    /// branch and bound.
+    fn iv_in(&mut self, span: usize, j: usize, sign: f64, u: Interval, k: usize) -> Vec<Interval> {
+        let c = self.c;
+        let e = self.iv.get_or_insert_with(|| CurveEval::new(c, 2));
+        e.derivs_in_span(span, &u, k)
+            .into_iter()
+            .map(|d| if sign < 0.0 { -d[j] } else { d[j] })
+            .collect()
+    }
+
+    /// g, g', g'' (k = 2; g alone for k = 0) of the piece of span `span` over the parameter
+    /// set `u` (a point or an interval inside the closed span), in Ddi: rigorous enclosures.
+    fn ddi_in(&mut self, span: usize, j: usize, sign: f64, u: Ddi, k: usize) -> Vec<Ddi> {
         let c = self.c;
         let e = self.ddi.get_or_insert_with(|| CurveEval::new(c, 2));
-        e.derivs_in_span(span, &u, 2)
+        e.derivs_in_span(span, &u, k)
             .into_iter()
             .map(|d| signed(d[j], sign))
             .collect()
@@ -185,36 +231,56 @@ fn signed(x: Ddi, sign: f64) -> Ddi {
     }
 }
 
-/// Whether the set `x` lies strictly above the f64 `t` (its lower end hi + lo - rad compared
-/// exactly; ENTIRE never does).
-fn ddi_above(x: &Ddi, t: f64) -> bool {
-    if x.is_entire() {
-        return false;
-    }
-    // cheap rejection: the centre is clearly not above t (false is always a safe answer)
-    if x.hi() < t && t - x.hi() > 2.0 * (x.lo().abs() + x.rad()) {
-        return false;
-    }
-    (Exact::of(x.hi()) + Exact::of(x.lo()) - Exact::of(x.rad())).gt_f64(t)
+/// TwoSum (Knuth; Shewchuk 1997 Thm. 7): s = fl(a + b) and e with a + b = s + e exactly
+/// (no overflow).
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    let e = (a - (s - bb)) + (b - bb);
+    (s, e)
 }
 
-/// Whether the set `x` lies at or below the f64 `t` (its upper end hi + lo + rad compared
-/// exactly; ENTIRE never does).
+/// The sign of the exact sum of `xs`, by Shewchuk's Grow-Expansion (1997, Thm. 10): the
+/// components form a nonoverlapping expansion with the same exact sum, so its sign is the
+/// sign of the largest non-zero component. Falls back to exact rationals when an
+/// intermediate is not finite (overflow); `None` for a NaN or infinite input.
+fn sum_sign(xs: &[f64]) -> Option<Ordering> {
+    if xs.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    let mut e: Vec<f64> = Vec::with_capacity(xs.len());
+    for &x in xs {
+        let mut q = x;
+        for c in e.iter_mut() {
+            let (s, r) = two_sum(q, *c);
+            *c = r;
+            q = s;
+        }
+        e.push(q);
+    }
+    if e.iter().all(|c| c.is_finite()) {
+        let top = e.iter().rev().find(|c| **c != 0.0).copied().unwrap_or(0.0);
+        return top.partial_cmp(&0.0);
+    }
+    let sum = xs.iter().fold(Exact::of(0.0), |a, &x| a + Exact::of(x));
+    sum.cmp_f64(0.0)
+}
+
+/// Whether the set `x` lies strictly above the f64 `t`: hi + lo - rad - t > 0, exactly
+/// ([`sum_sign`]); ENTIRE never does.
+fn ddi_above(x: &Ddi, t: f64) -> bool {
+    !x.is_entire() && sum_sign(&[x.hi(), x.lo(), -x.rad(), -t]) == Some(Ordering::Greater)
+}
+
+/// Whether the set `x` lies at or below the f64 `t`: hi + lo + rad - t <= 0, exactly;
+/// ENTIRE never does.
 fn ddi_at_most(x: &Ddi, t: f64) -> bool {
-    if x.is_entire() {
-        return false;
-    }
-    let err = x.lo().abs() + x.rad();
-    // cheap answers: fl(t - hi) >= 2 fl(|lo| + rad) implies t - hi >= |lo| + rad (each
-    // rounding loses at most a factor 1 - 2^-53); hi > t + 2 err: certainly above
-    if x.hi() <= t && t - x.hi() >= 2.0 * err {
-        return true;
-    }
-    if x.hi() > t && x.hi() - t > 2.0 * err {
-        return false;
-    }
-    let upper = Exact::of(x.hi()) + Exact::of(x.lo()) + Exact::of(x.rad());
-    matches!(upper.cmp_f64(t), Some(Ordering::Less | Ordering::Equal))
+    !x.is_entire()
+        && matches!(
+            sum_sign(&[x.hi(), x.lo(), x.rad(), -t]),
+            Some(Ordering::Less | Ordering::Equal)
+        )
 }
 
 /// The certificate of one side (`max_side`: hi, as the maximum of g = C_j; otherwise lo, as the
@@ -236,26 +302,47 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         if !bound.is_finite() {
             break;
         }
-        // 1. an attained value equal to the bound; 2./3. a value above next_down(bound)
+        // 1. an attained value equal to the bound; 2. a double-double value above
+        // next_down(bound)
         let t = bound.next_down();
-        let mut guess = f64::NEG_INFINITY; // the largest upper end of a value seen
-        if inner == bound || prove_above(ev, j, sign, t, &cands, &mut guess) {
+        if inner == bound {
             proved = true;
             break;
         }
-        if round == MAX_LOWERINGS {
+        let d = ddi_stage(ev, j, sign, t, &cands);
+        if d.proved {
+            proved = true;
             break;
         }
         // the other branch of the Ziv loop: a proof of max g <= t' for some t' < bound makes
-        // t' a bound too. Try the double just above the values seen first (it is RU(max) when
-        // the search found the extremum), then one ulp below the bound.
-        let target = guess.max(inner);
-        if target.is_finite() && target < t && prove_at_most(ev, j, sign, target, &cands) {
-            bound = target;
-        } else if prove_at_most(ev, j, sign, t, &cands) {
-            bound = t;
-        } else {
+        // t' a bound too. Only for a bound within a few ulps of the values seen (a loose
+        // bound, e.g. the control hull's, is far from optimal and stays as it is). Try the
+        // double just above the values seen first (RU(max) when the search found the
+        // extremum), then one ulp below the bound; double-double rules first, then the exact
+        // stage (3.) and the exact concavity rule.
+        let target = d.guess.max(inner);
+        let lower = round < MAX_LOWERINGS && target >= nth_down(bound, LOWER_WITHIN_ULPS);
+        let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
+            if !lower {
+                return None;
+            }
+            if target.is_finite() && target < t && prove_at_most(ev, j, sign, target, &cands, exact)
+            {
+                return Some(target);
+            }
+            prove_at_most(ev, j, sign, t, &cands, exact).then_some(t)
+        };
+        if let Some(nb) = try_lower(ev, false) {
+            bound = nb;
+            continue;
+        }
+        if exact_stage(ev, j, sign, t, &d) {
+            proved = true;
             break;
+        }
+        match try_lower(ev, true) {
+            Some(nb) => bound = nb,
+            None => break,
         }
     }
     if max_side {
@@ -266,25 +353,59 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
     proved
 }
 
-/// Whether some u provably has g(u) > t (stages 2 and 3 of the module docs).
-fn prove_above(
-    ev: &mut Evals,
-    j: usize,
-    sign: f64,
-    t: f64,
-    cands: &[Extremum],
-    guess: &mut f64,
-) -> bool {
+/// What the double-double stage found.
+#[derive(Default)]
+struct DdiOutcome {
+    /// some u has g(u) > t (proved)
+    proved: bool,
+    /// the largest upper end of a value seen
+    guess: f64,
+    /// whether some enclosure had t inside (undecided at double-double precision)
+    straddle: bool,
+    /// per candidate (centre of the best g, its u), for the exact stage
+    best: Vec<(f64, f64)>,
+}
+
+/// Stage 2 of the module docs: whether some u provably has g(u) > t, by double-double
+/// enclosures at the candidates and at f64 Newton points.
+fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) -> DdiOutcome {
+    let mut out = DdiOutcome {
+        guess: f64::NEG_INFINITY,
+        ..Default::default()
+    };
     if ev.c.degree() > SEARCH_MAX_DEGREE {
-        return false;
+        return out;
     }
+    let guess = &mut out.guess;
+    let mut straddle = false;
     let (a, b) = ev.c.domain();
     let cands: Vec<Extremum> = cands.iter().take(MAX_CANDIDATES).copied().collect();
+    let p = ev.c.degree();
     // 2. double-double enclosures at chosen f64 parameters
     let mut best: Vec<(f64, f64)> = Vec::new(); // (centre of g, u)
     for x in cands {
         let (lo, hi) = (x.u_lo.max(a), x.u_hi.min(b));
-        if !(lo <= hi) {
+        if lo.partial_cmp(&hi).is_none_or(Ordering::is_gt) {
+            continue;
+        }
+        if x.kind == CandidateKind::ControlPoint {
+            // the support of an extreme control point (hull): the curve reaches the control
+            // point only at a knot of multiplicity >= p inside it; nothing to search
+            let kn = ev.c.knots();
+            for (i, &u) in kn.iter().enumerate() {
+                let first = i == 0 || kn[i - 1] < u;
+                if first && lo <= u && u <= hi && multiplicity(kn, u) >= p {
+                    if let Some(g) = ev.ddi(j, sign, u, 0) {
+                        *guess = guess.max(g[0].to_interval().sup());
+                        if ddi_above(&g[0], t) {
+                            {
+                                out.proved = true;
+                                return out;
+                            }
+                        }
+                    }
+                }
+            }
             continue;
         }
         let mid = (lo + 0.5 * (hi - lo)).clamp(lo, hi);
@@ -293,8 +414,12 @@ fn prove_above(
         };
         *guess = guess.max(g[0].to_interval().sup());
         if ddi_above(&g[0], t) {
-            return true;
+            {
+                out.proved = true;
+                return out;
+            }
         }
+        straddle |= !ddi_at_most(&g[0], t);
         let mut u = mid;
         let mut top = (g[0].to_f64(), mid);
         if lo < hi {
@@ -303,7 +428,7 @@ fn prove_above(
                     break;
                 };
                 let (d1, d2) = (d[1].to_f64(), d[2].to_f64());
-                if !(d2 < 0.0) || !d1.is_finite() {
+                if d2.is_nan() || d2 >= 0.0 || !d1.is_finite() {
                     break;
                 }
                 let next = (u - d1 / d2).clamp(lo, hi);
@@ -321,8 +446,12 @@ fn prove_above(
                 };
                 *guess = guess.max(g[0].to_interval().sup());
                 if ddi_above(&g[0], t) {
-                    return true;
+                    {
+                        out.proved = true;
+                        return out;
+                    }
                 }
+                straddle |= !ddi_at_most(&g[0], t);
                 if g[0].to_f64() > top.0 {
                     top = (g[0].to_f64(), v);
                 }
@@ -330,10 +459,22 @@ fn prove_above(
         }
         best.push(top);
     }
-    // 3. exact values (Ziv levels), for the best candidates
-    if ev.c.degree() > EXACT_MAX_DEGREE {
+    out.straddle = straddle;
+    out.best = best;
+    out
+}
+
+/// Stage 3 of the module docs: exact values at the best candidates' parameters and at exact
+/// Newton iterates on dyadic parameters of [`ZIV_BITS`] bits; only when the double-double
+/// stage left t undecided (`straddle`): otherwise every value seen is provably <= t and the
+/// exact values at the same points are too (Newton moves the parameter by ~2^-106 relative
+/// only, gaining ~2^-200 in value).
+fn exact_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, d: &DdiOutcome) -> bool {
+    if ev.c.degree() > EXACT_MAX_DEGREE || !d.straddle {
         return false;
     }
+    let (a, b) = ev.c.domain();
+    let mut best = d.best.clone();
     best.sort_by(|x, y| y.0.total_cmp(&x.0));
     let scale = exponent_of(a.abs().max(b.abs()).max(b - a));
     for &(_, u0) in best.iter().take(EXACT_CANDIDATES) {
@@ -369,12 +510,18 @@ fn prove_above(
     false
 }
 
-
 /// Whether g <= t on the whole domain, proved by branch and bound over every span (the
 /// lowering branch of the Ziv loop; see the module docs for the rules). At most
 /// [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; `false` when they
 /// are spent or a value above t is met.
-fn prove_at_most(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) -> bool {
+fn prove_at_most(
+    ev: &mut Evals,
+    j: usize,
+    sign: f64,
+    t: f64,
+    cands: &[Extremum],
+    exact: bool,
+) -> bool {
     let c = ev.c;
     if c.degree() > SEARCH_MAX_DEGREE {
         return false;
@@ -382,14 +529,11 @@ fn prove_at_most(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]
     let (p, n) = (c.degree(), c.num_points() - 1);
     let kn = c.knots();
     let mut boxes = 0usize;
-    let mut exact_tries = 0usize;
+    // (without `exact`: no exact evaluation at all)
+    let mut exact_tries = if exact { 0 } else { MAX_EXACT_TRIES };
     // spans nearest the candidates first: an early failure costs least
     let mut spans: Vec<usize> = (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect();
-    let near = |k: usize| {
-        cands
-            .iter()
-            .any(|x| x.u_lo <= kn[k + 1] && x.u_hi >= kn[k])
-    };
+    let near = |k: usize| cands.iter().any(|x| x.u_lo <= kn[k + 1] && x.u_hi >= kn[k]);
     spans.sort_by_key(|&k| !near(k));
     for k in spans {
         let mut stack = vec![(kn[k], kn[k + 1], 0u32)];
@@ -398,9 +542,12 @@ fn prove_at_most(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]
             if boxes > MAX_BOXES {
                 return false;
             }
-            match box_at_most(ev, k, j, sign, t, lo, hi, &mut exact_tries) {
+            // the concavity rules only near a candidate of the strategy (where the extremum
+            // is): elsewhere splitting is cheaper
+            let near_cand = cands.iter().any(|x| x.u_lo <= hi && x.u_hi >= lo);
+            match box_at_most(ev, k, j, sign, t, lo, hi, near_cand, &mut exact_tries) {
                 BoxVerdict::Below => {}
-                BoxVerdict::Above => return false,
+                BoxVerdict::Above | BoxVerdict::Stuck => return false,
                 BoxVerdict::Split => {
                     let m = lo + 0.5 * (hi - lo);
                     if depth >= MAX_DEPTH || !(lo < m && m < hi) {
@@ -421,8 +568,10 @@ enum BoxVerdict {
     Below,
     /// g > t somewhere (so t is not a bound)
     Above,
-    /// undecided
+    /// undecided: split it
     Split,
+    /// undecided, and splitting cannot help (the deciding value is one point's)
+    Stuck,
 }
 
 /// g <= t on [lo, hi] inside span k? Rules (each a proof for the piece of span k on the closed
@@ -440,20 +589,41 @@ fn box_at_most(
     t: f64,
     lo: f64,
     hi: f64,
+    near_cand: bool,
     exact_tries: &mut usize,
 ) -> BoxVerdict {
+    // f64 intervals first (natural and mean value forms): boxes away from the extremum end
+    // here, at a fraction of the double-double cost
+    let xi = iv::span(lo, hi);
+    let gi = ev.iv_in(k, j, sign, xi, 2);
+    let m = (lo + 0.5 * (hi - lo)).clamp(lo, hi);
+    if gi[0].sup() <= t {
+        return BoxVerdict::Below;
+    }
+    let gmi = ev.iv_in(k, j, sign, iv::point(m), 0);
+    if (gmi[0] + gi[1] * (xi - iv::point(m))).sup() <= t {
+        return BoxVerdict::Below;
+    }
     let x = Ddi::from_bounds(lo, hi);
-    let g = ev.ddi_in(k, j, sign, x);
+    let g = ev.ddi_in(k, j, sign, x, 2);
     if ddi_at_most(&g[0], t) {
         return BoxVerdict::Below;
     }
+    let exact_ok = *exact_tries < MAX_EXACT_TRIES;
     let point_at_most = |ev: &mut Evals, u: f64| -> Option<bool> {
-        let v = ev.ddi_in(k, j, sign, Ddi::exact(u));
+        if let Some(x) = ev.clamped_end_value(j, u) {
+            // the end control point, exactly (`NurbsCurve::clamped_ends`)
+            return Some(sign * x <= t);
+        }
+        let v = ev.ddi_in(k, j, sign, Ddi::exact(u), 0);
         if ddi_at_most(&v[0], t) {
             return Some(true);
         }
         if ddi_above(&v[0], t) {
             return Some(false);
+        }
+        if !exact_ok {
+            return None;
         }
         let e = ev.exact_in(k, j, sign, &Exact::of(u), 0)?;
         Some(!e[0].gt_f64(t))
@@ -465,11 +635,10 @@ fn box_at_most(
         return match point_at_most(ev, end) {
             Some(true) => BoxVerdict::Below,
             Some(false) => BoxVerdict::Above,
-            None => BoxVerdict::Split,
+            None => BoxVerdict::Stuck,
         };
     }
-    let m = (lo + 0.5 * (hi - lo)).clamp(lo, hi);
-    let gm = ev.ddi_in(k, j, sign, Ddi::exact(m));
+    let gm = ev.ddi_in(k, j, sign, Ddi::exact(m), 2);
     if ddi_above(&gm[0], t) {
         return BoxVerdict::Above;
     }
@@ -477,13 +646,87 @@ fn box_at_most(
     if ddi_at_most(&mvf, t) {
         return BoxVerdict::Below;
     }
+    if !near_cand {
+        return BoxVerdict::Split;
+    }
+    if g[2].to_interval().sup() < 0.0 {
+        // concave on the box: tangents first in double-double, then exactly
+        if let Some(v) = concave_ddi(ev, k, j, sign, t, lo, hi, m, &gm) {
+            return if v {
+                BoxVerdict::Below
+            } else {
+                BoxVerdict::Above
+            };
+        }
+    }
     if g[2].to_interval().sup() < 0.0 && *exact_tries < MAX_EXACT_TRIES {
         *exact_tries += 1;
-        if let Some(v) = concave_at_most(ev, k, j, sign, t, lo, hi, gm[1].to_f64(), gm[2].to_f64(), m) {
-            return if v { BoxVerdict::Below } else { BoxVerdict::Above };
+        if let Some(v) =
+            concave_at_most(ev, k, j, sign, t, lo, hi, gm[1].to_f64(), gm[2].to_f64(), m)
+        {
+            return if v {
+                BoxVerdict::Below
+            } else {
+                BoxVerdict::Above
+            };
         }
     }
     BoxVerdict::Split
+}
+
+/// The concavity rule in double-double (g'' < 0 on [lo, hi], proved by the caller): f64
+/// Newton steps from m (only to choose points) give u ~ the critical point; m1 < u < m2 a few
+/// ulps apart with g'(m1) > 0 > g'(m2) proved; then g lies below both tangents on the box,
+/// so below T = g(m1) + g'(m1)(x - m1) at their intersection x, all enclosed in Ddi.
+/// `Some(true)`: T <= t; `Some(false)`: a value above t; `None`: undecided.
+#[allow(clippy::too_many_arguments)]
+fn concave_ddi(
+    ev: &mut Evals,
+    k: usize,
+    j: usize,
+    sign: f64,
+    t: f64,
+    lo: f64,
+    hi: f64,
+    m: f64,
+    gm: &[Ddi],
+) -> Option<bool> {
+    let mut u = m;
+    let mut d = gm.to_vec();
+    for _ in 0..4 {
+        let (d1, d2) = (d[1].to_f64(), d[2].to_f64());
+        if d2.is_nan() || d2 >= 0.0 || !d1.is_finite() {
+            return None;
+        }
+        let next = (u - d1 / d2).clamp(lo, hi);
+        if next == u || !next.is_finite() {
+            break;
+        }
+        u = next;
+        d = ev.ddi_in(k, j, sign, Ddi::exact(u), 2);
+    }
+    if ddi_above(&d[0], t) {
+        return Some(false);
+    }
+    let mut step = (u.abs().max(hi - lo) * f64::EPSILON).max(f64::from_bits(1));
+    for _ in 0..6 {
+        let (m1, m2) = ((u - step).max(lo), (u + step).min(hi));
+        let a = ev.ddi_in(k, j, sign, Ddi::exact(m1), 1);
+        let b = ev.ddi_in(k, j, sign, Ddi::exact(m2), 1);
+        let (s1, s2) = (a[1].to_interval(), b[1].to_interval());
+        if s1.inf() >= 0.0 && s2.sup() <= 0.0 {
+            let denom = a[1] - b[1];
+            if denom.to_interval().inf() <= 0.0 {
+                // both slopes zero: g is constant at the top, max = g(m1)
+                return ddi_at_most(&a[0], t).then_some(true);
+            }
+            let x = (b[0] - a[0] + a[1] * Ddi::exact(m1) - b[1] * Ddi::exact(m2)) / denom;
+            let top = a[0] + a[1] * (x - Ddi::exact(m1));
+            return ddi_at_most(&top, t).then_some(true);
+        }
+        step *= 8.0;
+    }
+    None
 }
 
 /// The concavity rule on [lo, hi] (g'' < 0 there, proved by the caller): exact Newton steps
@@ -570,9 +813,17 @@ fn concave_at_most(
     None
 }
 
+/// x moved down by k doubles.
+fn nth_down(mut x: f64, k: usize) -> f64 {
+    for _ in 0..k {
+        x = x.next_down();
+    }
+    x
+}
+
 /// The exponent e with |x| < 2^e (x finite, > 0; 0 otherwise).
 fn exponent_of(x: f64) -> i32 {
-    if !(x > 0.0) || !x.is_finite() {
+    if x.is_nan() || x <= 0.0 || !x.is_finite() {
         return 0;
     }
     let mut e = x.log2().ceil() as i32;

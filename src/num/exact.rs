@@ -181,7 +181,11 @@ fn approx(q: &BigRational) -> f64 {
     }
 }
 
-fn lift(a: Exact, b: Exact, f: impl FnOnce(BigRational, BigRational) -> Option<BigRational>) -> Exact {
+fn lift(
+    a: Exact,
+    b: Exact,
+    f: impl FnOnce(BigRational, BigRational) -> Option<BigRational>,
+) -> Exact {
     match (a.0, b.0) {
         (Some(x), Some(y)) => Exact(f(x, y)),
         _ => Exact(None),
@@ -276,11 +280,20 @@ mod tests {
         assert!(d <= 1.0 / 3.0 && 1.0 / 3.0 <= u);
         // beyond the range, and below the smallest subnormal
         let big = Exact::of(f64::MAX) * Exact::of(2.0);
-        assert_eq!((big.round_down(), big.round_up()), (f64::MAX, f64::INFINITY));
+        assert_eq!(
+            (big.round_down(), big.round_up()),
+            (f64::MAX, f64::INFINITY)
+        );
         let tiny = Exact::of(f64::from_bits(1)) / Exact::of(3.0);
-        assert_eq!((tiny.round_down(), tiny.round_up()), (0.0, f64::from_bits(1)));
+        assert_eq!(
+            (tiny.round_down(), tiny.round_up()),
+            (0.0, f64::from_bits(1))
+        );
         let ntiny = -tiny;
-        assert_eq!((ntiny.round_down(), ntiny.round_up()), (-f64::from_bits(1), 0.0));
+        assert_eq!(
+            (ntiny.round_down(), ntiny.round_up()),
+            (-f64::from_bits(1), 0.0)
+        );
         // division by zero is undefined, never a panic, and certifies nothing
         let z = Exact::of(1.0) / Exact::of(0.0);
         assert!(!z.gt_f64(f64::NEG_INFINITY));

@@ -434,7 +434,10 @@ pub fn check_certificates(
     for (j, cb) in e.coords.iter().enumerate() {
         let scale = curve.coord_scale(j);
         if !e.verified && (cb.optimal_lo || cb.optimal_hi) {
-            return Err(format!("{}: a heuristic result has a certificate", e.strategy));
+            return Err(format!(
+                "{}: a heuristic result has a certificate",
+                e.strategy
+            ));
         }
         for (flag, bound, exact, up) in [
             (cb.optimal_lo, cb.lo, &rb.lo[j], false),
