@@ -33,20 +33,48 @@
 //!   derivatives (only to *choose* u, never part of the proof), then the `Ddi` value at u and
 //!   its two f64 neighbours. At the f64 u nearest the extremum u*, g(u) = M - O(g'' ulp(u)^2),
 //!   i.e. ~2^-106 relative below M: this decides every bound with M - t above ~2^-100 M;
-//! * if that fails (a near-tie: M within ~2^-100 relative above t) and the degree is at most
-//!   [`EXACT_MAX_DEGREE`]: the exact value at u, then Newton steps in exact arithmetic whose
+//! * if that fails with t inside some enclosure (a near-tie: M within ~2^-100 relative above
+//!   t) and the degree is at most [`EXACT_MAX_DEGREE`]: the exact value at u, then Newton steps in exact arithmetic whose
 //!   iterates are truncated to dyadic parameters of [`ZIV_BITS`] binary digits (each level
 //!   doubles the precision, as Newton's quadratic convergence allows), the exact value at each.
 //!   A near-tie M - t down to about 2^-(2 * 480) relative is decided this way.
 //!
+//! # Lowering a bound (the other branch of the Ziv loop)
+//!
+//! When no value above t is found, the bound may not be optimal: M <= t. If some value seen
+//! lies within [`LOWER_WITHIN_ULPS`] doubles of the bound, `prove_at_most` tries to prove
+//! g <= t' on the whole domain for t' = the double just above the values seen (RU(M) when
+//! the search found the extremum), else for t' = t; on success the bound becomes t' (still a
+//! proved bound) and the certificate is tried again, at most [`MAX_LOWERINGS`] times. The
+//! proof is a branch and bound over every span (each polynomial / rational piece on its closed
+//! span, which covers every value of the curve, jumps included), with these rules per
+//! parameter box X:
+//!
+//! * f64 interval enclosures (inari, outward rounded) of g over X, natural and mean value form
+//!   g(m) + g'(X)(X - m): upper end <= t' (most boxes, away from the extremum);
+//! * the same in double-double;
+//! * monotonicity: g'(X) >= 0 (or <= 0) proved, so max_X g is the value at an end, which is
+//!   decided as a point (an exact end control point at a clamped end, a double-double
+//!   enclosure, or the exact rational value);
+//! * concavity: g''(X) < 0 proved, so g lies below its tangent at every point of X, hence
+//!   below the intersection T of the tangents at two points m1 < m2 with g'(m1) >= 0 >=
+//!   g'(m2); T is enclosed in double-double, or computed exactly at dyadic points from exact
+//!   Newton steps (this proves M <= t' also when M = t' exactly, e.g. a double extremum at
+//!   u = 1/2); only near the strategy's candidates;
+//! * a value above t' ends the attempt (t' is not a bound), otherwise the box is split.
+//!
+//! Lowering first without exact arithmetic, then (if the exact stage did not certify) with it.
+//!
 //! # Limits (bounded work)
 //!
-//! At most [`MAX_CANDIDATES`] candidates, [`NEWTON_STEPS`] double-double Newton steps, and the
-//! exact stage only for the 2 best candidates, degree <= [`EXACT_MAX_DEGREE`], two exact Newton
-//! steps per level of [`ZIV_BITS`]. When these are spent the answer is `false` ("not proved").
-//! The other outcome of a Ziv loop, proving M <= t and lowering the bound, is not attempted: a
-//! strategy's bound that is one ulp above RU(M) stays, with `optimal_hi = false` (it is not
-//! optimal, and the flag says so honestly). A heuristic strategy always reports `false`.
+//! At most [`MAX_CANDIDATES`] candidates, [`NEWTON_STEPS`] double-double Newton steps, the
+//! exact stage only for the best candidate and degree <= [`EXACT_MAX_DEGREE`] (its exact
+//! Newton levels only for a value within 2^-96 of t, two exact Newton steps per level of
+//! [`ZIV_BITS`]); lowering only up to degree [`EXACT_MAX_DEGREE`], a lowering proof at most
+//! [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; no search at all
+//! above degree [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
+//! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
+//! optimal). A heuristic strategy always reports `false`.
 
 use super::{CandidateKind, CoordBox, Enclosure, Extremum};
 use crate::num::{iv, Ddi, Exact, Scalar};
@@ -65,7 +93,7 @@ pub const NEWTON_STEPS: usize = 4;
 pub const SEARCH_MAX_DEGREE: usize = 64;
 /// Highest degree for which exact rational evaluation is attempted (the rationals of a de
 /// Boor triangle grow with the degree).
-pub const EXACT_MAX_DEGREE: usize = 24;
+pub const EXACT_MAX_DEGREE: usize = 16;
 /// Binary digits (relative to the parameter magnitude) of the dyadic parameters of the exact
 /// Ziv levels.
 pub const ZIV_BITS: [u32; 3] = [120, 240, 480];
@@ -75,16 +103,17 @@ pub const MAX_LOWERINGS: usize = 2;
 /// of the bound.
 pub const LOWER_WITHIN_ULPS: usize = 4;
 /// Parameter boxes per lowering proof (branch and bound over the whole domain).
-pub const MAX_BOXES: usize = 200;
+pub const MAX_BOXES: usize = 64;
 /// Bisection depth per span in a lowering proof.
 const MAX_DEPTH: u32 = 64;
 /// Exact concavity arguments per lowering proof.
 pub const MAX_EXACT_TRIES: usize = 4;
 /// Candidates that go to the exact stage.
-const EXACT_CANDIDATES: usize = 2;
+const EXACT_CANDIDATES: usize = 1;
 
 /// Set `optimal_lo` / `optimal_hi` of every coordinate of a result of `c` (see the module
-/// docs). A heuristic result (`verified == false`) gets `false` everywhere.
+/// docs), lowering a bound where a proof shows that a smaller double is a bound too. A
+/// heuristic result (`verified == false`) gets `false` everywhere and is left unchanged.
 pub fn certify(c: &NurbsCurve, e: &mut Enclosure) {
     let verified = e.verified;
     let mut ev = Evals::new(c);
@@ -321,7 +350,9 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // extremum), then one ulp below the bound; double-double rules first, then the exact
         // stage (3.) and the exact concavity rule.
         let target = d.guess.max(inner);
-        let lower = round < MAX_LOWERINGS && target >= nth_down(bound, LOWER_WITHIN_ULPS);
+        let lower = round < MAX_LOWERINGS
+            && ev.c.degree() <= EXACT_MAX_DEGREE
+            && target >= nth_down(bound, LOWER_WITHIN_ULPS);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
             if !lower {
                 return None;
@@ -484,6 +515,13 @@ fn exact_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, d: &DdiOutcome) -> b
         };
         if g[0].gt_f64(t) {
             return true;
+        }
+        // exact Newton gains only what the f64 parameter misses (~2^-106 relative): go on
+        // only for a value within 2^-96 of the scale below t (a near-tie)
+        let gap = (Exact::of(t) - g[0].clone()).to_f64();
+        let near = 2f64.powi(-96) * t.abs().max(ev.c.coord_scale(j));
+        if gap.is_nan() || gap > near {
+            continue;
         }
         'levels: for bits in ZIV_BITS {
             for _ in 0..2 {
