@@ -101,7 +101,7 @@ pub const ZIV_BITS: [u32; 3] = [120, 240, 480];
 pub const MAX_LOWERINGS: usize = 2;
 /// A lowering is tried only when some value seen has an upper end within this many doubles
 /// of the bound.
-pub const LOWER_WITHIN_ULPS: usize = 4;
+pub const LOWER_WITHIN_ULPS: usize = 8;
 /// Parameter boxes per lowering proof (branch and bound over the whole domain).
 pub const MAX_BOXES: usize = 64;
 /// Bisection depth per span in a lowering proof.
@@ -357,11 +357,13 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
             if !lower {
                 return None;
             }
-            if target.is_finite() && target < t && prove_at_most(ev, j, sign, target, &cands, exact)
-            {
-                return Some(target);
+            // first the double just above the values seen (the likely RU(max)); one ulp below
+            // the bound only as the last resort, with every rule
+            let goal = if target.is_finite() && target < t { target } else { t };
+            if prove_at_most(ev, j, sign, goal, &cands, exact) {
+                return Some(goal);
             }
-            prove_at_most(ev, j, sign, t, &cands, exact).then_some(t)
+            (exact && goal < t && prove_at_most(ev, j, sign, t, &cands, true)).then_some(t)
         };
         if let Some(nb) = try_lower(ev, false) {
             bound = nb;

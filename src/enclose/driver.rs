@@ -487,7 +487,8 @@ mod tests {
         assert!(r.knot_exp < -600);
         let s = r.apply(&big);
         assert_eq!(s.domain().1, ldexp(1e-200, -r.knot_exp));
-        let e = drive(&ControlHull, &big);
+        // (without the certification, which may lower a bound after a proof)
+        let e = drive_with(&ControlHull, &big, false);
         let h = ControlHull.enclose_prepared(&big);
         // the hull is exact: the rescaled one may only be wider by the subnormal steps
         for j in 0..2 {
