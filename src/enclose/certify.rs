@@ -359,7 +359,11 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
             }
             // first the double just above the values seen (the likely RU(max)); one ulp below
             // the bound only as the last resort, with every rule
-            let goal = if target.is_finite() && target < t { target } else { t };
+            let goal = if target.is_finite() && target < t {
+                target
+            } else {
+                t
+            };
             if prove_at_most(ev, j, sign, goal, &cands, exact) {
                 return Some(goal);
             }
@@ -757,8 +761,12 @@ fn concave_ddi(
         if s1.inf() >= 0.0 && s2.sup() <= 0.0 {
             let denom = a[1] - b[1];
             if denom.to_interval().inf() <= 0.0 {
-                // both slopes zero: g is constant at the top, max = g(m1)
-                return ddi_at_most(&a[0], t).then_some(true);
+                // slopes too small to intersect the tangents safely. g lies below its
+                // tangent at m1: g(u) <= g(m1) + g'(m1)(u - m1), which is <= g(m1) left of
+                // m1 and <= g(m1) + g'(m1)(m2 - m1) on [m1, m2] (and bounds g(m2)); right
+                // of m2, g(u) <= g(m2) + g'(m2)(u - m2) <= g(m2): so this bounds all of X
+                let top = a[0] + a[1] * (Ddi::exact(m2) - Ddi::exact(m1));
+                return ddi_at_most(&top, t).then_some(true);
             }
             let x = (b[0] - a[0] + a[1] * Ddi::exact(m1) - b[1] * Ddi::exact(m2)) / denom;
             let top = a[0] + a[1] * (x - Ddi::exact(m1));
