@@ -114,7 +114,7 @@ pub fn time_plot(
     report(path, r);
 }
 
-/// A log-axis tick label: 0, 1, 10, 100, then 1e3, 1e4, ... (no long digit strings).
+/// A log-axis tick label: 1, 10, 100, then 1e3, 1e4, ... (no long digit strings).
 fn log_label(v: f64) -> String {
     if v < 1000.0 {
         format!("{}", v.round())
@@ -155,7 +155,7 @@ pub fn ecdf_plot(path: &Path, title: &str, xlabel: &str, data: &[(String, Vec<f6
             .configure_mesh()
             .x_desc(xlabel)
             .y_desc("share of bounds with distance <= x")
-            .x_label_formatter(&|x| log_label(*x - 1.0))
+            .x_label_formatter(&|x| log_label(*x))
             .y_label_formatter(&|y| format!("{:.0}%", y * 100.0))
             .axis_desc_style(("sans-serif", 15))
             .label_style(("sans-serif", 13))
