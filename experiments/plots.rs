@@ -114,62 +114,87 @@ pub fn time_plot(
     report(path, r);
 }
 
-/// Tightness per strategy: every row's median (dot) and maximum (cross), on a log(1 + ulps)
-/// axis.
-pub fn tightness_plot(path: &Path, title: &str, data: &[(String, Vec<f64>, Vec<f64>)], foot: &str) {
+/// A log-axis tick label: 1, 10, 100, then 1e3, 1e4, ... (no long digit strings).
+fn log_label(v: f64) -> String {
+    if v < 1000.0 {
+        format!("{}", v.round())
+    } else {
+        let e = v.log10().round() as i32;
+        if (v / 10f64.powi(e) - 1.0).abs() < 1e-6 {
+            format!("1e{e}")
+        } else {
+            format!("{v:.0e}")
+        }
+    }
+}
+
+/// Empirical distribution functions, one step line per series: the share of values <= x, on
+/// a log(1 + x) axis (x = 0 is the left edge). `data`: (name, values >= 0; +inf allowed,
+/// counted but drawn at the right edge).
+pub fn ecdf_plot(path: &Path, title: &str, xlabel: &str, data: &[(String, Vec<f64>)], foot: &str) {
     let r = (|| -> Res {
-        let root = SVGBackend::new(path, (960, 640)).into_drawing_area();
+        let root = SVGBackend::new(path, (1040, 680)).into_drawing_area();
         root.fill(&WHITE)?;
-        let (main, foot_area) = root.split_vertically(615);
+        let (main, foot_area) = root.split_vertically(650);
         footer(&foot_area, foot)?;
-        let ymax = data
+        let xmax = data
             .iter()
-            .flat_map(|d| d.2.iter())
-            .cloned()
+            .flat_map(|d| d.1.iter())
+            .copied()
             .filter(|x| x.is_finite())
-            .fold(1.0, f64::max);
-        let n = data.len().max(1);
+            .fold(1.0f64, f64::max);
+        let right = (xmax + 1.0) * 3.0;
         let mut chart = ChartBuilder::on(&main)
             .caption(title, ("sans-serif", 20))
-            .margin(15)
-            .x_label_area_size(45)
-            .y_label_area_size(70)
-            .build_cartesian_2d(
-                -0.5f64..n as f64 - 0.5,
-                (1.0f64..(ymax + 1.0) * 2.0).log_scale(),
-            )?;
-        let names: Vec<String> = data.iter().map(|d| d.0.clone()).collect();
+            .margin(20)
+            .margin_right(40)
+            .x_label_area_size(55)
+            .y_label_area_size(80)
+            .build_cartesian_2d((1.0f64..right).log_scale(), 0.0f64..1.02)?;
         chart
             .configure_mesh()
-            .x_labels(n)
-            .x_label_formatter(&|x| {
-                let i = x.round();
-                if (x - i).abs() < 1e-9 && i >= 0.0 && (i as usize) < names.len() {
-                    names[i as usize].clone()
-                } else {
-                    String::new()
-                }
-            })
-            .y_desc("1 + ulps (log)")
+            .x_desc(xlabel)
+            .y_desc("share of bounds with distance <= x")
+            .x_label_formatter(&|x| log_label(*x))
+            .y_label_formatter(&|y| format!("{:.0}%", y * 100.0))
+            .axis_desc_style(("sans-serif", 15))
+            .label_style(("sans-serif", 13))
             .draw()?;
-        for (i, (_, med, max)) in data.iter().enumerate() {
+        for (i, (name, vals)) in data.iter().enumerate() {
             let c = COLORS[i % COLORS.len()];
-            let k = med.len().max(1) as f64;
-            chart.draw_series(med.iter().enumerate().map(|(r, v)| {
-                Circle::new(
-                    (i as f64 - 0.3 + 0.6 * r as f64 / k, 1.0 + v.min(1e300)),
-                    3,
-                    c.filled(),
-                )
-            }))?;
-            chart.draw_series(max.iter().enumerate().map(|(r, v)| {
-                Cross::new(
-                    (i as f64 - 0.3 + 0.6 * r as f64 / k, 1.0 + v.min(1e300)),
-                    4,
-                    c.stroke_width(1),
-                )
-            }))?;
+            let mut v: Vec<f64> = vals.iter().map(|x| x.max(0.0)).collect();
+            v.sort_by(f64::total_cmp);
+            let n = v.len().max(1) as f64;
+            // steps: at each distinct value the share jumps to (count <= value) / n
+            let mut pts = vec![(1.0, 0.0)];
+            let mut k = 0;
+            while k < v.len() {
+                let x = v[k];
+                let mut m = k;
+                while m < v.len() && v[m] == x {
+                    m += 1;
+                }
+                let px = if x.is_finite() { 1.0 + x } else { right };
+                let prev = pts.last().map_or(0.0, |p| p.1);
+                pts.push((px, prev));
+                pts.push((px, m as f64 / n));
+                k = m;
+            }
+            pts.push((right, pts.last().map_or(0.0, |p| p.1)));
+            chart
+                .draw_series(LineSeries::new(pts, c.stroke_width(2)))?
+                .label(format!("{name} ({} bounds)", vals.len()))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                });
         }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .border_style(BLACK)
+            .background_style(WHITE.mix(0.9))
+            .label_font(("sans-serif", 13))
+            .draw()?;
         root.present()?;
         Ok(())
     })();

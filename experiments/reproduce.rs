@@ -10,6 +10,7 @@
 //! plots; exits non-zero if any verified strategy misses the curve.
 
 #[path = "plots.rs"]
+#[allow(dead_code)] // shared by several binaries, each uses a part
 mod plots;
 mod surface_sweep;
 
@@ -610,7 +611,7 @@ fn main() {
         md,
         "\n**Containment:** {checked} parameter checks; verified strategies: {verified_misses} misses; heuristic strategies: {heuristic_misses} misses.\n"
     );
-    let _ = writeln!(md, "Plots: `time_vs_n.svg`, `time_vs_p.svg`, `tightness.svg`, `thesis_figure.svg`, `coordinate_functions.svg`.");
+    let _ = writeln!(md, "Plots: `time_vs_n.svg`, `time_vs_p.svg`, `thesis_figure.svg`, `coordinate_functions.svg` (`tightness.svg`, the ECDF of the distance to the optimal double, comes from the `tightness` binary).");
 
     let write = |name: &str, s: &str| {
         let p = args.out.join(name);
@@ -658,27 +659,6 @@ fn main() {
         "degree p",
         &series(Sweep::Degrees),
         false,
-        &foot,
-    );
-    let tight: Vec<(String, Vec<f64>, Vec<f64>)> = names
-        .iter()
-        .map(|n| {
-            let rs: Vec<&Row> = rows.iter().filter(|r| r.strategy == *n).collect();
-            (
-                n.to_string(),
-                rs.iter().map(|r| r.ulps_median).collect(),
-                rs.iter().map(|r| r.ulps_max).collect(),
-            )
-        })
-        .collect();
-    plots::tightness_plot(
-        &args.out.join("tightness.svg"),
-        if cfg!(feature = "mpfr") {
-            "Tightness: outer bound - exact extremum (ulps of coordinate scale)"
-        } else {
-            "Tightness: certified gap outer - inner (ulps of coordinate scale)"
-        },
-        &tight,
         &foot,
     );
     // The thesis's figure: a 2-D NURBS (degree 3, 11 points) with its box and extremum points,

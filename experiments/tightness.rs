@@ -13,7 +13,20 @@
 //! parameters and the reference argmin/argmax (`validate::check_containment`), `inner bad`
 //! counts inner bounds not reached (inner_lo < exact min or inner_hi > exact max),
 //! `curves missed` the curves with any miss. Time: median and mean wall time of one
-//! `enclose` call (each curve enclosed repeatedly for >= 0.2 ms, sequentially).
+//! `enclose` call with certification (each curve enclosed repeatedly, with and without
+//! certification alternately, for >= 0.1 ms each, twice, sequentially).
+//!
+//! Optimality: `optimal` is the share of bounds equal to the optimal double (RD(min) /
+//! RU(max) of the reference, `reference::optimal_bound`), `certified` the share with
+//! `optimal_lo` / `optimal_hi` true, `false cert` the certificates whose bound is not the
+//! optimal double (must be 0; a bound within the reference's resolution, 2^-160 of the scale,
+//! of the exact value is not counted: `reference::false_certificate`). `cert +%`: the mean
+//! time with certification over the mean time of the same calls without it
+//! (`enclose::drive_with(s, c, false)`), minus 1, timed alternately on the same curves. The family `ties` is `testkit::ties` (extrema exactly
+//! doubles or within 2^-60 .. 2^-110 relative of one, circles, corners, unclamped ends).
+//!
+//! Also writes `results/tightness.svg`: per verified strategy the ECDF of the distance of every
+//! bound to the optimal double, in ulps of the value (f64 steps), over all families.
 
 #[cfg(not(feature = "mpfr"))]
 fn main() {
@@ -27,11 +40,20 @@ fn main() {
 }
 
 #[cfg(feature = "mpfr")]
+#[path = "plots.rs"]
+#[allow(dead_code)] // shared by several binaries, each uses a part
+mod plots;
+
+#[cfg(feature = "mpfr")]
 mod imp {
-    use nurbs_box::enclose::all_strategies;
+    use super::plots;
+    use nurbs_box::enclose::{all_strategies, drive_with};
     use nurbs_box::testkit::gen::{self, Family, GenParams};
-    use nurbs_box::testkit::reference::{reference_box, ulps_outside, ReferenceBox};
+    use nurbs_box::testkit::reference::{
+        false_certificate, optimal_bound, reference_box, ulps_outside, ReferenceBox,
+    };
     use nurbs_box::testkit::report::Provenance;
+    use nurbs_box::testkit::ties::tie_curve;
     use nurbs_box::testkit::validate::{check_containment, dense_params};
     use nurbs_box::{BoxEncloser, Enclosure, NurbsCurve};
     use rayon::prelude::*;
@@ -77,6 +99,16 @@ mod imp {
         inner_bad: usize,
         curves_missed: usize,
         times: Vec<Duration>,
+        /// times of the same calls without certification
+        times_off: Vec<Duration>,
+        /// bounds equal to the optimal double
+        optimal: usize,
+        /// bounds with a certificate
+        certified: usize,
+        /// certificates on a bound that is not the optimal double
+        false_cert: usize,
+        /// distance of every bound to the optimal double, in f64 steps
+        dist: Vec<f64>,
     }
 
     impl Acc {
@@ -88,6 +120,11 @@ mod imp {
             self.inner_bad += o.inner_bad;
             self.curves_missed += o.curves_missed;
             self.times.extend_from_slice(&o.times);
+            self.times_off.extend_from_slice(&o.times_off);
+            self.optimal += o.optimal;
+            self.certified += o.certified;
+            self.false_cert += o.false_cert;
+            self.dist.extend_from_slice(&o.dist);
         }
 
         fn row(&self, family: &str, strategy: &str) -> String {
@@ -104,8 +141,17 @@ mod imp {
             t.sort();
             let tmed = t.get(t.len() / 2).copied().unwrap_or_default();
             let tmean = t.iter().sum::<Duration>() / (t.len().max(1) as u32);
+            let off = self.times_off.iter().sum::<Duration>().as_secs_f64();
+            let on = self.times.iter().sum::<Duration>().as_secs_f64();
+            let pct = |k: usize| {
+                if u.is_empty() {
+                    "-".to_string()
+                } else {
+                    format!("{:.2}", 100.0 * k as f64 / u.len() as f64)
+                }
+            };
             format!(
-                "| {family} | {strategy} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} |",
+                "| {family} | {strategy} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} | {:+.1} |",
                 self.curves,
                 u.len(),
                 fmt(q(0.5)),
@@ -115,8 +161,12 @@ mod imp {
                 self.pt_miss,
                 self.inner_bad,
                 self.curves_missed,
+                pct(self.optimal),
+                pct(self.certified),
+                self.false_cert,
                 tmed.as_secs_f64() * 1e6,
                 tmean.as_secs_f64() * 1e6,
+                if off > 0.0 { 100.0 * (on / off - 1.0) } else { 0.0 },
             )
         }
     }
@@ -133,16 +183,36 @@ mod imp {
         }
     }
 
-    /// Wall time of one `enclose` call: repeated until >= 0.2 ms, mean per call.
-    fn time_enclose(s: &dyn BoxEncloser, c: &NurbsCurve) -> (Duration, Enclosure) {
+    /// Wall time of one `enclose` call with and without certification, each repeated until
+    /// >= 0.2 ms (mean per call), alternating in rounds so that drift hits both alike.
+    fn time_enclose(s: &dyn BoxEncloser, c: &NurbsCurve) -> (Duration, Duration, Enclosure) {
         let e = s.enclose(c);
-        let t0 = Instant::now();
-        let mut n = 0u32;
-        while n == 0 || (t0.elapsed() < Duration::from_micros(200) && n < 1000) {
-            std::hint::black_box(s.enclose(std::hint::black_box(c)));
-            n += 1;
+        let run = |certify: bool| {
+            let t0 = Instant::now();
+            let mut n = 0u32;
+            while n == 0 || (t0.elapsed() < Duration::from_micros(100) && n < 500) {
+                std::hint::black_box(drive_with(s, std::hint::black_box(c), certify));
+                n += 1;
+            }
+            t0.elapsed() / n
+        };
+        let (mut on, mut off) = (Duration::ZERO, Duration::ZERO);
+        for _ in 0..2 {
+            on += run(true);
+            off += run(false);
         }
-        (t0.elapsed() / n, e)
+        (on / 2, off / 2, e)
+    }
+
+    /// The position of an f64 in the ordered sequence of all f64 (adjacent doubles differ by 1;
+    /// -0 and +0 coincide).
+    fn ord(x: f64) -> i64 {
+        let b = x.to_bits() as i64;
+        if b < 0 {
+            -(b & i64::MAX)
+        } else {
+            b
+        }
     }
 
     fn measure(c: &NurbsCurve, e: &Enclosure, rb: &ReferenceBox, acc: &mut Acc) {
@@ -158,6 +228,17 @@ mod imp {
                     missed = true;
                 }
                 acc.ulps.push(d);
+            }
+            for (bound, exact, up, flag) in [
+                (cb.lo, &rb.lo[j], false, cb.optimal_lo),
+                (cb.hi, &rb.hi[j], true, cb.optimal_hi),
+            ] {
+                let opt = optimal_bound(exact, sc, up);
+                let dist = (ord(bound) - ord(opt)).unsigned_abs() as f64;
+                acc.dist.push(dist);
+                acc.optimal += (bound == opt) as usize;
+                acc.certified += flag as usize;
+                acc.false_cert += (flag && false_certificate(bound, exact, sc, up)) as usize;
             }
             if !nurbs_box::testkit::reference::inner_reached(
                 rb,
@@ -184,15 +265,18 @@ mod imp {
         let a = args();
         let prov = Provenance::collect();
         let strategies = all_strategies(None);
-        let families: Vec<(String, Option<Family>)> = std::iter::once(("moderate".into(), None))
-            .chain(
-                Family::ALL
-                    .iter()
-                    .chain(&[Family::RangeLimits])
-                    .map(|f| (f.name().to_string(), Some(*f))),
-            )
-            .collect();
-        let header = "| family | strategy | curves | bounds | median | p90 | max | ref miss | pt miss | inner bad | curves missed | µs/curve (median) | µs/curve (mean) |\n|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|";
+        // None: moderate random curves; Some(None): the constructed ties
+        let families: Vec<(String, Option<Option<Family>>)> =
+            std::iter::once(("moderate".into(), None))
+                .chain(
+                    Family::ALL
+                        .iter()
+                        .chain(&[Family::RangeLimits])
+                        .map(|f| (f.name().to_string(), Some(Some(*f)))),
+                )
+                .chain(std::iter::once(("ties".into(), Some(None))))
+                .collect();
+        let header = "| family | strategy | curves | bounds | median | p90 | max | ref miss | pt miss | inner bad | curves missed | optimal % | certified % | false cert | µs/curve (median) | µs/curve (mean) | cert +% |\n|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|";
         println!("# Tightness: ulps_outside of every bound vs the 256-bit reference\n");
         println!(
             "command: `{}`, commit {}, {} ({} cores)\n",
@@ -205,7 +289,8 @@ mod imp {
             let mut r = gen::rng(a.seed.wrapping_mul(1000).wrapping_add(fi as u64));
             let curves: Vec<NurbsCurve> = (0..a.curves)
                 .map(|_| match fam {
-                    Some(f) => f.curve(&mut r),
+                    Some(Some(f)) => f.curve(&mut r),
+                    Some(None) => tie_curve(&mut r).1,
                     None => gen::random_curve(&mut r, &GenParams::default()),
                 })
                 .collect();
@@ -219,8 +304,9 @@ mod imp {
             for (si, s) in strategies.iter().enumerate() {
                 let mut acc = Acc::default();
                 for (c, rb) in curves.iter().zip(&refs) {
-                    let (t, e) = time_enclose(s.as_ref(), c);
+                    let (t, t_off, e) = time_enclose(s.as_ref(), c);
                     acc.times.push(t);
+                    acc.times_off.push(t_off);
                     measure(c, &e, rb, &mut acc);
                 }
                 println!("{}", acc.row(fname, s.name()));
@@ -239,7 +325,23 @@ mod imp {
         }
         println!(
             "\nTightness target for newton, bezier, search-region-verified: max <= 4, median <= 1, \
-             0 misses. search-region is the thesis heuristic (allowed to miss)."
+             0 misses. search-region is the thesis heuristic (allowed to miss). Optimality goal \
+             for newton and bezier: optimal 100%, certified >= 99.9%, 0 false certificates, \
+             cert +% <= 20."
         );
+        let ecdf: Vec<(String, Vec<f64>)> = strategies
+            .iter()
+            .zip(&totals)
+            .map(|(s, acc)| (s.name().to_string(), acc.dist.clone()))
+            .collect();
+        let svg = std::path::Path::new("results").join("tightness.svg");
+        plots::ecdf_plot(
+            &svg,
+            "Distance of each bound to the optimal double (all families)",
+            "1 + distance to the optimal double [ulps of the value, log scale]",
+            &ecdf,
+            &format!("{}, commit {}, {}", prov.command, prov.commit, prov.cpu),
+        );
+        eprintln!("wrote {}", svg.display());
     }
 }

@@ -63,6 +63,9 @@ fn mixed_json_lines_get_indexed_records_and_exit_1() {
     assert_eq!(floats(&recs[0]["hi"]), [2.0, 5.0]);
     assert_eq!(floats(&recs[0]["inner_lo"]), [0.0, -1.0]);
     assert_eq!(floats(&recs[0]["inner_hi"]), [2.0, 5.0]);
+    // the hull of a line is attained at both ends: every bound certified optimal
+    assert_eq!(recs[0]["optimal_lo"], serde_json::json!([true, true]));
+    assert_eq!(recs[0]["optimal_hi"], serde_json::json!([true, true]));
 
     // all valid -> 0
     let (code, recs, _) = run(

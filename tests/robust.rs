@@ -818,6 +818,8 @@ fn cli_hostile_lines_between_extreme_curves() {
                                 argmax: Default::default(),
                                 stats: Default::default(),
                                 termination: Termination::Converged,
+                                optimal_lo: false,
+                                optimal_hi: false,
                             })
                             .collect(),
                     };

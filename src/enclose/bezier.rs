@@ -814,6 +814,8 @@ pub(crate) fn coord_box(
         argmax: pick(&hi),
         stats,
         termination: term,
+        optimal_lo: false,
+        optimal_hi: false,
     }
 }
 

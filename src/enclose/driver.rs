@@ -392,7 +392,17 @@ pub fn degree_fallback<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclos
 /// reaches a value <= hi and a value >= lo, and `inner_lo = min(inner_lo, hi)`,
 /// `inner_hi = max(inner_hi, lo)` stay valid (a constant coordinate may otherwise get an inner
 /// bound one rounding beyond the exact outer one).
+///
+/// Last, every verified result gets its optimality certificates `optimal_lo` / `optimal_hi`
+/// ([`super::certify`], the one place for every strategy); `drive_with(s, c, false)` skips
+/// them (all `false`), which is how the cost of certification is measured.
 pub fn drive<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
+    drive_with(s, c, true)
+}
+
+/// [`drive`] with the certification switched on (`certify`, the default) or off (every
+/// `optimal_lo` / `optimal_hi` stays `false`).
+pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool) -> Enclosure {
     let mut e = if c.degree() > MAX_SEARCH_DEGREE {
         degree_fallback(s, c)
     } else {
@@ -421,6 +431,14 @@ pub fn drive<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
         }
         cb.inner_lo = cb.inner_lo.min(cb.hi).max(cb.lo);
         cb.inner_hi = cb.inner_hi.max(cb.lo).min(cb.hi);
+    }
+    if certify {
+        super::certify::certify(c, &mut e);
+    } else {
+        for cb in &mut e.coords {
+            cb.optimal_lo = false;
+            cb.optimal_hi = false;
+        }
     }
     e
 }
@@ -483,7 +501,8 @@ mod tests {
         assert!(r.knot_exp < -600);
         let s = r.apply(&big);
         assert_eq!(s.domain().1, ldexp(1e-200, -r.knot_exp));
-        let e = drive(&ControlHull, &big);
+        // (without the certification, which may lower a bound after a proof)
+        let e = drive_with(&ControlHull, &big, false);
         let h = ControlHull.enclose_prepared(&big);
         // the hull is exact: the rescaled one may only be wider by the subnormal steps
         for j in 0..2 {

@@ -110,6 +110,8 @@ pub(crate) fn control_point_box(
                 ..Default::default()
             },
             termination,
+            optimal_lo: false,
+            optimal_hi: false,
         });
     }
     out

@@ -23,12 +23,13 @@
 
 use crate::spline::curve::NurbsCurve;
 
+pub mod certify;
 pub mod driver;
 mod result;
 mod segments;
 
 pub use bezier::BezierSubdivision;
-pub use driver::{degree_fallback, drive, scale_outward, Rescaling, MAX_SEARCH_DEGREE};
+pub use driver::{degree_fallback, drive, drive_with, scale_outward, Rescaling, MAX_SEARCH_DEGREE};
 pub use hull::ControlHull;
 pub use newton::{DerivForm, Newton, Split, DEFAULT_MAX_WORK, EVALS_PER_SPAN, WORK_PER_SPAN};
 pub use result::{

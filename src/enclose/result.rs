@@ -184,6 +184,12 @@ pub struct CoordBox {
     pub stats: Stats,
     /// why the search stopped
     pub termination: Termination,
+    /// `true` is a proof that `lo` is the optimal double, lo = RD(min_u C_j(u)) (the largest
+    /// f64 <= the exact minimum); `false` says only that it was not proved. Set by the driver's
+    /// certification (`enclose::certify`); strategies construct it `false`.
+    pub optimal_lo: bool,
+    /// `true` is a proof that hi = RU(max_u C_j(u)) (the smallest f64 >= the exact maximum).
+    pub optimal_hi: bool,
 }
 
 impl CoordBox {

@@ -68,6 +68,8 @@ pub fn enclose_by_segments<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> En
             argmax: Default::default(),
             stats: Default::default(),
             termination: Termination::Direct,
+            optimal_lo: false,
+            optimal_hi: false,
         })
         .collect();
     let mut spans: Vec<(usize, Vec<SpanBox>)> = Vec::new();

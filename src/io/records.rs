@@ -101,7 +101,9 @@ pub fn termination_name(t: Termination) -> String {
 }
 
 /// Append an `enclose` record (no newline):
-/// `{"index","strategy","verified","lo","hi","inner_lo","inner_hi","stats":{...}}`.
+/// `{"index","strategy","verified","lo","hi","inner_lo","inner_hi","optimal_lo","optimal_hi",
+/// "stats":{...}}` (`optimal_*`: the certificates of `enclose::certify`, one boolean per
+/// coordinate).
 /// With `timings`, stats also has `time_total_s` and `time_derivatives_s` (off by default so
 /// that output is reproducible).
 pub fn write_enclosure_record(out: &mut Vec<u8>, index: usize, e: &Enclosure, timings: bool) {
@@ -121,6 +123,10 @@ pub fn write_enclosure_record(out: &mut Vec<u8>, index: usize, e: &Enclosure, ti
     write_nums(out, e.coords.iter().map(|c| sound(c.inner_lo, Side::High)));
     out.extend_from_slice(b",\"inner_hi\":");
     write_nums(out, e.coords.iter().map(|c| sound(c.inner_hi, Side::Low)));
+    out.extend_from_slice(b",\"optimal_lo\":");
+    write_bools(out, e.coords.iter().map(|c| c.optimal_lo));
+    out.extend_from_slice(b",\"optimal_hi\":");
+    write_bools(out, e.coords.iter().map(|c| c.optimal_hi));
     let s = e.stats();
     let _ = write!(
         out,
@@ -139,6 +145,18 @@ pub fn write_enclosure_record(out: &mut Vec<u8>, index: usize, e: &Enclosure, ti
         write_num(out, s.time_derivatives.as_secs_f64());
     }
     out.extend_from_slice(b"}}");
+}
+
+/// Append a JSON array of booleans.
+fn write_bools(out: &mut Vec<u8>, xs: impl Iterator<Item = bool>) {
+    out.push(b'[');
+    for (i, x) in xs.enumerate() {
+        if i > 0 {
+            out.push(b',');
+        }
+        out.extend_from_slice(if x { b"true" } else { b"false" });
+    }
+    out.push(b']');
 }
 
 /// Append an `eval` record (no newline): `{"index","param","derivative","lo","hi"}` from the

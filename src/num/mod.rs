@@ -1,16 +1,18 @@
 //! Number types: the [`Scalar`] trait every kernel is generic over, and the verified types
-//! beside [`inari::Interval`]: [`Ddi`] (rigorous double-double intervals) and [`Mr`] (rigorous
-//! midpoint-radius f64).
+//! beside [`inari::Interval`]: [`Ddi`] (rigorous double-double intervals), [`Mr`] (rigorous
+//! midpoint-radius f64) and [`Exact`] (exact rationals, for the optimality certificates).
 //!
 //! `scalar` holds the trait and its f64 / interval / MPFR instances; `ddi` and `mr` define the
 //! semantics of their types on top of error-free transformations and directed error bounds.
 
 pub mod ddi;
+pub mod exact;
 pub mod mr;
 mod poly;
 mod scalar;
 
 pub use ddi::Ddi;
+pub use exact::Exact;
 pub use mr::Mr;
 pub use poly::{binom, binom_exact, binom_s, binomials, binomials_s, horner};
 pub use scalar::*;

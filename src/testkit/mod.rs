@@ -8,4 +8,5 @@ pub mod gen;
 pub mod reference;
 pub mod report;
 pub mod robust;
+pub mod ties;
 pub mod validate;

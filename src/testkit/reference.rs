@@ -408,6 +408,74 @@ pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f6
     (diff / fl(ulp(scale))).to_f64()
 }
 
+/// The optimal f64 bound of an exact extremum: RU(max) for an upper bound (`is_upper`),
+/// RD(min) for a lower one, where an exact value within the reference's resolution (2^-160
+/// of max(scale, |exact|), see [`ulps_outside`]) of a double counts as that double.
+pub fn optimal_bound(exact: &Float, scale: f64, is_upper: bool) -> f64 {
+    let near = exact.to_f64();
+    if near.is_finite() && ulps_outside(near, exact, scale, is_upper) == 0.0 {
+        return near;
+    }
+    exact.to_f64_round(if is_upper {
+        rug::float::Round::Up
+    } else {
+        rug::float::Round::Down
+    })
+}
+
+/// Whether a certificate on `bound` contradicts the reference: the bound is neither MPFR's
+/// rounding (RU / RD) of the reference extremum nor the optimal double with an extremum within
+/// the resolution counted as the double ([`optimal_bound`]), and it lies farther from the
+/// exact extremum than the reference's resolution ([`ulps_outside`] != 0). Within the resolution the reference cannot tell (e.g. an
+/// attained subnormal end control point next to coordinates of size 1: 2^-1060 relative).
+pub fn false_certificate(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> bool {
+    // MPFR's own rounding of the reference value (at its working precision, which can resolve
+    // an extremum 0.58 above a double near 8.6e307) also counts as agreement
+    let direct = exact.to_f64_round(if is_upper {
+        rug::float::Round::Up
+    } else {
+        rug::float::Round::Down
+    });
+    bound != optimal_bound(exact, scale, is_upper)
+        && bound != direct
+        && ulps_outside(bound, exact, scale, is_upper) != 0.0
+}
+
+/// Every optimality certificate of a verified enclosure agrees with the reference: a `true`
+/// `optimal_lo[j]` / `optimal_hi[j]` has lo = RD(min) / hi = RU(max) ([`optimal_bound`]), up
+/// to the reference's resolution ([`false_certificate`]).
+/// Returns a message naming the first false certificate.
+pub fn check_certificates(
+    curve: &NurbsCurve,
+    rb: &ReferenceBox,
+    e: &crate::enclose::Enclosure,
+) -> Result<(), String> {
+    for (j, cb) in e.coords.iter().enumerate() {
+        let scale = curve.coord_scale(j);
+        if !e.verified && (cb.optimal_lo || cb.optimal_hi) {
+            return Err(format!(
+                "{}: a heuristic result has a certificate",
+                e.strategy
+            ));
+        }
+        for (flag, bound, exact, up) in [
+            (cb.optimal_lo, cb.lo, &rb.lo[j], false),
+            (cb.optimal_hi, cb.hi, &rb.hi[j], true),
+        ] {
+            let opt = optimal_bound(exact, scale, up);
+            if flag && false_certificate(bound, exact, scale, up) {
+                return Err(format!(
+                    "{}: coordinate {j}: false certificate: {} = {bound:e} certified optimal, \
+                     exact {exact}, optimal double {opt:e}",
+                    e.strategy,
+                    if up { "hi" } else { "lo" }
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Whether inner bounds are reached according to the reference: exact min <= `inner_lo` and
 /// `inner_hi` <= exact max of coordinate `j`, up to the reference's resolution (see
 /// [`ulps_outside`]: an attained f64 value, e.g. a clamped end point, may sit ~2^-256 beyond the

@@ -107,9 +107,15 @@ pub fn check_reference(
     c: &nurbs_box::NurbsCurve,
     encs: &[nurbs_box::Enclosure],
 ) -> Vec<(&'static str, usize, f64, f64, nurbs_box::Termination)> {
-    use nurbs_box::testkit::reference::{inner_reached, reference_box, ulps_outside};
+    use nurbs_box::testkit::reference::{
+        check_certificates, inner_reached, reference_box, ulps_outside,
+    };
     let rb = reference_box(c);
     let mut out = Vec::new();
+    for e in encs {
+        // every optimality certificate agrees with MPFR's rounding of the exact extremum
+        check_certificates(c, &rb, e).unwrap_or_else(|m| panic!("{name}: {m}"));
+    }
     for e in encs.iter().filter(|e| e.verified) {
         for (j, cb) in e.coords.iter().enumerate() {
             let scale = c.coord_scale(j);

@@ -106,6 +106,8 @@ impl Acc {
             argmax,
             stats,
             termination,
+            optimal_lo: false,
+            optimal_hi: false,
         }
     }
 }

@@ -130,6 +130,8 @@ pub(crate) fn coord_box(
         argmax: Default::default(),
         stats,
         termination,
+        optimal_lo: false,
+        optimal_hi: false,
     }
 }
 

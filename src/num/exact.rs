@@ -1,0 +1,314 @@
+//! [`Exact`]: exact rational arithmetic (big integers, `num-rational`), a [`Scalar`] for the
+//! certificates of optimal bounds (`enclose::certify`).
+//!
+//! A NURBS curve with f64 data evaluated at a rational parameter has a rational value: every
+//! step of de Boor corner cutting (thesis CurvePntByCornerCut, NURBS Book A5.1), of the
+//! derivative control points (thesis eq. 2.7) and of the rational quotient rule (thesis eq.
+//! 3.10) is a field operation on rationals (knots, weights and coordinates are f64, hence
+//! dyadic rationals, embedded exactly by [`Scalar::from_f64`]). So the generic kernels of
+//! `crate::spline`, run on `Exact`, return the exact value C^(k)(u), with no rounding at all.
+//!
+//! A division by zero (which the kernels never perform on valid curves: knot differences of a
+//! non-empty span and weight functions are > 0) gives the *undefined* value instead of a
+//! panic; every operation with an undefined operand is undefined, its [`Scalar::to_interval`]
+//! is ENTIRE, and every comparison with it is false, so it can never certify anything.
+
+use crate::num::Scalar;
+use inari::Interval;
+use num_bigint::{BigInt, Sign};
+use num_rational::BigRational;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::cmp::Ordering;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// An exact rational number, or *undefined* (the result of a division by zero).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Exact(Option<BigRational>);
+
+impl Exact {
+    /// The exact value of a finite f64 (undefined for NaN or an infinity).
+    pub fn of(x: f64) -> Exact {
+        Exact(ratio_of_f64(x))
+    }
+
+    /// The rational itself (`None` if undefined).
+    pub fn value(&self) -> Option<&BigRational> {
+        self.0.as_ref()
+    }
+
+    /// Whether the value is defined and strictly greater than the f64 `x` (false for NaN x;
+    /// `x = -inf` is below every rational, `+inf` above).
+    pub fn gt_f64(&self, x: f64) -> bool {
+        self.cmp_f64(x) == Some(Ordering::Greater)
+    }
+
+    /// Exact comparison with an f64 (`None` if undefined or x is NaN).
+    pub fn cmp_f64(&self, x: f64) -> Option<Ordering> {
+        let q = self.0.as_ref()?;
+        if x.is_nan() {
+            return None;
+        }
+        if x == f64::INFINITY {
+            return Some(Ordering::Less);
+        }
+        if x == f64::NEG_INFINITY {
+            return Some(Ordering::Greater);
+        }
+        Some(q.cmp(&ratio_of_f64(x)?))
+    }
+
+    /// The largest f64 <= the value (-inf below -f64::MAX; NaN if undefined).
+    pub fn round_down(&self) -> f64 {
+        let Some(q) = self.0.as_ref() else {
+            return f64::NAN;
+        };
+        let below = |x: f64| -> bool { q < &ratio_of_f64(x).expect("finite") };
+        let mut x = approx(q);
+        if x == f64::INFINITY {
+            x = f64::MAX;
+        }
+        if x == f64::NEG_INFINITY {
+            x = -f64::MAX;
+        }
+        // x is finite and within a few steps of the value: walk to RD(value) (each comparison
+        // exact)
+        while below(x) {
+            x = x.next_down();
+            if x == f64::NEG_INFINITY {
+                return x;
+            }
+        }
+        loop {
+            let y = x.next_up();
+            if y == f64::INFINITY || below(y) {
+                return x;
+            }
+            x = y;
+        }
+    }
+
+    /// The smallest f64 >= the value (+inf above f64::MAX; NaN if undefined).
+    pub fn round_up(&self) -> f64 {
+        -(-self.clone()).round_down()
+    }
+
+    /// The dyadic rational nearest below-or-at the value with `bits` binary digits after the
+    /// point of `scale` (a power of two), i.e. a multiple of `scale * 2^-bits` (undefined stays
+    /// undefined). Used to keep Newton iterates of the parameter short.
+    pub fn truncate_to(&self, scale_exp: i32, bits: u32) -> Exact {
+        let Some(q) = self.0.as_ref() else {
+            return Exact(None);
+        };
+        // grid step 2^g, g = scale_exp - bits: floor(q / 2^g) * 2^g
+        let g = scale_exp as i64 - bits as i64;
+        let pow = |k: u64| BigInt::one() << k;
+        let scaled = if g >= 0 {
+            q / BigRational::from_integer(pow(g as u64))
+        } else {
+            q * BigRational::from_integer(pow((-g) as u64))
+        };
+        let f = scaled.floor();
+        Exact(Some(if g >= 0 {
+            f * BigRational::from_integer(pow(g as u64))
+        } else {
+            f / BigRational::from_integer(pow((-g) as u64))
+        }))
+    }
+
+    /// The sign of the value (`None` if undefined).
+    pub fn signum(&self) -> Option<Ordering> {
+        self.0.as_ref().map(|q| q.numer().sign().cmp(&Sign::NoSign))
+    }
+}
+
+/// The exact rational of a finite f64 (`None` for NaN / infinities).
+fn ratio_of_f64(x: f64) -> Option<BigRational> {
+    if !x.is_finite() {
+        return None;
+    }
+    if x == 0.0 {
+        return Some(BigRational::zero());
+    }
+    let bits = x.to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i64;
+    let frac = bits & ((1u64 << 52) - 1);
+    // x = m 2^k with integer m
+    let (m, k) = if e == 0 {
+        (frac, -1074)
+    } else {
+        (frac | (1u64 << 52), e - 1075)
+    };
+    let m = BigInt::from(m);
+    let m = if x < 0.0 { -m } else { m };
+    Some(if k >= 0 {
+        BigRational::from_integer(m << (k as u64))
+    } else {
+        BigRational::new(m, BigInt::one() << ((-k) as u64))
+    })
+}
+
+/// An f64 near q (within a few ulps; ±inf or 0 when out of range): the integer part of
+/// q 2^s for an s that leaves ~64 significant bits, scaled back.
+fn approx(q: &BigRational) -> f64 {
+    let (n, d) = (q.numer(), q.denom());
+    if n.is_zero() {
+        return 0.0;
+    }
+    let s = 64 - (n.bits() as i64 - d.bits() as i64);
+    let m = if s >= 0 {
+        (n.abs() << (s as u64)) / d
+    } else {
+        n.abs() / (d << ((-s) as u64))
+    };
+    let mf = m.to_f64().unwrap_or(f64::INFINITY);
+    // mf 2^-s in steps that cannot overflow or underflow prematurely
+    let mut x = mf;
+    let mut k = -s;
+    while k > 0 && x.is_finite() {
+        let st = k.min(1000);
+        x *= 2f64.powi(st as i32);
+        k -= st;
+    }
+    while k < 0 && x != 0.0 {
+        let st = (-k).min(1000);
+        x *= 2f64.powi(-(st as i32));
+        k += st;
+    }
+    if n.is_negative() {
+        -x
+    } else {
+        x
+    }
+}
+
+fn lift(
+    a: Exact,
+    b: Exact,
+    f: impl FnOnce(BigRational, BigRational) -> Option<BigRational>,
+) -> Exact {
+    match (a.0, b.0) {
+        (Some(x), Some(y)) => Exact(f(x, y)),
+        _ => Exact(None),
+    }
+}
+
+impl Add for Exact {
+    type Output = Exact;
+    fn add(self, o: Exact) -> Exact {
+        lift(self, o, |x, y| Some(x + y))
+    }
+}
+
+impl Sub for Exact {
+    type Output = Exact;
+    fn sub(self, o: Exact) -> Exact {
+        lift(self, o, |x, y| Some(x - y))
+    }
+}
+
+impl Mul for Exact {
+    type Output = Exact;
+    fn mul(self, o: Exact) -> Exact {
+        lift(self, o, |x, y| Some(x * y))
+    }
+}
+
+impl Div for Exact {
+    type Output = Exact;
+    fn div(self, o: Exact) -> Exact {
+        // (num-rational panics on a zero divisor: undefined instead)
+        lift(self, o, |x, y| (!y.is_zero()).then(|| x / y))
+    }
+}
+
+impl Neg for Exact {
+    type Output = Exact;
+    fn neg(self) -> Exact {
+        Exact(self.0.map(|x| -x))
+    }
+}
+
+impl Scalar for Exact {
+    fn from_f64(x: f64) -> Self {
+        Exact::of(x)
+    }
+    fn to_interval(&self) -> Interval {
+        if self.0.is_none() {
+            return Interval::ENTIRE;
+        }
+        Interval::try_from((self.round_down(), self.round_up())).unwrap_or(Interval::ENTIRE)
+    }
+    fn to_f64(&self) -> f64 {
+        self.0.as_ref().map_or(f64::NAN, approx)
+    }
+    fn is_exact_zero(&self) -> bool {
+        self.0.as_ref().is_some_and(Zero::is_zero)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn f64_round_trip_and_directed_rounding() {
+        for x in [
+            0.0,
+            -0.0,
+            1.0,
+            0.1,
+            -3.75,
+            f64::MAX,
+            -f64::MAX,
+            f64::MIN_POSITIVE,
+            f64::from_bits(1),
+            -f64::from_bits(7),
+            1e300,
+            1e-300,
+        ] {
+            let e = Exact::of(x);
+            assert_eq!(e.round_down(), x);
+            assert_eq!(e.round_up(), x);
+            assert_eq!(e.cmp_f64(x), Some(Ordering::Equal));
+            assert_eq!(e.to_f64(), x);
+        }
+        // 1/3: the two neighbours
+        let t = Exact::of(1.0) / Exact::of(3.0);
+        let (d, u) = (t.round_down(), t.round_up());
+        assert_eq!(u, d.next_up());
+        assert!(t.gt_f64(d) && !t.gt_f64(u));
+        assert!(d <= 1.0 / 3.0 && 1.0 / 3.0 <= u);
+        // beyond the range, and below the smallest subnormal
+        let big = Exact::of(f64::MAX) * Exact::of(2.0);
+        assert_eq!(
+            (big.round_down(), big.round_up()),
+            (f64::MAX, f64::INFINITY)
+        );
+        let tiny = Exact::of(f64::from_bits(1)) / Exact::of(3.0);
+        assert_eq!(
+            (tiny.round_down(), tiny.round_up()),
+            (0.0, f64::from_bits(1))
+        );
+        let ntiny = -tiny;
+        assert_eq!(
+            (ntiny.round_down(), ntiny.round_up()),
+            (-f64::from_bits(1), 0.0)
+        );
+        // division by zero is undefined, never a panic, and certifies nothing
+        let z = Exact::of(1.0) / Exact::of(0.0);
+        assert!(!z.gt_f64(f64::NEG_INFINITY));
+        assert_eq!(z.to_interval(), Interval::ENTIRE);
+        assert!(!(z + Exact::of(1.0)).is_exact_zero());
+    }
+
+    #[test]
+    fn truncation_to_a_dyadic_grid() {
+        let t = Exact::of(1.0) / Exact::of(3.0);
+        let q = t.truncate_to(0, 10);
+        // floor(2^10 / 3) / 2^10 = 341 / 1024
+        assert_eq!(q, Exact::of(341.0 / 1024.0));
+        let n = (-t).truncate_to(0, 10);
+        assert_eq!(n, Exact::of(-342.0 / 1024.0));
+        assert_eq!(Exact::of(6.0).truncate_to(3, 1), Exact::of(4.0));
+    }
+}

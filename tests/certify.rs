@@ -1,0 +1,218 @@
+//! Optimality certificates (`optimal_lo` / `optimal_hi`, `enclose::certify`):
+//!
+//! * constructed curves whose extrema are known doubles (symmetric quadratics and cubics with
+//!   the extremum at u = 1/2, a rational circle with extrema at knots, a C0 corner at a knot,
+//!   clamped ends): `newton` and `bezier` return the optimal double and certify it;
+//! * the switch: `drive_with(s, c, false)` certifies nothing and its box contains the
+//!   certified one;
+//! * with feature `mpfr`: every `true` agrees with MPFR's rounding of the exact extremum
+//!   (`testkit::reference::check_certificates`) for every strategy, on the constructed curves
+//!   (exact doubles and near-ties within 2^-60 .. 2^-110 relative of a double,
+//!   `testkit::ties`), the nasty families and moderate random curves.
+
+mod common;
+
+use common::config;
+use nurbs_box::enclose::{all_strategies, drive_with, strategy_by_name};
+use nurbs_box::testkit::gen;
+use nurbs_box::testkit::ties::TieKind;
+use nurbs_box::NurbsCurve;
+use proptest::prelude::*;
+
+fn bezier_curve(pts: Vec<Vec<f64>>, w: Option<Vec<f64>>) -> NurbsCurve {
+    let p = pts.len() - 1;
+    let mut k = vec![0.0; p + 1];
+    k.extend(vec![1.0; p + 1]);
+    NurbsCurve::new(p, k, pts, w).unwrap()
+}
+
+/// newton and bezier: every bound equals the known optimal double and is certified.
+fn assert_optimal_certified(name: &str, c: &NurbsCurve, lo: &[f64], hi: &[f64]) {
+    for s in ["newton", "bezier"] {
+        let e = strategy_by_name(s, None).unwrap().enclose(c);
+        for (j, cb) in e.coords.iter().enumerate() {
+            assert_eq!(
+                (cb.lo, cb.hi),
+                (lo[j], hi[j]),
+                "{name}: {s} coordinate {j}: not the optimal box"
+            );
+            assert!(
+                cb.optimal_lo && cb.optimal_hi,
+                "{name}: {s} coordinate {j}: optimal but not certified ({}, {})",
+                cb.optimal_lo,
+                cb.optimal_hi
+            );
+        }
+    }
+}
+
+#[test]
+fn symmetric_curves_with_double_extrema_at_one_half() {
+    // quadratic: C(1/2) = (a + b)/2 is the maximum for b > a
+    let (a, b) = (0.125, 3.0);
+    let c = bezier_curve(vec![vec![a, -1.0], vec![b, 5.0], vec![a, -1.0]], None);
+    assert_optimal_certified("quadratic", &c, &[a, -1.0], &[(a + b) / 2.0, 2.0]);
+    // cubic: C(1/2) = (a + 3b)/4
+    let (a, b) = (-0.5, 1.75);
+    let c = bezier_curve(
+        vec![vec![a, 1.0], vec![b, -3.0], vec![b, -3.0], vec![a, 1.0]],
+        None,
+    );
+    assert_optimal_certified(
+        "cubic",
+        &c,
+        &[a, (1.0 + 3.0 * -3.0) / 4.0],
+        &[(a + 3.0 * b) / 4.0, 1.0],
+    );
+}
+
+#[test]
+fn rational_circle_extrema_at_knots() {
+    // the 9-point circle (rounded weights 1/sqrt 2: an ellipse-like conic through the four
+    // axis points at the double knots): extrema exactly ±1
+    let c = gen::nurbs_circle();
+    assert_optimal_certified("circle", &c, &[-1.0, -1.0], &[1.0, 1.0]);
+    // scaled and shifted: c ± r
+    let (cx, cy, r) = (0.75, -2.5, 3.0);
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let pts: Vec<Vec<f64>> = c
+        .control_points()
+        .into_iter()
+        .map(|p| vec![cx + r * p[0], cy + r * p[1]])
+        .collect();
+    let sc = NurbsCurve::new(
+        2,
+        c.knots().to_vec(),
+        pts,
+        Some(vec![1., s, 1., s, 1., s, 1., s, 1.]),
+    )
+    .unwrap();
+    assert_optimal_certified("scaled circle", &sc, &[cx - r, cy - r], &[cx + r, cy + r]);
+}
+
+#[test]
+fn maximum_at_a_c0_knot() {
+    // double knot 0.5 of a quadratic: C(0.5) = P2, the largest control point
+    let c = NurbsCurve::new(
+        2,
+        vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.],
+        vec![
+            vec![0.0, 0.0],
+            vec![1.0, 1.0],
+            vec![7.5, 2.0],
+            vec![1.0, 3.0],
+            vec![0.25, 4.0],
+        ],
+        None,
+    )
+    .unwrap();
+    assert_optimal_certified("corner", &c, &[0.0, 0.0], &[7.5, 4.0]);
+}
+
+#[test]
+fn the_switch_turns_certification_off() {
+    let c = bezier_curve(vec![vec![0.0], vec![0.75], vec![0.0]], None);
+    for s in all_strategies(None) {
+        let on = s.enclose(&c);
+        let off = drive_with(s.as_ref(), &c, false);
+        for (a, b) in on.coords.iter().zip(&off.coords) {
+            assert!(!b.optimal_lo && !b.optimal_hi, "{}", s.name());
+            // certification may only lower a bound (after a proof), never widen it
+            assert!(b.lo <= a.lo && a.hi <= b.hi, "{}", s.name());
+        }
+    }
+    // the heuristic never certifies
+    let e = strategy_by_name("search-region", None).unwrap().enclose(&c);
+    assert!(e.coords.iter().all(|cb| !cb.optimal_lo && !cb.optimal_hi));
+}
+
+proptest! {
+    #![proptest_config(config(64))]
+
+    /// Constructed exact-double extrema (symmetric curves, circles, corners): newton and bezier
+    /// certify both sides of the coordinate that carries the construction.
+    #[test]
+    fn constructed_double_extrema_are_certified(seed in any::<u64>()) {
+        let mut rng = gen::rng(seed);
+        let kind = [TieKind::SymmetricQuadratic, TieKind::SymmetricCubic, TieKind::ScaledCircle,
+                    TieKind::KnotCorner][(seed % 4) as usize];
+        let c = kind.curve(&mut rng);
+        for s in ["newton", "bezier"] {
+            let e = strategy_by_name(s, None).unwrap().enclose(&c);
+            let cb = &e.coords[0];
+            prop_assert!(cb.optimal_lo && cb.optimal_hi,
+                "{}: {s}: x not certified: [{:e}, {:e}] inner [{:e}, {:e}]", kind.name(),
+                cb.lo, cb.hi, cb.inner_lo, cb.inner_hi);
+        }
+    }
+}
+
+#[cfg(feature = "mpfr")]
+mod mpfr {
+    use super::*;
+    use nurbs_box::testkit::reference::{check_certificates, reference_box};
+    use nurbs_box::testkit::ties::tie_curve;
+
+    fn check(name: &str, c: &NurbsCurve) -> Result<(), String> {
+        let rb = reference_box(c);
+        for s in all_strategies(None) {
+            let e = s.enclose(c);
+            check_certificates(c, &rb, &e).map_err(|m| format!("{name}: {m}"))?;
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(config(64))]
+
+        /// Every `true` agrees with MPFR's rounding of the exact extremum: constructed exact
+        /// doubles and near-ties.
+        #[test]
+        fn certificates_agree_with_mpfr_on_ties(seed in any::<u64>()) {
+            let (k, c) = tie_curve(&mut gen::rng(seed));
+            if let Err(m) = check(k.name(), &c) {
+                prop_assert!(false, "{m}");
+            }
+        }
+
+        /// The same on the nasty families.
+        #[test]
+        fn certificates_agree_with_mpfr_on_nasty_curves(seed in any::<u64>()) {
+            let (f, c) = gen::nasty_curve(&mut gen::rng(seed));
+            if let Err(m) = check(f.name(), &c) {
+                prop_assert!(false, "{m}");
+            }
+        }
+
+        /// The same on moderate random curves.
+        #[test]
+        fn certificates_agree_with_mpfr_on_moderate_curves(seed in any::<u64>()) {
+            let c = gen::random_curve(&mut gen::rng(seed), &gen::GenParams::default());
+            if let Err(m) = check("moderate", &c) {
+                prop_assert!(false, "{m}");
+            }
+        }
+    }
+
+    /// Near-ties: the certified bound is the optimal double on either side of the tie, and
+    /// newton / bezier certify at least most of them (the exact stage decides ties far below
+    /// double-double resolution).
+    #[test]
+    fn near_ties_are_certified() {
+        let (mut certified, mut total) = (0, 0);
+        for seed in 0..40 {
+            let c = TieKind::NearTieQuadratic.curve(&mut gen::rng(seed));
+            check("near_tie", &c).unwrap();
+            for s in ["newton", "bezier"] {
+                let e = strategy_by_name(s, None).unwrap().enclose(&c);
+                let cb = &e.coords[0];
+                total += 2;
+                certified += cb.optimal_lo as usize + cb.optimal_hi as usize;
+            }
+        }
+        assert!(
+            certified * 10 >= total * 9,
+            "only {certified} of {total} near-tie bounds certified"
+        );
+    }
+}
