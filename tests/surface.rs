@@ -413,3 +413,34 @@ fn high_degree_stays_bounded_and_sound() {
     assert_eq!(e.termination(), Termination::WorkLimit);
     assert_eq!((e.coords[1].lo, e.coords[1].hi), (0.0, 1.0));
 }
+
+/// The optimality flags of a surface: `true` exactly where the bound is attained (inner ==
+/// outer), on every family and strategy; the rational example of `docs/formats.md` has its
+/// corner bounds certified and its interior z maximum (2/3, not a double) not.
+#[test]
+fn optimality_flags_mark_exactly_the_attained_bounds() {
+    for (name, s, _) in families() {
+        for e in all_surface_strategies(&Settings::default()) {
+            let r = e.enclose(&s);
+            for (j, c) in r.coords.iter().enumerate() {
+                let what = format!("{name} {} coordinate {j}", e.name());
+                assert_eq!(c.optimal_lo, c.inner_lo == c.lo, "{what}: optimal_lo");
+                assert_eq!(c.optimal_hi, c.inner_hi == c.hi, "{what}: optimal_hi");
+            }
+        }
+    }
+    let text = r#"{"degree_u": 2, "degree_v": 1, "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 1, 1],
+        "control_points": [[[0, 0, 0], [0, 1, 0]], [[1, 0, 2], [1, 1, 2]], [[2, 0, 0], [2, 1, 0]]],
+        "weights": [[1, 1], [0.5, 0.5], [1, 1]]}"#;
+    let Ok(Shape::Surface(s)) = parse_record(text.as_bytes()) else {
+        panic!("the example is a surface")
+    };
+    let r = surface_strategy_by_name("newton", None)
+        .unwrap()
+        .enclose(&s);
+    let lo: Vec<bool> = r.coords.iter().map(|c| c.optimal_lo).collect();
+    let hi: Vec<bool> = r.coords.iter().map(|c| c.optimal_hi).collect();
+    assert_eq!(lo, [true, true, true]);
+    assert_eq!(hi, [true, true, false]);
+    assert!(r.coords[2].hi >= 2.0 / 3.0 && r.coords[2].inner_hi <= 2.0 / 3.0);
+}

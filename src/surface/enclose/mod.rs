@@ -228,6 +228,12 @@ pub fn drive<E: SurfaceEncloser + ?Sized>(e: &E, s: &NurbsSurface) -> Enclosure 
         cb.hi = cb.hi.min(phi);
         cb.inner_lo = cb.inner_lo.min(cb.hi).max(cb.lo);
         cb.inner_hi = cb.inner_hi.max(cb.lo).min(cb.hi);
+        // The certificate's first rule (as for curves, `enclose::certify`): S_j provably
+        // reaches a value <= inner_lo and never goes below lo, so inner_lo == lo means
+        // min S_j = lo exactly, hence lo = RD(min); likewise hi. Surfaces have no other rule yet
+        // (no double-double or exact stage), so every other flag is `false`.
+        cb.optimal_lo = r.verified && cb.inner_lo == cb.lo;
+        cb.optimal_hi = r.verified && cb.inner_hi == cb.hi;
     }
     r
 }
