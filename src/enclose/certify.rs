@@ -70,7 +70,7 @@
 //! At most [`MAX_CANDIDATES`] candidates, [`NEWTON_STEPS`] double-double Newton steps, the
 //! exact stage only for the best candidate and degree <= [`EXACT_MAX_DEGREE`] (its exact
 //! Newton levels only for a value within 2^-96 of t, two exact Newton steps per level of
-//! [`ZIV_BITS`]); lowering only up to degree [`EXACT_MAX_DEGREE`], a lowering proof at most
+//! [`ZIV_BITS`]); lowering only up to degree [`LOWER_MAX_DEGREE`], a lowering proof at most
 //! [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; no search at all
 //! above degree [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
@@ -93,14 +93,19 @@ pub const NEWTON_STEPS: usize = 4;
 pub const SEARCH_MAX_DEGREE: usize = 64;
 /// Highest degree for which exact rational evaluation is attempted (the rationals of a de
 /// Boor triangle grow with the degree).
-pub const EXACT_MAX_DEGREE: usize = 16;
+pub const EXACT_MAX_DEGREE: usize = 6;
 /// Binary digits (relative to the parameter magnitude) of the dyadic parameters of the exact
 /// Ziv levels.
 pub const ZIV_BITS: [u32; 3] = [120, 240, 480];
+/// Highest degree for which a bound is lowered (the branch-and-bound proof costs up to
+/// [`MAX_BOXES`] double-double evaluations per side, which above this degree costs many times
+/// the strategy's own run).
+pub const LOWER_MAX_DEGREE: usize = 5;
 /// How often a side's bound may be lowered by one ulp (after a proof that max <= next_down).
 pub const MAX_LOWERINGS: usize = 2;
 /// A lowering is tried only when some value seen has an upper end within this many doubles
-/// of the bound.
+/// of the bound, or within this many ulps of the coordinate scale (a strategy's tolerance is
+/// relative to the scale, so near zero its bound can be many doubles of the value away).
 pub const LOWER_WITHIN_ULPS: usize = 8;
 /// Parameter boxes per lowering proof (branch and bound over the whole domain).
 pub const MAX_BOXES: usize = 64;
@@ -338,6 +343,16 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
             proved = true;
             break;
         }
+        // The search stages only try to complete what the strategy nearly proved: when its
+        // own attained value is more than LOWER_WITHIN_ULPS ulps of the coordinate scale below
+        // the bound (a loose bound such as the control hull's), the answer is `false` at once.
+        // This keeps the certificate's cost a small part of a loose strategy's (cheap) run; a
+        // tight strategy's gap is within its tolerance, about an ulp of the scale.
+        let scale = bound.abs().max(ev.c.coord_scale(j));
+        let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(scale);
+        if bound - inner > near_scale {
+            break;
+        }
         let d = ddi_stage(ev, j, sign, t, &cands);
         if d.proved {
             proved = true;
@@ -351,8 +366,8 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // stage (3.) and the exact concavity rule.
         let target = d.guess.max(inner);
         let lower = round < MAX_LOWERINGS
-            && ev.c.degree() <= EXACT_MAX_DEGREE
-            && target >= nth_down(bound, LOWER_WITHIN_ULPS);
+            && ev.c.degree() <= LOWER_MAX_DEGREE
+            && (target >= nth_down(bound, LOWER_WITHIN_ULPS) || bound - target <= near_scale);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
             if !lower {
                 return None;
@@ -912,9 +927,10 @@ mod tests {
         // (the strategy's bound may be one ulp above; the lowering proof removes it)
         assert_eq!(e.coords[0].hi, 0.375);
         assert!(e.coords[0].optimal_hi);
-        // with the optimal bound (and no attained inner value) the certificate holds
+        // with the optimal bound (and no attained inner value equal to it) the certificate
+        // holds
         e.coords[0].hi = 0.375;
-        e.coords[0].inner_hi = 0.25;
+        e.coords[0].inner_hi = 0.375f64.next_down().next_down();
         certify(&c, &mut e);
         assert!(e.coords[0].optimal_hi);
     }
