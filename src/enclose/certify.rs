@@ -429,6 +429,12 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
         return out;
     }
     let guess = &mut out.guess;
+    // g(u) in double-double; the largest upper end seen goes to `guess`
+    let look = |ev: &mut Evals, u: f64, guess: &mut f64| -> Option<Ddi> {
+        let g = ev.ddi(j, sign, u, 0)?[0];
+        *guess = guess.max(g.to_interval().sup());
+        Some(g)
+    };
     let mut straddle = false;
     let (a, b) = ev.c.domain();
     let cands: Vec<Extremum> = cands.iter().take(MAX_CANDIDATES).copied().collect();
@@ -446,34 +452,29 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
             let kn = ev.c.knots();
             for (i, &u) in kn.iter().enumerate() {
                 let first = i == 0 || kn[i - 1] < u;
-                if first && lo <= u && u <= hi && multiplicity(kn, u) >= p {
-                    if let Some(g) = ev.ddi(j, sign, u, 0) {
-                        *guess = guess.max(g[0].to_interval().sup());
-                        if ddi_above(&g[0], t) {
-                            {
-                                out.proved = true;
-                                return out;
-                            }
-                        }
-                    }
+                if first
+                    && lo <= u
+                    && u <= hi
+                    && multiplicity(kn, u) >= p
+                    && look(ev, u, guess).is_some_and(|g| ddi_above(&g, t))
+                {
+                    out.proved = true;
+                    return out;
                 }
             }
             continue;
         }
         let mid = (lo + 0.5 * (hi - lo)).clamp(lo, hi);
-        let Some(g) = ev.ddi(j, sign, mid, 0) else {
+        let Some(g) = look(ev, mid, guess) else {
             continue;
         };
-        *guess = guess.max(g[0].to_interval().sup());
-        if ddi_above(&g[0], t) {
-            {
-                out.proved = true;
-                return out;
-            }
+        if ddi_above(&g, t) {
+            out.proved = true;
+            return out;
         }
-        straddle |= !ddi_at_most(&g[0], t);
+        straddle |= !ddi_at_most(&g, t);
         let mut u = mid;
-        let mut top = (g[0].to_f64(), mid);
+        let mut top = (g.to_f64(), mid);
         if lo < hi {
             for _ in 0..NEWTON_STEPS {
                 let Some(d) = ev.ddi(j, sign, u, 2) else {
@@ -493,19 +494,16 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
                 if v < a || v > b {
                     continue;
                 }
-                let Some(g) = ev.ddi(j, sign, v, 0) else {
+                let Some(g) = look(ev, v, guess) else {
                     continue;
                 };
-                *guess = guess.max(g[0].to_interval().sup());
-                if ddi_above(&g[0], t) {
-                    {
-                        out.proved = true;
-                        return out;
-                    }
+                if ddi_above(&g, t) {
+                    out.proved = true;
+                    return out;
                 }
-                straddle |= !ddi_at_most(&g[0], t);
-                if g[0].to_f64() > top.0 {
-                    top = (g[0].to_f64(), v);
+                straddle |= !ddi_at_most(&g, t);
+                if g.to_f64() > top.0 {
+                    top = (g.to_f64(), v);
                 }
             }
         }

@@ -148,33 +148,23 @@ impl<'a> Engine<'a> {
 
     /// (A_j^(l), w^(l)) over / at `u` (inside the closed span k), l <= 2.
     fn level(&mut self, l: usize, k: usize, u: Interval) -> (Interval, Interval) {
-        if !self.rational {
-            if l > self.p {
-                return (iv::point(0.0), iv::point(0.0));
-            }
-            let c = self.c;
-            let v = self
-                .ev
-                .get_or_init(|| CurveEval::new(c, 2))
-                .level(l)
-                .eval_span_rows(k - l, &u, &[self.j], &mut self.buf);
-            let w = if l == 0 {
-                iv::point(1.0)
-            } else {
-                iv::point(0.0)
-            };
-            return (v[0], w);
-        }
         if l > self.p {
             return (iv::point(0.0), iv::point(0.0));
         }
         let c = self.c;
+        let (j, d) = (self.j, self.d);
+        let rows: &[usize] = if self.rational { &[j, d] } else { &[j] };
         let v = self
             .ev
             .get_or_init(|| CurveEval::new(c, 2))
             .level(l)
-            .eval_span_rows(k - l, &u, &[self.j, self.d], &mut self.buf);
-        (v[0], v[1])
+            .eval_span_rows(k - l, &u, rows, &mut self.buf);
+        // a polynomial curve: w = 1, so w' = w'' = 0
+        let w = match v.get(1) {
+            Some(&w) => w,
+            None => iv::point(if l == 0 { 1.0 } else { 0.0 }),
+        };
+        (v[0], w)
     }
 
     /// The Bernstein form of span k, if it is the one at hand.
