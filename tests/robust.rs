@@ -820,6 +820,8 @@ fn cli_hostile_lines_between_extreme_curves() {
                                 termination: Termination::Converged,
                                 optimal_lo: false,
                                 optimal_hi: false,
+                                witness_lo: f64::INFINITY,
+                                witness_hi: f64::NEG_INFINITY,
                             })
                             .collect(),
                     };

@@ -38,6 +38,8 @@ use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
 use crate::num::ddi::Ddi;
+use crate::num::Scalar as _;
+use smallvec::SmallVec;
 use crate::num::iv;
 use crate::spline::bezier::{cartesian, de_casteljau_eval_in_place, hodograph};
 use crate::spline::bspline::{BezierSeg, HSpline};
@@ -209,7 +211,10 @@ pub(crate) struct Side {
     attained: f64,
     /// upper bound so far (sign-adjusted)
     upper: f64,
-    cands: Vec<(f64, Extremum)>,
+    /// the curve provably reaches a value > witness (sign-adjusted; see
+    /// [`CoordBox::witness_hi`])
+    witness: f64,
+    cands: SmallVec<[(f64, Extremum); 4]>,
     stats: Stats,
     term: Termination,
 }
@@ -219,6 +224,7 @@ impl Side {
         Side {
             attained: f64::NEG_INFINITY,
             upper: f64::NEG_INFINITY,
+            witness: f64::NEG_INFINITY,
             cands: Default::default(),
             stats: Stats::default(),
             term: Termination::Converged,
@@ -234,6 +240,16 @@ impl Side {
         // (an empty interval has inf = +inf and must never count as attained)
         if !v.is_empty() && v.inf() > self.attained {
             self.attained = v.inf();
+        }
+    }
+    /// Record a double-double enclosure `v` of a value the curve attains (sign-adjusted): its
+    /// lower end is an attained lower bound, and the largest f64 strictly below that lower end
+    /// is a witness ([`Ddi::strictly_below`]).
+    fn attain_ddi(&mut self, v: Ddi) {
+        self.attain(v.to_interval());
+        let w = v.strictly_below();
+        if w > self.witness {
+            self.witness = w;
         }
     }
     fn bound(&mut self, ub: f64, e: Extremum) {
@@ -816,6 +832,8 @@ pub(crate) fn coord_box(
         termination: term,
         optimal_lo: false,
         optimal_hi: false,
+        witness_lo: -lo.witness,
+        witness_hi: hi.witness,
     }
 }
 

@@ -11,7 +11,9 @@
 //!
 //! 1. **An attained value equal to hi**: `inner_hi == hi` (the strategy, or the driver's facts
 //!    such as a clamped end control point, proved that the curve reaches a value >= inner_hi);
-//!    then M = hi.
+//!    then M = hi. Or the strategy's strict witness `witness_hi >= t` (the strategy proved
+//!    that the curve reaches a value > witness_hi, e.g. by a double-double value at a proved
+//!    critical point: [`Ddi::strictly_below`]); then M > t. This costs nothing extra.
 //! 2. **A verified enclosure above t**: a double-double enclosure ([`Ddi`], rigorous, about
 //!    2^-100 relative wide) of C_j(u) at an f64 parameter u whose lower end (compared exactly)
 //!    is > t.
@@ -34,7 +36,8 @@
 //!   its two f64 neighbours. At the f64 u nearest the extremum u*, g(u) = M - O(g'' ulp(u)^2),
 //!   i.e. ~2^-106 relative below M: this decides every bound with M - t above ~2^-100 M;
 //! * if that fails with t inside some enclosure (a near-tie: M within ~2^-100 relative above
-//!   t) and the degree is at most [`EXACT_MAX_DEGREE`]: the exact value at u, then Newton steps in exact arithmetic whose
+//!   t) and the degree is at most [`EXACT_MAX_DEGREE`] ([`EXACT_MAX_DEGREE_RATIONAL`] for a
+//!   rational curve): the exact value at u, then Newton steps in exact arithmetic whose
 //!   iterates are truncated to dyadic parameters of [`ZIV_BITS`] binary digits (each level
 //!   doubles the precision, as Newton's quadratic convergence allows), the exact value at each.
 //!   A near-tie M - t down to about 2^-(2 * 480) relative is decided this way.
@@ -71,13 +74,15 @@
 //! exact stage only for the best candidate and degree <= [`EXACT_MAX_DEGREE`] (its exact
 //! Newton levels only for a value within 2^-96 of t, two exact Newton steps per level of
 //! [`ZIV_BITS`]); lowering only up to degree [`LOWER_MAX_DEGREE`], a lowering proof at most
-//! [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; no search at all
+//! [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments, at most
+//! [`MAX_EXACT_EVALS`] exact evaluations per stage; no search at all
 //! above degree [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
 use super::{CandidateKind, CoordBox, Enclosure, Extremum};
 use crate::num::{iv, Ddi, Exact, Scalar};
+use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
 use crate::spline::knots::multiplicity;
@@ -94,6 +99,10 @@ pub const SEARCH_MAX_DEGREE: usize = 64;
 /// Highest degree for which exact rational evaluation is attempted (the rationals of a de
 /// Boor triangle grow with the degree).
 pub const EXACT_MAX_DEGREE: usize = 6;
+/// The same for rational curves: the quotient rule multiplies the denominators of the exact
+/// values (a cubic's second derivative reached 10^4 bits and milliseconds per evaluation);
+/// conics (the circle's exact-double extrema) stay exact.
+pub const EXACT_MAX_DEGREE_RATIONAL: usize = 2;
 /// Binary digits (relative to the parameter magnitude) of the dyadic parameters of the exact
 /// Ziv levels.
 pub const ZIV_BITS: [u32; 3] = [120, 240, 480];
@@ -113,6 +122,10 @@ pub const MAX_BOXES: usize = 64;
 const MAX_DEPTH: u32 = 64;
 /// Exact concavity arguments per lowering proof.
 pub const MAX_EXACT_TRIES: usize = 4;
+/// Exact rational evaluations per exact stage and per lowering proof (its point values and
+/// concavity rule together): where spans are tiny (clustered knots) one costs as much as
+/// thousands of double-double evaluations.
+pub const MAX_EXACT_EVALS: usize = 16;
 /// Candidates that go to the exact stage.
 const EXACT_CANDIDATES: usize = 1;
 
@@ -138,7 +151,13 @@ struct Evals<'a> {
     c: &'a NurbsCurve,
     iv: Option<CurveEval<Interval>>,
     ddi: Option<CurveEval<Ddi>>,
+    /// the homogeneous curve alone in Ddi (no derivative control points: most certificates
+    /// need one value, and the derivative levels cost several times that value)
+    ddi0: Option<HSpline<Ddi>>,
+    buf: Vec<Ddi>,
     exact: Option<CurveEval<Exact>>,
+    /// exact evaluations left for the current side ([`MAX_EXACT_EVALS`])
+    exact_left: usize,
 }
 
 impl<'a> Evals<'a> {
@@ -147,16 +166,41 @@ impl<'a> Evals<'a> {
             c,
             iv: None,
             ddi: None,
+            ddi0: None,
+            buf: Vec::new(),
             exact: None,
+            exact_left: MAX_EXACT_EVALS,
         }
+    }
+
+    /// g(u) = sign * C_j(u) at the f64 parameter u of the domain, in Ddi: de Boor corner
+    /// cutting (NURBS Book A5.1 on the homogeneous curve, thesis eq. 3.7) of the rows of
+    /// coordinate j and the weight only, then C_j = A_j / w. The same kernel and the same
+    /// enclosure property as the full evaluation ([`CurveEval::derivs`] with k = 0).
+    fn ddi_value(&mut self, j: usize, sign: f64, u: f64) -> Option<Ddi> {
+        let c = self.c;
+        let (a, b) = c.domain();
+        if !(a <= u && u <= b) {
+            return None;
+        }
+        let h = self.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
+        let rows = [j, h.dim];
+        let rows = &rows[..1 + h.rational as usize];
+        let v = h.eval_span_rows(h.span(u), &Ddi::from_f64(u), rows, &mut self.buf);
+        let x = if h.rational { v[0] / v[1] } else { v[0] };
+        Some(signed(x, sign))
     }
 
     /// g, g', g'' (k = 2) or g alone (k = 0) at the f64 parameter u, g = sign * C_j, in Ddi.
     fn ddi(&mut self, j: usize, sign: f64, u: f64, k: usize) -> Option<Vec<Ddi>> {
         let c = self.c;
+        let (a, b) = c.domain();
+        if !(a <= u && u <= b) {
+            return None;
+        }
         let e = self.ddi.get_or_insert_with(|| CurveEval::new(c, 2));
-        let v = e.derivs(u, k).ok()?;
-        Some(v.into_iter().map(|d| signed(d[j], sign)).collect())
+        let v = e.coord_derivs_in_span(e.span(u), &Ddi::from_f64(u), k, j);
+        Some(v.into_iter().map(|d| signed(d, sign)).collect())
     }
 
     /// g, g', g'' (k = 2) or g (k = 0) exactly at the rational parameter u of the domain, in
@@ -200,21 +244,21 @@ impl<'a> Evals<'a> {
         u: &Exact,
         k: usize,
     ) -> Option<Vec<Exact>> {
-        if self.c.degree() > EXACT_MAX_DEGREE {
+        let max_degree = if self.c.is_rational() {
+            EXACT_MAX_DEGREE_RATIONAL
+        } else {
+            EXACT_MAX_DEGREE
+        };
+        if self.c.degree() > max_degree || self.exact_left == 0 {
             return None;
         }
+        self.exact_left -= 1;
         let c = self.c;
         let e = self.exact.get_or_insert_with(|| CurveEval::new(c, 2));
-        let v = e.derivs_in_span(span, u, k);
+        let v = e.coord_derivs_in_span(span, u, k, j);
         Some(
             v.into_iter()
-                .map(|d| {
-                    if sign < 0.0 {
-                        -d[j].clone()
-                    } else {
-                        d[j].clone()
-                    }
-                })
+                .map(|d| if sign < 0.0 { -d } else { d })
                 .collect(),
         )
     }
@@ -239,9 +283,9 @@ impl<'a> Evals<'a> {
     fn iv_in(&mut self, span: usize, j: usize, sign: f64, u: Interval, k: usize) -> Vec<Interval> {
         let c = self.c;
         let e = self.iv.get_or_insert_with(|| CurveEval::new(c, 2));
-        e.derivs_in_span(span, &u, k)
+        e.coord_derivs_in_span(span, &u, k, j)
             .into_iter()
-            .map(|d| if sign < 0.0 { -d[j] } else { d[j] })
+            .map(|d| if sign < 0.0 { -d } else { d })
             .collect()
     }
 
@@ -250,9 +294,9 @@ impl<'a> Evals<'a> {
     fn ddi_in(&mut self, span: usize, j: usize, sign: f64, u: Ddi, k: usize) -> Vec<Ddi> {
         let c = self.c;
         let e = self.ddi.get_or_insert_with(|| CurveEval::new(c, 2));
-        e.derivs_in_span(span, &u, k)
+        e.coord_derivs_in_span(span, &u, k, j)
             .into_iter()
-            .map(|d| signed(d[j], sign))
+            .map(|d| signed(d, sign))
             .collect()
     }
 }
@@ -265,72 +309,17 @@ fn signed(x: Ddi, sign: f64) -> Ddi {
     }
 }
 
-/// TwoSum (Knuth; Shewchuk 1997 Thm. 7): s = fl(a + b) and e with a + b = s + e exactly
-/// (no overflow).
-#[inline]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    let e = (a - (s - bb)) + (b - bb);
-    (s, e)
-}
-
-/// The sign of the exact sum of `xs`, by Shewchuk's Grow-Expansion (1997, Thm. 10): the
-/// components form a nonoverlapping expansion with the same exact sum, so its sign is the
-/// sign of the largest non-zero component. Falls back to exact rationals when an
-/// intermediate is not finite (overflow); `None` for a NaN or infinite input.
-fn sum_sign(xs: &[f64]) -> Option<Ordering> {
-    if xs.iter().any(|x| !x.is_finite()) {
-        return None;
-    }
-    let mut e: Vec<f64> = Vec::with_capacity(xs.len());
-    for &x in xs {
-        let mut q = x;
-        for c in e.iter_mut() {
-            let (s, r) = two_sum(q, *c);
-            *c = r;
-            q = s;
-        }
-        e.push(q);
-    }
-    if e.iter().all(|c| c.is_finite()) {
-        let top = e.iter().rev().find(|c| **c != 0.0).copied().unwrap_or(0.0);
-        return top.partial_cmp(&0.0);
-    }
-    let sum = xs.iter().fold(Exact::of(0.0), |a, &x| a + Exact::of(x));
-    sum.cmp_f64(0.0)
-}
-
-/// Whether the set `x` lies strictly above the f64 `t`: hi + lo - rad - t > 0, exactly
-/// ([`sum_sign`]); ENTIRE never does.
-fn ddi_above(x: &Ddi, t: f64) -> bool {
-    !x.is_entire() && sum_sign(&[x.hi(), x.lo(), -x.rad(), -t]) == Some(Ordering::Greater)
-}
-
-/// Whether the set `x` lies at or below the f64 `t`: hi + lo + rad - t <= 0, exactly;
-/// ENTIRE never does.
-fn ddi_at_most(x: &Ddi, t: f64) -> bool {
-    !x.is_entire()
-        && matches!(
-            sum_sign(&[x.hi(), x.lo(), x.rad(), -t]),
-            Some(Ordering::Less | Ordering::Equal)
-        )
-}
-
 /// The certificate of one side (`max_side`: hi, as the maximum of g = C_j; otherwise lo, as the
 /// maximum of g = -C_j), lowering the bound where [`prove_at_most`] allows it.
 fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> bool {
     let sign = if max_side { 1.0 } else { -1.0 };
-    let (mut bound, inner) = if max_side {
-        (cb.hi, cb.inner_hi)
+    let (mut bound, inner, witness) = if max_side {
+        (cb.hi, cb.inner_hi, cb.witness_hi)
     } else {
-        (-cb.lo, -cb.inner_lo)
+        (-cb.lo, -cb.inner_lo, -cb.witness_lo)
     };
-    let cands: Vec<Extremum> = if max_side { &cb.argmax } else { &cb.argmin }
-        .iter()
-        .take(MAX_CANDIDATES)
-        .copied()
-        .collect();
+    let all: &[Extremum] = if max_side { &cb.argmax } else { &cb.argmin };
+    let cands = &all[..all.len().min(MAX_CANDIDATES)];
     let mut proved = false;
     for round in 0..=MAX_LOWERINGS {
         if !bound.is_finite() {
@@ -339,7 +328,8 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // 1. an attained value equal to the bound; 2. a double-double value above
         // next_down(bound)
         let t = bound.next_down();
-        if inner == bound {
+        // (1b. the strategy's strict witness: g(u) > witness >= t for some u)
+        if inner == bound || witness >= t {
             proved = true;
             break;
         }
@@ -353,7 +343,7 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         if bound - inner > near_scale {
             break;
         }
-        let d = ddi_stage(ev, j, sign, t, &cands);
+        let d = ddi_stage(ev, j, sign, t, cands);
         if d.proved {
             proved = true;
             break;
@@ -379,10 +369,10 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
             } else {
                 t
             };
-            if prove_at_most(ev, j, sign, goal, &cands, exact) {
+            if prove_at_most(ev, j, sign, goal, cands, exact) {
                 return Some(goal);
             }
-            (exact && goal < t && prove_at_most(ev, j, sign, t, &cands, true)).then_some(t)
+            (exact && goal < t && prove_at_most(ev, j, sign, t, cands, true)).then_some(t)
         };
         if let Some(nb) = try_lower(ev, false) {
             bound = nb;
@@ -431,13 +421,12 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
     let guess = &mut out.guess;
     // g(u) in double-double; the largest upper end seen goes to `guess`
     let look = |ev: &mut Evals, u: f64, guess: &mut f64| -> Option<Ddi> {
-        let g = ev.ddi(j, sign, u, 0)?[0];
+        let g = ev.ddi_value(j, sign, u)?;
         *guess = guess.max(g.to_interval().sup());
         Some(g)
     };
     let mut straddle = false;
     let (a, b) = ev.c.domain();
-    let cands: Vec<Extremum> = cands.iter().take(MAX_CANDIDATES).copied().collect();
     let p = ev.c.degree();
     // 2. double-double enclosures at chosen f64 parameters
     let mut best: Vec<(f64, f64)> = Vec::new(); // (centre of g, u)
@@ -456,7 +445,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
                     && lo <= u
                     && u <= hi
                     && multiplicity(kn, u) >= p
-                    && look(ev, u, guess).is_some_and(|g| ddi_above(&g, t))
+                    && look(ev, u, guess).is_some_and(|g| g.is_above(t))
                 {
                     out.proved = true;
                     return out;
@@ -468,11 +457,11 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
         let Some(g) = look(ev, mid, guess) else {
             continue;
         };
-        if ddi_above(&g, t) {
+        if g.is_above(t) {
             out.proved = true;
             return out;
         }
-        straddle |= !ddi_at_most(&g, t);
+        straddle |= !g.is_at_most(t);
         let mut u = mid;
         let mut top = (g.to_f64(), mid);
         if lo < hi {
@@ -497,11 +486,11 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
                 let Some(g) = look(ev, v, guess) else {
                     continue;
                 };
-                if ddi_above(&g, t) {
+                if g.is_above(t) {
                     out.proved = true;
                     return out;
                 }
-                straddle |= !ddi_at_most(&g, t);
+                straddle |= !g.is_at_most(t);
                 if g.to_f64() > top.0 {
                     top = (g.to_f64(), v);
                 }
@@ -523,6 +512,7 @@ fn exact_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, d: &DdiOutcome) -> b
     if ev.c.degree() > EXACT_MAX_DEGREE || !d.straddle {
         return false;
     }
+    ev.exact_left = MAX_EXACT_EVALS;
     let (a, b) = ev.c.domain();
     let mut best = d.best.clone();
     best.sort_by(|x, y| y.0.total_cmp(&x.0));
@@ -586,6 +576,7 @@ fn prove_at_most(
     let (p, n) = (c.degree(), c.num_points() - 1);
     let kn = c.knots();
     let mut boxes = 0usize;
+    ev.exact_left = if exact { MAX_EXACT_EVALS } else { 0 };
     // (without `exact`: no exact evaluation at all)
     let mut exact_tries = if exact { 0 } else { MAX_EXACT_TRIES };
     // spans nearest the candidates first: an early failure costs least
@@ -593,6 +584,15 @@ fn prove_at_most(
     let near = |k: usize| cands.iter().any(|x| x.u_lo <= kn[k + 1] && x.u_hi >= kn[k]);
     spans.sort_by_key(|&k| !near(k));
     for k in spans {
+        // Strong convex hull property (NURBS Book P4.3; thesis prop. 2.1 on one span): on
+        // [u_k, u_{k+1}] the piece is a convex combination of P_{k-p} .. P_k (weights > 0),
+        // so g <= max of their signed coordinates there; exact f64 comparisons, no box spent.
+        let local = (k - p..=k)
+            .map(|i| sign * c.control_point(i)[j])
+            .fold(f64::NEG_INFINITY, f64::max);
+        if local <= t {
+            continue;
+        }
         let mut stack = vec![(kn[k], kn[k + 1], 0u32)];
         while let Some((lo, hi, depth)) = stack.pop() {
             boxes += 1;
@@ -663,25 +663,27 @@ fn box_at_most(
     }
     let x = Ddi::from_bounds(lo, hi);
     let g = ev.ddi_in(k, j, sign, x, 2);
-    if ddi_at_most(&g[0], t) {
+    if g[0].is_at_most(t) {
         return BoxVerdict::Below;
     }
-    let exact_ok = *exact_tries < MAX_EXACT_TRIES;
-    let point_at_most = |ev: &mut Evals, u: f64| -> Option<bool> {
+    let point_at_most = |ev: &mut Evals, u: f64, exact_tries: &mut usize| -> Option<bool> {
         if let Some(x) = ev.clamped_end_value(j, u) {
             // the end control point, exactly (`NurbsCurve::clamped_ends`)
             return Some(sign * x <= t);
         }
         let v = ev.ddi_in(k, j, sign, Ddi::exact(u), 0);
-        if ddi_at_most(&v[0], t) {
+        if v[0].is_at_most(t) {
             return Some(true);
         }
-        if ddi_above(&v[0], t) {
+        if v[0].is_above(t) {
             return Some(false);
         }
-        if !exact_ok {
+        // (an exact value costs up to thousands of double-double ones where spans are tiny:
+        // it shares the per-proof budget of the exact concavity rule)
+        if *exact_tries >= MAX_EXACT_TRIES {
             return None;
         }
+        *exact_tries += 1;
         let e = ev.exact_in(k, j, sign, &Exact::of(u), 0)?;
         Some(!e[0].gt_f64(t))
     };
@@ -689,18 +691,18 @@ fn box_at_most(
     if d1.inf() >= 0.0 || d1.sup() <= 0.0 {
         // monotone on the box: the maximum is at one end
         let end = if d1.inf() >= 0.0 { hi } else { lo };
-        return match point_at_most(ev, end) {
+        return match point_at_most(ev, end, exact_tries) {
             Some(true) => BoxVerdict::Below,
             Some(false) => BoxVerdict::Above,
             None => BoxVerdict::Stuck,
         };
     }
     let gm = ev.ddi_in(k, j, sign, Ddi::exact(m), 2);
-    if ddi_above(&gm[0], t) {
+    if gm[0].is_above(t) {
         return BoxVerdict::Above;
     }
     let mvf = gm[0] + g[1] * (x - Ddi::exact(m));
-    if ddi_at_most(&mvf, t) {
+    if mvf.is_at_most(t) {
         return BoxVerdict::Below;
     }
     if !near_cand {
@@ -762,7 +764,7 @@ fn concave_ddi(
         u = next;
         d = ev.ddi_in(k, j, sign, Ddi::exact(u), 2);
     }
-    if ddi_above(&d[0], t) {
+    if d[0].is_above(t) {
         return Some(false);
     }
     let mut step = (u.abs().max(hi - lo) * f64::EPSILON).max(f64::from_bits(1));
@@ -779,11 +781,11 @@ fn concave_ddi(
                 // m1 and <= g(m1) + g'(m1)(m2 - m1) on [m1, m2] (and bounds g(m2)); right
                 // of m2, g(u) <= g(m2) + g'(m2)(u - m2) <= g(m2): so this bounds all of X
                 let top = a[0] + a[1] * (Ddi::exact(m2) - Ddi::exact(m1));
-                return ddi_at_most(&top, t).then_some(true);
+                return top.is_at_most(t).then_some(true);
             }
             let x = (b[0] - a[0] + a[1] * Ddi::exact(m1) - b[1] * Ddi::exact(m2)) / denom;
             let top = a[0] + a[1] * (x - Ddi::exact(m1));
-            return ddi_at_most(&top, t).then_some(true);
+            return top.is_at_most(t).then_some(true);
         }
         step *= 8.0;
     }

@@ -331,6 +331,7 @@ impl Rescaling {
                 // min from C_up (see the module docs)
                 cd.hi = cu.hi;
                 cd.inner_lo = cu.inner_lo;
+                cd.witness_lo = cu.witness_lo;
                 cd.argmax = cu.argmax;
                 cd.stats.add(&cu.stats);
                 if cd.termination == Termination::Converged {
@@ -351,6 +352,10 @@ impl Rescaling {
             // and inner_hi down; keep lo <= inner_lo and inner_hi <= hi
             cb.inner_lo = scale_outward(cb.inner_lo, k, true).max(cb.lo);
             cb.inner_hi = scale_outward(cb.inner_hi, k, false).min(cb.hi);
+            // strict witnesses: C_j > w scaled by 2^k is C_j 2^k > w 2^k >= RD(w 2^k), and
+            // likewise below (exact unless subnormal; an overflow to ±inf only loses the witness)
+            cb.witness_lo = scale_outward(cb.witness_lo, k, true);
+            cb.witness_hi = scale_outward(cb.witness_hi, k, false);
             for x in cb.argmin.iter_mut().chain(cb.argmax.iter_mut()) {
                 x.u_lo = scale_outward(x.u_lo, self.knot_exp, false);
                 x.u_hi = scale_outward(x.u_hi, self.knot_exp, true);

@@ -112,6 +112,8 @@ pub(crate) fn control_point_box(
             termination,
             optimal_lo: false,
             optimal_hi: false,
+            witness_lo: f64::INFINITY,
+            witness_hi: f64::NEG_INFINITY,
         });
     }
     out

@@ -190,6 +190,13 @@ pub struct CoordBox {
     pub optimal_lo: bool,
     /// `true` is a proof that hi = RU(max_u C_j(u)) (the smallest f64 >= the exact maximum).
     pub optimal_hi: bool,
+    /// A strict witness for the certificate: the curve provably reaches a value < witness_lo
+    /// (`+inf` when none is known). Strategies that enclose a value the curve attains far more
+    /// tightly than an f64 interval (a double-double value at a proved critical point) record
+    /// it here, so that the certification need not evaluate the curve again.
+    pub witness_lo: f64,
+    /// The curve provably reaches a value > witness_hi (`-inf` when none is known).
+    pub witness_hi: f64,
 }
 
 impl CoordBox {

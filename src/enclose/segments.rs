@@ -70,6 +70,8 @@ pub fn enclose_by_segments<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> En
             termination: Termination::Direct,
             optimal_lo: false,
             optimal_hi: false,
+            witness_lo: f64::INFINITY,
+            witness_hi: f64::NEG_INFINITY,
         })
         .collect();
     let mut spans: Vec<(usize, Vec<SpanBox>)> = Vec::new();

@@ -54,6 +54,7 @@
 
 use crate::num::Scalar;
 use inari::Interval;
+use std::cmp::Ordering;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// Unit roundoff u = 2^-53.
@@ -105,6 +106,35 @@ fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
     let e = a.mul_add(b, -p);
     (p, e)
+}
+
+/// The sign of the exact sum of `xs` (at most 8 values), by Shewchuk's Grow-Expansion (1997,
+/// Thm. 10): the components form a nonoverlapping expansion with the same exact sum, so its
+/// sign is the sign of the largest non-zero component. Falls back to exact rationals when an
+/// intermediate is not finite (overflow); `None` for a NaN or infinite input.
+pub(crate) fn sum_sign(xs: &[f64]) -> Option<Ordering> {
+    if xs.len() > 8 || xs.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    let mut e = [0.0f64; 8];
+    for (n, &x) in xs.iter().enumerate() {
+        let mut q = x;
+        for c in e[..n].iter_mut() {
+            let (s, r) = two_sum(q, *c);
+            *c = r;
+            q = s;
+        }
+        e[n] = q;
+    }
+    let e = &e[..xs.len()];
+    if e.iter().all(|c| c.is_finite()) {
+        let top = e.iter().rev().find(|c| **c != 0.0).copied().unwrap_or(0.0);
+        return top.partial_cmp(&0.0);
+    }
+    let sum = xs.iter().fold(crate::num::Exact::of(0.0), |a, &x| {
+        a + crate::num::Exact::of(x)
+    });
+    sum.cmp_f64(0.0)
 }
 
 /// Whether x is a (normal) power of two, +-2^k.
@@ -274,6 +304,42 @@ impl Ddi {
     #[inline]
     pub fn is_entire(&self) -> bool {
         self.rad == f64::INFINITY
+    }
+
+    /// Whether every value of the set lies strictly above the f64 `t`: hi + lo - rad - t > 0,
+    /// decided exactly ([`sum_sign`]); ENTIRE never does.
+    pub fn is_above(&self, t: f64) -> bool {
+        !self.is_entire() && sum_sign(&[self.hi, self.lo, -self.rad, -t]) == Some(Ordering::Greater)
+    }
+
+    /// Whether every value of the set lies at or below the f64 `t`: hi + lo + rad - t <= 0,
+    /// decided exactly; ENTIRE never does.
+    pub fn is_at_most(&self, t: f64) -> bool {
+        !self.is_entire()
+            && matches!(
+                sum_sign(&[self.hi, self.lo, self.rad, -t]),
+                Some(Ordering::Less | Ordering::Equal)
+            )
+    }
+
+    /// The largest f64 w strictly below every value of the set (so a quantity enclosed by the
+    /// set is provably > w), or -inf when there is none to give (ENTIRE, NaN, or a lower end
+    /// at or below -MAX). `to_interval().inf()` is a double c <= the lower end L (at most one
+    /// step below RD(L)); the exact comparisons [`Ddi::is_above`] then pick next_up(c) if it
+    /// is still < L, else c if c < L, else (c = L exactly) next_down(c).
+    pub fn strictly_below(&self) -> f64 {
+        let c = self.to_interval().inf();
+        if !c.is_finite() || self.is_entire() {
+            return f64::NEG_INFINITY;
+        }
+        let above = c.next_up();
+        if above.is_finite() && self.is_above(above) {
+            above
+        } else if self.is_above(c) {
+            c
+        } else {
+            next_down(c)
+        }
     }
 
     /// Whether the set is the single f64 value `hi` (lo = rad = 0).
@@ -622,6 +688,40 @@ mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
+
+    /// `strictly_below` is the largest f64 below the exact lower end (checked with exact
+    /// rationals), on random sets, sets whose lower end is a double, and tiny radii.
+    #[test]
+    fn strictly_below_is_the_largest_double_under_the_lower_end() {
+        use crate::num::Exact;
+        let mut r = ChaCha8Rng::seed_from_u64(11);
+        let check = |x: Ddi| {
+            let w = x.strictly_below();
+            let lower = Exact::of(x.hi()) + Exact::of(x.lo()) - Exact::of(x.rad());
+            assert!(
+                lower.gt_f64(w),
+                "{:?}: {w} not below",
+                (x.hi(), x.lo(), x.rad())
+            );
+            assert!(
+                !lower.gt_f64(w.next_up()),
+                "{:?}: {w} not the largest",
+                (x.hi(), x.lo(), x.rad())
+            );
+        };
+        for _ in 0..2000 {
+            let hi: f64 = r.random_range(-1e3..1e3);
+            let ulp = crate::num::ulp(hi);
+            let lo = r.random_range(-0.5..0.5) * ulp * [1.0, 1e-10, 0.0][r.random_range(0..3)];
+            let rad = [0.0, ulp * 1e-12, ulp * r.random_range(0.0..3.0)][r.random_range(0..3)];
+            check(Ddi::new(hi, lo, rad));
+        }
+        // lower end exactly a double: hi = 1, lo = 2^-60, rad = 2^-60
+        check(Ddi::new(1.0, 2f64.powi(-60), 2f64.powi(-60)));
+        check(Ddi::exact(0.0));
+        check(Ddi::exact(-f64::MIN_POSITIVE));
+        assert_eq!(Ddi::ENTIRE.strictly_below(), f64::NEG_INFINITY);
+    }
 
     #[test]
     fn constants_are_what_the_proofs_use() {

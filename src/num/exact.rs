@@ -192,24 +192,70 @@ fn lift(
     }
 }
 
+// Dyadic fast paths. f64 data are dyadic rationals n / 2^e, and so are the values of the
+// kernels at a dyadic parameter as long as every divisor is ± a power of two (uniform or
+// integer knots). num-rational reduces every result by a gcd; for a power-of-two denominator
+// Stein's binary gcd takes O(bits) subtract-and-shift rounds of O(bits) each, which made one
+// exact evaluation cost millions of instructions at 500-bit parameters. On dyadic operands
+// the results below are computed directly and reduced by trailing zeros alone (O(bits)):
+// n / 2^e with n odd or e = 0 is the canonical reduced form (gcd(n, 2^e) = 2^min(tz(n), e)),
+// so the `BigRational` is the same value num-rational would have produced (checked by a
+// unit test against the general operations).
+
+/// The exponent e of a denominator d = 2^e (`None` if d is not a power of two).
+fn pow2_exp(d: &BigInt) -> Option<u64> {
+    let tz = d.trailing_zeros()?;
+    (d.is_positive() && tz + 1 == d.bits()).then_some(tz)
+}
+
+/// The reduced dyadic rational n / 2^e.
+fn dyadic(n: BigInt, e: u64) -> BigRational {
+    if n.is_zero() {
+        return BigRational::zero();
+    }
+    let z = n.trailing_zeros().unwrap_or(0).min(e);
+    // (n is divisible by 2^z: the shift is exact also for negative n)
+    BigRational::new_raw(n >> z, BigInt::one() << (e - z))
+}
+
+/// x + y, or x - y (`neg`), by the dyadic fast path when both are dyadic.
+fn add_sub(x: BigRational, y: BigRational, neg: bool) -> BigRational {
+    if let (Some(ex), Some(ey)) = (pow2_exp(x.denom()), pow2_exp(y.denom())) {
+        let e = ex.max(ey);
+        let a = x.numer() << (e - ex);
+        let b = y.numer() << (e - ey);
+        return dyadic(if neg { a - b } else { a + b }, e);
+    }
+    if neg {
+        x - y
+    } else {
+        x + y
+    }
+}
+
 impl Add for Exact {
     type Output = Exact;
     fn add(self, o: Exact) -> Exact {
-        lift(self, o, |x, y| Some(x + y))
+        lift(self, o, |x, y| Some(add_sub(x, y, false)))
     }
 }
 
 impl Sub for Exact {
     type Output = Exact;
     fn sub(self, o: Exact) -> Exact {
-        lift(self, o, |x, y| Some(x - y))
+        lift(self, o, |x, y| Some(add_sub(x, y, true)))
     }
 }
 
 impl Mul for Exact {
     type Output = Exact;
     fn mul(self, o: Exact) -> Exact {
-        lift(self, o, |x, y| Some(x * y))
+        lift(self, o, |x, y| {
+            if let (Some(ex), Some(ey)) = (pow2_exp(x.denom()), pow2_exp(y.denom())) {
+                return Some(dyadic(x.numer() * y.numer(), ex + ey));
+            }
+            Some(x * y)
+        })
     }
 }
 
@@ -217,7 +263,30 @@ impl Div for Exact {
     type Output = Exact;
     fn div(self, o: Exact) -> Exact {
         // (num-rational panics on a zero divisor: undefined instead)
-        lift(self, o, |x, y| (!y.is_zero()).then(|| x / y))
+        lift(self, o, |x, y| {
+            if y.is_zero() {
+                return None;
+            }
+            // (n_x / 2^ex) / (±2^m / 2^ey) = ±n_x 2^(ey - ex - m): dyadic
+            if let (Some(ex), Some(ey), Some(m)) = (
+                pow2_exp(x.denom()),
+                pow2_exp(y.denom()),
+                pow2_exp(&y.numer().abs()),
+            ) {
+                let n = if y.is_negative() {
+                    -x.numer().clone()
+                } else {
+                    x.numer().clone()
+                };
+                let k = ey as i128 - ex as i128 - m as i128;
+                return Some(if k >= 0 {
+                    dyadic(n << (k as u64), 0)
+                } else {
+                    dyadic(n, (-k) as u64)
+                });
+            }
+            Some(x / y)
+        })
     }
 }
 
@@ -299,6 +368,43 @@ mod tests {
         assert!(!z.gt_f64(f64::NEG_INFINITY));
         assert_eq!(z.to_interval(), Interval::ENTIRE);
         assert!(!(z + Exact::of(1.0)).is_exact_zero());
+    }
+
+    /// The dyadic fast paths give exactly num-rational's reduced results.
+    #[test]
+    fn dyadic_fast_paths_agree_with_the_general_operations() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let mut pick = |r: &mut rand_chacha::ChaCha8Rng| -> f64 {
+            match r.random_range(0..5) {
+                0 => 0.0,
+                1 => {
+                    2f64.powi(r.random_range(-60..60)) * if r.random_bool(0.5) { -1.0 } else { 1.0 }
+                }
+                2 => r.random_range(-8..8) as f64,
+                3 => r.random_range(-1e3..1e3),
+                _ => r.random_range(-1.0..1.0) * 2f64.powi(r.random_range(-200..200)),
+            }
+        };
+        for _ in 0..3000 {
+            let (a, b) = (pick(&mut r), pick(&mut r));
+            let (x, y) = (ratio_of_f64(a).unwrap(), ratio_of_f64(b).unwrap());
+            // a non-dyadic operand too (thirds), to cover the mixed cases
+            let third = BigRational::new(BigInt::from(1), BigInt::from(3));
+            for (x, y) in [
+                (x.clone(), y.clone()),
+                (x.clone() * &third, y.clone()),
+                (x, y * &third),
+            ] {
+                let (ex, ey) = (Exact(Some(x.clone())), Exact(Some(y.clone())));
+                assert_eq!((ex.clone() + ey.clone()).0, Some(&x + &y));
+                assert_eq!((ex.clone() - ey.clone()).0, Some(&x - &y));
+                assert_eq!((ex.clone() * ey.clone()).0, Some(&x * &y));
+                if !y.is_zero() {
+                    assert_eq!((ex / ey).0, Some(&x / &y));
+                }
+            }
+        }
     }
 
     #[test]

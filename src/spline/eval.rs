@@ -77,6 +77,33 @@ impl<S: Scalar> CurveEval<S> {
         quotient_rule(&hom, d)
     }
 
+    /// C_j, C_j', ..., C_j^(k) of coordinate j alone at `u` in span `span` (k <= order): the
+    /// same corner cutting and quotient rule as [`CurveEval::derivs_in_span`], on the rows of
+    /// coordinate j and the weight only (1/d of the work; the values are those of the full
+    /// evaluation, row by row).
+    pub fn coord_derivs_in_span(&self, span: usize, u: &S, k: usize, j: usize) -> Vec<S> {
+        assert!(k <= self.order(), "derivative order {k} not precomputed");
+        let rational = self.levels[0].rational;
+        let all = [j, self.dim()];
+        let rows = &all[..1 + rational as usize];
+        let mut hom: Vec<Vec<S>> = Vec::with_capacity(k + 1);
+        let mut buf = Vec::new();
+        for l in 0..=k {
+            if l > self.levels[0].degree {
+                hom.push(vec![S::zero(); rows.len()]);
+            } else {
+                let v = self.levels[l].eval_span_rows(span - l, u, rows, &mut buf);
+                hom.push(v.to_vec());
+            }
+        }
+        let rows = if rational {
+            quotient_rule(&hom, 1)
+        } else {
+            hom
+        };
+        rows.into_iter().map(|mut v| v.swap_remove(0)).collect()
+    }
+
     /// C^(l)(u) for l = 0..=k at an f64 parameter in the domain.
     pub fn derivs(&self, u: f64, k: usize) -> Result<Vec<Vec<S>>, EvalError> {
         check_domain(self.domain, u)?;

@@ -339,13 +339,13 @@ pub(super) fn coord_sides(seg: &Segment, max_gap: f64, need: [bool; 2]) -> Optio
         let corr = up((deriv.approx(m).abs() + deriv.err) * r + m2 * r2);
         stats.point_evaluations += 1;
         let xm = poly.x(Ddi::exact(m));
-        let (vm, vb) = (xm.to_interval(), xm.widen(corr).to_interval());
         let e = extremum(a, b, t0, t1, true, CandidateKind::Critical);
+        let vb = xm.widen(corr).to_interval();
         if is_max {
-            hi.attain_f64(vm.inf());
+            hi.attain_ddi(xm);
             hi.bound(vb.sup(), e);
         } else {
-            lo.attain_f64(-vm.sup());
+            lo.attain_ddi(-xm);
             lo.bound(-vb.inf(), e);
         }
     }

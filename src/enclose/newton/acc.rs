@@ -108,6 +108,8 @@ impl Acc {
             termination,
             optimal_lo: false,
             optimal_hi: false,
+            witness_lo: f64::INFINITY,
+            witness_hi: f64::NEG_INFINITY,
         }
     }
 }

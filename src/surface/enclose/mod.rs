@@ -132,6 +132,8 @@ pub(crate) fn coord_box(
         termination,
         optimal_lo: false,
         optimal_hi: false,
+        witness_lo: f64::INFINITY,
+        witness_hi: f64::NEG_INFINITY,
     }
 }
 
