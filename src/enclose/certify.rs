@@ -244,12 +244,7 @@ impl<'a> Evals<'a> {
         u: &Exact,
         k: usize,
     ) -> Option<Vec<Exact>> {
-        let max_degree = if self.c.is_rational() {
-            EXACT_MAX_DEGREE_RATIONAL
-        } else {
-            EXACT_MAX_DEGREE
-        };
-        if self.c.degree() > max_degree || self.exact_left == 0 {
+        if !self.exact_possible() || self.exact_left == 0 {
             return None;
         }
         self.exact_left -= 1;
@@ -261,6 +256,17 @@ impl<'a> Evals<'a> {
                 .map(|d| if sign < 0.0 { -d } else { d })
                 .collect(),
         )
+    }
+
+    /// Whether exact evaluation is tried for this curve at all ([`EXACT_MAX_DEGREE`],
+    /// [`EXACT_MAX_DEGREE_RATIONAL`]).
+    fn exact_possible(&self) -> bool {
+        let max_degree = if self.c.is_rational() {
+            EXACT_MAX_DEGREE_RATIONAL
+        } else {
+            EXACT_MAX_DEGREE
+        };
+        self.c.degree() <= max_degree
     }
 
     /// C_j(u) exactly when u is a clamped end of the domain: the end control point
@@ -355,8 +361,13 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // extremum), then one ulp below the bound; double-double rules first, then the exact
         // stage (3.) and the exact concavity rule.
         let target = d.guess.max(inner);
+        // A value whose double-double enclosure holds t (a straddle) has g within ~2^-100
+        // relative of t, so max g <= t could only be shown in exact arithmetic (double-double
+        // enclosures near the maximiser straddle t as well): without the exact stage for this
+        // curve, a lowering proof would spend its boxes and fail.
         let lower = round < MAX_LOWERINGS
             && ev.c.degree() <= LOWER_MAX_DEGREE
+            && (!d.straddle || ev.exact_possible())
             && (target >= nth_down(bound, LOWER_WITHIN_ULPS) || bound - target <= near_scale);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
             if !lower {
@@ -509,7 +520,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
 /// exact values at the same points are too (Newton moves the parameter by ~2^-106 relative
 /// only, gaining ~2^-200 in value).
 fn exact_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, d: &DdiOutcome) -> bool {
-    if ev.c.degree() > EXACT_MAX_DEGREE || !d.straddle {
+    if !ev.exact_possible() || !d.straddle {
         return false;
     }
     ev.exact_left = MAX_EXACT_EVALS;
