@@ -3,6 +3,8 @@
 //! * constructed curves whose extrema are known doubles (symmetric quadratics and cubics with
 //!   the extremum at u = 1/2, a rational circle with extrema at knots, a C0 corner at a knot,
 //!   clamped ends): `newton` and `bezier` return the optimal double and certify it;
+//! * the strategies' strict witnesses (`witness_lo` / `witness_hi`) lie strictly on the right
+//!   side of the exact curve value at their candidate, and certify interior extrema;
 //! * the switch: `drive_with(s, c, false)` certifies nothing and its box contains the
 //!   certified one;
 //! * with feature `mpfr`: every `true` agrees with MPFR's rounding of the exact extremum
@@ -215,4 +217,55 @@ mod mpfr {
             "only {certified} of {total} near-tie bounds certified"
         );
     }
+}
+
+/// The strict witnesses the strategies record (`witness_lo` / `witness_hi`): on random cubics
+/// with interior extrema every finite witness lies strictly below (above) the exact value of
+/// the curve at the candidate it came from, and below hi (above lo); the certificate that
+/// uses it is `true` there.
+#[test]
+fn witnesses_are_strict_and_certify_interior_extrema() {
+    use nurbs_box::num::Exact;
+    use nurbs_box::CurveEval;
+    use rand::{Rng, SeedableRng};
+    let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(21);
+    let mut seen = 0;
+    for _ in 0..200 {
+        let pts: Vec<Vec<f64>> = (0..4)
+            .map(|_| vec![r.random_range(-10.0..10.0), r.random_range(-10.0..10.0)])
+            .collect();
+        let c = bezier_curve(pts, None);
+        let ex = CurveEval::<Exact>::new(&c, 0);
+        for s in ["bezier", "newton"] {
+            let e = strategy_by_name(s, None).unwrap().enclose(&c);
+            for (j, cb) in e.coords.iter().enumerate() {
+                for (w, cands, above) in [
+                    (cb.witness_hi, &cb.argmax, true),
+                    (cb.witness_lo, &cb.argmin, false),
+                ] {
+                    if !w.is_finite() {
+                        continue;
+                    }
+                    seen += 1;
+                    // the curve exceeds the witness at the midpoint of some candidate
+                    let strict = cands.iter().any(|x| {
+                        let m = x.u_lo + 0.5 * (x.u_hi - x.u_lo);
+                        let v = ex.derivs(m, 0).unwrap()[0][j].clone();
+                        if above {
+                            v.gt_f64(w)
+                        } else {
+                            v.cmp_f64(w) == Some(std::cmp::Ordering::Less)
+                        }
+                    });
+                    assert!(strict, "{s}: witness {w} of coordinate {j} not strict");
+                    if above {
+                        assert!(w < cb.hi && cb.optimal_hi, "{s}: hi {} w {w}", cb.hi);
+                    } else {
+                        assert!(w > cb.lo && cb.optimal_lo, "{s}: lo {} w {w}", cb.lo);
+                    }
+                }
+            }
+        }
+    }
+    assert!(seen > 100, "only {seen} witnesses");
 }
