@@ -5,6 +5,7 @@
 use crate::num::Scalar;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::knots::find_span;
+use smallvec::SmallVec;
 
 /// A (non-rational) B-spline curve whose control points have `hdim` coordinates of type `S`.
 ///
@@ -245,12 +246,13 @@ impl<S: Scalar> HSpline<S> {
         let p = self.degree;
         let h = self.hdim();
         let mut q: Vec<S> = self.pts[(k - p) * h..(k + 1) * h].to_vec();
-        let mut t: Vec<f64> = self.knots[k - p..=k + p + 1].to_vec();
+        let mut t: SmallVec<[f64; 24]> = SmallVec::from_slice(&self.knots[k - p..=k + p + 1]);
         clamp_left(p, h, &mut t, &mut q);
         // Mirror: reversed points, knots t'_j = -t_{2p+1-j}; clamp, mirror back. Negation is exact.
         reverse_points(h, &mut q);
-        let mut tr: Vec<f64> = t.iter().rev().map(|x| -x).collect();
-        clamp_left(p, h, &mut tr, &mut q);
+        t.reverse();
+        t.iter_mut().for_each(|x| *x = -*x);
+        clamp_left(p, h, &mut t, &mut q);
         reverse_points(h, &mut q);
         BezierSeg {
             a: self.knots[k],
@@ -426,18 +428,37 @@ pub(crate) fn reverse_points<S: Clone>(h: usize, q: &mut [S]) {
 }
 
 /// Clamp a one-span local curve (p + 1 points, knots t_0..t_{2p+1}, span index p) at its left
-/// end t_p by inserting t_p until its multiplicity is p, then dropping the leading points and
-/// knots that no longer influence the span.
-fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut Vec<f64>, q: &mut Vec<S>) {
+/// end u = t_p by inserting u until its multiplicity is p, keeping only the p + 1 points and
+/// 2p + 2 knots that still influence the span, in place.
+///
+/// This is NURBS Book A5.1 CurveKnotIns with k = p, s = the copies of u among t_0..t_p and
+/// r = p - s insertions, specialised to what survives the cut: the points with index >= r of
+/// A5.1's result are exactly the local points after the in-place steps
+/// `P_i <- lerp(alpha, P_i, P_{i+1})`, i = 0..=p-j-s, for j = 1..=r, with
+/// alpha = (u - t_{j+i}) / (t_{i+p+1} - t_{j+i}) on the original knots (A5.1 writes step j's
+/// `Rw[0]` and `Rw[p-j-s]` to Q_j and Q_{p+r-j-s}; index m = p-s-j of the kept points is last
+/// touched by step j, later steps touch smaller indices only); the kept knots are
+/// t_{p-s}, u (p times), t_{p+1}..t_{2p+1}.
+fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
     let u = t[p];
     let s = t[..=p].iter().rev().take_while(|&&x| x == u).count();
     if s >= p {
         return;
     }
     let r = p - s;
-    let (nt, nq) = knot_ins(p, h, t, q, p, s, u, r);
-    *t = nt[r..].to_vec();
-    *q = nq[r * h..].to_vec();
+    let us = S::from_f64(u);
+    for j in 1..=r {
+        for i in 0..=p - j - s {
+            let alpha = knot_ratio(&us, t[j + i], t[i + p + 1]);
+            for c in 0..h {
+                let lo = q[i * h + c].clone();
+                let hi = q[(i + 1) * h + c].clone();
+                q[i * h + c] = S::lerp(&alpha, &lo, &hi);
+            }
+        }
+    }
+    t[0] = t[p - s];
+    t[1..=p].iter_mut().for_each(|x| *x = u);
 }
 
 /// NURBS Book A5.1 CurveKnotIns: insert u (in span k, multiplicity s) r times, r + s <= p.
