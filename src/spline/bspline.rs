@@ -427,6 +427,16 @@ pub(crate) fn reverse_points<S: Clone>(h: usize, q: &mut [S]) {
     }
 }
 
+/// Point i of a row-major buffer (`h` values per point) becomes the convex combination
+/// lerp(alpha, P_i, P_{i+1}) (the corner cut of Boehm's knot insertion, NURBS Book A5.1).
+fn lerp_next<S: Scalar>(buf: &mut [S], i: usize, h: usize, alpha: &S) {
+    for c in 0..h {
+        let lo = buf[i * h + c].clone();
+        let hi = buf[(i + 1) * h + c].clone();
+        buf[i * h + c] = S::lerp(alpha, &lo, &hi);
+    }
+}
+
 /// Clamp a one-span local curve (p + 1 points, knots t_0..t_{2p+1}, span index p) at its left
 /// end u = t_p by inserting u until its multiplicity is p, keeping only the p + 1 points and
 /// 2p + 2 knots that still influence the span, in place.
@@ -449,12 +459,7 @@ fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
     let us = S::from_f64(u);
     for j in 1..=r {
         for i in 0..=p - j - s {
-            let alpha = knot_ratio(&us, t[j + i], t[i + p + 1]);
-            for c in 0..h {
-                let lo = q[i * h + c].clone();
-                let hi = q[(i + 1) * h + c].clone();
-                q[i * h + c] = S::lerp(&alpha, &lo, &hi);
-            }
+            lerp_next(q, i, h, &knot_ratio(&us, t[j + i], t[i + p + 1]));
         }
     }
     t[0] = t[p - s];
@@ -491,12 +496,7 @@ fn knot_ins<S: Scalar>(
     for j in 1..=r {
         l = k - p + j;
         for i in 0..=p - j - s {
-            let alpha = knot_ratio(&us, up[l + i], up[i + k + 1]);
-            for c in 0..h {
-                let lo = rw[i * h + c].clone();
-                let hi = rw[(i + 1) * h + c].clone();
-                rw[i * h + c] = S::lerp(&alpha, &lo, &hi);
-            }
+            lerp_next(&mut rw, i, h, &knot_ratio(&us, up[l + i], up[i + k + 1]));
         }
         qw[l * h..(l + 1) * h].clone_from_slice(&rw[0..h]);
         let e = k + r - j - s;
