@@ -375,7 +375,7 @@ mod tests {
     fn dyadic_fast_paths_agree_with_the_general_operations() {
         use rand::{Rng, SeedableRng};
         let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(5);
-        let mut pick = |r: &mut rand_chacha::ChaCha8Rng| -> f64 {
+        let pick = |r: &mut rand_chacha::ChaCha8Rng| -> f64 {
             match r.random_range(0..5) {
                 0 => 0.0,
                 1 => {
