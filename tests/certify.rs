@@ -269,3 +269,24 @@ fn witnesses_are_strict_and_certify_interior_extrema() {
     }
     assert!(seen > 100, "only {seen} witnesses");
 }
+
+/// A bound reached only as the left limit at a jump (a knot of multiplicity p + 1): no curve
+/// value attains it, but values come arbitrarily close, so the bound is RU(sup) and certified.
+#[test]
+fn supremum_at_a_jump_is_certified() {
+    // degree 1: 0 -> 5 on [0, 1/2), then -1 -> 1 on [1/2, 1]; sup 5 (not attained), inf -1
+    let c = NurbsCurve::new(
+        1,
+        vec![0.0, 0.0, 0.5, 0.5, 1.0, 1.0],
+        vec![vec![0.0], vec![5.0], vec![-1.0], vec![1.0]],
+        None,
+    )
+    .unwrap();
+    for s in ["newton", "bezier"] {
+        let e = strategy_by_name(s, None).unwrap().enclose(&c);
+        let cb = &e.coords[0];
+        assert_eq!((cb.lo, cb.hi), (-1.0, 5.0), "{s}");
+        assert!(cb.inner_hi < 5.0, "{s}: the supremum is not attained");
+        assert!(cb.optimal_hi && cb.optimal_lo, "{s}: {cb:?}");
+    }
+}

@@ -17,6 +17,10 @@
 //! 2. **A verified enclosure above t**: a double-double enclosure ([`Ddi`], rigorous, about
 //!    2^-100 relative wide) of C_j(u) at an f64 parameter u whose lower end (compared exactly)
 //!    is > t.
+//! 2b. **A left limit above t**: at a jump (a knot u of multiplicity p + 1) the supremum can
+//!    be the left limit, which no curve value attains; the piece of the span ending at u,
+//!    evaluated at u in `Ddi`, is that limit, and curve values come arbitrarily close to it, so
+//!    a lower end above t shows some curve value above t.
 //! 3. **An exact value above t**: the exact rational C_j(u) ([`Exact`]: the generic de Boor and
 //!    derivative kernels run on big rationals, no rounding) at an f64 or dyadic parameter u is
 //!    > t (compared exactly).
@@ -258,6 +262,28 @@ impl<'a> Evals<'a> {
         )
     }
 
+    /// Whether the piece of the span ending at the interior knot u has, at u, a value above t
+    /// (in Ddi): that value is the left limit of the curve at u, approached by curve values
+    /// (the piece is continuous on its closed span), so some u' < u has g(u') > t. This
+    /// certifies a bound reached only as the limit at a jump (a knot of multiplicity p + 1),
+    /// which no curve value attains.
+    fn left_limit_above(&mut self, j: usize, sign: f64, u: f64, t: f64) -> bool {
+        let kn = self.c.knots();
+        let (a, b) = self.c.domain();
+        if !(a < u && u <= b) {
+            return false;
+        }
+        // only at a jump (elsewhere the left limit is the curve's value, looked at anyway)
+        if multiplicity(kn, u) <= self.c.degree() {
+            return false;
+        }
+        // the span k with u_k < u_{k+1} = u
+        let Some(k) = (self.c.degree()..kn.len() - 1).find(|&k| kn[k] < u && kn[k + 1] == u) else {
+            return false;
+        };
+        self.ddi_in(k, j, sign, Ddi::exact(u), 0)[0].is_above(t)
+    }
+
     /// Whether exact evaluation is tried for this curve at all ([`EXACT_MAX_DEGREE`],
     /// [`EXACT_MAX_DEGREE_RATIONAL`]).
     fn exact_possible(&self) -> bool {
@@ -344,6 +370,14 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // the bound (a loose bound such as the control hull's), the answer is `false` at once.
         // This keeps the certificate's cost a small part of a loose strategy's (cheap) run; a
         // tight strategy's gap is within its tolerance, about an ulp of the scale.
+        // (1c. a bound reached only as the limit at a jump: the left piece's value there)
+        if cands
+            .iter()
+            .any(|x| x.u_lo == x.u_hi && ev.left_limit_above(j, sign, x.u_lo, t))
+        {
+            proved = true;
+            break;
+        }
         let scale = bound.abs().max(ev.c.coord_scale(j));
         let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(scale);
         if bound - inner > near_scale {
