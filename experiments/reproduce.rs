@@ -7,12 +7,17 @@
 //! ```
 //!
 //! Writes `results/knot_sweep.csv`, `results/degree_sweep.csv`, `results/tables.md` and SVG
-//! plots; exits non-zero if any verified strategy misses the curve.
+//! plots; exits non-zero if any verified strategy misses the curve or (feature `mpfr`) a
+//! certificate of optimality is false. Every strategy is also timed without certification
+//! (`enclose::drive_with(s, c, false)`) in the same loop, for the cost of the certificate.
 
+mod certs;
 #[path = "plots.rs"]
 #[allow(dead_code)] // shared by several binaries, each uses a part
 mod plots;
 mod surface_sweep;
+
+use certs::{cost_pct, time_on_off, CertCounts, Timing};
 
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -24,7 +29,7 @@ use nurbs_box::NurbsCurve;
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 #[derive(Parser, Debug, Clone)]
 #[command(
@@ -107,7 +112,13 @@ struct RowSpec {
 #[derive(Clone)]
 struct Measure {
     time: Duration,
+    /// the same call without certification (`drive_with(s, c, false)`)
+    time_off: Duration,
+    /// median ratio of adjacent calls with / without certification
+    cert_ratio: f64,
     enc: Enclosure,
+    /// certified bounds; against the reference (feature `mpfr`): optimal and falsely certified
+    cert: CertCounts,
     /// tightness in ulps of the coordinate scale: against the 256-bit reference (worst bound)
     /// when available, else the certified gap (outer - inner)
     ulps: f64,
@@ -126,6 +137,12 @@ struct Row {
     verified: bool,
     curves: usize,
     median_time: Duration,
+    /// median over the curves of the time without certification
+    median_time_off: Duration,
+    /// certification cost in percent: summed times with over summed times without, minus 1
+    /// (each curve's time with certification as its time without times its paired ratio)
+    cert_cost_pct: f64,
+    cert: CertCounts,
     deriv_time: Duration,
     newton_iters_avg: f64,
     ulps_median: f64,
@@ -141,23 +158,27 @@ fn median<T: Copy + PartialOrd>(v: &mut [T]) -> T {
     v[v.len() / 2]
 }
 
-/// Median per-call time of `s.enclose(c)`, repeating for at least `min` (and 3 calls).
-fn time_enclose(s: &dyn BoxEncloser, c: &NurbsCurve, min: Duration) -> (Duration, Enclosure) {
-    let mut times = Vec::new();
-    let start = Instant::now();
-    let mut enc;
-    loop {
-        let t = Instant::now();
-        enc = s.enclose(c);
-        times.push(t.elapsed());
-        if times.len() >= 3 && start.elapsed() >= min {
-            break;
-        }
-        if times.len() >= 10_000 {
-            break;
-        }
-    }
-    (median(&mut times), enc)
+/// One strategy on one curve: median per-call time of `s.enclose(c)`, of the same call without
+/// certification (`drive_with(s, c, false)`), the median ratio of adjacent calls with / without
+/// (`certs::OnOff::paired_ratio`), and the enclosure.
+type Timed = (Duration, Duration, f64, Enclosure);
+
+/// [`Timed`], single calls alternating with and without certification, repeating for at least
+/// `min` (and 3 calls each).
+fn time_enclose(s: &dyn BoxEncloser, c: &NurbsCurve, min: Duration) -> Timed {
+    let mut t = time_on_off(
+        s,
+        c,
+        Timing {
+            batch: Duration::ZERO,
+            max_batch: 1,
+            min_rounds: 3,
+            max_rounds: 10_000,
+            min_total: min,
+        },
+    );
+    let ratio = t.paired_ratio();
+    (median(&mut t.on), median(&mut t.off), ratio, t.enc)
 }
 
 /// Tightness against the 256-bit reference: the worst distance (ulps of the coordinate scale)
@@ -194,7 +215,7 @@ fn measure_row(
 ) -> Vec<Row> {
     let min = Duration::from_millis(args.min_ms);
     // 1. timing, sequential (no other work competing for the cores)
-    let mut runs: Vec<Vec<(Duration, Enclosure)>> = Vec::new();
+    let mut runs: Vec<Vec<Timed>> = Vec::new();
     for s in strategies {
         let mut v = Vec::new();
         for c in &spec.curves {
@@ -220,9 +241,11 @@ fn measure_row(
             .par_iter()
             .enumerate()
             .map(|(ci, c)| {
-                let (time, enc) = runs[si][ci].clone();
+                let (time, time_off, cert_ratio, enc) = runs[si][ci].clone();
                 #[allow(unused_mut)]
                 let mut params = dense_params(c, args.per_span);
+                #[allow(unused_mut)]
+                let mut cert = CertCounts::of(&enc);
                 #[allow(unused_mut)]
                 let mut ulps = gap_ulps(c, &enc).into_iter().fold(0.0, f64::max);
                 #[allow(unused_mut)]
@@ -236,11 +259,15 @@ fn measure_row(
                     ulps = u;
                     vs_reference = true;
                     ref_miss = miss as usize;
+                    cert = CertCounts::against(c, &enc, r, |_, _| {});
                 }
                 let chk = check_containment(c, &enc, &params);
                 Measure {
                     time,
+                    time_off,
+                    cert_ratio,
                     enc,
+                    cert,
                     ulps,
                     vs_reference,
                     checked: chk.checked,
@@ -273,6 +300,11 @@ fn measure_row(
             / ms.len() as f64;
         let mut ul: Vec<f64> = ms.iter().map(|m| m.ulps).collect();
         let ulps_max = ul.iter().cloned().fold(0.0, f64::max);
+        let mut off: Vec<Duration> = ms.iter().map(|m| m.time_off).collect();
+        let mut cert = CertCounts::default();
+        for m in &ms {
+            cert.add(&m.cert);
+        }
         rows.push(Row {
             sweep: spec.sweep,
             key: spec.key,
@@ -282,6 +314,15 @@ fn measure_row(
             verified: s.guarantee() == Guarantee::Verified,
             curves: ms.len(),
             median_time: med_time,
+            median_time_off: median(&mut off),
+            // the time the row's curves would take with certification, estimated from each
+            // curve's paired ratio (robust against load changes between calls), over the time
+            // without
+            cert_cost_pct: cost_pct(
+                ms.iter().map(|m| m.time_off.mul_f64(m.cert_ratio)).sum(),
+                ms.iter().map(|m| m.time_off).sum(),
+            ),
+            cert,
             deriv_time: med_time.mul_f64(med_frac),
             newton_iters_avg: iters,
             ulps_median: median(&mut ul),
@@ -380,7 +421,7 @@ fn fmt_ulps(x: f64) -> String {
 
 fn csv(rows: &[Row], sweep: Sweep, prov: &Provenance) -> String {
     let mut s = prov.csv_comment();
-    s.push_str("sweep,n,points,degree,strategy,verified,curves,median_time_s,derivative_time_s,difference_s,newton_iterations_avg,tightness_ulps_median,tightness_ulps_max,tightness_basis,checked_params,misses,thesis_total_s,thesis_derivatives_s,thesis_difference_s,thesis_newton_iterations\n");
+    s.push_str("sweep,n,points,degree,strategy,verified,curves,median_time_s,derivative_time_s,difference_s,newton_iterations_avg,tightness_ulps_median,tightness_ulps_max,tightness_basis,checked_params,misses,bounds,certified_bounds,optimal_bounds,false_certificates,median_time_uncertified_s,certification_cost_pct,thesis_total_s,thesis_derivatives_s,thesis_difference_s,thesis_newton_iterations\n");
     for r in rows.iter().filter(|r| r.sweep == sweep) {
         let (tt, td, tf, ti) = r.thesis.map_or(
             (String::new(), String::new(), String::new(), String::new()),
@@ -393,9 +434,15 @@ fn csv(rows: &[Row], sweep: Sweep, prov: &Provenance) -> String {
                 )
             },
         );
+        // empty without the reference (no `mpfr`, or more points than `--ref-max-points`)
+        let (opt, fc) = if r.cert.vs_reference > 0 {
+            (r.cert.optimal.to_string(), r.cert.false_cert.to_string())
+        } else {
+            (String::new(), String::new())
+        };
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{:e},{:e},{:e},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{:e},{:e},{:e},{},{},{},{},{},{},{},{},{},{},{:e},{:.2},{},{},{},{}",
             if sweep == Sweep::Knots {
                 "knots"
             } else {
@@ -416,6 +463,12 @@ fn csv(rows: &[Row], sweep: Sweep, prov: &Provenance) -> String {
             if r.vs_reference { "reference" } else { "gap" },
             r.checked,
             r.misses,
+            r.cert.bounds,
+            r.cert.certified,
+            opt,
+            fc,
+            r.median_time_off.as_secs_f64(),
+            r.cert_cost_pct,
             tt,
             td,
             tf,
@@ -530,6 +583,87 @@ fn strategy_table(rows: &[Row], sweep: Sweep, names: &[&'static str]) -> String 
     s
 }
 
+/// Optimality certificates per strategy: share of certified-optimal bounds, with the reference
+/// (feature `mpfr`) the share of optimal bounds and the false certificates, and the cost of
+/// certification (time with over time without, same run).
+fn cert_table(rows: &[Row], sweep: Sweep, names: &[&'static str]) -> String {
+    let mpfr = cfg!(feature = "mpfr");
+    let mut s = String::new();
+    let key = if sweep == Sweep::Knots {
+        "n+1 points"
+    } else {
+        "p"
+    };
+    let _ = write!(s, "| {key} |");
+    for n in names {
+        if mpfr {
+            let _ = write!(
+                s,
+                " {n}: certified % | optimal % | false cert. | cert. cost |"
+            );
+        } else {
+            let _ = write!(s, " {n}: certified % | cert. cost |");
+        }
+    }
+    s.push_str("\n|---|");
+    for _ in names {
+        s.push_str(if mpfr { "--:|--:|--:|--:|" } else { "--:|--:|" });
+    }
+    s.push('\n');
+    let mut keys: Vec<usize> = rows
+        .iter()
+        .filter(|r| r.sweep == sweep)
+        .map(|r| r.key)
+        .collect();
+    keys.dedup();
+    for k in keys {
+        let lead = rows
+            .iter()
+            .find(|r| r.sweep == sweep && r.key == k)
+            .unwrap();
+        let _ = write!(
+            s,
+            "| {} |",
+            if sweep == Sweep::Knots {
+                lead.points
+            } else {
+                k
+            }
+        );
+        for n in names {
+            let Some(r) = rows
+                .iter()
+                .find(|r| r.sweep == sweep && r.key == k && r.strategy == *n)
+            else {
+                s.push_str(if mpfr {
+                    " – | – | – | – |"
+                } else {
+                    " – | – |"
+                });
+                continue;
+            };
+            let _ = write!(s, " {} |", r.cert.certified_pct());
+            if mpfr {
+                if r.cert.vs_reference == 0 {
+                    s.push_str(" – | – |");
+                } else if r.cert.false_cert == 0 {
+                    let _ = write!(s, " {} | 0 |", r.cert.optimal_pct());
+                } else {
+                    let _ = write!(
+                        s,
+                        " {} | **{} FALSE** |",
+                        r.cert.optimal_pct(),
+                        r.cert.false_cert
+                    );
+                }
+            }
+            let _ = write!(s, " {:+.1}% |", r.cert_cost_pct);
+        }
+        s.push('\n');
+    }
+    s
+}
+
 fn main() {
     let args = Args::parse();
     // the tables report the time spent in derivative evaluations as a fraction of the total
@@ -588,10 +722,29 @@ fn main() {
          algorithms alone. Tightness: distance of the outer bounds from the exact extrema in ulps of the \
          coordinate scale (largest |control point coordinate|){}. \
          Containment: every box is checked against verified point enclosures on a dense grid{}; a miss is \
-         a proven one.\n",
+         a proven one. Optimality certificates (last two tables): `certified %` is the share of bounds \
+         (lo and hi of every coordinate of every curve) the driver proved optimal (`optimal_lo` / \
+         `optimal_hi`: lo = RD(min), hi = RU(max)); {} `cert. cost` is the time of the row's curves with \
+         certification over their time without it (`enclose::drive_with(s, c, false)`, single calls \
+         alternating with those timed above), minus 1, where a curve's time with it is its time without \
+         times the median ratio of adjacent calls with / without (robust against load changes); heuristic strategies get no \
+         certificates, so their cost is timing noise.\n",
         args.curves,
         if cfg!(feature = "mpfr") { ", against a 256-bit MPFR reference" } else { "; without the `mpfr` feature the certified gap (outer - inner) is shown, marked (gap)" },
-        if cfg!(feature = "mpfr") { " plus the reference extremum locations, and against the reference extrema" } else { "" }
+        if cfg!(feature = "mpfr") { " plus the reference extremum locations, and against the reference extrema" } else { "" },
+        if cfg!(feature = "mpfr") {
+            format!(
+                "`optimal %` is the share of bounds equal to the optimal double of the 256-bit \
+                 reference extremum, `false cert.` counts certificates whose bound is not the \
+                 reference's rounding (must be 0; both – for rows above {} control points, which \
+                 have no reference);",
+                args.ref_max_points
+            )
+        } else {
+            "the share of optimal bounds and the count of false certificates against the exact \
+             extrema are n/a without mpfr (`cargo run --release --features mpfr --bin reproduce`);"
+                .to_string()
+        }
     );
     let _ = writeln!(
         md,
@@ -604,6 +757,10 @@ fn main() {
     md.push_str(&strategy_table(&rows, Sweep::Knots, &names));
     let _ = writeln!(md, "\n## All strategies, degree sweep\n");
     md.push_str(&strategy_table(&rows, Sweep::Degrees, &names));
+    let _ = writeln!(md, "\n## Optimality certificates, knot-count sweep\n");
+    md.push_str(&cert_table(&rows, Sweep::Knots, &names));
+    let _ = writeln!(md, "\n## Optimality certificates, degree sweep\n");
+    md.push_str(&cert_table(&rows, Sweep::Degrees, &names));
     let verified_misses: usize = rows.iter().filter(|r| r.verified).map(|r| r.misses).sum();
     let heuristic_misses: usize = rows.iter().filter(|r| !r.verified).map(|r| r.misses).sum();
     let checked: usize = rows.iter().map(|r| r.checked).sum();
@@ -611,6 +768,32 @@ fn main() {
         md,
         "\n**Containment:** {checked} parameter checks; verified strategies: {verified_misses} misses; heuristic strategies: {heuristic_misses} misses.\n"
     );
+    let mut cert = CertCounts::default();
+    for r in rows.iter().filter(|r| r.verified) {
+        cert.add(&r.cert);
+    }
+    let false_certs = rows.iter().map(|r| r.cert.false_cert).sum::<usize>();
+    let _ = write!(
+        md,
+        "**Certificates:** verified strategies: {} of {} bounds certified optimal ({}%)",
+        cert.certified,
+        cert.bounds,
+        cert.certified_pct()
+    );
+    if cfg!(feature = "mpfr") {
+        let _ = writeln!(
+            md,
+            "; against the reference {} of {} bounds optimal ({}%), {false_certs} false certificates.\n",
+            cert.optimal,
+            cert.vs_reference,
+            cert.optimal_pct()
+        );
+    } else {
+        let _ = writeln!(
+            md,
+            "; optimal share and false certificates n/a without mpfr.\n"
+        );
+    }
     let _ = writeln!(md, "Plots: `time_vs_n.svg`, `time_vs_p.svg`, `thesis_figure.svg`, `coordinate_functions.svg` (`tightness.svg`, the ECDF of the distance to the optimal double, comes from the `tightness` binary).");
 
     let write = |name: &str, s: &str| {
@@ -693,7 +876,6 @@ fn main() {
     let surface_misses = surface_sweep::run(false, &args.out);
     if surface_misses > 0 {
         eprintln!("\n!!! CONTAINMENT FAILURE: verified surface strategies missed {surface_misses} times !!!");
-        std::process::exit(1);
     }
     if verified_misses > 0 {
         eprintln!("\n!!! CONTAINMENT FAILURE: verified strategies missed the curve {verified_misses} times !!!");
@@ -703,6 +885,18 @@ fn main() {
                 r.strategy, r.sweep, r.key, r.misses
             );
         }
+    }
+    // a certificate whose bound is not the reference's rounding is as wrong as a miss
+    if false_certs > 0 {
+        eprintln!("\n!!! FALSE CERTIFICATES: {false_certs} certified bounds are not the optimal double !!!");
+        for r in rows.iter().filter(|r| r.cert.false_cert > 0) {
+            eprintln!(
+                "!!!   {} on {:?} row {}: {} false certificates",
+                r.strategy, r.sweep, r.key, r.cert.false_cert
+            );
+        }
+    }
+    if surface_misses > 0 || verified_misses > 0 || false_certs > 0 {
         std::process::exit(1);
     }
 }
