@@ -45,6 +45,7 @@ fn main() {
 mod plots;
 
 #[cfg(feature = "mpfr")]
+#[allow(dead_code)] // shared with `reproduce`, which uses a part this binary does not
 mod certs;
 
 #[cfg(feature = "mpfr")]
