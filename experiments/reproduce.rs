@@ -515,8 +515,17 @@ fn thesis_table(rows: &[Row], sweep: Sweep) -> String {
     s
 }
 
-/// All strategies side by side: median time, tightness, containment.
-fn strategy_table(rows: &[Row], sweep: Sweep, names: &[&'static str]) -> String {
+/// One line per sweep row, for every strategy the columns `cols` (the first prefixed by the
+/// strategy's name, aligned by `align`, e.g. `---` or `--:`) filled by `cells`; `–` where a
+/// strategy has no result.
+fn per_strategy_table(
+    rows: &[Row],
+    sweep: Sweep,
+    names: &[&'static str],
+    cols: &[&str],
+    align: &str,
+    cells: impl Fn(&Row) -> Vec<String>,
+) -> String {
     let mut s = String::new();
     let key = if sweep == Sweep::Knots {
         "n+1 points"
@@ -525,12 +534,14 @@ fn strategy_table(rows: &[Row], sweep: Sweep, names: &[&'static str]) -> String 
     };
     let _ = write!(s, "| {key} |");
     for n in names {
-        let _ = write!(s, " {n}: time | ulps med/max | misses |");
+        let _ = write!(s, " {n}: {} |", cols.join(" | "));
     }
     s.push('\n');
     s.push_str("|---|");
     for _ in names {
-        s.push_str("---|---|---|");
+        for _ in cols {
+            let _ = write!(s, "{align}|");
+        }
     }
     s.push('\n');
     let mut keys: Vec<usize> = rows
@@ -554,28 +565,12 @@ fn strategy_table(rows: &[Row], sweep: Sweep, names: &[&'static str]) -> String 
             }
         );
         for n in names {
-            if let Some(r) = rows
+            let found = rows
                 .iter()
-                .find(|r| r.sweep == sweep && r.key == k && r.strategy == *n)
-            {
-                let miss = if r.misses == 0 {
-                    "0".to_string()
-                } else if r.verified {
-                    format!("**{} MISSED**", r.misses)
-                } else {
-                    format!("{} (heuristic)", r.misses)
-                };
-                let _ = write!(
-                    s,
-                    " {} | {} / {}{} | {} |",
-                    fmt_time(r.median_time),
-                    fmt_ulps(r.ulps_median),
-                    fmt_ulps(r.ulps_max),
-                    if r.vs_reference { "" } else { " (gap)" },
-                    miss
-                );
-            } else {
-                s.push_str(" – | – | – |");
+                .find(|r| r.sweep == sweep && r.key == k && r.strategy == *n);
+            let v = found.map_or_else(|| vec!["–".to_string(); cols.len()], &cells);
+            for c in v {
+                let _ = write!(s, " {c} |");
             }
         }
         s.push('\n');
@@ -583,85 +578,57 @@ fn strategy_table(rows: &[Row], sweep: Sweep, names: &[&'static str]) -> String 
     s
 }
 
+/// All strategies side by side: median time, tightness, containment.
+fn strategy_table(rows: &[Row], sweep: Sweep, names: &[&'static str]) -> String {
+    let cols = ["time", "ulps med/max", "misses"];
+    per_strategy_table(rows, sweep, names, &cols, "---", |r| {
+        let miss = if r.misses == 0 {
+            "0".to_string()
+        } else if r.verified {
+            format!("**{} MISSED**", r.misses)
+        } else {
+            format!("{} (heuristic)", r.misses)
+        };
+        vec![
+            fmt_time(r.median_time),
+            format!(
+                "{} / {}{}",
+                fmt_ulps(r.ulps_median),
+                fmt_ulps(r.ulps_max),
+                if r.vs_reference { "" } else { " (gap)" }
+            ),
+            miss,
+        ]
+    })
+}
+
 /// Optimality certificates per strategy: share of certified-optimal bounds, with the reference
 /// (feature `mpfr`) the share of optimal bounds and the false certificates, and the cost of
 /// certification (time with over time without, same run).
 fn cert_table(rows: &[Row], sweep: Sweep, names: &[&'static str]) -> String {
     let mpfr = cfg!(feature = "mpfr");
-    let mut s = String::new();
-    let key = if sweep == Sweep::Knots {
-        "n+1 points"
+    let cols: &[&str] = if mpfr {
+        &["certified %", "optimal %", "false cert.", "cert. cost"]
     } else {
-        "p"
+        &["certified %", "cert. cost"]
     };
-    let _ = write!(s, "| {key} |");
-    for n in names {
+    per_strategy_table(rows, sweep, names, cols, "--:", |r| {
+        let mut v = vec![r.cert.certified_pct()];
         if mpfr {
-            let _ = write!(
-                s,
-                " {n}: certified % | optimal % | false cert. | cert. cost |"
-            );
-        } else {
-            let _ = write!(s, " {n}: certified % | cert. cost |");
-        }
-    }
-    s.push_str("\n|---|");
-    for _ in names {
-        s.push_str(if mpfr { "--:|--:|--:|--:|" } else { "--:|--:|" });
-    }
-    s.push('\n');
-    let mut keys: Vec<usize> = rows
-        .iter()
-        .filter(|r| r.sweep == sweep)
-        .map(|r| r.key)
-        .collect();
-    keys.dedup();
-    for k in keys {
-        let lead = rows
-            .iter()
-            .find(|r| r.sweep == sweep && r.key == k)
-            .unwrap();
-        let _ = write!(
-            s,
-            "| {} |",
-            if sweep == Sweep::Knots {
-                lead.points
+            if r.cert.vs_reference == 0 {
+                v.extend(["–".to_string(), "–".to_string()]);
+            } else if r.cert.false_cert == 0 {
+                v.extend([r.cert.optimal_pct(), "0".to_string()]);
             } else {
-                k
+                v.extend([
+                    r.cert.optimal_pct(),
+                    format!("**{} FALSE**", r.cert.false_cert),
+                ]);
             }
-        );
-        for n in names {
-            let Some(r) = rows
-                .iter()
-                .find(|r| r.sweep == sweep && r.key == k && r.strategy == *n)
-            else {
-                s.push_str(if mpfr {
-                    " – | – | – | – |"
-                } else {
-                    " – | – |"
-                });
-                continue;
-            };
-            let _ = write!(s, " {} |", r.cert.certified_pct());
-            if mpfr {
-                if r.cert.vs_reference == 0 {
-                    s.push_str(" – | – |");
-                } else if r.cert.false_cert == 0 {
-                    let _ = write!(s, " {} | 0 |", r.cert.optimal_pct());
-                } else {
-                    let _ = write!(
-                        s,
-                        " {} | **{} FALSE** |",
-                        r.cert.optimal_pct(),
-                        r.cert.false_cert
-                    );
-                }
-            }
-            let _ = write!(s, " {:+.1}% |", r.cert_cost_pct);
         }
-        s.push('\n');
-    }
-    s
+        v.push(format!("{:+.1}%", r.cert_cost_pct));
+        v
+    })
 }
 
 fn main() {
