@@ -106,21 +106,11 @@ pub fn cost_pct(on: Duration, off: Duration) -> f64 {
 }
 
 impl OnOff {
-    /// The median over the rounds of the ratio time with / time without: adjacent batches, so
-    /// that a change of the machine's load between rounds cancels (1 when nothing was timed).
-    pub fn paired_ratio(&self) -> f64 {
-        let mut r: Vec<f64> = self
-            .on
-            .iter()
-            .zip(&self.off)
-            .filter(|(_, off)| !off.is_zero())
-            .map(|(on, off)| on.as_secs_f64() / off.as_secs_f64())
-            .collect();
-        if r.is_empty() {
-            return 1.0;
-        }
-        r.sort_by(f64::total_cmp);
-        r[r.len() / 2]
+    /// The fastest round with and without certification: on a shared machine other jobs only
+    /// ever add time, so the minimum is the steadiest estimate of a deterministic call.
+    pub fn fastest(&self) -> (Duration, Duration) {
+        let min = |v: &[Duration]| v.iter().copied().min().unwrap_or_default();
+        (min(&self.on), min(&self.off))
     }
 }
 

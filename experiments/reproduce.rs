@@ -114,8 +114,8 @@ struct Measure {
     time: Duration,
     /// the same call without certification (`drive_with(s, c, false)`)
     time_off: Duration,
-    /// median ratio of adjacent calls with / without certification
-    cert_ratio: f64,
+    /// the fastest call with and without certification
+    fastest: (Duration, Duration),
     enc: Enclosure,
     /// certified bounds; against the reference (feature `mpfr`): optimal and falsely certified
     cert: CertCounts,
@@ -139,8 +139,8 @@ struct Row {
     median_time: Duration,
     /// median over the curves of the time without certification
     median_time_off: Duration,
-    /// certification cost in percent: summed times with over summed times without, minus 1
-    /// (each curve's time with certification as its time without times its paired ratio)
+    /// certification cost in percent: the curves' summed fastest times with over those without,
+    /// minus 1
     cert_cost_pct: f64,
     cert: CertCounts,
     deriv_time: Duration,
@@ -159,9 +159,9 @@ fn median<T: Copy + PartialOrd>(v: &mut [T]) -> T {
 }
 
 /// One strategy on one curve: median per-call time of `s.enclose(c)`, of the same call without
-/// certification (`drive_with(s, c, false)`), the median ratio of adjacent calls with / without
-/// (`certs::OnOff::paired_ratio`), and the enclosure.
-type Timed = (Duration, Duration, f64, Enclosure);
+/// certification (`drive_with(s, c, false)`), the fastest call of each (`certs::OnOff::fastest`,
+/// for the cost of certification), and the enclosure.
+type Timed = (Duration, Duration, (Duration, Duration), Enclosure);
 
 /// [`Timed`], single calls alternating with and without certification, repeating for at least
 /// `min` (and 3 calls each).
@@ -177,8 +177,8 @@ fn time_enclose(s: &dyn BoxEncloser, c: &NurbsCurve, min: Duration) -> Timed {
             min_total: min,
         },
     );
-    let ratio = t.paired_ratio();
-    (median(&mut t.on), median(&mut t.off), ratio, t.enc)
+    let fastest = t.fastest();
+    (median(&mut t.on), median(&mut t.off), fastest, t.enc)
 }
 
 /// Tightness against the 256-bit reference: the worst distance (ulps of the coordinate scale)
@@ -241,7 +241,7 @@ fn measure_row(
             .par_iter()
             .enumerate()
             .map(|(ci, c)| {
-                let (time, time_off, cert_ratio, enc) = runs[si][ci].clone();
+                let (time, time_off, fastest, enc) = runs[si][ci].clone();
                 #[allow(unused_mut)]
                 let mut params = dense_params(c, args.per_span);
                 #[allow(unused_mut)]
@@ -265,7 +265,7 @@ fn measure_row(
                 Measure {
                     time,
                     time_off,
-                    cert_ratio,
+                    fastest,
                     enc,
                     cert,
                     ulps,
@@ -315,12 +315,11 @@ fn measure_row(
             curves: ms.len(),
             median_time: med_time,
             median_time_off: median(&mut off),
-            // the time the row's curves would take with certification, estimated from each
-            // curve's paired ratio (robust against load changes between calls), over the time
-            // without
+            // from each curve's fastest calls: medians of a few calls of several ms vary by
+            // +-50% on a loaded machine, the minima by a few percent
             cert_cost_pct: cost_pct(
-                ms.iter().map(|m| m.time_off.mul_f64(m.cert_ratio)).sum(),
-                ms.iter().map(|m| m.time_off).sum(),
+                ms.iter().map(|m| m.fastest.0).sum(),
+                ms.iter().map(|m| m.fastest.1).sum(),
             ),
             cert,
             deriv_time: med_time.mul_f64(med_frac),
@@ -693,8 +692,8 @@ fn main() {
          (lo and hi of every coordinate of every curve) the driver proved optimal (`optimal_lo` / \
          `optimal_hi`: lo = RD(min), hi = RU(max)); {} `cert. cost` is the time of the row's curves with \
          certification over their time without it (`enclose::drive_with(s, c, false)`, single calls \
-         alternating with those timed above), minus 1, where a curve's time with it is its time without \
-         times the median ratio of adjacent calls with / without (robust against load changes); heuristic strategies get no \
+         alternating with those timed above), minus 1, each curve's time being its fastest call (other \
+         jobs on the machine only add time); heuristic strategies get no \
          certificates, so their cost is timing noise.\n",
         args.curves,
         if cfg!(feature = "mpfr") { ", against a 256-bit MPFR reference" } else { "; without the `mpfr` feature the certified gap (outer - inner) is shown, marked (gap)" },
