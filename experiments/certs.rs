@@ -115,7 +115,8 @@ impl OnOff {
 }
 
 /// How [`time_on_off`] repeats: rounds of one batch with the certificate, then one batch
-/// without, until at least `min_rounds` rounds and `min_total` wall time (at most `max_rounds`);
+/// without, until at least `min_rounds` rounds and `min_total` wall time (at most `max_rounds`,
+/// and no new round once `max_total` has elapsed: at least one round);
 /// a batch repeats the call until `batch` has elapsed (at least once, at most `max_batch`).
 #[derive(Clone, Copy, Debug)]
 pub struct Timing {
@@ -124,6 +125,7 @@ pub struct Timing {
     pub min_rounds: usize,
     pub max_rounds: usize,
     pub min_total: Duration,
+    pub max_total: Duration,
 }
 
 /// Times of one strategy on one curve: per round the mean time per call of the batch with the
@@ -156,8 +158,10 @@ pub fn time_on_off(s: &dyn BoxEncloser, c: &NurbsCurve, t: Timing) -> OnOff {
     };
     let (mut on, mut off) = (Vec::new(), Vec::new());
     let start = Instant::now();
-    while on.len() < t.max_rounds
-        && (on.len() < t.min_rounds.max(1) || start.elapsed() < t.min_total)
+    while on.is_empty()
+        || (on.len() < t.max_rounds
+            && start.elapsed() < t.max_total
+            && (on.len() < t.min_rounds || start.elapsed() < t.min_total))
     {
         if on.len() % 2 == 0 {
             on.push(batch(true, &mut enc));

@@ -185,6 +185,7 @@ mod imp {
                 min_rounds: 2,
                 max_rounds: 2,
                 min_total: Duration::ZERO,
+                max_total: Duration::MAX,
             },
         );
         let mean = |v: &[Duration]| v.iter().sum::<Duration>() / v.len() as u32;
