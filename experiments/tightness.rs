@@ -45,19 +45,22 @@ fn main() {
 mod plots;
 
 #[cfg(feature = "mpfr")]
+#[allow(dead_code)] // shared with `reproduce`, which uses a part this binary does not
+mod certs;
+
+#[cfg(feature = "mpfr")]
 mod imp {
+    use super::certs::{cost_pct, time_on_off, CertCounts, Timing};
     use super::plots;
-    use nurbs_box::enclose::{all_strategies, drive_with};
+    use nurbs_box::enclose::all_strategies;
     use nurbs_box::testkit::gen::{self, Family, GenParams};
-    use nurbs_box::testkit::reference::{
-        false_certificate, optimal_bound, reference_box, ulps_outside, ReferenceBox,
-    };
+    use nurbs_box::testkit::reference::{reference_box, ulps_outside, ReferenceBox};
     use nurbs_box::testkit::report::Provenance;
     use nurbs_box::testkit::ties::tie_curve;
     use nurbs_box::testkit::validate::{check_containment, dense_params};
     use nurbs_box::{BoxEncloser, Enclosure, NurbsCurve};
     use rayon::prelude::*;
-    use std::time::{Duration, Instant};
+    use std::time::Duration;
 
     struct Args {
         curves: usize,
@@ -101,12 +104,8 @@ mod imp {
         times: Vec<Duration>,
         /// times of the same calls without certification
         times_off: Vec<Duration>,
-        /// bounds equal to the optimal double
-        optimal: usize,
-        /// bounds with a certificate
-        certified: usize,
-        /// certificates on a bound that is not the optimal double
-        false_cert: usize,
+        /// certified, optimal and falsely certified bounds
+        cert: CertCounts,
         /// distance of every bound to the optimal double, in f64 steps
         dist: Vec<f64>,
     }
@@ -121,9 +120,7 @@ mod imp {
             self.curves_missed += o.curves_missed;
             self.times.extend_from_slice(&o.times);
             self.times_off.extend_from_slice(&o.times_off);
-            self.optimal += o.optimal;
-            self.certified += o.certified;
-            self.false_cert += o.false_cert;
+            self.cert.add(&o.cert);
             self.dist.extend_from_slice(&o.dist);
         }
 
@@ -141,15 +138,8 @@ mod imp {
             t.sort();
             let tmed = t.get(t.len() / 2).copied().unwrap_or_default();
             let tmean = t.iter().sum::<Duration>() / (t.len().max(1) as u32);
-            let off = self.times_off.iter().sum::<Duration>().as_secs_f64();
-            let on = self.times.iter().sum::<Duration>().as_secs_f64();
-            let pct = |k: usize| {
-                if u.is_empty() {
-                    "-".to_string()
-                } else {
-                    format!("{:.2}", 100.0 * k as f64 / u.len() as f64)
-                }
-            };
+            let off = self.times_off.iter().sum::<Duration>();
+            let on = self.times.iter().sum::<Duration>();
             format!(
                 "| {family} | {strategy} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} | {:+.1} |",
                 self.curves,
@@ -161,12 +151,12 @@ mod imp {
                 self.pt_miss,
                 self.inner_bad,
                 self.curves_missed,
-                pct(self.optimal),
-                pct(self.certified),
-                self.false_cert,
+                self.cert.optimal_pct(),
+                self.cert.certified_pct(),
+                self.cert.false_cert,
                 tmed.as_secs_f64() * 1e6,
                 tmean.as_secs_f64() * 1e6,
-                if off > 0.0 { 100.0 * (on / off - 1.0) } else { 0.0 },
+                cost_pct(on, off),
             )
         }
     }
@@ -183,25 +173,23 @@ mod imp {
         }
     }
 
-    /// Wall time of one `enclose` call with and without certification, each repeated until
-    /// >= 0.2 ms (mean per call), alternating in rounds so that drift hits both alike.
+    /// Wall time of one `enclose` call with and without certification: the mean per call over
+    /// two rounds of >= 0.1 ms batches each (`certs::time_on_off`, alternating).
     fn time_enclose(s: &dyn BoxEncloser, c: &NurbsCurve) -> (Duration, Duration, Enclosure) {
-        let e = s.enclose(c);
-        let run = |certify: bool| {
-            let t0 = Instant::now();
-            let mut n = 0u32;
-            while n == 0 || (t0.elapsed() < Duration::from_micros(100) && n < 500) {
-                std::hint::black_box(drive_with(s, std::hint::black_box(c), certify));
-                n += 1;
-            }
-            t0.elapsed() / n
-        };
-        let (mut on, mut off) = (Duration::ZERO, Duration::ZERO);
-        for _ in 0..2 {
-            on += run(true);
-            off += run(false);
-        }
-        (on / 2, off / 2, e)
+        let t = time_on_off(
+            s,
+            c,
+            Timing {
+                batch: Duration::from_micros(100),
+                max_batch: 500,
+                min_rounds: 2,
+                max_rounds: 2,
+                min_total: Duration::ZERO,
+                max_total: Duration::MAX,
+            },
+        );
+        let mean = |v: &[Duration]| v.iter().sum::<Duration>() / v.len() as u32;
+        (mean(&t.on), mean(&t.off), t.enc)
     }
 
     /// The position of an f64 in the ordered sequence of all f64 (adjacent doubles differ by 1;
@@ -229,17 +217,6 @@ mod imp {
                 }
                 acc.ulps.push(d);
             }
-            for (bound, exact, up, flag) in [
-                (cb.lo, &rb.lo[j], false, cb.optimal_lo),
-                (cb.hi, &rb.hi[j], true, cb.optimal_hi),
-            ] {
-                let opt = optimal_bound(exact, sc, up);
-                let dist = (ord(bound) - ord(opt)).unsigned_abs() as f64;
-                acc.dist.push(dist);
-                acc.optimal += (bound == opt) as usize;
-                acc.certified += flag as usize;
-                acc.false_cert += (flag && false_certificate(bound, exact, sc, up)) as usize;
-            }
             if !nurbs_box::testkit::reference::inner_reached(
                 rb,
                 j,
@@ -250,6 +227,11 @@ mod imp {
                 acc.inner_bad += 1;
             }
         }
+        let dist = &mut acc.dist;
+        let k = CertCounts::against(c, e, rb, |bound, opt| {
+            dist.push((ord(bound) - ord(opt)).unsigned_abs() as f64)
+        });
+        acc.cert.add(&k);
         let mut pts = dense_params(c, 16);
         pts.extend(rb.argmin.iter().chain(&rb.argmax));
         let chk = check_containment(c, e, &pts);
