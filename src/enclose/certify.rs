@@ -78,8 +78,7 @@
 //! exact stage only for the best candidate and degree <= [`EXACT_MAX_DEGREE`] (its exact
 //! Newton levels only for a value within 2^-96 of t, two exact Newton steps per level of
 //! [`ZIV_BITS`]); lowering only up to degree [`LOWER_MAX_DEGREE`], a lowering proof at most
-//! [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments, at most
-//! [`MAX_EXACT_EVALS`] exact evaluations per stage; no search at all
+//! [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; no search at all
 //! above degree [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
@@ -126,10 +125,6 @@ pub const MAX_BOXES: usize = 64;
 const MAX_DEPTH: u32 = 64;
 /// Exact concavity arguments per lowering proof.
 pub const MAX_EXACT_TRIES: usize = 4;
-/// Exact rational evaluations per exact stage and per lowering proof (its point values and
-/// concavity rule together): where spans are tiny (clustered knots) one costs as much as
-/// thousands of double-double evaluations.
-pub const MAX_EXACT_EVALS: usize = 16;
 /// Candidates that go to the exact stage.
 const EXACT_CANDIDATES: usize = 1;
 
@@ -160,8 +155,6 @@ struct Evals<'a> {
     ddi0: Option<HSpline<Ddi>>,
     buf: Vec<Ddi>,
     exact: Option<CurveEval<Exact>>,
-    /// exact evaluations left for the current side ([`MAX_EXACT_EVALS`])
-    exact_left: usize,
 }
 
 impl<'a> Evals<'a> {
@@ -173,7 +166,6 @@ impl<'a> Evals<'a> {
             ddi0: None,
             buf: Vec::new(),
             exact: None,
-            exact_left: MAX_EXACT_EVALS,
         }
     }
 
@@ -248,10 +240,9 @@ impl<'a> Evals<'a> {
         u: &Exact,
         k: usize,
     ) -> Option<Vec<Exact>> {
-        if !self.exact_possible() || self.exact_left == 0 {
+        if !self.exact_possible() {
             return None;
         }
-        self.exact_left -= 1;
         let c = self.c;
         let e = self.exact.get_or_insert_with(|| CurveEval::new(c, 2));
         let v = e.coord_derivs_in_span(span, u, k, j);
@@ -466,7 +457,12 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
     let guess = &mut out.guess;
     // g(u) in double-double; the largest upper end seen goes to `guess`
     let look = |ev: &mut Evals, u: f64, guess: &mut f64| -> Option<Ddi> {
-        let g = ev.ddi_value(j, sign, u)?;
+        // at a clamped end the value is the end control point, exactly (a point set: an exact
+        // tie with t is then no straddle, and the lowering proof decides it exactly)
+        let g = match ev.clamped_end_value(j, u) {
+            Some(x) => Ddi::exact(sign * x),
+            None => ev.ddi_value(j, sign, u)?,
+        };
         *guess = guess.max(g.to_interval().sup());
         Some(g)
     };
@@ -557,7 +553,6 @@ fn exact_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, d: &DdiOutcome) -> b
     if !ev.exact_possible() || !d.straddle {
         return false;
     }
-    ev.exact_left = MAX_EXACT_EVALS;
     let (a, b) = ev.c.domain();
     let mut best = d.best.clone();
     best.sort_by(|x, y| y.0.total_cmp(&x.0));
@@ -621,7 +616,6 @@ fn prove_at_most(
     let (p, n) = (c.degree(), c.num_points() - 1);
     let kn = c.knots();
     let mut boxes = 0usize;
-    ev.exact_left = if exact { MAX_EXACT_EVALS } else { 0 };
     // (without `exact`: no exact evaluation at all)
     let mut exact_tries = if exact { 0 } else { MAX_EXACT_TRIES };
     // spans nearest the candidates first: an early failure costs least
@@ -711,7 +705,8 @@ fn box_at_most(
     if g[0].is_at_most(t) {
         return BoxVerdict::Below;
     }
-    let point_at_most = |ev: &mut Evals, u: f64, exact_tries: &mut usize| -> Option<bool> {
+    let exact_ok = *exact_tries < MAX_EXACT_TRIES;
+    let point_at_most = |ev: &mut Evals, u: f64| -> Option<bool> {
         if let Some(x) = ev.clamped_end_value(j, u) {
             // the end control point, exactly (`NurbsCurve::clamped_ends`)
             return Some(sign * x <= t);
@@ -723,12 +718,9 @@ fn box_at_most(
         if v[0].is_above(t) {
             return Some(false);
         }
-        // (an exact value costs up to thousands of double-double ones where spans are tiny:
-        // it shares the per-proof budget of the exact concavity rule)
-        if *exact_tries >= MAX_EXACT_TRIES {
+        if !exact_ok {
             return None;
         }
-        *exact_tries += 1;
         let e = ev.exact_in(k, j, sign, &Exact::of(u), 0)?;
         Some(!e[0].gt_f64(t))
     };
@@ -736,7 +728,7 @@ fn box_at_most(
     if d1.inf() >= 0.0 || d1.sup() <= 0.0 {
         // monotone on the box: the maximum is at one end
         let end = if d1.inf() >= 0.0 { hi } else { lo };
-        return match point_at_most(ev, end, exact_tries) {
+        return match point_at_most(ev, end) {
             Some(true) => BoxVerdict::Below,
             Some(false) => BoxVerdict::Above,
             None => BoxVerdict::Stuck,
