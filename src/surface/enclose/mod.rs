@@ -16,6 +16,7 @@ use inari::Interval;
 
 mod bezier;
 mod hull;
+mod fast;
 mod newton;
 
 pub use bezier::BezierPatches;
