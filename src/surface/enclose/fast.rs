@@ -142,7 +142,7 @@ impl FastSurface {
 
     /// The coefficient ratio a_i / w_i of patch k (sign-adjusted grid `g` of coordinate j),
     /// enclosed: exact at a clamped domain corner.
-    fn ratio(&self, k: usize, g: &DdGrid, i: usize, j: usize, sign: f64) -> Interval {
+    fn ratio<const N: usize>(&self, k: usize, g: &DdGrid<N>, i: usize, j: usize, sign: f64) -> Interval {
         if let Some((_, _, x)) = self.exact.iter().find(|e| e.0 == k && e.1 == i) {
             return iv::point(sign * x[j]);
         }
@@ -150,11 +150,11 @@ impl FastSurface {
     }
 
     /// The `Ddi` grids (sign * A_j, w) of patch k.
-    fn dd_grid(&self, k: usize, j: usize, sign: f64) -> DdGrid {
+    fn dd_grid<const N: usize>(&self, k: usize, j: usize, sign: f64) -> DdGrid<N> {
         let h = self.dim + self.rational as usize;
         let n = (self.p + 1) * (self.q + 1);
-        let mut a = [Ddi::exact(0.0); MAXN];
-        let mut w = [Ddi::exact(1.0); MAXN];
+        let mut a = [Ddi::exact(0.0); N];
+        let mut w = [Ddi::exact(1.0); N];
         let pts = &self.patches[k];
         for i in 0..n {
             let x = pts[i * h + j];
@@ -171,16 +171,21 @@ impl FastSurface {
     /// path could not prove it (the caller's general search runs then). Counts the side in
     /// `st` (fast exit, fast proof or fallback).
     pub(crate) fn side(&self, j: usize, sign: f64, st: &mut Stats) -> Option<(f64, f64)> {
-        let r = self.side_inner(j, sign, st);
+        // fixed-size arrays: 16 coefficients up to bicubic, else MAXN (less to copy)
+        let r = if (self.p + 1) * (self.q + 1) <= 16 {
+            self.side_inner::<16>(j, sign, st)
+        } else {
+            self.side_inner::<MAXN>(j, sign, st)
+        };
         if r.is_none() {
             st.fast_fallbacks += 1;
         }
         r
     }
 
-    fn side_inner(&self, j: usize, sign: f64, st: &mut Stats) -> Option<(f64, f64)> {
+    fn side_inner<const N: usize>(&self, j: usize, sign: f64, st: &mut Stats) -> Option<(f64, f64)> {
         let n = [self.p, self.q];
-        let grids: SmallVec<[DdGrid; 1]> = (0..self.patches.len())
+        let grids: SmallVec<[DdGrid<N>; 1]> = (0..self.patches.len())
             .map(|k| self.dd_grid(k, j, sign))
             .collect();
         // corners: values the surface takes (continuous surface), and the vertex test
@@ -209,29 +214,53 @@ impl FastSurface {
             return Some((hi, lo));
         }
         // candidates on the patches the vertex test did not settle
-        let roots: SmallVec<[Piece; 1]> = grids
+        let roots: SmallVec<[Piece<N>; 1]> = grids
             .iter()
             .map(|g| Piece::root(g, n, self.rational))
             .collect::<Option<_>>()?;
         let mut cands: SmallVec<[[Option<Cand>; 5]; 1]> = SmallVec::new();
-        for (k, g) in grids.iter().enumerate() {
+        for k in 0..grids.len() {
             let mut cs: [Option<Cand>; 5] = [None; 5];
             if coef_max[k] > hi {
                 let root = &roots[k];
                 for (e, c) in cs.iter_mut().enumerate().take(4) {
                     let edge = root.edge(e);
-                    if edge.max_coef() > lo {
-                        *c = newton(&edge, g, self.rational);
+                    if edge.max_coef() > hi {
+                        *c = newton(&edge, self.rational);
+                        st.newton_iterations += 1;
                     }
                 }
-                cs[4] = newton(root, g, self.rational);
-                st.newton_iterations += 5;
-            }
-            for c in cs.iter().flatten() {
-                lo = lo.max(c.val.inf());
-                hi = hi.max(c.val.sup());
+                cs[4] = newton(root, self.rational);
+                st.newton_iterations += 1;
             }
             cands.push(cs);
+        }
+        // the tight (`Ddi`) values of the candidates that may be the best (f64 estimates)
+        let best = cands
+            .iter()
+            .flatten()
+            .flatten()
+            .fold(hi, |m, c| m.max(c.est));
+        let near = 1e-12 * best.abs().max(hi.abs());
+        for (k, cs) in cands.iter_mut().enumerate() {
+            for (slot, c) in cs.iter_mut().enumerate() {
+                let Some(c) = c else { continue };
+                if c.est >= best - near {
+                    let dd = if slot < 4 {
+                        {
+                        let mut m = n;
+                        m[slot / 2] = 0;
+                        tight_derivs(&grids[k].edge(slot, n), m, c.t, self.rational)
+                    }
+                    } else {
+                        tight_derivs(&grids[k], n, c.t, self.rational)
+                    };
+                    let val = value_of(&dd, self.rational);
+                    c.dd = Some(dd);
+                    lo = lo.max(val.inf());
+                    hi = hi.max(val.sup());
+                }
+            }
         }
         if !(lo.is_finite() && hi.is_finite()) {
             return None;
@@ -245,7 +274,6 @@ impl FastSurface {
                     continue;
                 }
                 let mut pr = Prover {
-                    g: &grids[k],
                     rational: self.rational,
                     ub,
                     lo: at,
@@ -256,7 +284,7 @@ impl FastSurface {
                     searches: 4,
                     st: &mut *st,
                 };
-                ok = pr.prove(&roots[k], 4);
+                ok = pr.prove(&roots[k], 4, &grids[k]);
                 (ub, at) = (pr.ub, pr.lo);
                 if !ok {
                     break;
@@ -273,12 +301,24 @@ impl FastSurface {
 
 /// `Ddi` coefficient grids of one patch for one coordinate side: sign * A_j and w.
 #[derive(Clone, Copy)]
-struct DdGrid {
-    a: [Ddi; MAXN],
-    w: [Ddi; MAXN],
+struct DdGrid<const N: usize> {
+    a: [Ddi; N],
+    w: [Ddi; N],
 }
 
-impl DdGrid {
+impl<const N: usize> DdGrid<N> {
+    /// The grid of boundary curve e of a patch of degrees n (see [`Piece::edge`]).
+    fn edge(&self, e: usize, n: [usize; 2]) -> DdGrid<N> {
+        let mut g = *self;
+        let len = if e < 2 { n[1] + 1 } else { n[0] + 1 };
+        for k in 0..len {
+            let i = edge_index(e, n, k);
+            g.a[k] = self.a[i];
+            g.w[k] = self.w[i];
+        }
+        g
+    }
+
     /// The coefficient ratio a_i / w_i, enclosed (a value of the surface at a patch corner).
     fn ratio(&self, i: usize, rational: bool) -> Interval {
         if rational {
@@ -289,24 +329,27 @@ impl DdGrid {
     }
 }
 
-/// A candidate point t of a patch (local parameters) and its value, enclosed.
+/// A candidate point t of a patch (local parameters).
 #[derive(Debug, Clone, Copy)]
 struct Cand {
     t: [f64; 2],
-    val: Interval,
+    /// the f64 estimate of its value
+    est: f64,
+    /// `Ddi` enclosures of A, w and their derivatives there, once computed
+    dd: Option<[[Ddi; 6]; 2]>,
 }
 
 /// A box of a patch's parameter space with the f64 Bernstein coefficients of sign * A_j and w
 /// over it (grid `(n[0] + 1) x (n[1] + 1)`, index `r (n[1] + 1) + c`, r along u; a direction
 /// with n = 0 is fixed: a boundary curve), each within `ea` / `ew` of the exact coefficient.
 #[derive(Clone, Copy)]
-struct Piece {
+struct Piece<const N: usize> {
     /// parameter ranges in the patch's local coordinates (exact for the patch sides: a piece
     /// touches side 0 / 1 iff its range starts at 0.0 / ends at 1.0)
     t: [(f64, f64); 2],
     n: [usize; 2],
-    a: [f64; MAXN],
-    w: [f64; MAXN],
+    a: [f64; N],
+    w: [f64; N],
     ea: f64,
     ew: f64,
     rational: bool,
@@ -317,21 +360,32 @@ struct Piece {
     prio: f64,
 }
 
+/// Index of coefficient k of boundary curve e (0: u = 0, 1: u = 1, 2: v = 0, 3: v = 1) in
+/// the grid of a patch of degrees n.
+fn edge_index(e: usize, n: [usize; 2], k: usize) -> usize {
+    match e {
+        0 => k,
+        1 => n[0] * (n[1] + 1) + k,
+        2 => k * (n[1] + 1),
+        _ => k * (n[1] + 1) + n[1],
+    }
+}
+
 /// f64 value and error bound of an enclosure: the centre hi + lo is within |lo| + rad of
 /// every enclosed real, and RN(hi + lo) = hi is within |lo| of the centre.
 fn f64_of(x: Ddi) -> (f64, f64) {
     (x.hi(), x.lo().abs() + x.rad())
 }
 
-impl Piece {
+impl<const N: usize> Piece<N> {
     /// The whole patch.
-    fn root(g: &DdGrid, n: [usize; 2], rational: bool) -> Option<Piece> {
+    fn root(g: &DdGrid<N>, n: [usize; 2], rational: bool) -> Option<Piece<N>> {
         let cnt = (n[0] + 1) * (n[1] + 1);
         let mut pc = Piece {
             t: [(0.0, 1.0), (0.0, 1.0)],
             n,
-            a: [0.0; MAXN],
-            w: [1.0; MAXN],
+            a: [0.0; N],
+            w: [1.0; N],
             ea: 0.0,
             ew: 0.0,
             rational,
@@ -363,23 +417,17 @@ impl Piece {
     /// Boundary curve e of the patch (0: u = 0, 1: u = 1, 2: v = 0, 3: v = 1) as a 1-D piece
     /// (its coefficients are the patch's boundary row / column: exactly the curve's Bézier
     /// coefficients). Only for the root piece.
-    fn edge(&self, e: usize) -> Piece {
+    fn edge(&self, e: usize) -> Piece<N> {
         let [n0, n1] = self.n;
         let mut pc = *self;
         let (dir, at) = (e / 2, if e % 2 == 0 { 0.0 } else { 1.0 });
         pc.n[dir] = 0;
+        pc.full = pc.n;
         pc.t[dir] = (at, at);
-        let idx = |k: usize| -> usize {
-            if dir == 0 {
-                (if e == 0 { 0 } else { n0 }) * (n1 + 1) + k
-            } else {
-                k * (n1 + 1) + if e == 2 { 0 } else { n1 }
-            }
-        };
         let len = if dir == 0 { n1 + 1 } else { n0 + 1 };
         for k in 0..len {
-            pc.a[k] = self.a[idx(k)];
-            pc.w[k] = self.w[idx(k)];
+            pc.a[k] = self.a[edge_index(e, self.n, k)];
+            pc.w[k] = self.w[edge_index(e, self.n, k)];
         }
         pc
     }
@@ -423,7 +471,7 @@ impl Piece {
     /// <= 5.01 u M plus eta (2^-1074, the underflow error of the product). A split of degree
     /// n has n levels: e' = e + n ((2 delta + 6 u) M + 2 eta), rounded up (Lemma B of
     /// `num::ddi`).
-    fn split(&self, dir: usize, t: f64, delta: f64) -> (Piece, Piece) {
+    fn split(&self, dir: usize, t: f64, delta: f64) -> (Piece<N>, Piece<N>) {
         let mut l = *self;
         let mut r = *self;
         let n = self.n[dir];
@@ -436,7 +484,7 @@ impl Piece {
         let grow = |e: f64, m: f64| {
             up(e + n as f64 * ((2.0 * delta + 6.0 * UNIT) * m * (1.0 + 1e-12) + 2e-323))
         };
-        let run = |src: &[f64; MAXN], lo: &mut [f64; MAXN], hi: &mut [f64; MAXN]| {
+        let run = |src: &[f64; N], lo: &mut [f64; N], hi: &mut [f64; N]| {
             let mut b = [0.0f64; MAX_DEGREE + 1];
             let mut m = 0.0f64;
             for k in 0..lines {
@@ -477,12 +525,12 @@ impl Piece {
     /// The coefficients g of a polynomial that has F's derivatives, and their error bound:
     /// the a themselves (polynomial: F = A - ub), or f = fl(a - ub w) (rational; error
     /// ea + |ub| ew + U1 |f| + eta, the FMA's rounding). `None` if not finite.
-    fn f_values(&self, ub: f64) -> Option<([f64; MAXN], f64)> {
+    fn f_values(&self, ub: f64) -> Option<([f64; N], f64)> {
         let cnt = self.count();
         if !self.rational {
             return Some((self.a, self.ea));
         }
-        let mut f = [0.0f64; MAXN];
+        let mut f = [0.0f64; N];
         let mut m = 0.0f64;
         for i in 0..cnt {
             f[i] = (-ub).mul_add(self.w[i], self.a[i]);
@@ -497,7 +545,7 @@ impl Piece {
     /// Whether F <= 0 on the piece by its coefficients (convex hull property): polynomial
     /// a_i + ea <= ub (the sum rounded up), rational f_i + E <= 0 (the sign of a sum of two
     /// floats is exact).
-    fn excluded(&self, f: &[f64; MAXN], e: f64, ub: f64) -> bool {
+    fn excluded(&self, f: &[f64; N], e: f64, ub: f64) -> bool {
         let m = f[..self.count()]
             .iter()
             .fold(f64::NEG_INFINITY, |m, &x| m.max(x));
@@ -511,7 +559,7 @@ impl Piece {
     /// Whether F is non-increasing (`down`) / non-decreasing along `dir` on the piece: every
     /// difference d of neighbouring coefficients along `dir` has that sign (the exact one
     /// within 2 e + U1 |d| of the computed one); the Bernstein coefficients of F_t are n d.
-    fn monotone(&self, f: &[f64; MAXN], e: f64, dir: usize, down: bool) -> bool {
+    fn monotone(&self, f: &[f64; N], e: f64, dir: usize, down: bool) -> bool {
         let [n0, n1] = self.n;
         let step = if dir == 0 { n1 + 1 } else { 1 };
         for r in 0..=n0 {
@@ -542,7 +590,7 @@ impl Piece {
     /// eigenvalues of -H are those of D^-1 (-H) D, D = diag(1, r), whose Gershgorin discs
     /// give lambda_min >= min(a0 - b0 r, c0 - b0 / r) for any r > 0 (r = sqrt(a0 / c0) makes
     /// both equal when a0 c0 > b0^2). All in interval arithmetic.
-    fn concavity(&self, f: &[f64; MAXN], e: f64) -> Option<f64> {
+    fn concavity(&self, f: &[f64; N], e: f64) -> Option<f64> {
         let [n0, n1] = self.n;
         let cnt = self.count();
         let m = f[..cnt].iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -611,6 +659,12 @@ impl Piece {
 /// Farin, derivatives of a Bézier curve). For verified types every result encloses the exact
 /// one. `b` is overwritten.
 fn bern2<S: Scalar + Copy>(b: &mut [S], t: S) -> [S; 3] {
+    // lo + t (hi - lo) as one Horner step (one fused, enclosed step for `Ddi`: over at most
+    // 2 MAX_DEGREE levels its radius growth is immaterial; plain arithmetic for f64)
+    #[inline(always)]
+    fn step<S: Scalar + Copy>(t: &S, lo: &S, hi: &S) -> S {
+        S::horner_step(&(*hi - *lo), t, lo)
+    }
     let n = b.len() - 1;
     let z = S::zero();
     if n == 0 {
@@ -618,7 +672,7 @@ fn bern2<S: Scalar + Copy>(b: &mut [S], t: S) -> [S; 3] {
     }
     for lev in 1..n.saturating_sub(1) {
         for i in 0..=n - lev {
-            b[i] = S::lerp(&t, &b[i], &b[i + 1]);
+            b[i] = step(&t, &b[i], &b[i + 1]);
         }
     }
     let d2 = if n >= 2 {
@@ -627,11 +681,11 @@ fn bern2<S: Scalar + Copy>(b: &mut [S], t: S) -> [S; 3] {
         z
     };
     if n >= 2 {
-        b[0] = S::lerp(&t, &b[0], &b[1]);
-        b[1] = S::lerp(&t, &b[1], &b[2]);
+        b[0] = step(&t, &b[0], &b[1]);
+        b[1] = step(&t, &b[1], &b[2]);
     }
     let d1 = S::from_usize(n) * (b[1] - b[0]);
-    [S::lerp(&t, &b[0], &b[1]), d1, d2]
+    [step(&t, &b[0], &b[1]), d1, d2]
 }
 
 /// The tensor Bernstein polynomial with coefficients `c` (grid `(n[0] + 1) x (n[1] + 1)`) at
@@ -675,7 +729,7 @@ fn quotient<S: Scalar + Copy>(a: [S; 6], w: [S; 6]) -> [S; 6] {
 /// the point's value enclosed in `Ddi` from the patch grid `g`. `None` if the iteration
 /// leaves the piece or does not settle at a point with a negative definite f64 Hessian.
 /// (An estimate only: soundness never depends on it.)
-fn newton(pc: &Piece, g: &DdGrid, rational: bool) -> Option<Cand> {
+fn newton<const N: usize>(pc: &Piece<N>, rational: bool) -> Option<Cand> {
     let n = pc.n;
     let cnt = pc.count();
     let (mut best, mut bi) = (f64::NEG_INFINITY, 0);
@@ -694,15 +748,16 @@ fn newton(pc: &Piece, g: &DdGrid, rational: bool) -> Option<Cand> {
     if n[1] > 0 {
         t[1] = (c as f64 / n[1] as f64).clamp(0.05, 0.95);
     }
-    newton_from(pc, g, rational, t)
+    newton_from(pc, rational, t)
 }
 
-/// [`newton`] from the point t of the patch (the free directions of `pc` move, in [0, 1]).
-fn newton_from(pc: &Piece, g: &DdGrid, rational: bool, mut t: [f64; 2]) -> Option<Cand> {
+/// [`newton`] from the point t of the patch (the free directions of the root piece `pc`
+/// move, in [0, 1]; its coefficients are the f64 centres of the patch's or the boundary
+/// curve's).
+fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -> Option<Cand> {
     let free = [pc.t[0].0 != pc.t[0].1, pc.t[1].0 != pc.t[1].1];
     // evaluate on the whole patch grid (a boundary curve is the patch at a fixed side)
-    let pn = pc.full;
-    let (fa, fw) = patch_f64(g, pn);
+    let (pn, fa, fw) = (pc.n, &pc.a, &pc.w);
     let mut ok = false;
     for _ in 0..24 {
         let a = eval2(&fa[..], pn, t);
@@ -745,35 +800,47 @@ fn newton_from(pc: &Piece, g: &DdGrid, rational: bool, mut t: [f64; 2]) -> Optio
             break;
         }
     }
-    if !ok {
-        return None;
-    }
-    let a: [Ddi; 6] = eval2(&g.a[..], pn, t);
-    let val = if rational {
-        let w: [Ddi; 6] = eval2(&g.w[..], pn, t);
-        (a[0] / w[0]).to_interval()
+    let a = eval2(&fa[..], pn, t);
+    let est = if rational {
+        a[0] / eval2(&fw[..], pn, t)[0]
     } else {
-        a[0].to_interval()
+        a[0]
     };
-    Some(Cand { t, val })
+    (ok && est.is_finite()).then_some(Cand { t, est, dd: None })
 }
 
-/// f64 copies (the centres) of the patch grid, for the Newton iterations.
-fn patch_f64(g: &DdGrid, n: [usize; 2]) -> ([f64; MAXN], [f64; MAXN]) {
-    let cnt = (n[0] + 1) * (n[1] + 1);
-    let mut a = [0.0; MAXN];
-    let mut w = [1.0; MAXN];
-    for i in 0..cnt {
-        a[i] = g.a[i].hi();
-        w[i] = g.w[i].hi();
+/// sign * S_j at the point t of the patch (grid `g`, degrees n), enclosed in `Ddi` (one
+/// rounding outward at the end: one ulp wide, or a float).
+fn tight_value<const N: usize>(g: &DdGrid<N>, n: [usize; 2], t: [f64; 2], rational: bool) -> Interval {
+    value_of(&tight_derivs(g, n, t, rational), rational)
+}
+
+/// The `Ddi` enclosures of sign * A_j and w and their derivatives at t (w = 1 for a
+/// polynomial patch).
+fn tight_derivs<const N: usize>(g: &DdGrid<N>, n: [usize; 2], t: [f64; 2], rational: bool) -> [[Ddi; 6]; 2] {
+    let a: [Ddi; 6] = eval2(&g.a[..], n, t);
+    let w: [Ddi; 6] = if rational {
+        eval2(&g.w[..], n, t)
+    } else {
+        let mut w = [Ddi::exact(0.0); 6];
+        w[0] = Ddi::exact(1.0);
+        w
+    };
+    [a, w]
+}
+
+/// A / w enclosed.
+fn value_of(d: &[[Ddi; 6]; 2], rational: bool) -> Interval {
+    if rational {
+        (d[0][0] / d[1][0]).to_interval()
+    } else {
+        d[0][0].to_interval()
     }
-    (a, w)
 }
 
 /// The proof of F <= 0 on one patch; `ub` may rise (a concave piece's maximiser beats it),
 /// which keeps every earlier proof valid (F = A - ub w only decreases as ub grows).
-struct Prover<'a> {
-    g: &'a DdGrid,
+struct Prover<'a, const N: usize> {
     rational: bool,
     ub: f64,
     /// the best attained value found on the way
@@ -789,11 +856,11 @@ struct Prover<'a> {
     st: &'a mut Stats,
 }
 
-impl Prover<'_> {
+impl<const N: usize> Prover<'_, N> {
     /// F <= 0 on the piece `root` (the patch, `slot` 4, or its boundary curve `slot`).
-    fn prove(&mut self, root: &Piece, slot: usize) -> bool {
+    fn prove(&mut self, root: &Piece<N>, slot: usize, g: &DdGrid<N>) -> bool {
         let free = [root.n[0] > 0, root.n[1] > 0];
-        let mut work: SmallVec<[Piece; 16]> = SmallVec::new();
+        let mut work: SmallVec<[Piece<N>; 16]> = SmallVec::new();
         work.push(*root);
         // best first (the largest coefficient): the pieces around the maximum are refined
         // first, so `ub` reaches it before the others are judged against it
@@ -822,7 +889,7 @@ impl Prover<'_> {
                     };
                     if !done && touches && pc.monotone(&f, e, d, down) {
                         // a boundary curve's sides are patch corners (<= ub: candidates)
-                        done = slot < 4 || self.edge(root, 2 * d + end);
+                        done = slot < 4 || self.edge(root, 2 * d + end, g);
                     }
                 }
             }
@@ -830,34 +897,26 @@ impl Prover<'_> {
                 continue;
             }
             if let Some(mu) = pc.concavity(&f, e) {
-                if self.concave(&pc, slot, mu) {
+                if self.concave(&pc, root, slot, mu, g) {
                     continue;
                 }
             } else if pc.depth >= 2 && self.searches > 0 && pc.max_coef() > self.ub {
                 // a maximum the first candidates missed: Newton from this piece's centre
                 self.searches -= 1;
-                let mut seed = pc;
-                for k in 0..2 {
-                    seed.t[k] = (0.5 * pc.t[k].0 + 0.5 * pc.t[k].1, 0.5 * pc.t[k].0 + 0.5 * pc.t[k].1);
-                    if pc.n[k] > 0 {
-                        seed.t[k] = (0.0, 1.0);
-                    }
-                }
-                if let Some(c) = newton_from(&seed, self.g, self.rational, pc.argmax_point()) {
-                    self.lo = self.lo.max(c.val.inf());
-                    self.ub = self.ub.max(c.val.sup());
+                if let Some(c) = newton_from(root, self.rational, pc.argmax_point()) {
+                    let val = tight_value(g, pc.full, c.t, self.rational);
+                    self.lo = self.lo.max(val.inf());
+                    self.ub = self.ub.max(val.sup());
                     self.found.push(c);
                 }
             }
             if pc.depth >= MAX_DEPTH {
-                #[cfg(test)]
-                eprintln!("  depth: slot {slot} t {:?} conc {:?} ub {} f {:?} e {}", pc.t, pc.concavity(&f, e), self.ub, &f[..pc.count()], e);
                 return false;
             }
-            let mut kids: SmallVec<[Piece; 4]> = SmallVec::new();
+            let mut kids: SmallVec<[Piece<N>; 4]> = SmallVec::new();
             kids.push(pc);
             for d in (0..2).filter(|&d| free[d]) {
-                let mut next: SmallVec<[Piece; 4]> = SmallVec::new();
+                let mut next: SmallVec<[Piece<N>; 4]> = SmallVec::new();
                 for k in &kids {
                     let (l, r) = k.split(d, 0.5, 0.0);
                     next.push(l);
@@ -875,11 +934,11 @@ impl Prover<'_> {
     }
 
     /// F <= 0 on boundary curve e of the patch (cached).
-    fn edge(&mut self, root: &Piece, e: usize) -> bool {
+    fn edge(&mut self, root: &Piece<N>, e: usize, g: &DdGrid<N>) -> bool {
         if let Some(ok) = self.edges[e] {
             return ok;
         }
-        let ok = self.prove(&root.edge(e), e);
+        let ok = self.prove(&root.edge(e), e, &g.edge(e, root.n));
         self.edges[e] = Some(ok);
         ok
     }
@@ -897,23 +956,45 @@ impl Prover<'_> {
     /// [`constrained_max`]), so near the maximum the terms are at the rounding level and the
     /// bound is F(c) + ~2^-100; F(c), g are `Ddi` enclosures. If S(c) beats `ub`, `ub` is
     /// raised to it first (and `lo` records the attained value).
-    fn concave(&mut self, pc: &Piece, slot: usize, mu: f64) -> bool {
+    fn concave(
+        &mut self,
+        pc: &Piece<N>,
+        root: &Piece<N>,
+        slot: usize,
+        mu: f64,
+        g: &DdGrid<N>,
+    ) -> bool {
         let inside = |c: &Cand| (0..2).all(|k| pc.t[k].0 <= c.t[k] && c.t[k] <= pc.t[k].1);
         let seed = self.cands[slot]
             .iter()
             .chain(self.found.iter())
             .find(|c| inside(c))
-            .map(|c| c.t);
-        let c = constrained_max(pc, self.g, self.rational, seed);
+            .copied();
+        let (c, est) = constrained_max(pc, root, self.rational, seed.map(|c| c.t));
         self.st.newton_iterations += 1;
         let pn = pc.full;
-        let a: [Ddi; 6] = eval2(&self.g.a[..], pn, c);
-        let w: [Ddi; 6] = if self.rational {
-            eval2(&self.g.w[..], pn, c)
-        } else {
-            let mut w = [Ddi::exact(0.0); 6];
-            w[0] = Ddi::exact(1.0);
-            w
+        let free = [pc.n[0] > 0, pc.n[1] > 0];
+        let wd = (0..2)
+            .filter(|&k| free[k])
+            .map(|k| iv::point(pc.t[k].1) - iv::point(pc.t[k].0))
+            .fold(Interval::EMPTY, |x, y| x.convex_hull(y));
+        // f64 pre-check (no soundness role): skip the `Ddi` work where the bound would
+        // clearly fail (a point below ub whose quadratic bound clearly exceeds it)
+        {
+            let w2 = wd.sup() * wd.sup();
+            let q: f64 = (0..2)
+                .filter(|&k| free[k])
+                .map(|k| est[1 + k] * est[1 + k] * w2 / (2.0 * mu))
+                .sum();
+            let scale = self.ub.abs().max(est[0].abs());
+            if est[0] <= self.ub && est[0] - self.ub + q > 1e-12 * scale {
+                return false;
+            }
+        }
+        // (the candidate's own enclosures when c did not move)
+        let [a, w] = match seed.and_then(|s| s.dd.filter(|_| s.t == c)) {
+            Some(dd) => dd,
+            None => tight_derivs(g, pn, c, self.rational),
         };
         let val = if self.rational { a[0] / w[0] } else { a[0] }.to_interval();
         if val.is_empty() || !val.sup().is_finite() {
@@ -925,11 +1006,6 @@ impl Prover<'_> {
         }
         let ub = Ddi::exact(self.ub);
         let fc = (a[0] - ub * w[0]).to_interval();
-        let free = [pc.n[0] > 0, pc.n[1] > 0];
-        let wd = (0..2)
-            .filter(|&k| free[k])
-            .map(|k| iv::point(pc.t[k].1) - iv::point(pc.t[k].0))
-            .fold(Interval::EMPTY, |x, y| x.convex_hull(y));
         let mut_ = iv::point(mu) / wd.sqr();
         let half = iv::point(0.5);
         let mut bound = fc;
@@ -953,14 +1029,12 @@ impl Prover<'_> {
                     // enclosure of the end)
                     (gi * de - half * mut_ * de.sqr()).sup()
                 } else {
-                    (gi.sqr() / mut_ * half).sup()
+                    (gi / mut_ * gi * half).sup()
                 }
             };
             let phi = side(g.sup(), dhi, true).max(side(g.inf(), dlo, false));
             bound = bound + iv::point(phi);
         }
-        #[cfg(test)]
-        eprintln!("   concave {:?} c {c:?} bound {} fc {}", pc.t, bound.sup(), fc.sup());
         bound.sup() <= 0.0
     }
 }
@@ -969,12 +1043,17 @@ impl Prover<'_> {
 /// free directions, clamped to the piece, with a direction fixed at a side where the
 /// gradient points out of the piece (box-constrained Newton). Only an estimate: any point of
 /// the piece gives a valid bound in [`Prover::concave`].
-fn constrained_max(pc: &Piece, g: &DdGrid, rational: bool, seed: Option<[f64; 2]>) -> [f64; 2] {
-    let pn = pc.full;
-    let (fa, fw) = patch_f64(g, pn);
+fn constrained_max<const N: usize>(
+    pc: &Piece<N>,
+    root: &Piece<N>,
+    rational: bool,
+    seed: Option<[f64; 2]>,
+) -> ([f64; 2], [f64; 3]) {
+    let (pn, fa, fw) = (root.n, &root.a, &root.w);
     let mid = |k: usize| 0.5 * pc.t[k].0 + 0.5 * pc.t[k].1;
     let mut t = seed.unwrap_or([mid(0), mid(1)]);
     let free = [pc.n[0] > 0, pc.n[1] > 0];
+    let mut est = [f64::NAN; 3];
     for _ in 0..12 {
         let a = eval2(&fa[..], pn, t);
         let d = if rational {
@@ -982,6 +1061,7 @@ fn constrained_max(pc: &Piece, g: &DdGrid, rational: bool, seed: Option<[f64; 2]
         } else {
             a
         };
+        est = [d[0], d[1], d[2]];
         let gr = [d[1], d[2]];
         let mut act = free;
         for k in 0..2 {
@@ -1020,7 +1100,7 @@ fn constrained_max(pc: &Piece, g: &DdGrid, rational: bool, seed: Option<[f64; 2]
     for k in 0..2 {
         t[k] = t[k].clamp(pc.t[k].0, pc.t[k].1);
     }
-    t
+    (t, est)
 }
 
 #[cfg(test)]
@@ -1100,6 +1180,50 @@ mod tests {
 mod dbg {
     use super::*;
     use crate::surface::gen::random_surface;
+    #[test]
+    fn dbg_time() {
+        let all: Vec<NurbsSurface> = (0..20).map(|k| random_surface(77 + k, 3, 3, 0, false)).collect();
+        let t = std::time::Instant::now();
+        let mut st = Stats::default();
+        for _ in 0..100 {
+            for s in &all {
+                let f = FastSurface::new(s).unwrap();
+                for j in 0..3 {
+                    for sign in [1.0, -1.0] {
+                        std::hint::black_box(f.side(j, sign, &mut st));
+                    }
+                }
+            }
+        }
+        eprintln!("{:.1} us per surface; {st:?}", t.elapsed().as_secs_f64() * 1e6 / 2000.0);
+        let t = std::time::Instant::now();
+        for _ in 0..100 {
+            for s in &all {
+                std::hint::black_box(FastSurface::new(s).unwrap());
+            }
+        }
+        eprintln!("{:.2} us per prepare", t.elapsed().as_secs_f64() * 1e6 / 2000.0);
+        let g = FastSurface::new(&all[0]).unwrap().dd_grid::<16>(0, 0, 1.0);
+        let t = std::time::Instant::now();
+        for k in 0..10000 {
+            std::hint::black_box(eval2::<Ddi>(&g.a[..], [3, 3], [0.3 + k as f64 * 1e-9, 0.6]));
+        }
+        eprintln!("{:.3} us per Ddi eval2", t.elapsed().as_secs_f64() * 1e6 / 10000.0);
+        let t = std::time::Instant::now();
+        let mut x = Ddi::exact(0.3);
+        for k in 0..100000 {
+            x = Ddi::lerp(&Ddi::exact(0.3 + k as f64 * 1e-12), &x, &g.a[k % 16]);
+        }
+        std::hint::black_box(x);
+        eprintln!("{:.1} ns per Ddi lerp", t.elapsed().as_secs_f64() * 1e9 / 100000.0);
+        let fa = [0.1f64; 36];
+        let t = std::time::Instant::now();
+        for k in 0..100000 {
+            std::hint::black_box(eval2::<f64>(&fa[..], [3, 3], [0.3 + k as f64 * 1e-9, 0.6]));
+        }
+        eprintln!("{:.1} ns per f64 eval2", t.elapsed().as_secs_f64() * 1e9 / 100000.0);
+    }
+
     #[test]
     fn dbg_one() {
         let mut all: Vec<NurbsSurface> = (0..30).map(|seed| random_surface(seed, 3, 3, 0, false)).collect();
