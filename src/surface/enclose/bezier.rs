@@ -2,6 +2,9 @@
 //! direction), tensor Bernstein bounds and subdivision (de Casteljau in u and v), branch and
 //! bound per coordinate and side.
 //!
+//! * **Fast path first.** Every side goes through the float-first proofs of module `fast`
+//!   (shared with `newton`); only a side they do not prove runs the branch and bound below
+//!   (the patches are extracted in interval arithmetic only then).
 //! * **Bounds.** A Bézier patch lies in the box of its coefficients (tensor Bernstein
 //!   polynomials are >= 0 and sum to 1). For a rational patch with every weight coefficient
 //!   w_rc > 0 the value S_j = A_j / w is a convex combination of the ratios b_rc / w_rc

@@ -6,42 +6,45 @@
 //! t in [0, 1]^2:
 //!
 //! 1. **Candidates.** The patch corners (their Bernstein coefficients are the surface values
-//!    there), f64 Newton iterations for the maxima of the four boundary curves (1-D) and for an
-//!    interior critical point (2-D), seeded at the largest coefficient. Each candidate's value
-//!    is enclosed in double-double intervals ([`Ddi`], ~2^-100 relative): its lower end is an
-//!    attained value (the inner bound), and the largest upper end is the bound `ub` to prove.
-//!    Nothing about soundness depends on how the candidates were found.
+//!    there: exact at a clamped domain corner, else the intersection of the double-double
+//!    and the interval extraction), f64 Newton iterations for the maxima of the four boundary
+//!    curves (1-D) and for an interior critical point (2-D), seeded at the largest
+//!    coefficient. The candidates whose f64 value is within 1e-12 of the best are evaluated
+//!    in double-double intervals ([`Ddi`], ~2^-100 relative; or exactly in interval
+//!    arithmetic at a short dyadic point near them, when the value there is a float): the
+//!    lower ends are attained values (the inner bound), the largest upper end is the bound
+//!    `ub` to prove. Nothing about soundness depends on how the candidates were found.
 //! 2. **Vertex test** (Zettler & Garloff 1998). If every patch's coefficient ratios
-//!    a_rc / w_rc (enclosed in `Ddi`) are <= `ub`, the surface is (convex hull property:
-//!    tensor Bernstein polynomials are >= 0 and sum to 1, weights > 0) and the side is done;
-//!    when the largest coefficient is a corner, `ub` is that corner value, exact. Counted in
-//!    [`Stats::fast_exits`].
+//!    a_rc / w_rc (enclosed) are <= the best corner value, the surface is (convex hull
+//!    property: tensor Bernstein polynomials are >= 0 and sum to 1, weights > 0) and the side
+//!    is done, exact when the corner value is. Counted in [`Stats::fast_exits`].
 //! 3. **Proof** that F = A_j - ub w <= 0 on every patch (A_j, w the homogeneous numerator and
 //!    the weight; w > 0, so F <= 0 iff S_j <= ub; for a polynomial patch F = S_j - ub), by a
-//!    small quadtree over f64 Bernstein coefficients with an a-priori error bound (the
-//!    coefficients of a piece enclose the exact ones within `ea` / `ew`; see
-//!    [`Piece::split`]). A piece is done when
-//!    * its coefficients are <= 0 (rounding included): F <= 0 there (convex hull property);
+//!    best-first quadtree (largest coefficient first) over f64 Bernstein coefficients with an
+//!    a-priori error bound (the coefficients of a piece are within `ea` / `ew` of the exact
+//!    ones; see [`Piece::split`]). A piece is done when
+//!    * its coefficients are <= 0, rounding included: F <= 0 there (convex hull property);
 //!    * F is monotone towards a side of the patch that the piece touches (the differences of
 //!      its coefficients along that direction have one sign, so F_t has that sign on the
-//!      piece): its maximum over the piece is on that side, where F <= 0 was proven by the
-//!      same procedure on the boundary curve (1-D pieces; their sides are patch corners,
-//!      whose values are candidates, so <= `ub`);
-//!    * it lies in the **concavity block** of the best candidate c: a box B around c on
-//!      which the Bernstein coefficients of the Hessian of F prove -H(x) >= mu I (mu > 0)
-//!      for every x in B (scaled Gershgorin bound). Then Taylor's formula with the integral
-//!      remainder gives F(x) <= F(c) + g (x - c) - mu |x - c|^2 / 2 <= F(c) + |g|^2 / (2 mu)
-//!      on B (g = grad F(c); complete the square), and F(c), g are `Ddi` enclosures: near a
-//!      critical point |g| is at the rounding level, so the bound is F(c) + ~2^-100. B is cut
-//!      out of the patch first, and the quadtree runs on the (at most four) boxes around it.
+//!      piece): its maximum over the piece is on that side, where F <= 0 is proven by the
+//!      same procedure on the boundary curve (1-D pieces; their own sides are patch corners,
+//!      candidates, so <= `ub`);
+//!    * it is **strictly concave**: the Bernstein coefficients of the Hessian of F prove
+//!      -H(x) >= mu I (mu > 0) for every x in the piece (scaled Gershgorin bound). Then for
+//!      any c in the piece Taylor's formula with the integral remainder gives
+//!      F(x) <= F(c) + g (x - c) - mu |x - c|^2 / 2 (g = grad F(c)), whose maximum over the
+//!      piece is separable per direction ([`Prover::concave`]). c is a box-constrained f64
+//!      maximiser, F(c) and g are `Ddi` enclosures: near the maximum the correction is at the
+//!      rounding level and the bound is F(c) + ~2^-100. A maximiser that provably beats `ub`
+//!      raises it (every earlier proof stays valid: F only decreases as `ub` grows).
 //!
-//!    Everything else is halved (both directions) up to a depth and a piece budget. If the
-//!    proof fails (a ridge, where S_j is constant along a line and F is nowhere strictly
-//!    concave; a flat side; a missed candidate), it is retried once with `ub` one ulp
-//!    higher, then the side falls back to the strategy's general search
-//!    ([`Stats::fast_fallbacks`]). A proven side counts in [`Stats::fast_proofs`]; its gap
-//!    is the width of the best candidate's `Ddi` enclosure rounded outward: one ulp, or 0
-//!    when the value is a float.
+//!    Everything else is halved (both directions) up to [`MAX_DEPTH`] levels and [`BUDGET`]
+//!    pieces per side. If the proof fails (a ridge, where S_j is constant along a line and
+//!    F is nowhere strictly concave; a flat or tiny coordinate; a missed candidate), it is
+//!    retried once with `ub` one ulp higher, then the side falls back to the strategy's
+//!    general search ([`Stats::fast_fallbacks`]). A proven side counts in
+//!    [`Stats::fast_proofs`]; its gap is the width of the best candidate's enclosure rounded
+//!    outward: one ulp, or 0 when the value is a float.
 //!
 //! Restrictions (else no fast path): degrees <= [`MAX_DEGREE`] (fixed-size arrays on the
 //! stack, no allocation per piece), and no interior knot of multiplicity degree + 1 (then the
@@ -1059,7 +1062,7 @@ impl<const N: usize> Prover<'_, N> {
             let w2 = wd.sup() * wd.sup();
             let q: f64 = (0..2)
                 .filter(|&k| free[k])
-                .map(|k| est[1 + k] * est[1 + k] * w2 / (2.0 * mu))
+                .map(|k| est[1 + k] / mu * est[1 + k] * w2 * 0.5)
                 .sum();
             let scale = self.ub.abs().max(est[0].abs());
             if est[0] <= self.ub && est[0] - self.ub + q > 1e-12 * scale {
@@ -1236,10 +1239,7 @@ mod tests {
                 tally[0] += st.fast_exits;
                 tally[1] += st.fast_proofs;
                 tally[2] += st.fast_fallbacks;
-                let Some((ub, at)) = r else {
-                    eprintln!("fallback p {} q {} rows {} rational {} j {j} sign {sign}", s.degree_u(), s.degree_v(), s.rows(), s.is_rational());
-                    continue;
-                };
+                let Some((ub, at)) = r else { continue };
                 assert!(at <= ub, "{at} {ub}");
                 let cb = &newton.coords[j];
                 let (nlo, nhi) = if sign > 0.0 {
@@ -1260,9 +1260,9 @@ mod tests {
                     }
                 }
                 let gap = (ub - at) / crate::num::ulp(s.coord_scale(j));
-                if gap > 1.0 {
-                    eprintln!("{j} {sign}: gap {gap} ulps p {} rational {} patches {}", s.degree_u(), s.is_rational(), f.patches.len());
-                }
+                // (one ulp: a double-double value rounded outward; two where the first bound
+                // did not close and the retry one ulp higher did)
+                assert!(gap <= 2.0, "{j} {sign}: gap {gap} ulps");
             }
         }
     }
@@ -1281,85 +1281,7 @@ mod tests {
             check(&s, &mut tally);
         }
         eprintln!("fast exits / proofs / fallbacks: {tally:?}");
-        assert!(tally[1] > 10 * tally[2], "{tally:?}");
-    }
-}
-#[cfg(test)]
-mod dbg {
-    use super::*;
-    use crate::surface::gen::random_surface;
-    #[test]
-    fn dbg_time() {
-        let all: Vec<NurbsSurface> = (0..20).map(|k| random_surface(77 + k, 3, 3, 0, false)).collect();
-        let t = std::time::Instant::now();
-        let mut st = Stats::default();
-        for _ in 0..100 {
-            for s in &all {
-                let f = FastSurface::new(s).unwrap();
-                for j in 0..3 {
-                    for sign in [1.0, -1.0] {
-                        std::hint::black_box(f.side(j, sign, &mut st));
-                    }
-                }
-            }
-        }
-        eprintln!("{:.1} us per surface; {st:?}", t.elapsed().as_secs_f64() * 1e6 / 2000.0);
-        let t = std::time::Instant::now();
-        for _ in 0..100 {
-            for s in &all {
-                std::hint::black_box(FastSurface::new(s).unwrap());
-            }
-        }
-        eprintln!("{:.2} us per prepare", t.elapsed().as_secs_f64() * 1e6 / 2000.0);
-        let g = FastSurface::new(&all[0]).unwrap().dd_grid::<16>(0, 0, 1.0);
-        let t = std::time::Instant::now();
-        for k in 0..10000 {
-            std::hint::black_box(eval2::<Ddi>(&g.a[..], [3, 3], [0.3 + k as f64 * 1e-9, 0.6]));
-        }
-        eprintln!("{:.3} us per Ddi eval2", t.elapsed().as_secs_f64() * 1e6 / 10000.0);
-        let t = std::time::Instant::now();
-        let mut x = Ddi::exact(0.3);
-        for k in 0..100000 {
-            x = Ddi::lerp(&Ddi::exact(0.3 + k as f64 * 1e-12), &x, &g.a[k % 16]);
-        }
-        std::hint::black_box(x);
-        eprintln!("{:.1} ns per Ddi lerp", t.elapsed().as_secs_f64() * 1e9 / 100000.0);
-        let fa = [0.1f64; 36];
-        let t = std::time::Instant::now();
-        for k in 0..100000 {
-            std::hint::black_box(eval2::<f64>(&fa[..], [3, 3], [0.3 + k as f64 * 1e-9, 0.6]));
-        }
-        eprintln!("{:.1} ns per f64 eval2", t.elapsed().as_secs_f64() * 1e9 / 100000.0);
-    }
-
-    #[test]
-    fn dbg_bump() {
-        let fam = crate::surface::gen::families();
-        let s = &fam.iter().find(|f| f.0 == "bump").unwrap().1;
-        let f = FastSurface::new(s).unwrap();
-        let mut st = Stats::default();
-        eprintln!("bump: {:?} {st:?}", f.side(2, 1.0, &mut st));
-    }
-
-    #[test]
-    fn dbg_one() {
-        let mut all: Vec<NurbsSurface> = (0..30).map(|seed| random_surface(seed, 3, 3, 0, false)).collect();
-        all.extend(crate::surface::gen::families().into_iter().map(|f| f.1));
-        for (seed, s) in all.iter().enumerate() {
-            let Some(f) = FastSurface::new(s) else { continue };
-            if s.rows() != 4 || s.is_rational() { continue; }
-            for j in 0..3 {
-                for sign in [1.0, -1.0] {
-                    let mut st = Stats::default();
-                    if f.side(j, sign, &mut st).is_none() {
-                        eprintln!("seed {seed} j {j} sign {sign}");
-                        for r in 0..4 {
-                            eprintln!("{:?}", (0..4).map(|c| sign * s.control_point(r, c)[j]).collect::<Vec<_>>());
-                        }
-                        return;
-                    }
-                }
-            }
-        }
+        // nearly every side is proven (the ridge and a few rational sides fall back)
+        assert!(tally[1] > 50 * tally[2], "{tally:?}");
     }
 }

@@ -1,5 +1,9 @@
 //! `newton`: the thesis's candidate method (ch. 6) carried over to surfaces.
 //!
+//! Float first (not in the thesis): every side goes through the proofs of module `fast`
+//! (shared with `bezier`); if all are proven, that is the result; otherwise the search below
+//! runs for the whole surface and the proven sides keep the tighter of both (sound) results.
+//!
 //! The extrema of S_j over the closed domain lie (a) on the four boundary curves, (b) on the
 //! lines where S is not differentiable (knots of multiplicity >= the degree in u or v), or
 //! (c) at interior critical points, grad S_j = 0, of the cells between those lines (S is C^1
