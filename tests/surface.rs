@@ -496,7 +496,9 @@ fn fast_path_proves_interior_saddle_corner_rational_and_falls_back_on_a_ridge() 
         assert!(e.coords[2].stats.fast_proofs >= 1, "{name}");
         // the corner patch: every extreme is a corner coefficient, no search at all
         let e = st.enclose(&corner);
-        let h = surface_strategy_by_name("hull", None).unwrap().enclose(&corner);
+        let h = surface_strategy_by_name("hull", None)
+            .unwrap()
+            .enclose(&corner);
         assert_eq!(e.lo(), h.lo());
         assert_eq!(e.hi(), h.hi());
         assert!(e.coords.iter().all(|c| c.gap() == 0.0), "{name}");
@@ -512,7 +514,11 @@ fn fast_path_proves_interior_saddle_corner_rational_and_falls_back_on_a_ridge() 
             check(label, s, &e, &samples(s, 40), 2e-2);
             for (j, cb) in e.coords.iter().enumerate() {
                 let u = ulp(s.coord_scale(j));
-                assert!(cb.gap() <= u, "{name} {label} {j}: gap {} ulps", cb.gap() / u);
+                assert!(
+                    cb.gap() <= u,
+                    "{name} {label} {j}: gap {} ulps",
+                    cb.gap() / u
+                );
             }
             assert_eq!(e.stats().fast_fallbacks, 0, "{name} {label}");
         }
@@ -521,7 +527,11 @@ fn fast_path_proves_interior_saddle_corner_rational_and_falls_back_on_a_ridge() 
         let e = st.enclose(&ridge);
         check("ridge", &ridge, &e, &samples(&ridge, 40), 2e-2);
         assert!(e.coords[2].stats.fast_fallbacks >= 1, "{name}");
-        assert!(e.coords[2].hi - 1.0 <= 4.0 * f64::EPSILON, "{name} {}", e.coords[2].hi);
+        assert!(
+            e.coords[2].hi - 1.0 <= 4.0 * f64::EPSILON,
+            "{name} {}",
+            e.coords[2].hi
+        );
         assert!(e.coords[2].inner_hi >= 1.0 - 4.0 * f64::EPSILON, "{name}");
     }
 }

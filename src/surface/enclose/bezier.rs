@@ -235,8 +235,7 @@ impl SurfaceEncloser for BezierPatches {
                 // per side: (outer, attained, termination) of sign * S_j's maximum
                 let mut sides = [None, None];
                 for (k, sign) in [(0, -1.0), (1, 1.0)] {
-                    if let Some((b, at)) = fast.as_ref().and_then(|f| f.side(j, sign, &mut st))
-                    {
+                    if let Some((b, at)) = fast.as_ref().and_then(|f| f.side(j, sign, &mut st)) {
                         sides[k] = Some((b, at, Termination::Converged));
                     }
                 }

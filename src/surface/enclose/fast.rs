@@ -146,7 +146,8 @@ impl FastSurface {
         for (u, ul, at_u) in [(a, false, 0), (b, true, 1)] {
             for (v, vl, at_v) in [(c, false, 0), (d, true, 1)] {
                 if let (Some(r), Some(k)) = (s.exact_row_at(u, ul), s.exact_column_at(v, vl)) {
-                    let patch = if at_u == 0 { 0 } else { np - nv } + if at_v == 0 { 0 } else { nv - 1 };
+                    let patch =
+                        if at_u == 0 { 0 } else { np - nv } + if at_v == 0 { 0 } else { nv - 1 };
                     let i = (at_u * p) * (q + 1) + at_v * q;
                     exact.push((patch, i, s.control_point(r, k).to_vec()));
                 }
@@ -165,13 +166,22 @@ impl FastSurface {
 
     /// The coefficient ratio a_i / w_i of patch k (sign-adjusted grid `g` of coordinate j),
     /// enclosed: exact at a clamped domain corner.
-    fn ratio<const N: usize>(&self, k: usize, g: &DdGrid<N>, i: usize, j: usize, sign: f64) -> Interval {
+    fn ratio<const N: usize>(
+        &self,
+        k: usize,
+        g: &DdGrid<N>,
+        i: usize,
+        j: usize,
+        sign: f64,
+    ) -> Interval {
         if let Some((_, _, x)) = self.exact.iter().find(|e| e.0 == k && e.1 == i) {
             return iv::point(sign * x[j]);
         }
         let r = g.ratio(i, self.rational);
         let (p, q) = (self.p, self.q);
-        let corner = [0, q, p * (q + 1), p * (q + 1) + q].iter().position(|&c| c == i);
+        let corner = [0, q, p * (q + 1), p * (q + 1) + q]
+            .iter()
+            .position(|&c| c == i);
         match corner {
             Some(c) if !self.corner_iv.is_empty() => {
                 let x = self.corner_iv[(k * 4 + c) * self.dim + j];
@@ -221,7 +231,12 @@ impl FastSurface {
         r
     }
 
-    fn side_inner<const N: usize>(&self, j: usize, sign: f64, st: &mut Stats) -> Option<(f64, f64)> {
+    fn side_inner<const N: usize>(
+        &self,
+        j: usize,
+        sign: f64,
+        st: &mut Stats,
+    ) -> Option<(f64, f64)> {
         let n = [self.p, self.q];
         let grids: SmallVec<[DdGrid<N>; 1]> = (0..self.patches.len())
             .map(|k| self.dd_grid(k, j, sign))
@@ -238,7 +253,13 @@ impl FastSurface {
             }
             let m = (0..(self.p + 1) * (self.q + 1))
                 .map(|i| self.ratio(k, g, i, j, sign).sup())
-                .fold(f64::NEG_INFINITY, |m, x| if x.is_nan() { f64::INFINITY } else { m.max(x) });
+                .fold(f64::NEG_INFINITY, |m, x| {
+                    if x.is_nan() {
+                        f64::INFINITY
+                    } else {
+                        m.max(x)
+                    }
+                });
             coef_max.push(m);
         }
         for &m in &coef_max {
@@ -286,17 +307,25 @@ impl FastSurface {
                 if c.est >= best - near {
                     let dd = if slot < 4 {
                         {
-                        let mut m = n;
-                        m[slot / 2] = 0;
-                        tight_derivs(&grids[k].edge(slot, n), m, c.t, self.rational)
-                    }
+                            let mut m = n;
+                            m[slot / 2] = 0;
+                            tight_derivs(&grids[k].edge(slot, n), m, c.t, self.rational)
+                        }
                     } else {
                         tight_derivs(&grids[k], n, c.t, self.rational)
                     };
                     let val = value_of(&dd, self.rational);
                     c.dd = Some(dd);
-                    let root = if slot < 4 { roots[k].edge(slot) } else { roots[k] };
-                    let ge = if slot < 4 { grids[k].edge(slot, n) } else { grids[k] };
+                    let root = if slot < 4 {
+                        roots[k].edge(slot)
+                    } else {
+                        roots[k]
+                    };
+                    let ge = if slot < 4 {
+                        grids[k].edge(slot, n)
+                    } else {
+                        grids[k]
+                    };
                     match snapped(&ge, root.n, c.t, &root) {
                         // an exact value at least as good: attained, and the bound to prove
                         Some((_, [a, w])) if (a[0] / w[0]).inf() >= val.inf() => {
@@ -582,12 +611,12 @@ impl<const N: usize> Piece<N> {
         }
         let mut f = [0.0f64; N];
         let mut m = 0.0f64;
-        for i in 0..cnt {
-            f[i] = (-ub).mul_add(self.w[i], self.a[i]);
-            if !f[i].is_finite() {
+        for (i, fi) in f.iter_mut().enumerate().take(cnt) {
+            *fi = (-ub).mul_add(self.w[i], self.a[i]);
+            if !fi.is_finite() {
                 return None;
             }
-            m = m.max(f[i].abs());
+            m = m.max(fi.abs());
         }
         Some((f, up(self.ea + ub.abs() * self.ew + U1 * m)))
     }
@@ -665,7 +694,8 @@ impl<const N: usize> Piece<N> {
             sup_of(
                 n1 * (n1 - 1),
                 &mut (0..=n0).flat_map(|r| {
-                    (0..n1 - 1).map(move |c| (at(r, c + 2) - at(r, c + 1)) - (at(r, c + 1) - at(r, c)))
+                    (0..n1 - 1)
+                        .map(move |c| (at(r, c + 2) - at(r, c + 1)) - (at(r, c + 1) - at(r, c)))
                 }),
             )
         });
@@ -826,13 +856,13 @@ fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -
                 [-(svv * su - suv * sv) / det, -(suu * sv - suv * su) / det]
             }
             [true, false] => {
-                if !(suu < 0.0) {
+                if suu >= 0.0 || suu.is_nan() {
                     return None;
                 }
                 [-su / suu, 0.0]
             }
             [false, true] => {
-                if !(svv < 0.0) {
+                if svv >= 0.0 || svv.is_nan() {
                     return None;
                 }
                 [0.0, -sv / svv]
@@ -861,13 +891,23 @@ fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -
 
 /// sign * S_j at the point t of the patch (grid `g`, degrees n), enclosed in `Ddi` (one
 /// rounding outward at the end: one ulp wide, or a float).
-fn tight_value<const N: usize>(g: &DdGrid<N>, n: [usize; 2], t: [f64; 2], rational: bool) -> Interval {
+fn tight_value<const N: usize>(
+    g: &DdGrid<N>,
+    n: [usize; 2],
+    t: [f64; 2],
+    rational: bool,
+) -> Interval {
     value_of(&tight_derivs(g, n, t, rational), rational)
 }
 
 /// The `Ddi` enclosures of sign * A_j and w and their derivatives at t (w = 1 for a
 /// polynomial patch).
-fn tight_derivs<const N: usize>(g: &DdGrid<N>, n: [usize; 2], t: [f64; 2], rational: bool) -> [[Ddi; 6]; 2] {
+fn tight_derivs<const N: usize>(
+    g: &DdGrid<N>,
+    n: [usize; 2],
+    t: [f64; 2],
+    rational: bool,
+) -> [[Ddi; 6]; 2] {
     let a: [Ddi; 6] = eval2(&g.a[..], n, t);
     let w: [Ddi; 6] = if rational {
         eval2(&g.w[..], n, t)
@@ -888,9 +928,8 @@ fn snapped<const N: usize>(
     c: [f64; 2],
     pc: &Piece<N>,
 ) -> Option<([f64; 2], [[Interval; 6]; 2])> {
-    let snap = |k: usize| {
-        ((c[k] * 1_073_741_824.0).round() / 1_073_741_824.0).clamp(pc.t[k].0, pc.t[k].1)
-    };
+    let snap =
+        |k: usize| ((c[k] * 1_073_741_824.0).round() / 1_073_741_824.0).clamp(pc.t[k].0, pc.t[k].1);
     let cs = [snap(0), snap(1)];
     let cnt = (n[0] + 1) * (n[1] + 1);
     let mut ga = [Interval::EMPTY; N];
@@ -1144,7 +1183,7 @@ impl<const N: usize> Prover<'_, N> {
                 }
             };
             let phi = side(g.sup(), dhi, true).max(side(g.inf(), dlo, false));
-            bound = bound + iv::point(phi);
+            bound += iv::point(phi);
         }
         bound.sup() <= 0.0
     }
@@ -1208,8 +1247,8 @@ fn constrained_max<const N: usize>(
             break;
         }
     }
-    for k in 0..2 {
-        t[k] = t[k].clamp(pc.t[k].0, pc.t[k].1);
+    for (k, x) in t.iter_mut().enumerate() {
+        *x = x.clamp(pc.t[k].0, pc.t[k].1);
     }
     (t, est)
 }
@@ -1248,7 +1287,10 @@ mod tests {
                     (-cb.inner_lo, -cb.lo)
                 };
                 // the exact maximum M: nlo <= M <= nhi, at <= M <= ub
-                assert!(at <= nhi && nlo <= ub, "{j} {sign}: [{at}, {ub}] vs [{nlo}, {nhi}]");
+                assert!(
+                    at <= nhi && nlo <= ub,
+                    "{j} {sign}: [{at}, {ub}] vs [{nlo}, {nhi}]"
+                );
                 let n = 24;
                 for i in 0..=n {
                     for k in 0..=n {

@@ -18,8 +18,8 @@ use crate::surface::model::NurbsSurface;
 use inari::Interval;
 
 mod bezier;
-mod hull;
 mod fast;
+mod hull;
 mod newton;
 
 pub use bezier::BezierPatches;
