@@ -604,12 +604,11 @@ impl<const N: usize> Piece<N> {
     /// The coefficients g of a polynomial that has F's derivatives, and their error bound:
     /// the a themselves (polynomial: F = A - ub), or f = fl(a - ub w) (rational; error
     /// ea + |ub| ew + U1 |f| + eta, the FMA's rounding). `None` if not finite.
-    fn f_values(&self, ub: f64) -> Option<([f64; N], f64)> {
+    fn f_values<'a>(&'a self, ub: f64, f: &'a mut [f64; N]) -> Option<(&'a [f64; N], f64)> {
         let cnt = self.count();
         if !self.rational {
-            return Some((self.a, self.ea));
+            return Some((&self.a, self.ea));
         }
-        let mut f = [0.0f64; N];
         let mut m = 0.0f64;
         for (i, fi) in f.iter_mut().enumerate().take(cnt) {
             *fi = (-ub).mul_add(self.w[i], self.a[i]);
@@ -676,10 +675,10 @@ impl<const N: usize> Piece<N> {
         let err = iv::point(up(4.0 * e + 9.0 * UNIT * m));
         let pm = Interval::try_from((-err.sup(), err.sup())).ok()?;
         let at = |r: usize, c: usize| f[r * (n1 + 1) + c];
+        // (max over the coefficients in f64 first: (d + pm) k is increasing in d for k > 0)
         let sup_of = |k: usize, it: &mut dyn Iterator<Item = f64>| -> f64 {
-            let kk = iv::point(k as f64);
-            it.map(|d| ((iv::point(d) + pm) * kk).sup())
-                .fold(f64::NEG_INFINITY, |a, b| a.max(b))
+            let m = it.fold(f64::NEG_INFINITY, f64::max);
+            ((iv::point(m) + pm) * iv::point(k as f64)).sup()
         };
         // upper bounds of F_uu, F_vv (must be < 0) and of |F_uv|
         let huu = (n0 >= 2).then(|| {
@@ -713,13 +712,15 @@ impl<const N: usize> Piece<N> {
             (Some(a), None) | (None, Some(a)) => Some(a),
             (Some(a), Some(c)) => {
                 let kk = iv::point((n0 * n1) as f64);
-                let mut b0 = 0.0f64;
+                let mut dm = 0.0f64;
                 for r in 0..n0 {
                     for c in 0..n1 {
                         let d = (at(r + 1, c + 1) - at(r + 1, c)) - (at(r, c + 1) - at(r, c));
-                        b0 = b0.max(((iv::point(d) + pm) * kk).mag());
+                        dm = dm.max(d.abs());
                     }
                 }
+                // |(d + pm) k| <= (|d| + err) k
+                let b0 = ((iv::point(dm) + pm) * kk).sup();
                 let rr = (a / c).sqrt();
                 if !(rr.is_finite() && rr > 0.0) {
                     return None;
@@ -988,7 +989,8 @@ impl<const N: usize> Prover<'_, N> {
             }
             *self.budget -= 1;
             self.st.subdivisions += 1;
-            let Some((f, e)) = pc.f_values(self.ub) else {
+            let mut buf = [0.0f64; N];
+            let Some((f, e)) = pc.f_values(self.ub, &mut buf) else {
                 return false;
             };
             if pc.excluded(&f, e, self.ub) {
@@ -1030,22 +1032,27 @@ impl<const N: usize> Prover<'_, N> {
             if pc.depth >= MAX_DEPTH {
                 return false;
             }
-            let mut kids: SmallVec<[Piece<N>; 4]> = SmallVec::new();
-            kids.push(pc);
-            for d in (0..2).filter(|&d| free[d]) {
-                let mut next: SmallVec<[Piece<N>; 4]> = SmallVec::new();
-                for k in &kids {
-                    let (l, r) = k.split(d, 0.5, 0.0);
-                    next.push(l);
-                    next.push(r);
-                }
-                kids = next;
-            }
-            for k in &mut kids {
+            let mut push = |mut k: Piece<N>| {
                 k.depth = pc.depth + 1;
                 k.prio = k.max_coef();
+                work.push(k);
+            };
+            match free {
+                [true, true] => {
+                    let (l, r) = pc.split(0, 0.5, 0.0);
+                    for h in [l, r] {
+                        let (a, b) = h.split(1, 0.5, 0.0);
+                        push(a);
+                        push(b);
+                    }
+                }
+                _ => {
+                    let d = if free[0] { 0 } else { 1 };
+                    let (a, b) = pc.split(d, 0.5, 0.0);
+                    push(a);
+                    push(b);
+                }
             }
-            work.extend(kids);
         }
         true
     }
