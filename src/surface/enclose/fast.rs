@@ -993,7 +993,7 @@ impl<const N: usize> Prover<'_, N> {
             let Some((f, e)) = pc.f_values(self.ub, &mut buf) else {
                 return false;
             };
-            if pc.excluded(&f, e, self.ub) {
+            if pc.excluded(f, e, self.ub) {
                 continue;
             }
             let mut done = false;
@@ -1004,7 +1004,7 @@ impl<const N: usize> Prover<'_, N> {
                     } else {
                         pc.t[d].1 == 1.0
                     };
-                    if !done && touches && pc.monotone(&f, e, d, down) {
+                    if !done && touches && pc.monotone(f, e, d, down) {
                         // a boundary curve's sides are patch corners (<= ub: candidates)
                         done = slot < 4 || self.edge(root, 2 * d + end, g);
                     }
@@ -1013,7 +1013,7 @@ impl<const N: usize> Prover<'_, N> {
             if done {
                 continue;
             }
-            if let Some(mu) = pc.concavity(&f, e) {
+            if let Some(mu) = pc.concavity(f, e) {
                 if self.concave(&pc, root, slot, mu, g) {
                     continue;
                 }
