@@ -840,6 +840,7 @@ fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -
     // evaluate on the whole patch grid (a boundary curve is the patch at a fixed side)
     let (pn, fa, fw) = (pc.n, &pc.a, &pc.w);
     let mut ok = false;
+    let mut last = false;
     for _ in 0..24 {
         let a = eval2(&fa[..], pn, t);
         let d = if rational {
@@ -874,12 +875,14 @@ fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -
         if !(nt.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x))) {
             return None;
         }
+        // quadratic convergence: after a step below 1e-9 one more reaches the rounding level
         let small = step.iter().all(|s| s.abs() <= 4.0 * f64::EPSILON);
         t = nt;
-        if small {
+        if small || last {
             ok = true;
             break;
         }
+        last = step.iter().all(|s| s.abs() <= 1e-9);
     }
     let a = eval2(&fa[..], pn, t);
     let est = if rational {
