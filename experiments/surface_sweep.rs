@@ -168,8 +168,13 @@ pub fn run(quick: bool, out: &std::path::Path) -> u64 {
     )
     .unwrap();
     writeln!(md, "Median time per call, 3-D polynomial bicubic Bézier patches (random nets in [-1, 1]^3), measured in this run.\n").unwrap();
-    writeln!(md, "| patches | strategy | median time | ratio to hull |").unwrap();
-    writeln!(md, "|---|---|---|---|").unwrap();
+    writeln!(md, "Fast path: sides settled by the vertex test / proven float first / handed to the general search (`Stats::fast_exits` / `fast_proofs` / `fast_fallbacks`, summed over the patches).\n").unwrap();
+    writeln!(
+        md,
+        "| patches | strategy | median time | ratio to hull | fast exits / proofs / fallbacks |"
+    )
+    .unwrap();
+    writeln!(md, "|---|---|---|---|---|").unwrap();
     let patches: Vec<NurbsSurface> = (0..if quick { 5 } else { 20 })
         .map(|k| random_surface(77 + k, 3, 3, 0, false))
         .collect();
@@ -204,13 +209,20 @@ pub fn run(quick: bool, out: &std::path::Path) -> u64 {
             if st.name() == "hull" {
                 hull_t = med;
             }
+            let mut fs = nurbs_box::enclose::Stats::default();
+            for s in &set {
+                fs.add(&st.enclose(s).stats());
+            }
             writeln!(
                 md,
-                "| {label} ({}) | {} | {:.1} µs | {:.1}x |",
+                "| {label} ({}) | {} | {:.1} µs | {:.1}x | {} / {} / {} |",
                 set.len(),
                 st.name(),
                 med * 1e6,
-                med / hull_t
+                med / hull_t,
+                fs.fast_exits,
+                fs.fast_proofs,
+                fs.fast_fallbacks
             )
             .unwrap();
         }

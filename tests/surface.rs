@@ -444,3 +444,130 @@ fn optimality_flags_mark_exactly_the_attained_bounds() {
     assert_eq!(hi, [true, true, false]);
     assert!(r.coords[2].hi >= 2.0 / 3.0 && r.coords[2].inner_hi <= 2.0 / 3.0);
 }
+
+/// The float-first fast path of `bezier` and `newton` on shapes with a known answer: an
+/// interior maximum that is a float (exact), a saddle, a corner-extreme patch (vertex test),
+/// rational patches (one ulp), and a ridge, which the fast path cannot prove (no strict
+/// concavity) and hands to the general search: a sound box within a few ulps, not the net box.
+#[test]
+fn fast_path_proves_interior_saddle_corner_rational_and_falls_back_on_a_ridge() {
+    use nurbs_box::surface::gen::bezier_patch;
+    let fam = families();
+    let get = |n: &str| fam.iter().find(|f| f.0 == n).unwrap().1.clone();
+    // a bicubic bump 1 + 16 u(1-u) v(1-v)-like interior maximum at a non-dyadic point
+    let bump3 = bezier_patch(
+        3,
+        3,
+        (0..4)
+            .map(|r| {
+                (0..4)
+                    .map(|c| {
+                        let z = if (1..=2).contains(&r) && (1..=2).contains(&c) {
+                            2.0 + 0.3 * r as f64 - 0.1 * c as f64
+                        } else {
+                            0.1 * (r + c) as f64
+                        };
+                        vec![r as f64 / 3.0, c as f64 / 3.0, z]
+                    })
+                    .collect()
+            })
+            .collect(),
+        None,
+    );
+    let corner = bezier_patch(
+        3,
+        3,
+        (0..4)
+            .map(|r| {
+                (0..4)
+                    .map(|c| vec![r as f64, c as f64, (r * r + c) as f64 * 0.1])
+                    .collect()
+            })
+            .collect(),
+        None,
+    );
+    let rational = random_surface(11, 3, 3, 0, true);
+    let rational2 = random_surface(12, 2, 2, 2, true);
+    for name in ["bezier", "newton"] {
+        let st = surface_strategy_by_name(name, None).unwrap();
+        // the bump's top z = 1 at (1/2, 1/2): exact
+        let e = st.enclose(&get("bump"));
+        assert_eq!((e.coords[2].hi, e.coords[2].inner_hi), (1.0, 1.0), "{name}");
+        assert!(e.coords[2].stats.fast_proofs >= 1, "{name}");
+        // the corner patch: every extreme is a corner coefficient, no search at all
+        let e = st.enclose(&corner);
+        let h = surface_strategy_by_name("hull", None)
+            .unwrap()
+            .enclose(&corner);
+        assert_eq!(e.lo(), h.lo());
+        assert_eq!(e.hi(), h.hi());
+        assert!(e.coords.iter().all(|c| c.gap() == 0.0), "{name}");
+        assert_eq!(e.stats().fast_exits, 6, "{name}");
+        // interior maximum at a non-dyadic point, saddle, rational patches: one ulp
+        for (label, s) in [
+            ("bump3", &bump3),
+            ("saddle", &get("saddle")),
+            ("rational", &rational),
+            ("rational2", &rational2),
+        ] {
+            let e = st.enclose(s);
+            check(label, s, &e, &samples(s, 40), 2e-2);
+            for (j, cb) in e.coords.iter().enumerate() {
+                let u = ulp(s.coord_scale(j));
+                assert!(
+                    cb.gap() <= u,
+                    "{name} {label} {j}: gap {} ulps",
+                    cb.gap() / u
+                );
+            }
+            assert_eq!(e.stats().fast_fallbacks, 0, "{name} {label}");
+        }
+        // the ridge z = 4 u (1 - u): maximum 1 on the line u = 1/2
+        let ridge = get("ridge");
+        let e = st.enclose(&ridge);
+        check("ridge", &ridge, &e, &samples(&ridge, 40), 2e-2);
+        assert!(e.coords[2].stats.fast_fallbacks >= 1, "{name}");
+        assert!(
+            e.coords[2].hi - 1.0 <= 4.0 * f64::EPSILON,
+            "{name} {}",
+            e.coords[2].hi
+        );
+        assert!(e.coords[2].inner_hi >= 1.0 - 4.0 * f64::EPSILON, "{name}");
+    }
+}
+
+/// The fast path against the general search (both sound): each one's attained values lie
+/// inside the other's outer box, and the fast path is at least as tight.
+#[test]
+fn fast_path_agrees_with_the_general_search() {
+    use nurbs_box::surface::enclose::{BezierPatches, SurfaceNewton};
+    use nurbs_box::surface::SurfaceEncloser;
+    for seed in 0..12u64 {
+        let p = 1 + (seed as usize % 4);
+        let s = random_surface(300 + seed, p, p, seed as usize % 3, seed % 2 == 1);
+        let slow = SurfaceNewton {
+            fast_path: false,
+            ..Default::default()
+        }
+        .enclose(&s);
+        let fast = [
+            SurfaceNewton::default().enclose(&s),
+            BezierPatches::default().enclose(&s),
+        ];
+        for e in &fast {
+            for (j, (a, b)) in e.coords.iter().zip(&slow.coords).enumerate() {
+                assert!(
+                    a.lo <= b.inner_lo && b.lo <= a.inner_lo,
+                    "{seed} {} {j} lo",
+                    e.strategy
+                );
+                assert!(
+                    a.inner_hi <= b.hi && b.inner_hi <= a.hi,
+                    "{seed} {} {j} hi",
+                    e.strategy
+                );
+                assert!(a.gap() <= b.gap().max(ulp(s.coord_scale(j))), "{seed} {j}");
+            }
+        }
+    }
+}

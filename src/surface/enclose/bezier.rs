@@ -2,6 +2,9 @@
 //! direction), tensor Bernstein bounds and subdivision (de Casteljau in u and v), branch and
 //! bound per coordinate and side.
 //!
+//! * **Fast path first.** Every side goes through the float-first proofs of module `fast`
+//!   (shared with `newton`); only a side they do not prove runs the branch and bound below
+//!   (the patches are extracted in interval arithmetic only then).
 //! * **Bounds.** A Bézier patch lies in the box of its coefficients (tensor Bernstein
 //!   polynomials are >= 0 and sum to 1). For a rational patch with every weight coefficient
 //!   w_rc > 0 the value S_j = A_j / w is a convex combination of the ratios b_rc / w_rc
@@ -19,6 +22,7 @@
 //!   within `tol` times the coordinate's scale of the best attained value, at the depth limit,
 //!   or at the work limit (sound: the bound is the smallest over all open patches).
 
+use super::fast::FastSurface;
 use super::{coord_box, enclosure, SurfaceEncloser};
 use crate::enclose::{Enclosure, Guarantee, Settings, Stats, Termination};
 use crate::num::Scalar;
@@ -37,6 +41,10 @@ pub struct BezierPatches {
     pub max_work: u64,
     /// deepest subdivision (halvings per direction)
     pub max_depth: u32,
+    /// float first, prove after (the `fast` module: vertex test, f64 candidates, proofs on
+    /// f64 Bernstein coefficients with an a-priori error bound); a side it cannot prove goes
+    /// through the branch and bound below. Off only for comparisons.
+    pub fast_path: bool,
 }
 
 impl Default for BezierPatches {
@@ -45,6 +53,7 @@ impl Default for BezierPatches {
             tol: f64::EPSILON,
             max_work: 2000,
             max_depth: 40,
+            fast_path: true,
         }
     }
 }
@@ -214,24 +223,42 @@ impl SurfaceEncloser for BezierPatches {
     }
     fn enclose_prepared(&self, s: &NurbsSurface) -> Enclosure {
         let t0 = crate::enclose::Clock::start();
+        let fast = self.fast_path.then(|| FastSurface::new(s)).flatten();
         // (Interval, not the faster Mr: Mr's radii after many subdivisions cost tens of ulps
-        // at the vertex test)
-        let patches = s.bezier_patches::<Interval>();
+        // at the vertex test); extracted only if some side needs the branch and bound
+        let mut patches: Option<Vec<Patch<Interval>>> = None;
         let rational = s.is_rational();
         let mut coords: Vec<_> = (0..s.dim())
             .map(|j| {
                 let scale = s.coord_scale(j);
-                // the search subdivides coordinate j (and the weight row) only
-                let pj: Vec<Patch<Interval>> = patches
-                    .iter()
-                    .map(|pa| coordinate_patch(pa, j, rational))
-                    .collect();
-                let budget = super::scaled_budget(self.max_work, s);
-                let (lo, ilo, mut st, t1) = self.search(budget, &pj, 0, rational, 1.0, scale);
-                let (nhi, nihi, st2, t2) = self.search(budget, &pj, 0, rational, -1.0, scale);
-                st.add(&st2);
+                let mut st = Stats::default();
+                // per side: (outer, attained, termination) of sign * S_j's maximum
+                let mut sides = [None, None];
+                for (k, sign) in [(0, -1.0), (1, 1.0)] {
+                    if let Some((b, at)) = fast.as_ref().and_then(|f| f.side(j, sign, &mut st)) {
+                        sides[k] = Some((b, at, Termination::Converged));
+                    }
+                }
+                for (k, sign) in [(0, 1.0), (1, -1.0)] {
+                    if sides[k].is_some() {
+                        continue;
+                    }
+                    let all = patches.get_or_insert_with(|| s.bezier_patches::<Interval>());
+                    // the search subdivides coordinate j (and the weight row) only
+                    let pj: Vec<Patch<Interval>> = all
+                        .iter()
+                        .map(|pa| coordinate_patch(pa, j, rational))
+                        .collect();
+                    let budget = super::scaled_budget(self.max_work, s);
+                    // (the search minimises sign * S_j: its results are minus the maximum
+                    // of -sign * S_j)
+                    let (lo, ilo, st2, t) = self.search(budget, &pj, 0, rational, sign, scale);
+                    st.add(&st2);
+                    sides[k] = Some((-lo, -ilo, t));
+                }
+                let [(nlo, nilo, t1), (hi, ihi, t2)] = sides.map(|x| x.expect("both sides"));
                 let term = if t1 == Termination::Converged { t2 } else { t1 };
-                coord_box(lo, -nhi, ilo, -nihi, st, term)
+                coord_box(-nlo, hi, -nilo, ihi, st, term)
             })
             .collect();
         if let Some(c) = coords.first_mut() {

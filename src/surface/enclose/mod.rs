@@ -6,7 +6,10 @@
 //! bounds (some (u, v) has `S_j <= inner_lo[j]`, some has `S_j >= inner_hi[j]`).
 //!
 //! The strategies: [`NetHull`] (`hull`), [`BezierPatches`] (`bezier`), [`SurfaceNewton`]
-//! (`newton`). Adding one is one file and one line in the registry below.
+//! (`newton`). Adding one is one file and one line in the registry below. `bezier` and
+//! `newton` share a float-first fast path (module `fast`: vertex test, f64 candidates, proofs
+//! on f64 Bernstein coefficients with a-priori error bounds) and run their own search only for
+//! the sides it does not prove.
 
 use crate::enclose::MAX_SEARCH_DEGREE;
 use crate::enclose::{CoordBox, Enclosure, Guarantee, Settings, Stats, Termination};
@@ -15,6 +18,7 @@ use crate::surface::model::NurbsSurface;
 use inari::Interval;
 
 mod bezier;
+mod fast;
 mod hull;
 mod newton;
 

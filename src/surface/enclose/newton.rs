@@ -1,5 +1,9 @@
 //! `newton`: the thesis's candidate method (ch. 6) carried over to surfaces.
 //!
+//! Float first (not in the thesis): every side goes through the proofs of module `fast`
+//! (shared with `bezier`); if all are proven, that is the result; otherwise the search below
+//! runs for the whole surface and the proven sides keep the tighter of both (sound) results.
+//!
 //! The extrema of S_j over the closed domain lie (a) on the four boundary curves, (b) on the
 //! lines where S is not differentiable (knots of multiplicity >= the degree in u or v), or
 //! (c) at interior critical points, grad S_j = 0, of the cells between those lines (S is C^1
@@ -55,6 +59,9 @@ pub struct SurfaceNewton {
     pub max_boxes: u64,
     /// deepest bisection (halvings of a span side)
     pub max_depth: u32,
+    /// float first, prove after (the `fast` module, shared with `bezier`); the search below
+    /// runs only if some side is not proven there. Off only for comparisons.
+    pub fast_path: bool,
 }
 
 impl Default for SurfaceNewton {
@@ -64,6 +71,7 @@ impl Default for SurfaceNewton {
             tol: f64::EPSILON,
             max_boxes: 4000,
             max_depth: 44,
+            fast_path: true,
         }
     }
 }
@@ -637,6 +645,35 @@ impl SurfaceEncloser for SurfaceNewton {
     fn enclose_prepared(&self, s: &NurbsSurface) -> Enclosure {
         let t0 = crate::enclose::Clock::start();
         let d = s.dim();
+        // Float first: every side proven by the fast path, or the search below for all
+        // (then the proven sides keep the tighter of both results; both are sound).
+        let mut fast_st = vec![Stats::default(); d];
+        let fast: Vec<[Option<(f64, f64)>; 2]> = match self
+            .fast_path
+            .then(|| super::fast::FastSurface::new(s))
+            .flatten()
+        {
+            Some(f) => (0..d)
+                .map(|j| {
+                    let st = &mut fast_st[j];
+                    [f.side(j, -1.0, st), f.side(j, 1.0, st)]
+                })
+                .collect(),
+            None => vec![[None, None]; d],
+        };
+        if fast.iter().flatten().all(Option::is_some) {
+            let coords = (0..d)
+                .map(|j| {
+                    let [(nlo, nilo), (hi, ihi)] = fast[j].map(|x| x.expect("proven"));
+                    let mut st = fast_st[j];
+                    if j == 0 {
+                        st.time_total = t0.elapsed();
+                    }
+                    coord_box(-nlo, hi, -nilo, ihi, st, Termination::Converged)
+                })
+                .collect();
+            return enclosure(self.name(), true, coords);
+        }
         let mut tg = vec![
             Target {
                 lo: f64::INFINITY,
@@ -690,6 +727,17 @@ impl SurfaceEncloser for SurfaceNewton {
                 c.inner_lo = c.inner_lo.min(bc.inner_lo);
                 c.inner_hi = c.inner_hi.max(bc.inner_hi);
                 c.stats.add(&bc.stats);
+            }
+        }
+        for (j, c) in coords.iter_mut().enumerate() {
+            c.stats.add(&fast_st[j]);
+            if let Some((nlo, nilo)) = fast[j][0] {
+                c.lo = c.lo.max(-nlo);
+                c.inner_lo = c.inner_lo.min(-nilo);
+            }
+            if let Some((hi, ihi)) = fast[j][1] {
+                c.hi = c.hi.min(hi);
+                c.inner_hi = c.inner_hi.max(ihi);
             }
         }
         enclosure(self.name(), true, coords)
