@@ -17,10 +17,10 @@
 //! 2. **A verified enclosure above t**: a double-double enclosure ([`Ddi`], rigorous, about
 //!    2^-100 relative wide) of C_j(u) at an f64 parameter u whose lower end (compared exactly)
 //!    is > t.
-//! 2b. **A left limit above t**: at a jump (a knot u of multiplicity p + 1) the supremum can
-//!    be the left limit, which no curve value attains; the piece of the span ending at u,
-//!    evaluated at u in `Ddi`, is that limit, and curve values come arbitrarily close to it, so
-//!    a lower end above t shows some curve value above t.
+//!    Or **a left limit above t**: at a jump (a knot u of multiplicity p + 1) the supremum
+//!    can be the left limit, which no curve value attains; the piece of the span ending at u,
+//!    evaluated at u in `Ddi`, is that limit, and curve values come arbitrarily close to it,
+//!    so a lower end above t shows some curve value above t.
 //! 3. **An exact value above t**: the exact rational C_j(u) ([`Exact`]: the generic de Boor and
 //!    derivative kernels run on big rationals, no rounding) at an f64 or dyadic parameter u is
 //!    > t (compared exactly).
