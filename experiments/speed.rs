@@ -9,7 +9,7 @@
 //! growth per span against p^2. The criterion bench `cargo bench --bench enclose` keeps the
 //! detailed groups.
 use kurbo::{CubicBez, ParamCurveExtrema, Point};
-use nurbs_box::enclose::{strategy_by_name, BoxEncloser};
+use nurbs_box::enclose::{drive_with, strategy_by_name, BoxEncloser};
 use nurbs_box::NurbsCurve;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -103,12 +103,25 @@ fn main() {
     line(String::new());
     line("| work | strategy | time | ratio | goal |".into());
     line("|---|---|---|---|---|".into());
+    let mut cert_cost = Vec::new();
     for s in &strategies {
         let ts = best(reps, &mut || {
             nc.iter()
                 .map(|c| s.enclose(black_box(c)).coords[0].hi)
                 .sum::<f64>()
         }) / NCUBIC as f64;
+        // the same calls without the optimality certificate (the switch for measuring it)
+        let off = best(reps, &mut || {
+            nc.iter()
+                .map(|c| drive_with(s.as_ref(), black_box(c), false).coords[0].hi)
+                .sum::<f64>()
+        }) / NCUBIC as f64;
+        cert_cost.push(format!(
+            "`{}` {:+.0}% ({:.1} ns without it)",
+            s.name(),
+            100.0 * (ts / off - 1.0),
+            off * 1e9
+        ));
         let goal = match s.name() {
             "hull" => "<= 1x",
             "bezier" => "<= 2x",
@@ -153,6 +166,12 @@ fn main() {
         }
         per_p.push((p, ts));
     }
+    line(String::new());
+    line(format!(
+        "Cost of the optimality certificate on the 2-D cubics (time with it over the same calls \
+         without it, `drive_with(s, c, false)`, best of {reps} runs each): {}.",
+        cert_cost.join(", ")
+    ));
     line(String::new());
     line("Growth with the degree: one 2-D rational span, time in kurbo cubics, and that divided by p^2.".into());
     line(String::new());

@@ -261,10 +261,11 @@ impl<'a> Evals<'a> {
     fn left_limit_above(&mut self, j: usize, sign: f64, u: f64, t: f64) -> bool {
         let kn = self.c.knots();
         let (a, b) = self.c.domain();
-        if !(a < u && u <= b) {
+        // (at the domain end b the left piece's value is the curve's own, looked at anyway)
+        if !(a < u && u < b) {
             return false;
         }
-        // only at a jump (elsewhere the left limit is the curve's value, looked at anyway)
+        // only at an interior jump (elsewhere the left limit is the curve's value, looked at anyway)
         if multiplicity(kn, u) <= self.c.degree() {
             return false;
         }

@@ -57,35 +57,25 @@ impl<S: Scalar> CurveEval<S> {
     /// C, C', ..., C^(k) at parameter `u` lying in span `span` (of the curve), k <= order.
     /// For an interval `u` inside the closed span this encloses the values over all of `u`.
     pub fn derivs_in_span(&self, span: usize, u: &S, k: usize) -> Vec<Vec<S>> {
-        assert!(k <= self.order(), "derivative order {k} not precomputed");
-        let d = self.dim();
-        let rational = self.levels[0].rational;
-        let mut hom: Vec<Vec<S>> = Vec::with_capacity(k + 1);
-        let mut buf = Vec::new();
-        for l in 0..=k {
-            let sp = &self.levels[l];
-            if l > self.levels[0].degree {
-                hom.push(vec![S::zero(); sp.hdim()]);
-            } else {
-                sp.eval_span(span - l, u, &mut buf);
-                hom.push(buf.clone());
-            }
-        }
-        if !rational {
-            return hom;
-        }
-        quotient_rule(&hom, d)
+        let rows: Vec<usize> = (0..self.levels[0].hdim()).collect();
+        self.rows_derivs_in_span(span, u, k, &rows)
     }
 
     /// C_j, C_j', ..., C_j^(k) of coordinate j alone at `u` in span `span` (k <= order): the
-    /// same corner cutting and quotient rule as [`CurveEval::derivs_in_span`], on the rows of
-    /// coordinate j and the weight only (1/d of the work; the values are those of the full
-    /// evaluation, row by row).
+    /// evaluation of [`CurveEval::derivs_in_span`] on the rows of coordinate j and the weight
+    /// only (1/d of the work; the values are those of the full evaluation, row by row).
     pub fn coord_derivs_in_span(&self, span: usize, u: &S, k: usize, j: usize) -> Vec<S> {
-        assert!(k <= self.order(), "derivative order {k} not precomputed");
-        let rational = self.levels[0].rational;
         let all = [j, self.dim()];
-        let rows = &all[..1 + rational as usize];
+        let rows = &all[..1 + self.levels[0].rational as usize];
+        let v = self.rows_derivs_in_span(span, u, k, rows);
+        v.into_iter().map(|mut v| v.swap_remove(0)).collect()
+    }
+
+    /// The shared body: de Boor corner cutting of the given homogeneous rows (the weight row,
+    /// if rational, last) on every derivative level, then the rational quotient rule (thesis
+    /// eq. 3.10) on the Cartesian rows.
+    fn rows_derivs_in_span(&self, span: usize, u: &S, k: usize, rows: &[usize]) -> Vec<Vec<S>> {
+        assert!(k <= self.order(), "derivative order {k} not precomputed");
         let mut hom: Vec<Vec<S>> = Vec::with_capacity(k + 1);
         let mut buf = Vec::new();
         for l in 0..=k {
@@ -96,12 +86,10 @@ impl<S: Scalar> CurveEval<S> {
                 hom.push(v.to_vec());
             }
         }
-        let rows = if rational {
-            quotient_rule(&hom, 1)
-        } else {
-            hom
-        };
-        rows.into_iter().map(|mut v| v.swap_remove(0)).collect()
+        if !self.levels[0].rational {
+            return hom;
+        }
+        quotient_rule(&hom, rows.len() - 1)
     }
 
     /// C^(l)(u) for l = 0..=k at an f64 parameter in the domain.
