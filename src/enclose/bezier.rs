@@ -38,7 +38,6 @@ use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
 use crate::num::ddi::Ddi;
-use crate::num::Scalar as _;
 use smallvec::SmallVec;
 use crate::num::iv;
 use crate::spline::bezier::{cartesian, de_casteljau_eval_in_place, hodograph};
@@ -47,7 +46,7 @@ use crate::spline::curve::NurbsCurve;
 use crate::spline::tight::TightEval;
 use inari::Interval;
 
-mod single;
+pub(crate) mod single;
 
 /// Settings of the Bézier-subdivision strategy.
 #[derive(Debug, Clone, Copy)]
@@ -240,16 +239,6 @@ impl Side {
         // (an empty interval has inf = +inf and must never count as attained)
         if !v.is_empty() && v.inf() > self.attained {
             self.attained = v.inf();
-        }
-    }
-    /// Record a double-double enclosure `v` of a value the curve attains (sign-adjusted): its
-    /// lower end is an attained lower bound, and the largest f64 strictly below that lower end
-    /// is a witness ([`Ddi::strictly_below`]).
-    fn attain_ddi(&mut self, v: Ddi) {
-        self.attain(v.to_interval());
-        let w = v.strictly_below();
-        if w > self.witness {
-            self.witness = w;
         }
     }
     fn bound(&mut self, ub: f64, e: Extremum) {
@@ -821,20 +810,13 @@ pub(crate) fn coord_box(
     };
     // (The driver intersects the result with the control-point box, which guarantees the
     // sandwich hull ⊇ bezier: `driver::drive`.)
-    CoordBox {
-        lo: -lo.upper,
-        hi: hi.upper,
-        inner_lo: -lo.attained,
-        inner_hi: hi.attained,
-        argmin: pick(&lo),
-        argmax: pick(&hi),
-        stats,
-        termination: term,
-        optimal_lo: false,
-        optimal_hi: false,
-        witness_lo: -lo.witness,
-        witness_hi: hi.witness,
-    }
+    let side = |s: &Side| super::SideData {
+        upper: s.upper,
+        attained: s.attained,
+        witness: s.witness,
+        args: pick(s),
+    };
+    CoordBox::from_sides(side(&hi), side(&lo), stats, term)
 }
 
 impl BoxEncloser for BezierSubdivision {
@@ -843,6 +825,10 @@ impl BoxEncloser for BezierSubdivision {
     }
     fn guarantee(&self) -> Guarantee {
         Guarantee::Verified
+    }
+    fn lane(&self) -> Option<super::lane::Lane> {
+        // (the lane's tight answer is this strategy's own fast path, switched on by default)
+        self.fast_path.then_some(super::lane::Lane::Tight)
     }
     fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
         let (a, b) = c.domain();

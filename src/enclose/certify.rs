@@ -333,6 +333,25 @@ fn signed(x: Ddi, sign: f64) -> Ddi {
     }
 }
 
+/// The certificate's cheap part for one side, sign-adjusted (the strategy proved max g <=
+/// `bound`, that g reaches a value >= `inner` and one > `witness`; `scale` is the coordinate
+/// scale): `Some(true)` by the first rule of the module docs, `Some(false)` where
+/// [`certify_side`] answers `false` at once (the attained value more than
+/// [`LOWER_WITHIN_ULPS`] ulps of the scale below the bound: no search, no lowering), `None`
+/// where the full certification must decide. For a curve without interior jumps (whose
+/// left-limit rule never applies) this is exactly the first round of [`certify_side`]'s
+/// checks before its search stages.
+pub(crate) fn quick(bound: f64, inner: f64, witness: f64, scale: f64) -> Option<bool> {
+    if !bound.is_finite() {
+        return Some(false);
+    }
+    if inner == bound || witness >= bound.next_down() {
+        return Some(true);
+    }
+    let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(bound.abs().max(scale));
+    (bound - inner > near_scale).then_some(false)
+}
+
 /// The certificate of one side (`max_side`: hi, as the maximum of g = C_j; otherwise lo, as the
 /// maximum of g = -C_j), lowering the bound where [`prove_at_most`] allows it.
 fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> bool {

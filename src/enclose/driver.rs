@@ -69,13 +69,13 @@ use crate::spline::curve::NurbsCurve;
 /// below 2^80 ~ 1e24, weights below 2^30 and domains of length 2^±30, every intermediate of
 /// the strategies (products of up to four such factors with p^2 and Δu^-2 for spans down to
 /// 1e-12 of the domain) stays far inside the f64 range.
-const COORD_WINDOW: i32 = 80;
+pub(crate) const COORD_WINDOW: i32 = 80;
 const WEIGHT_WINDOW: i32 = 30;
 const KNOT_WINDOW: i32 = 30;
 
 /// The binary exponent e with |x| in [2^(e-1), 2^e), for finite non-zero x (0 for 0).
 #[inline]
-fn exponent(x: f64) -> i32 {
+pub(crate) fn exponent(x: f64) -> i32 {
     let x = x.abs();
     if x == 0.0 || !x.is_finite() {
         return 0;
@@ -408,6 +408,15 @@ pub fn drive<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
 /// [`drive`] with the certification switched on (`certify`, the default) or off (every
 /// `optimal_lo` / `optimal_hi` stays `false`).
 pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool) -> Enclosure {
+    // The allocation-free lane for a single polynomial Bézier segment of degree <= 3 with
+    // moderate magnitudes (`lane`: the same facts and certificates, computed directly).
+    if let Some(l) = s.lane() {
+        if let Some(simple) = super::lane::Simple::of(c) {
+            if let Some(e) = super::lane::enclose(l, s.name(), c, &simple, certify) {
+                return e;
+            }
+        }
+    }
     let mut e = if c.degree() > MAX_SEARCH_DEGREE {
         degree_fallback(s, c)
     } else {

@@ -20,6 +20,9 @@ impl BoxEncloser for ControlHull {
     fn guarantee(&self) -> Guarantee {
         Guarantee::Verified
     }
+    fn lane(&self) -> Option<super::lane::Lane> {
+        Some(super::lane::Lane::Hull)
+    }
     fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
         let t0 = Clock::start();
         // The end points are reached by the curve: their enclosures' upper (lower) ends bound

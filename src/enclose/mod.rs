@@ -25,6 +25,7 @@ use crate::spline::curve::NurbsCurve;
 
 pub mod certify;
 pub mod driver;
+pub mod lane;
 mod result;
 mod segments;
 
@@ -32,6 +33,7 @@ pub use bezier::BezierSubdivision;
 pub use driver::{degree_fallback, drive, drive_with, scale_outward, Rescaling, MAX_SEARCH_DEGREE};
 pub use hull::ControlHull;
 pub use newton::{DerivForm, Newton, Split, DEFAULT_MAX_WORK, EVALS_PER_SPAN, WORK_PER_SPAN};
+pub(crate) use result::SideData;
 pub use result::{
     set_timing, timing, CandidateKind, Clock, CoordBox, Coords, Enclosure, Extrema, Extremum,
     Guarantee, Stats, Termination,
@@ -49,6 +51,14 @@ pub trait BoxEncloser: Send + Sync {
     /// work limit is reached the strategy falls back to a coarser sound bound and says so in
     /// `termination`. Implement this one; call [`BoxEncloser::enclose`].
     fn enclose_prepared(&self, curve: &NurbsCurve) -> Enclosure;
+    /// How the strategy answers a single clamped polynomial Bézier segment of degree <= 3
+    /// with moderate magnitudes, which the driver then encloses directly in its allocation-free
+    /// lane ([`lane`]) instead of calling [`BoxEncloser::enclose_prepared`]; `None` (the
+    /// default): always the general path. A strategy returns a lane only if the lane's answer
+    /// is its own (the control-point box, or the tight box its fast path proves).
+    fn lane(&self) -> Option<lane::Lane> {
+        None
+    }
     /// Enclose any valid curve: [`BoxEncloser::enclose_prepared`] under the driver
     /// ([`driver::drive`]). The result is an enclosure of `curve` itself.
     fn enclose(&self, curve: &NurbsCurve) -> Enclosure {
@@ -202,5 +212,8 @@ impl<E: BoxEncloser> BoxEncloser for Renamed<E> {
         let mut e = self.1.enclose_prepared(curve);
         e.strategy = self.0;
         e
+    }
+    fn lane(&self) -> Option<lane::Lane> {
+        self.1.lane()
     }
 }

@@ -199,7 +199,45 @@ pub struct CoordBox {
     pub witness_hi: f64,
 }
 
+/// One side of a coordinate, sign-adjusted (the min side is the max side of -C_j), as the
+/// strategies hand it to [`CoordBox::from_sides`].
+#[derive(Debug, Clone)]
+pub(crate) struct SideData {
+    /// proven upper bound of the side's function
+    pub upper: f64,
+    /// the function provably reaches a value >= attained
+    pub attained: f64,
+    /// the function provably reaches a value > witness
+    pub witness: f64,
+    /// candidates where the bound is reached
+    pub args: Extrema,
+}
+
 impl CoordBox {
+    /// The coordinate box of the max side `hi` (of C_j) and the min side `lo` (of -C_j), with
+    /// unproved certificates (`false`: the driver's certification sets them).
+    pub(crate) fn from_sides(
+        hi: SideData,
+        lo: SideData,
+        stats: Stats,
+        termination: Termination,
+    ) -> CoordBox {
+        CoordBox {
+            lo: -lo.upper,
+            hi: hi.upper,
+            inner_lo: -lo.attained,
+            inner_hi: hi.attained,
+            argmin: lo.args,
+            argmax: hi.args,
+            stats,
+            termination,
+            optimal_lo: false,
+            optimal_hi: false,
+            witness_lo: -lo.witness,
+            witness_hi: hi.witness,
+        }
+    }
+
     /// Certified overestimation bound: max(inner_lo - lo, hi - inner_hi).
     pub fn gap(&self) -> f64 {
         (self.inner_lo - self.lo).max(self.hi - self.inner_hi)

@@ -328,6 +328,31 @@ impl Ddi {
     /// step below RD(L)); the exact comparisons [`Ddi::is_above`] then pick next_up(c) if it
     /// is still < L, else c if c < L, else (c = L exactly) next_down(c).
     pub fn strictly_below(&self) -> f64 {
+        // Fast path from the parts, lower end L = h + (l - r), for a non-zero finite h (the
+        // sign of fl(l - r) is that of the exact l - r: a rounded difference is 0 only if the
+        // operands are equal):
+        // * l - r > 0 and l < g = next_up(h) - h (exact: neighbours): h < L <= h + l < next_up(h),
+        //   so h is the largest double below L;
+        // * l = r: L = h exactly, the answer is next_down(h);
+        // * l - r < 0 and (r - l) < h - next_down(h) (exact gap; r - l <= fl(r - l)(1 + 2^-50),
+        //   as in `to_interval`): next_down(h) < L < h.
+        // Otherwise the general rule below.
+        let (h, l, r) = (self.hi, self.lo, self.rad);
+        if h != 0.0 && h.is_finite() && r.is_finite() {
+            let t = l - r;
+            if t > 0.0 {
+                if l < h.next_up() - h {
+                    return h;
+                }
+            } else if t == 0.0 {
+                return next_down(h);
+            } else {
+                let below = next_down(h);
+                if -t * (1.0 + 1.0 / 1_125_899_906_842_624.0) < h - below {
+                    return below;
+                }
+            }
+        }
         let c = self.to_interval().inf();
         if !c.is_finite() || self.is_entire() {
             return f64::NEG_INFINITY;
@@ -715,6 +740,15 @@ mod tests {
             let lo = r.random_range(-0.5..0.5) * ulp * [1.0, 1e-10, 0.0][r.random_range(0..3)];
             let rad = [0.0, ulp * 1e-12, ulp * r.random_range(0.0..3.0)][r.random_range(0..3)];
             check(Ddi::new(hi, lo, rad));
+        }
+        // powers of two, where the gaps above and below differ (the fast path's cases)
+        for hi in [1.0, -1.0, 0.125, -0.125, 2f64.powi(60), -(2f64.powi(-70))] {
+            let (up, dn) = (hi.next_up() - hi, hi - hi.next_down());
+            for lo in [0.0, 0.5 * up, -0.5 * dn, 0.25 * dn, -0.25 * up, 1e-3 * dn] {
+                for rad in [0.0, lo.abs(), 0.5 * dn, 0.75 * up, 2.0 * dn, 1e-5 * up] {
+                    check(Ddi::new(hi, lo, rad));
+                }
+            }
         }
         // lower end exactly a double: hi = 1, lo = 2^-60, rad = 2^-60
         check(Ddi::new(1.0, 2f64.powi(-60), 2f64.powi(-60)));

@@ -226,6 +226,10 @@ impl BoxEncloser for Newton {
     fn guarantee(&self) -> Guarantee {
         Guarantee::Verified
     }
+    fn lane(&self) -> Option<super::lane::Lane> {
+        // (the lane's tight answer is this strategy's own fast path, switched on by default)
+        self.fast_path.then_some(super::lane::Lane::Tight)
+    }
     fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
         let mode = if self.prune {
             SpanMode::Prune
