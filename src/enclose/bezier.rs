@@ -425,6 +425,9 @@ impl BezierSubdivision {
                     if let Some(mut sd) = single::coord_sides(&seg, self.max_gap(c, j), need) {
                         let s = std::mem::replace(&mut sd[i], Side::new());
                         side.attain_f64(s.attained);
+                        // (its strict witness too: a value of the curve inside this span, so
+                        // the certificate needs no evaluation of its own there)
+                        side.witness = side.witness.max(s.witness);
                         for (ub, e) in s.cands {
                             side.bound(ub, e);
                         }
@@ -650,26 +653,38 @@ pub(crate) fn span_filter(
     let p = c.degree();
     let h = q.hdim();
     let m = (k - p..=k).fold(0.0f64, |m, i| m.max(c.control_point(i)[j].abs()));
+    let v: SmallVec<[f64; 16]> = (0..=p).map(|i| sign * q.pts[i * h + j]).collect();
+    span_bounds(&v, m, last)
+}
+
+/// The bound of [`span_filter`] from the span's f64 Bézier coefficients `v` (sign-adjusted,
+/// computed by the local Boehm insertion from the span's p + 1 control values, whose largest
+/// magnitude is `m`): `(upper bound, attained value)`, with `last` whether b_p is a value of
+/// the curve (else only b_0 is), or `None` if something is not finite. The error bound is
+/// the one in [`span_filter`]'s docs.
+pub(crate) fn span_bounds(v: &[f64], m: f64, last: bool) -> Option<(f64, f64)> {
+    let p = v.len() - 1;
     let e = (2 * p) as f64 * (8.0 * f64::EPSILON) * m + f64::MIN_POSITIVE;
-    let v = |i: usize| sign * q.pts[i * h + j];
     // (f64::max skips a NaN: a NaN or infinite coefficient, from an overflow, voids the
     // a-priori bound, so the span goes to the interval path)
-    if !(0..=p).all(|i| v(i).is_finite()) {
+    if !v.iter().all(|x| x.is_finite()) {
         return None;
     }
-    let vmax = (0..=p).map(v).fold(f64::NEG_INFINITY, f64::max);
-    let at = if last { v(0).max(v(p)) } else { v(0) };
+    let vmax = v.iter().fold(f64::NEG_INFINITY, |a, &x| a.max(x));
+    let at = if last { v[0].max(v[p]) } else { v[0] };
     if !(vmax.is_finite() && e.is_finite() && at.is_finite()) {
         return None;
     }
     Some(((vmax + e).next_up(), (at - e).next_down()))
 }
 
-fn end_kind(c: &NurbsCurve, s: f64) -> CandidateKind {
+pub(crate) fn end_kind(c: &NurbsCurve, s: f64) -> CandidateKind {
     let (a, b) = c.domain();
     if s == a || s == b {
         CandidateKind::EndPoint
-    } else if c.non_differentiable_knots().contains(&s) {
+    } else if crate::spline::knots::multiplicity(c.knots(), s) >= c.degree() {
+        // (an interior knot of multiplicity >= p: `NurbsCurve::non_differentiable_knots`,
+        // without building the list)
         CandidateKind::Knot
     } else {
         CandidateKind::Critical

@@ -186,7 +186,7 @@ pub struct Rescaling {
 }
 
 /// The knot exponent (see the module docs) and whether the scaled knots are moderate.
-fn knot_scaling(c: &NurbsCurve) -> (i32, bool) {
+pub(crate) fn knot_scaling(c: &NurbsCurve) -> (i32, bool) {
     let kn = c.knots();
     let (a, b) = c.domain();
     // b/2 - a/2 cannot overflow; halving may round only for subnormals (irrelevant here:

@@ -24,11 +24,15 @@
 //! flags are those of the general path.
 
 use super::bezier::single::{raw_sides, RawSide, Segment};
+use super::bezier::span_bounds;
 use super::driver::{exponent, COORD_WINDOW};
 use super::{certify, CandidateKind, Clock, CoordBox, Coords, Enclosure, Extrema, Extremum};
 use super::{SideData, Stats, Termination};
 use crate::num::ddi::Ddi;
+use crate::num::Scalar as _;
+use crate::spline::bspline::clamp_span;
 use crate::spline::curve::NurbsCurve;
+use smallvec::SmallVec;
 
 /// Which answer a strategy gives on a [`Simple`] curve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,55 +51,93 @@ const KNOT_EXP: i32 = 1000;
 #[derive(Debug, Clone, Copy)]
 pub struct Simple<'a> {
     p: usize,
+    /// the last control point's index (n = p: a single segment)
+    n: usize,
     d: usize,
     a: f64,
     b: f64,
     pts: &'a [f64],
+    knots: &'a [f64],
+    /// per coordinate the exact control-point range (min, max)
+    range: [(f64, f64); MAX_DIM],
 }
 
+/// The lane takes curves of dimension up to this (the result's inline storage holds three).
+const MAX_DIM: usize = 4;
+
 impl<'a> Simple<'a> {
-    /// The curve as a [`Simple`] one, or `None` (rational, several spans, unclamped, degree
-    /// above 3, extreme magnitudes).
+    /// The curve as a [`Simple`] one, or `None`: rational, degree above 3, dimension above
+    /// [`MAX_DIM`], extreme magnitudes; and a curve of several spans unless it is a clamped,
+    /// continuous (interior knot multiplicities at most p) spline of degree 2 or 3 with
+    /// moderate knots.
     #[inline]
     pub fn of(c: &'a NurbsCurve) -> Option<Simple<'a>> {
         let p = c.degree();
         let k = c.knots();
-        if c.is_rational() || !(1..=3).contains(&p) || c.num_points() != p + 1 {
+        let n = c.num_points() - 1;
+        if c.is_rational() || !(1..=3).contains(&p) || n < p {
             return None;
         }
-        // knots {a^(p+1), b^(p+1)}, a < b (validation guarantees a non-empty domain; checked
-        // again, as every other assumption here)
+        // clamped: knots a^(p+1) ... b^(p+1), a < b (validation guarantees a non-empty domain;
+        // checked again, as every other assumption here)
         let (a, b) = (k[0], k[k.len() - 1]);
-        if k.len() != 2 * p + 2 || k[p] != a || k[p + 1] != b || a >= b || a.is_nan() {
+        if k[p] != a || k[n + 1] != b || a >= b || a.is_nan() {
             return None;
         }
-        if exponent(a) > KNOT_EXP || exponent(b) > KNOT_EXP {
-            return None;
+        if n == p {
+            if exponent(a) > KNOT_EXP || exponent(b) > KNOT_EXP {
+                return None;
+            }
+        } else {
+            // a spline: degree 2 or 3, no interior knot of multiplicity above p (so the curve
+            // is continuous and both end coefficients of every span are curve values), knots
+            // that the driver would not rescale (every knot difference is finite and normal
+            // enough for the a-priori bound of the f64 span coefficients)
+            if p < 2 || super::driver::knot_scaling(c) != (0, true) {
+                return None;
+            }
+            let mut run = 1;
+            for w in k[p..=n + 1].windows(2) {
+                run = if w[1] == w[0] { run + 1 } else { 1 };
+                if run > p && w[1] < b {
+                    return None;
+                }
+            }
         }
         let d = c.dim();
+        if d > MAX_DIM {
+            return None;
+        }
         let pts = c.points_flat();
-        for j in 0..d {
-            let m = pts
-                .iter()
-                .skip(j)
-                .step_by(d)
-                .fold(0.0f64, |m, x| m.max(x.abs()));
-            // (a NaN or infinite coordinate is rejected by validation; m > MAX fails here too)
+        let mut range = [(0.0, 0.0); MAX_DIM];
+        for (j, r) in range.iter_mut().enumerate().take(d) {
+            let (mut lo, mut hi) = (pts[j], pts[j]);
+            for i in 1..=n {
+                let x = pts[i * d + j];
+                if x < lo {
+                    lo = x;
+                }
+                if x > hi {
+                    hi = x;
+                }
+            }
+            let m = if -lo > hi { -lo } else { hi };
+            // (a NaN or infinite coordinate is rejected by validation; checked again)
             if !m.is_finite() || (m != 0.0 && exponent(m).abs() > COORD_WINDOW) {
                 return None;
             }
+            *r = (lo, hi);
         }
-        Some(Simple { p, d, a, b, pts })
-    }
-
-    /// The control values of coordinate j.
-    #[inline]
-    fn values(&self, j: usize) -> [f64; 4] {
-        let mut v = [0.0; 4];
-        for (i, x) in v.iter_mut().enumerate().take(self.p + 1) {
-            *x = self.pts[i * self.d + j];
-        }
-        v
+        Some(Simple {
+            p,
+            n,
+            d,
+            a,
+            b,
+            pts,
+            knots: k,
+            range,
+        })
     }
 }
 
@@ -103,7 +145,8 @@ impl<'a> Simple<'a> {
 /// counters.
 struct SideOut {
     data: SideData,
-    stats: Stats,
+    /// counters: [fast_exits, fast_proofs, derivative_evaluations, point_evaluations]
+    counts: [u32; 4],
 }
 
 /// The end-point extremum at parameter u.
@@ -116,14 +159,15 @@ fn end(u: f64) -> Extremum {
     }
 }
 
-/// The cheap exit for the max side of values v[..=p]: the largest value is an end value (exact,
-/// attained: `fast_exits`).
-fn cheap_exit(s: &Simple, v: &[f64]) -> Option<SideOut> {
-    let p = s.p;
-    let m = v[1..p].iter().fold(v[0].max(v[p]), |m, &x| m.max(x));
-    let u = if v[0] == m {
+/// The cheap exit for the side `sign` (1: max, -1: min) of coordinate j: the extreme control
+/// value is an end value (exact and attained at a clamped end; convex hull property, thesis
+/// prop. 2.1): `fast_exits`.
+fn cheap_exit(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
+    let (lo, hi) = s.range[j];
+    let m = if sign > 0.0 { hi } else { -lo };
+    let u = if sign * s.pts[j] == m {
         s.a
-    } else if v[p] == m {
+    } else if sign * s.pts[s.n * s.d + j] == m {
         s.b
     } else {
         return None;
@@ -137,16 +181,20 @@ fn cheap_exit(s: &Simple, v: &[f64]) -> Option<SideOut> {
             witness: f64::NEG_INFINITY,
             args,
         },
-        stats: Stats {
-            fast_exits: 1,
-            ..Stats::default()
-        },
+        counts: [1, 0, 0, 0],
     })
 }
 
-/// A proven side from the root isolation (`fast_proofs`).
-fn proven(s: &Simple, r: &RawSide) -> SideOut {
-    let mut args: Extrema = r.reaching().copied().collect();
+/// The candidates of a side whose bound reaches its attained value, or the whole domain.
+fn reaching<'e>(
+    s: &Simple,
+    attained: f64,
+    cands: impl Iterator<Item = &'e (f64, Extremum)>,
+) -> Extrema {
+    let mut args: Extrema = cands
+        .filter(|(x, _)| *x >= attained)
+        .map(|(_, e)| *e)
+        .collect();
     if args.is_empty() {
         args.push(Extremum {
             u_lo: s.a,
@@ -155,34 +203,53 @@ fn proven(s: &Simple, r: &RawSide) -> SideOut {
             kind: CandidateKind::Unresolved,
         });
     }
+    args
+}
+
+/// A proven side from the root isolation (`fast_proofs`).
+fn proven(s: &Simple, r: &RawSide) -> SideOut {
     SideOut {
         data: SideData {
             upper: r.upper,
             attained: r.attained,
             witness: r.witness,
-            args,
+            args: reaching(s, r.attained, r.cands[..r.n].iter()),
         },
-        stats: Stats {
-            fast_proofs: 1,
-            derivative_evaluations: r.derivative_evaluations,
-            point_evaluations: r.point_evaluations,
-            ..Stats::default()
-        },
+        counts: [
+            0,
+            1,
+            r.derivative_evaluations as u32,
+            r.point_evaluations as u32,
+        ],
     }
+}
+
+/// The `newton` and `bezier` stopping rule: a gap of at most two ulps of the coordinate scale.
+fn max_gap(s: &Simple, j: usize) -> f64 {
+    let (lo, hi) = s.range[j];
+    let scale = lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE);
+    2.0 * crate::num::ulp(scale)
 }
 
 /// The tight sides `[max, min]` of coordinate j, or `None` (fall back to the general path).
 fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
-    let v = s.values(j);
-    let p = s.p;
-    let neg = v.map(|x| -x);
-    let (hi, lo) = (cheap_exit(s, &v[..=p]), cheap_exit(s, &neg[..=p]));
+    let (hi, lo) = (cheap_exit(s, j, 1.0), cheap_exit(s, j, -1.0));
     if hi.is_some() && lo.is_some() {
         // (both exits: a monotone coordinate, or a line)
         return Some([hi?, lo?]);
     }
+    if s.n > s.p {
+        return Some([
+            hi.or_else(|| spline_side(s, j, 1.0))?,
+            lo.or_else(|| spline_side(s, j, -1.0))?,
+        ]);
+    }
+    let p = s.p;
     let need = [hi.is_none(), lo.is_none()];
-    let c = v.map(Ddi::exact);
+    let mut c = [Ddi::exact(0.0); 4];
+    for (i, x) in c.iter_mut().enumerate().take(p + 1) {
+        *x = Ddi::exact(s.pts[i * s.d + j]);
+    }
     let seg = Segment {
         c: &c[..=p],
         a: s.a,
@@ -191,15 +258,11 @@ fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
         right_attained: true,
     };
     let raw = raw_sides(&seg, need)?;
-    // the `newton` and `bezier` stopping rule: a gap of at most two ulps of the scale
-    let scale = v[..=p]
-        .iter()
-        .fold(f64::MIN_POSITIVE, |m, x| m.max(x.abs()));
-    let max_gap = 2.0 * crate::num::ulp(scale);
+    let gap = max_gap(s, j);
     let mut out = [hi, lo];
     for (o, r) in out.iter_mut().zip(&raw) {
         if o.is_none() {
-            if !r.tight(max_gap) {
+            if !r.tight(gap) {
                 return None;
             }
             *o = Some(proven(s, r));
@@ -209,35 +272,209 @@ fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
     Some([hi?, lo?])
 }
 
+/// The side `sign` of coordinate j of a spline (degree 2 or 3, several spans), best first
+/// over the spans, as the `bezier` strategy's branch and bound does with its shortcuts, on
+/// stack buffers:
+///
+/// 1. Every span k starts with the bound max_i sign P_ij over its p + 1 local control values
+///    (exact; the curve on the span is a convex combination of them). The clamped end values
+///    are attained.
+/// 2. The span with the largest bound above the attained value gets its f64 Bézier
+///    coefficients (local Boehm insertion, `bspline::clamp_span`) with the a-priori error bound
+///    of `bezier::span_filter` (`bezier::span_bounds`): an upper bound of the span and two
+///    attained values (b_0 = C(u_k), b_p = C(u_{k+1}): the curve is continuous, no interior
+///    knot has multiplicity above p). A span whose bound is at most the attained value is
+///    done.
+/// 3. Otherwise the span's Bézier coefficients are enclosed in double-double (the same
+///    insertion in `Ddi`) and the root-isolating proof (`bezier::single`) bounds it, within two
+///    ulps of the scale, or the lane gives up.
+/// 4. When no span's bound exceeds the attained value, the side's bound is the largest bound
+///    of the spans proved in step 3 and the attained value (spans left over or done in step 2
+///    are below the attained value, which is below the exact maximum).
+fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
+    let (p, d, n, kn) = (s.p, s.d, s.n, s.knots);
+    let x = |i: usize| sign * s.pts[i * d + j];
+    let mut attained = x(0).max(x(n));
+    let mut upper = f64::NEG_INFINITY;
+    let mut witness = f64::NEG_INFINITY;
+    let mut cands: SmallVec<[(f64, Extremum); 4]> = SmallVec::new();
+    for (u, v) in [(s.a, x(0)), (s.b, x(n))] {
+        cands.push((v, end(u)));
+    }
+    let mut counts = [0u32, 1, 0, 0];
+    // step 1: the spans (u_k < u_{k+1}) with their control-value bounds, largest first (a
+    // binary heap: built in linear time, and only the spans above the attained value are
+    // taken out; keys are the bounds' total order as integers)
+    let key = |b: f64| {
+        let bits = b.to_bits();
+        if bits >> 63 == 0 {
+            bits | (1 << 63)
+        } else {
+            !bits
+        }
+    };
+    let mut spans: Vec<(u64, usize, bool)> = Vec::with_capacity(n + 1 - p);
+    for k in p..=n {
+        if kn[k] < kn[k + 1] {
+            let mut b = x(k - p);
+            for i in k + 1 - p..=k {
+                let v = x(i);
+                if v > b {
+                    b = v;
+                }
+            }
+            // (spans below the attained end values are never taken)
+            if b > attained {
+                spans.push((key(b), k, false));
+            }
+        }
+    }
+    let mut heap = std::collections::BinaryHeap::from(spans);
+    let gap = max_gap(s, j);
+    while let Some((bk, k, filtered)) = heap.pop() {
+        if bk <= key(attained) {
+            break;
+        }
+        let mut t = [0.0f64; 8];
+        // step 2: f64 coefficients and their a-priori bound; the span goes back with that
+        // bound, so that the double-double stage runs only on the span whose f64 bound is the
+        // largest left (usually the one with the maximum)
+        if !filtered {
+            t[..2 * p + 2].copy_from_slice(&kn[k - p..=k + p + 1]);
+            let mut q = [0.0f64; 4];
+            let mut m = 0.0f64;
+            for (i, v) in q.iter_mut().enumerate().take(p + 1) {
+                *v = s.pts[(k - p + i) * d + j];
+                m = m.max(v.abs());
+            }
+            clamp_span(p, 1, &mut t[..2 * p + 2], &mut q[..=p]);
+            let signed = q.map(|v| sign * v);
+            let (ub, at) = span_bounds(&signed[..=p], m, true)?;
+            attained = attained.max(at);
+            if ub > attained {
+                heap.push((key(ub), k, true));
+            }
+            continue;
+        }
+        // step 3: double-double coefficients and the root-isolating proof
+        t[..2 * p + 2].copy_from_slice(&kn[k - p..=k + p + 1]);
+        let mut qd = [Ddi::exact(0.0); 4];
+        for (i, v) in qd.iter_mut().enumerate().take(p + 1) {
+            *v = Ddi::exact(s.pts[(k - p + i) * d + j]);
+        }
+        clamp_span(p, 1, &mut t[..2 * p + 2], &mut qd[..=p]);
+        // (the end-coefficient rule of the `bezier` strategy first: if an end coefficient has
+        // the largest upper end, the span's maximum is at most that, and the end coefficient is
+        // a value of the curve, C(u_k) or C(u_{k+1}); its enclosure is about an ulp wide)
+        let signed = qd.map(|v| if sign > 0.0 { v } else { -v });
+        let (mut top, mut at) = (f64::NEG_INFINITY, 0);
+        for (i, v) in signed.iter().enumerate().take(p + 1) {
+            let sup = v.to_interval().sup();
+            // (a NaN upper end fails every comparison and ends in the proof below)
+            if sup > top || (i == p && sup == top) {
+                (top, at) = (sup, i);
+            }
+        }
+        if at == 0 || at == p {
+            let v = signed[at];
+            let inf = v.to_interval().inf();
+            if top - inf <= gap {
+                let u = kn[if at == 0 { k } else { k + 1 }];
+                attained = attained.max(inf);
+                upper = upper.max(top);
+                witness = witness.max(v.strictly_below());
+                cands.push((
+                    top,
+                    Extremum {
+                        u_lo: u,
+                        u_hi: u,
+                        unique: false,
+                        kind: end_kind(s, u),
+                    },
+                ));
+                continue;
+            }
+        }
+        let seg = Segment {
+            c: &qd[..=p],
+            a: kn[k],
+            b: kn[k + 1],
+            end_kinds: [end_kind(s, kn[k]), end_kind(s, kn[k + 1])],
+            right_attained: true,
+        };
+        let side = if sign > 0.0 { 0 } else { 1 };
+        let mut need = [false; 2];
+        need[side] = true;
+        let r = raw_sides(&seg, need)?[side];
+        if !r.tight(gap) {
+            return None;
+        }
+        attained = attained.max(r.attained);
+        upper = upper.max(r.upper);
+        witness = witness.max(r.witness);
+        cands.extend_from_slice(&r.cands[..r.n]);
+        counts[2] += r.derivative_evaluations as u32;
+        counts[3] += r.point_evaluations as u32;
+    }
+    let upper = upper.max(attained);
+    Some(SideOut {
+        data: SideData {
+            upper,
+            attained,
+            witness,
+            args: reaching(s, attained, cands.iter()),
+        },
+        counts,
+    })
+}
+
+/// What a span end at knot u is: a domain end, a non-differentiable knot (multiplicity >= p,
+/// thesis ch. 6), or a plain point of the curve.
+fn end_kind(s: &Simple, u: f64) -> CandidateKind {
+    if u == s.a || u == s.b {
+        CandidateKind::EndPoint
+    } else if crate::spline::knots::multiplicity(s.knots, u) >= s.p {
+        CandidateKind::Knot
+    } else {
+        CandidateKind::Critical
+    }
+}
+
 /// The hull sides `[max, min]` of coordinate j: control-point box, attained end values.
 fn hull_sides(s: &Simple, j: usize) -> [SideOut; 2] {
-    let v = s.values(j);
-    let p = s.p;
-    let side = |sign: f64| {
-        let m = v[..=p]
-            .iter()
-            .fold(f64::NEG_INFINITY, |m, &x| m.max(sign * x));
-        let mut args = Extrema::new();
-        // every control point of a single segment is supported on the whole domain
-        args.push(Extremum {
-            u_lo: s.a,
-            u_hi: s.b,
+    let (lo, hi) = s.range[j];
+    let (e0, e1) = (s.pts[j], s.pts[s.n * s.d + j]);
+    // the support of the extreme control point (the whole domain for a single segment)
+    let arg = |m: f64| {
+        let (mut u_lo, mut u_hi) = (s.a, s.b);
+        if s.n > s.p {
+            if let Some(i) = (0..=s.n).find(|&i| s.pts[i * s.d + j] == m) {
+                u_lo = s.knots[i].max(s.a);
+                u_hi = s.knots[i + s.p + 1].min(s.b);
+            }
+        }
+        Extremum {
+            u_lo,
+            u_hi,
             unique: false,
             kind: CandidateKind::ControlPoint,
-        });
+        }
+    };
+    let side = |upper: f64, attained: f64, at: f64, evals: u32| {
+        let mut args = Extrema::new();
+        args.push(arg(at));
         SideOut {
             data: SideData {
-                upper: m,
-                attained: (sign * v[0]).max(sign * v[p]),
+                upper,
+                attained,
                 witness: f64::NEG_INFINITY,
                 args,
             },
-            stats: Stats::default(),
+            counts: [0, 0, 0, evals],
         }
     };
-    let mut out = [side(1.0), side(-1.0)];
-    out[0].stats.point_evaluations = 2;
-    out
+    let (emax, emin) = if e0 > e1 { (e0, e1) } else { (e1, e0) };
+    [side(hi, emax, hi, 2), side(-lo, -emin, lo, 0)]
 }
 
 /// The enclosure of a [`Simple`] curve by a strategy named `name` answering with `lane`, with
@@ -258,21 +495,22 @@ pub fn enclose(
             Lane::Hull => (hull_sides(s, j), Termination::Direct),
             Lane::Tight => (tight_sides(s, j)?, Termination::Converged),
         };
-        let v = s.values(j);
-        let (plo, phi) = v[..=s.p]
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| {
-                (l.min(x), h.max(x))
-            });
-        let mut stats = hi.stats;
-        stats.add(&lo.stats);
-        stats.time_total = clock.elapsed();
+        let (plo, phi) = s.range[j];
+        let n = |k: usize| (hi.counts[k] + lo.counts[k]) as u64;
+        let stats = Stats {
+            fast_exits: n(0),
+            fast_proofs: n(1),
+            derivative_evaluations: n(2),
+            point_evaluations: n(3),
+            time_total: clock.elapsed(),
+            ..Stats::default()
+        };
         let mut cb = CoordBox::from_sides(hi.data, lo.data, stats, term);
         // the driver's facts: clamp to the control-point box, the clamped end values are
         // attained, inner bounds consistent with the outer ones
         cb.lo = cb.lo.max(plo);
         cb.hi = cb.hi.min(phi);
-        let (e0, e1) = (v[0], v[s.p]);
+        let (e0, e1) = (s.pts[j], s.pts[s.n * s.d + j]);
         cb.inner_lo = cb.inner_lo.min(e0).min(e1).min(cb.hi).max(cb.lo);
         cb.inner_hi = cb.inner_hi.max(e0).max(e1).max(cb.lo).min(cb.hi);
         if certify {

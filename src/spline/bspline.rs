@@ -247,13 +247,7 @@ impl<S: Scalar> HSpline<S> {
         let h = self.hdim();
         let mut q: Vec<S> = self.pts[(k - p) * h..(k + 1) * h].to_vec();
         let mut t: SmallVec<[f64; 24]> = SmallVec::from_slice(&self.knots[k - p..=k + p + 1]);
-        clamp_left(p, h, &mut t, &mut q);
-        // Mirror: reversed points, knots t'_j = -t_{2p+1-j}; clamp, mirror back. Negation is exact.
-        reverse_points(h, &mut q);
-        t.reverse();
-        t.iter_mut().for_each(|x| *x = -*x);
-        clamp_left(p, h, &mut t, &mut q);
-        reverse_points(h, &mut q);
+        clamp_span(p, h, &mut t, &mut q);
         BezierSeg {
             a: self.knots[k],
             b: self.knots[k + 1],
@@ -425,6 +419,21 @@ pub(crate) fn reverse_points<S: Clone>(h: usize, q: &mut [S]) {
             q.swap(i * h + c, (n - 1 - i) * h + c);
         }
     }
+}
+
+/// The Bézier points of one span in place (the body of [`HSpline::bezier_segment`], for
+/// callers with their own, e.g. stack, buffers): `t` holds the 2p + 2 knots u_{k-p} ..= u_{k+p+1}
+/// around the span, `q` its p + 1 local points (`h` values each, row-major); both ends are
+/// clamped by Boehm knot insertion ([`clamp_left`], then the same on the mirrored curve:
+/// reversed points, knots t'_j = -t_{2p+1-j}, negation is exact), after which `q` holds the
+/// span's Bézier points. `t` is left in an unspecified state.
+pub(crate) fn clamp_span<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
+    clamp_left(p, h, t, q);
+    reverse_points(h, q);
+    t.reverse();
+    t.iter_mut().for_each(|x| *x = -*x);
+    clamp_left(p, h, t, q);
+    reverse_points(h, q);
 }
 
 /// Point i of a row-major buffer (`h` values per point) becomes the convex combination

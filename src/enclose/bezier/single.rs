@@ -103,6 +103,18 @@ impl Poly {
     fn new(c: &[Ddi]) -> Poly {
         let p = c.len() - 1;
         let d = first_differences(c);
+        if p == 3 && d.iter().all(|x| x.rad() == 0.0) {
+            // The common case (exact first differences of f64 data), written out: the same
+            // forward differences and binomial factors as the shared kernel below, without its
+            // loops and binomial recurrences (this runs once per interior extremum of a cubic).
+            let e0 = d[1] - d[0];
+            let e1 = d[2] - d[1];
+            let three = Ddi::exact(3.0);
+            return Poly {
+                p,
+                x: [c[0], three * d[0], three * e0, e1 - e0],
+            };
+        }
         // a_1 = p Δc_0, a_2 = C(p, 2) Δ^2 c_0, (p = 3) a_3 = Δ^3 c_0 = Δc_2 - 2 Δc_1 + Δc_0,
         // by the shared kernel from these first differences (on the stack).
         let z = Ddi::exact(0.0);
@@ -354,13 +366,6 @@ impl RawSide {
             self.cands[self.n] = (ub, e);
             self.n += 1;
         }
-    }
-    /// The candidates whose bound reaches the attained value.
-    pub fn reaching(&self) -> impl Iterator<Item = &Extremum> {
-        self.cands[..self.n]
-            .iter()
-            .filter(|(x, _)| *x >= self.attained)
-            .map(|(_, e)| e)
     }
     /// Whether the certified gap (bound minus attained value) is at most `max_gap` (false for
     /// a NaN gap).
