@@ -1,0 +1,247 @@
+//! The driver's allocation-free lane (src/enclose/lane.rs) for single Bézier segments of
+//! degree <= 3 and clamped polynomial splines of degree 2 and 3: every lane result is checked
+//! against the general path of the same strategy family (`fast_path: false`: the interval
+//! Newton search, the Bézier branch and bound), which is independent code. Both are verified,
+//! so each one's outer box must contain the other's inner bounds (values the curve provably
+//! reaches), on random and adversarial splines: clustered knots, knots of multiplicity p
+//! (kinks, extrema exactly at knots), flat coordinates, integer data with exact ties, tiny
+//! and large magnitudes. The lane must also be taken (no fallback counted) on most of them
+//! and stay within two ulps of the scale, and its certificates must agree with the general
+//! path's bounds. The 256-bit references are in tests/bezier_single.rs (under `mpfr`).
+
+use nurbs_box::enclose::lane::Simple;
+use nurbs_box::enclose::{drive, BezierSubdivision, Newton};
+use nurbs_box::testkit::gen::{self, Family, GenParams};
+use nurbs_box::{BoxEncloser, Enclosure, NurbsCurve};
+use proptest::prelude::*;
+use rand::Rng;
+
+mod common;
+
+/// A clamped spline of degree p with `spans` spans of the given shape.
+fn adversarial(r: &mut impl Rng) -> NurbsCurve {
+    let p = r.random_range(2..=3usize);
+    let kind = r.random_range(0..6u32);
+    let spans = r.random_range(1..=12usize);
+    // interior knots (sorted), possibly clustered or repeated up to multiplicity p
+    let mut inner: Vec<f64> = Vec::new();
+    for _ in 1..spans {
+        let u: f64 = match kind {
+            0 => 0.5 + r.random_range(-1.0..1.0) * 1e-9,
+            _ => r.random_range(0.0..1.0),
+        };
+        let m = if kind == 1 { r.random_range(1..=p) } else { 1 };
+        inner.extend(std::iter::repeat_n(u, m));
+    }
+    inner.sort_by(f64::total_cmp);
+    inner.retain(|&u| u > 0.0 && u < 1.0);
+    let mut knots = vec![0.0; p + 1];
+    knots.extend(&inner);
+    knots.extend(vec![1.0; p + 1]);
+    // no interior knot above multiplicity p (the generator above keeps to it)
+    let n = knots.len() - p - 2;
+    let dim = r.random_range(1..=3usize);
+    let mag = [1.0, 1e-200, 1e200, 2f64.powi(40)][r.random_range(0..4usize)];
+    let pts: Vec<Vec<f64>> = (0..=n)
+        .map(|i| {
+            (0..dim)
+                .map(|j| match (kind, j) {
+                    // integer data: exact ties, extrema exactly at knots and control values
+                    (2, _) => r.random_range(-3..=3) as f64 * mag,
+                    // a flat coordinate
+                    (3, 0) => 7.0 * mag,
+                    // a symmetric bump: the maximum at the middle knot
+                    (4, 0) => (1.0 - ((i as f64) - n as f64 / 2.0).abs()) * mag,
+                    _ => r.random_range(-1.0..1.0) * mag,
+                })
+                .collect()
+        })
+        .collect();
+    NurbsCurve::new(p, knots, pts, None).expect("a valid spline")
+}
+
+/// Random curves of the families the lane takes, and some it does not (rational, unclamped).
+fn family_curve(r: &mut impl Rng) -> NurbsCurve {
+    let fam = [
+        Family::ClampedUniform,
+        Family::MultipleKnots,
+        Family::ClusteredKnots,
+        Family::ExtremaAtKnots,
+        Family::FlatCoordinates,
+        Family::NearDegenerateCubic,
+        Family::Unclamped,
+    ][r.random_range(0..7usize)];
+    let params = GenParams {
+        degree: 1..=3,
+        rational: 0.1,
+        ..fam.params()
+    };
+    gen::random_curve(r, &params)
+}
+
+/// The lane strategies (defaults) next to their general paths.
+fn pairs() -> [(Box<dyn BoxEncloser>, Box<dyn BoxEncloser>); 2] {
+    [
+        (
+            Box::new(BezierSubdivision::default()),
+            Box::new(BezierSubdivision {
+                fast_path: false,
+                ..Default::default()
+            }),
+        ),
+        (
+            Box::new(Newton::default()),
+            Box::new(Newton {
+                fast_path: false,
+                ..Default::default()
+            }),
+        ),
+    ]
+}
+
+/// Each result's outer box contains the other's inner bounds; a lane bound certified optimal
+/// is not above the general path's outer bound by a double (hi = RU(max) <= any bound).
+fn cross_check(c: &NurbsCurve, lane: &Enclosure, general: &Enclosure) -> Result<(), String> {
+    let json = nurbs_box::curve_to_json(c);
+    for (j, (a, g)) in lane.coords.iter().zip(&general.coords).enumerate() {
+        let ok = a.lo <= g.inner_lo
+            && g.inner_hi <= a.hi
+            && g.lo <= a.inner_lo
+            && a.inner_hi <= g.hi
+            && a.lo <= a.inner_lo
+            && a.inner_hi <= a.hi;
+        if !ok {
+            return Err(format!(
+                "coord {j}: lane [{}, {}] inner [{}, {}] vs general [{}, {}] inner [{}, {}]\n{json}",
+                a.lo, a.hi, a.inner_lo, a.inner_hi, g.lo, g.hi, g.inner_lo, g.inner_hi
+            ));
+        }
+        // an optimal bound is the smallest double bound: the general one cannot be below it
+        if (a.optimal_hi && g.hi < a.hi) || (a.optimal_lo && g.lo > a.lo) {
+            return Err(format!(
+                "coord {j}: lane claims optimal [{}, {}] ({}, {}), general proves [{}, {}]\n{json}",
+                a.lo, a.hi, a.optimal_lo, a.optimal_hi, g.lo, g.hi
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Cross-checks a curve; returns whether the lane took it (and then its largest gap in ulps
+/// of the scale).
+fn check(c: &NurbsCurve) -> Result<Option<f64>, String> {
+    let mut taken = None;
+    for (fast, slow) in pairs() {
+        let (a, g) = (drive(fast.as_ref(), c), drive(slow.as_ref(), c));
+        cross_check(c, &a, &g)?;
+        let s = a.stats();
+        if Simple::of(c).is_some() && s.fast_fallbacks == 0 {
+            let gap = a
+                .coords
+                .iter()
+                .enumerate()
+                .map(|(j, cb)| cb.gap() / nurbs_box::num::ulp(c.coord_scale(j)))
+                .fold(0.0, f64::max);
+            taken = Some(gap);
+        }
+    }
+    Ok(taken)
+}
+
+proptest! {
+    #![proptest_config(common::config(200))]
+
+    #[test]
+    fn adversarial_splines_agree_with_the_general_path(seed in any::<u64>()) {
+        let c = adversarial(&mut gen::rng(seed));
+        if let Err(m) = check(&c) {
+            prop_assert!(false, "{m}");
+        }
+    }
+
+    #[test]
+    fn family_curves_agree_with_the_general_path(seed in any::<u64>()) {
+        let c = family_curve(&mut gen::rng(seed));
+        if let Err(m) = check(&c) {
+            prop_assert!(false, "{m}");
+        }
+    }
+}
+
+/// The lane takes most clamped polynomial splines and single segments, within two ulps.
+#[test]
+fn the_lane_takes_most_splines_tightly() {
+    let mut r = gen::rng(3);
+    let (mut eligible, mut taken, mut worst) = (0, 0, 0.0f64);
+    for _ in 0..400 {
+        let c = adversarial(&mut r);
+        if Simple::of(&c).is_none() {
+            continue;
+        }
+        eligible += 1;
+        if let Some(g) = check(&c).unwrap() {
+            taken += 1;
+            worst = worst.max(g);
+        }
+    }
+    // (magnitudes 1e±200 are rescaled by the driver: not the lane's)
+    assert!(eligible > 150, "{eligible}");
+    assert!(
+        taken * 10 >= eligible * 8,
+        "lane taken {taken} of {eligible}"
+    );
+    assert!(worst <= 2.0, "gap {worst} ulps");
+}
+
+/// What the lane refuses goes to the general path unchanged: rational, unclamped, jumps,
+/// degree above 3, extreme magnitudes, dimension above 4.
+#[test]
+fn the_lane_refuses_what_it_does_not_cover() {
+    let bez = |p: usize, pts: Vec<Vec<f64>>, w: Option<Vec<f64>>| {
+        let mut k = vec![0.0; p + 1];
+        k.extend(vec![1.0; p + 1]);
+        NurbsCurve::new(p, k, pts, w).unwrap()
+    };
+    let cubic = vec![vec![0.0], vec![1.0], vec![-1.0], vec![0.5]];
+    assert!(Simple::of(&bez(3, cubic.clone(), None)).is_some());
+    assert!(Simple::of(&bez(3, cubic.clone(), Some(vec![1.0, 2.0, 1.0, 1.0]))).is_none());
+    let quartic = vec![vec![0.0], vec![1.0], vec![-1.0], vec![0.5], vec![2.0]];
+    assert!(Simple::of(&bez(4, quartic, None)).is_none());
+    assert!(Simple::of(&bez(
+        3,
+        cubic.iter().map(|v| vec![v[0] * 1e300]).collect(),
+        None
+    ))
+    .is_none());
+    assert!(Simple::of(&bez(1, vec![vec![0.0; 5], vec![1.0; 5]], None)).is_none());
+    // a jump (interior multiplicity p + 1) and an unclamped spline
+    let jump = NurbsCurve::new(
+        2,
+        vec![0., 0., 0., 0.5, 0.5, 0.5, 1., 1., 1.],
+        (0..6).map(|i| vec![i as f64]).collect(),
+        None,
+    )
+    .unwrap();
+    assert!(Simple::of(&jump).is_none());
+    let unclamped = NurbsCurve::new(
+        2,
+        (0..8).map(|i| i as f64).collect(),
+        (0..5).map(|i| vec![(i * i) as f64]).collect(),
+        None,
+    )
+    .unwrap();
+    assert!(Simple::of(&unclamped).is_none());
+    // a kink (multiplicity p) is taken
+    let kink = NurbsCurve::new(
+        2,
+        vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.],
+        vec![vec![0.0], vec![1.0], vec![3.0], vec![1.0], vec![0.0]],
+        None,
+    )
+    .unwrap();
+    assert!(Simple::of(&kink).is_some());
+    let e = drive(&Newton::default(), &kink);
+    // C(0.5) = P_2 = 3 exactly: the maximum, attained at the kink and certified optimal
+    assert_eq!((e.coords[0].hi, e.coords[0].inner_hi), (3.0, 3.0));
+    assert!(e.coords[0].optimal_hi && e.coords[0].optimal_lo);
+}
