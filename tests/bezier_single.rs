@@ -5,27 +5,15 @@
 //! coordinates), each strategy compared with its general search (`fast_path: false`: the
 //! branch and bound, the interval Newton search).
 
-use nurbs_box::enclose::{BezierSubdivision, Newton};
+use nurbs_box::enclose::Newton;
 use nurbs_box::{BoxEncloser, Enclosure, NurbsCurve};
 use rand::{Rng, SeedableRng};
 
 mod common;
 
-/// The registered strategies with the fast path (their defaults, whose `enclose` runs under
-/// the driver like the registry's), each followed by the same without it.
+/// The registered strategies with the fast path, each followed by the same without it.
 fn strategies() -> [Box<dyn BoxEncloser>; 4] {
-    [
-        Box::new(BezierSubdivision::default()),
-        Box::new(BezierSubdivision {
-            fast_path: false,
-            ..Default::default()
-        }),
-        Box::new(Newton::default()),
-        Box::new(Newton {
-            fast_path: false,
-            ..Default::default()
-        }),
-    ]
+    common::fast_and_general()
 }
 
 /// A Bézier curve of degree p = pts.len() - 1 over [a, b].

@@ -10,9 +10,9 @@
 //! path's bounds. The 256-bit references are in tests/bezier_single.rs (under `mpfr`).
 
 use nurbs_box::enclose::lane::Simple;
-use nurbs_box::enclose::{drive, BezierSubdivision, Newton};
+use nurbs_box::enclose::{drive, Newton};
 use nurbs_box::testkit::gen::{self, Family, GenParams};
-use nurbs_box::{BoxEncloser, Enclosure, NurbsCurve};
+use nurbs_box::{Enclosure, NurbsCurve};
 use proptest::prelude::*;
 use rand::Rng;
 
@@ -79,26 +79,6 @@ fn family_curve(r: &mut impl Rng) -> NurbsCurve {
     gen::random_curve(r, &params)
 }
 
-/// The lane strategies (defaults) next to their general paths.
-fn pairs() -> [(Box<dyn BoxEncloser>, Box<dyn BoxEncloser>); 2] {
-    [
-        (
-            Box::new(BezierSubdivision::default()),
-            Box::new(BezierSubdivision {
-                fast_path: false,
-                ..Default::default()
-            }),
-        ),
-        (
-            Box::new(Newton::default()),
-            Box::new(Newton {
-                fast_path: false,
-                ..Default::default()
-            }),
-        ),
-    ]
-}
-
 /// Each result's outer box contains the other's inner bounds; a lane bound certified optimal
 /// is not above the general path's outer bound by a double (hi = RU(max) <= any bound).
 fn cross_check(c: &NurbsCurve, lane: &Enclosure, general: &Enclosure) -> Result<(), String> {
@@ -131,8 +111,9 @@ fn cross_check(c: &NurbsCurve, lane: &Enclosure, general: &Enclosure) -> Result<
 /// of the scale).
 fn check(c: &NurbsCurve) -> Result<Option<f64>, String> {
     let mut taken = None;
-    for (fast, slow) in pairs() {
-        let (a, g) = (drive(fast.as_ref(), c), drive(slow.as_ref(), c));
+    let s = common::fast_and_general();
+    for pair in s.chunks(2) {
+        let (a, g) = (drive(pair[0].as_ref(), c), drive(pair[1].as_ref(), c));
         cross_check(c, &a, &g)?;
         let s = a.stats();
         if Simple::of(c).is_some() && s.fast_fallbacks == 0 {

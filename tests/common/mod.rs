@@ -16,6 +16,26 @@ pub fn config(default_cases: u32) -> ProptestConfig {
     }
 }
 
+/// `bezier` and `newton` with their defaults (fast paths and the driver's lane), each followed
+/// by the same without them (`fast_path: false`: the Bézier branch and bound, the interval
+/// Newton search), whose `enclose` runs under the driver like the registry's.
+#[allow(dead_code)] // not every test crate compares the fast paths
+pub fn fast_and_general() -> [Box<dyn nurbs_box::BoxEncloser>; 4] {
+    use nurbs_box::enclose::{BezierSubdivision, Newton};
+    [
+        Box::new(BezierSubdivision::default()),
+        Box::new(BezierSubdivision {
+            fast_path: false,
+            ..Default::default()
+        }),
+        Box::new(Newton::default()),
+        Box::new(Newton {
+            fast_path: false,
+            ..Default::default()
+        }),
+    ]
+}
+
 /// Run the `nurbs-box` binary with `args`, feeding `stdin` (from another thread: the child may
 /// fill its stdout pipe before reading all input); returns (exit code, stdout, stderr) and
 /// fails if the binary panicked.
