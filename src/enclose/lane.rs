@@ -480,6 +480,7 @@ fn hull_sides(s: &Simple, j: usize) -> [SideOut; 2] {
 /// The enclosure of a [`Simple`] curve by a strategy named `name` answering with `lane`, with
 /// the certificates when `certify` (see the module docs); `None` sends the curve to the
 /// general path.
+#[inline]
 pub fn enclose(
     lane: Lane,
     name: &'static str,
