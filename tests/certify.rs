@@ -290,3 +290,94 @@ fn supremum_at_a_jump_is_certified() {
         assert!(cb.optimal_hi && cb.optimal_lo, "{s}: {cb:?}");
     }
 }
+
+/// A maximum attained at a clamped end, on curves whose control polygon rises above the end
+/// value (so the convex hull of the control points does not show it): a bound one ulp (or a
+/// few) above the end value is lowered to it and certified, for degrees on both sides of
+/// `certify::LOWER_MAX_DEGREE` and with weights. On the mirrored curve the same holds for
+/// the minimum, and a curve that rises just above its end value is never lowered below its
+/// maximum.
+#[test]
+fn bound_above_a_clamped_end_maximum_is_lowered_and_certified() {
+    use nurbs_box::enclose::certify::{certify, LOWER_MAX_DEGREE};
+    let mut checked = 0;
+    let degrees = [3usize, 5, 7, 12];
+    assert!(degrees.iter().any(|&p| p > LOWER_MAX_DEGREE));
+    for p in degrees {
+        for rational in [false, true] {
+            // P_0 = 0.8 (the maximum, at u = 0), a low arc, one control point at 1.3 in the
+            // middle: its Bernstein weight stays far below (0.8 - 0) / (1.3 - 0)
+            let mid = p / 2 + 1;
+            let pts: Vec<Vec<f64>> = (0..=p)
+                .map(|i| {
+                    let y = if i == 0 {
+                        0.8
+                    } else if i == mid {
+                        1.3
+                    } else {
+                        0.1
+                    };
+                    vec![y, -y]
+                })
+                .collect();
+            // (weights from 1e-2 to 1e3: interval derivatives of the quotient are wide there)
+            let w = rational.then(|| {
+                (0..=p)
+                    .map(|i| {
+                        if i == mid {
+                            1.0
+                        } else {
+                            [1.0, 1e3, 1e-2][i % 3]
+                        }
+                    })
+                    .collect()
+            });
+            let c = bezier_curve(pts, w);
+            for s in ["newton", "bezier"] {
+                let mut e = strategy_by_name(s, None).unwrap().enclose(&c);
+                // the strategy's own result: optimal and certified
+                assert_eq!((e.coords[0].hi, e.coords[1].lo), (0.8, -0.8), "{s} p{p}");
+                assert!(e.coords[0].optimal_hi && e.coords[1].optimal_lo, "{s} p{p}");
+                // a bound a few ulps too high (and no attained value equal to it: the attained
+                // value is set one ulp below the end value) is lowered
+                for ulps in [1, 3] {
+                    let mut hi = 0.8f64;
+                    for _ in 0..ulps {
+                        hi = hi.next_up();
+                    }
+                    e.coords[0].hi = hi;
+                    e.coords[0].inner_hi = 0.8f64.next_down();
+                    e.coords[0].witness_hi = f64::NEG_INFINITY;
+                    e.coords[1].lo = -hi;
+                    e.coords[1].inner_lo = -(0.8f64.next_down());
+                    e.coords[1].witness_lo = f64::INFINITY;
+                    certify(&c, &mut e);
+                    let name = format!("{s} p{p} rational {rational} +{ulps} ulps");
+                    assert_eq!(e.coords[0].hi, 0.8, "{name}");
+                    assert!(e.coords[0].optimal_hi, "{name}");
+                    assert_eq!(e.coords[1].lo, -0.8, "{name}");
+                    assert!(e.coords[1].optimal_lo, "{name}");
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 32);
+    // a cubic that starts at 0.8 and rises: the maximum is above the end value, so a bound at
+    // next_up(max) must never drop to 0.8
+    let c = bezier_curve(
+        vec![vec![0.8], vec![0.8 + 1e-6], vec![0.1], vec![0.1]],
+        None,
+    );
+    let mut e = strategy_by_name("newton", None).unwrap().enclose(&c);
+    let hi = e.coords[0].hi;
+    assert!(hi > 0.8);
+    e.coords[0].hi = hi.next_up();
+    e.coords[0].inner_hi = 0.8;
+    certify(&c, &mut e);
+    assert!(
+        e.coords[0].hi >= hi,
+        "lowered below the maximum: {}",
+        e.coords[0].hi
+    );
+}

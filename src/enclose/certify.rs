@@ -11,7 +11,7 @@
 //!
 //! 1. **An attained value equal to hi**: `inner_hi == hi` (the strategy, or the driver's facts
 //!    such as a clamped end control point, proved that the curve reaches a value >= inner_hi);
-//!    then M = hi. Or the strategy's strict witness `witness_hi >= t` (the strategy proved
+//!    then M = hi. Or a clamped end's value (the end control point, exact) above t. Or the strategy's strict witness `witness_hi >= t` (the strategy proved
 //!    that the curve reaches a value > witness_hi, e.g. by a double-double value at a proved
 //!    critical point: [`Ddi::strictly_below`]); then M > t. This costs nothing extra.
 //! 2. **A verified enclosure above t**: a double-double enclosure ([`Ddi`], rigorous, about
@@ -54,8 +54,12 @@
 //! the search found the extremum), else for t' = t; on success the bound becomes t' (still a
 //! proved bound) and the certificate is tried again, at most [`MAX_LOWERINGS`] times. The
 //! proof is a branch and bound over every span (each polynomial / rational piece on its closed
-//! span, which covers every value of the curve, jumps included), with these rules per
-//! parameter box X:
+//! span, which covers every value of the curve, jumps included). A span is first tested by the
+//! strong convex hull of its B-spline control points, then of its Bézier pieces
+//! (`bezier_rule`: the span's Bézier form in double-double, halved by de Casteljau; at a
+//! clamped domain end the end point is the end control point exactly, so a maximum attained
+//! there, an exact tie with t, is decided without rounding error, at any degree). What the
+//! pieces leave undecided goes to these rules per parameter box X:
 //!
 //! * f64 interval enclosures (inari, outward rounded) of g over X, natural and mean value form
 //!   g(m) + g'(X)(X - m): upper end <= t' (most boxes, away from the extremum);
@@ -78,13 +82,16 @@
 //! exact stage only for the best candidate and degree <= [`EXACT_MAX_DEGREE`] (its exact
 //! Newton levels only for a value within 2^-96 of t, two exact Newton steps per level of
 //! [`ZIV_BITS`]); lowering only up to degree [`LOWER_MAX_DEGREE`], a lowering proof at most
-//! [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; no search at all
+//! [`MAX_BOXES`] boxes, [`MAX_PIECES`] Bézier halvings and [`MAX_EXACT_TRIES`] exact
+//! concavity arguments (above [`LOWER_MAX_DEGREE`] a lowering is tried only when a clamped
+//! end's value is the largest value seen, where the Bézier rule decides cheaply); no search at all
 //! above degree [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
 use super::{CandidateKind, CoordBox, Enclosure, Extremum};
 use crate::num::{iv, Ddi, Exact, Scalar};
+use crate::spline::bezier::de_casteljau_split;
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
@@ -121,6 +128,13 @@ pub const MAX_LOWERINGS: usize = 2;
 pub const LOWER_WITHIN_ULPS: usize = 8;
 /// Parameter boxes per lowering proof (branch and bound over the whole domain).
 pub const MAX_BOXES: usize = 64;
+/// Bézier halvings per lowering proof ([`bezier_rule`], towards clamped domain ends).
+pub const MAX_PIECES: usize = 96;
+/// Halving depth of the Bézier rule at a clamped domain end.
+const BEZIER_DEPTH: u32 = 48;
+/// Halving depth of the Bézier rule elsewhere (an interior maximum is left to the box rules,
+/// whose mean value and concavity forms converge faster there).
+const BEZIER_DEPTH_INTERIOR: u32 = 6;
 /// Bisection depth per span in a lowering proof.
 const MAX_DEPTH: u32 = 64;
 /// Exact concavity arguments per lowering proof.
@@ -357,12 +371,24 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
             proved = true;
             break;
         }
+        // (1c. a clamped end's value, exactly the end control point, above t: after a
+        // lowering the end value is often the new bound's witness)
+        let (a, b) = ev.c.domain();
+        let end_value = [a, b]
+            .into_iter()
+            .filter_map(|u| ev.clamped_end_value(j, u))
+            .map(|x| sign * x)
+            .fold(f64::NEG_INFINITY, f64::max);
+        if end_value > t {
+            proved = true;
+            break;
+        }
         // The search stages only try to complete what the strategy nearly proved: when its
         // own attained value is more than LOWER_WITHIN_ULPS ulps of the coordinate scale below
         // the bound (a loose bound such as the control hull's), the answer is `false` at once.
         // This keeps the certificate's cost a small part of a loose strategy's (cheap) run; a
         // tight strategy's gap is within its tolerance, about an ulp of the scale.
-        // (1c. a bound reached only as the limit at a jump: the left piece's value there)
+        // (1d. a bound reached only as the limit at a jump: the left piece's value there)
         if cands
             .iter()
             .any(|x| x.u_lo == x.u_hi && ev.left_limit_above(j, sign, x.u_lo, t))
@@ -386,13 +412,17 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // double just above the values seen first (RU(max) when the search found the
         // extremum), then one ulp below the bound; double-double rules first, then the exact
         // stage (3.) and the exact concavity rule.
-        let target = d.guess.max(inner);
+        let target = d.guess.max(inner).max(end_value);
         // A value whose double-double enclosure holds t (a straddle) has g within ~2^-100
         // relative of t, so max g <= t could only be shown in exact arithmetic (double-double
         // enclosures near the maximiser straddle t as well): without the exact stage for this
         // curve, a lowering proof would spend its boxes and fail.
+        // (above LOWER_MAX_DEGREE only when a clamped end's value is the largest value seen,
+        // the likely maximum, which the Bézier rule decides with a few halvings of the end
+        // spans)
+        let at_clamped_end = end_value.is_finite() && end_value >= d.guess;
         let lower = round < MAX_LOWERINGS
-            && ev.c.degree() <= LOWER_MAX_DEGREE
+            && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end)
             && (!d.straddle || ev.exact_possible())
             && (target >= nth_down(bound, LOWER_WITHIN_ULPS) || bound - target <= near_scale);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
@@ -617,6 +647,7 @@ fn prove_at_most(
     let (p, n) = (c.degree(), c.num_points() - 1);
     let kn = c.knots();
     let mut boxes = 0usize;
+    let mut pieces = MAX_PIECES;
     // (without `exact`: no exact evaluation at all)
     let mut exact_tries = if exact { 0 } else { MAX_EXACT_TRIES };
     // spans nearest the candidates first: an early failure costs least
@@ -633,7 +664,13 @@ fn prove_at_most(
         if local <= t {
             continue;
         }
-        let mut stack = vec![(kn[k], kn[k + 1], 0u32)];
+        // the span's Bézier pieces first (exact values at clamped domain ends); what they
+        // leave undecided goes to the box rules
+        let Some(rest) = bezier_rule(ev, k, j, sign, t, &mut pieces) else {
+            return false;
+        };
+        let mut stack: Vec<(f64, f64, u32)> =
+            rest.into_iter().map(|(lo, hi)| (lo, hi, 0)).collect();
         while let Some((lo, hi, depth)) = stack.pop() {
             boxes += 1;
             if boxes > MAX_BOXES {
@@ -657,6 +694,104 @@ fn prove_at_most(
         }
     }
     true
+}
+
+/// The Bézier rule of the lowering proof on span k: whether g <= t on the span's piece, by the
+/// strong convex hull property of its Bézier form (NURBS Book A5.6 DecomposeCurve via
+/// [`HSpline::bezier_segment`], then de Casteljau halving, thesis sec. 4.2; for a rational
+/// piece the Cartesian points Q_i = Q^w_i / w_i with weights w_i > 0, so every value of a
+/// piece is a convex combination of its Q_i, NURBS Book P4.3). A piece is decided when every
+/// Q_i (enclosed in [`Ddi`]: the Boehm insertions, the halvings at the exact t = 1/2 and the
+/// division are rigorous enclosures, ~2^-100 relative wide) is <= t.
+///
+/// The first point of a piece is the curve's value at the piece's start (end interpolation of
+/// a Bézier curve), the last its value at the end. At a clamped domain end that value is the
+/// end control point exactly ([`NurbsCurve::clamped_ends`]), so there it is compared with t
+/// exactly instead of through its enclosure: this decides a maximum attained at a clamped end
+/// (the common exact tie g = t there) without any rounding error. Pieces at such an end are
+/// halved towards it (at most [`MAX_PIECES`] halvings per proof, depth [`BEZIER_DEPTH`]): near
+/// the end the other control points approach the end value along the end tangent, so they
+/// drop below t once the piece is short enough (for g'(end) pointing into the domain below
+/// t). Other pieces are halved to depth [`BEZIER_DEPTH_INTERIOR`] only (the control points
+/// converge to the curve quadratically in the piece length, also for extreme weights, where
+/// interval derivatives of the quotient are wide). Every undecided piece is returned as a
+/// parameter box (its range in u, rounded outward and clamped to the span) for the box
+/// rules. `None`: a piece's end value is above t
+/// (t is not a bound).
+fn bezier_rule(
+    ev: &mut Evals,
+    k: usize,
+    j: usize,
+    sign: f64,
+    t: f64,
+    pieces: &mut usize,
+) -> Option<Vec<(f64, f64)>> {
+    let c = ev.c;
+    let kn = c.knots();
+    let (ua, ub) = (kn[k], kn[k + 1]);
+    let (a, b) = c.domain();
+    let cl = c.clamped_ends();
+    let exact_start = (ua == a && cl[0]).then(|| sign * c.control_point(0)[j]);
+    let exact_end = (ub == b && cl[1]).then(|| sign * c.control_point(c.num_points() - 1)[j]);
+    let h = ev.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
+    let seg = h.bezier_segment(k);
+    let (hd, dim, rational, p) = (seg.hdim(), seg.dim, seg.rational, seg.degree);
+    let half = Ddi::exact(0.5);
+    let mut out = Vec::new();
+    // (points, local start, local end, depth); local parameters are dyadic, so exact
+    let mut stack = vec![(seg.pts, 0.0f64, 1.0f64, 0u32)];
+    while let Some((pts, s0, s1, depth)) = stack.pop() {
+        let mut below = true;
+        for i in 0..=p {
+            let x = if rational {
+                pts[i * hd + j] / pts[i * hd + dim]
+            } else {
+                pts[i * hd + j]
+            };
+            let x = signed(x, sign);
+            let exact = match i {
+                0 if s0 == 0.0 => exact_start,
+                _ if i == p && s1 == 1.0 => exact_end,
+                _ => None,
+            };
+            let ok = exact.map_or_else(|| x.is_at_most(t), |v| v <= t);
+            if !ok {
+                // an end point is a curve value: above t refutes t
+                if (i == 0 || i == p) && exact.map_or_else(|| x.is_above(t), |v| v > t) {
+                    return None;
+                }
+                below = false;
+                break;
+            }
+        }
+        if below {
+            continue;
+        }
+        let at_end = (s0 == 0.0 && exact_start.is_some()) || (s1 == 1.0 && exact_end.is_some());
+        let max_depth = if at_end {
+            BEZIER_DEPTH
+        } else {
+            BEZIER_DEPTH_INTERIOR
+        };
+        if depth < max_depth && *pieces > 0 {
+            *pieces -= 1;
+            let (l, r) = de_casteljau_split(&pts, hd, &half);
+            let m = 0.5 * (s0 + s1); // exact: s0, s1 dyadic with few bits
+            stack.push((r, m, s1, depth + 1));
+            stack.push((l, s0, m, depth + 1));
+        } else {
+            // the piece's parameter range ua + (ub - ua) [s0, s1], rounded outward (an
+            // overflow gives ENTIRE, i.e. the whole span)
+            let at = |s: f64| iv::point(ua) + (iv::point(ub) - iv::point(ua)) * iv::point(s);
+            let lo = at(s0).inf().max(ua);
+            let hi = at(s1).sup().min(ub);
+            out.push((
+                if lo <= hi { lo } else { ua },
+                if lo <= hi { hi } else { ub },
+            ));
+        }
+    }
+    Some(out)
 }
 
 /// What one box of the branch and bound showed.
