@@ -37,7 +37,10 @@
 //! * the `Ddi` value at its midpoint (or its point, for a knot or an end);
 //! * up to [`NEWTON_STEPS`] Newton steps u <- u - g'(u)/g''(u) on g = ±C_j with double-double
 //!   derivatives (only to *choose* u, never part of the proof), then the `Ddi` value at u and
-//!   its two f64 neighbours. At the f64 u nearest the extremum u*, g(u) = M - O(g'' ulp(u)^2),
+//!   its two f64 neighbours; then the same in the local parameter s of the candidates' spans
+//!   (`bezier_search`: the span's Bézier form in double-double, Newton steps on s, values by
+//!   de Casteljau), which needs no derivative with respect to u (those over- or underflow
+//!   for knots near ±f64::MAX or spans of a few subnormals). At the f64 u nearest the extremum u*, g(u) = M - O(g'' ulp(u)^2),
 //!   i.e. ~2^-106 relative below M: this decides every bound with M - t above ~2^-100 M;
 //! * if that fails with t inside some enclosure (a near-tie: M within ~2^-100 relative above
 //!   t) and the degree is at most [`EXACT_MAX_DEGREE`] ([`EXACT_MAX_DEGREE_RATIONAL`] for a
@@ -91,7 +94,7 @@
 
 use super::{CandidateKind, CoordBox, Enclosure, Extremum};
 use crate::num::{iv, Ddi, Exact, Scalar};
-use crate::spline::bezier::de_casteljau_split;
+use crate::spline::bezier::{de_casteljau_eval, de_casteljau_split, hodograph};
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
@@ -128,6 +131,8 @@ pub const MAX_LOWERINGS: usize = 2;
 pub const LOWER_WITHIN_ULPS: usize = 8;
 /// Parameter boxes per lowering proof (branch and bound over the whole domain).
 pub const MAX_BOXES: usize = 64;
+/// Spans searched in their Bézier form per side ([`bezier_search`]).
+const BEZIER_SEARCH_SPANS: usize = 2;
 /// Bézier halvings per lowering proof ([`bezier_rule`], towards clamped domain ends).
 pub const MAX_PIECES: usize = 96;
 /// Halving depth of the Bézier rule at a clamped domain end.
@@ -420,7 +425,7 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // (above LOWER_MAX_DEGREE only when a clamped end's value is the largest value seen,
         // the likely maximum, which the Bézier rule decides with a few halvings of the end
         // spans)
-        let at_clamped_end = end_value.is_finite() && end_value >= d.guess;
+        let at_clamped_end = end_value.is_finite() && end_value >= nth_down(d.guess, 2);
         let lower = round < MAX_LOWERINGS
             && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end)
             && (!d.straddle || ev.exact_possible())
@@ -570,9 +575,111 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
         }
         best.push(top);
     }
+    // 2b. the same in the local parameter of the candidates' spans (Bézier form)
+    if bezier_search(ev, j, sign, t, cands, guess) {
+        out.proved = true;
+        return out;
+    }
     out.straddle = straddle;
     out.best = best;
     out
+}
+
+/// Stage 2b: double-double values of the candidates' span pieces in their Bézier form
+/// ([`HSpline::bezier_segment`], NURBS Book A5.6; thesis sec. 4.2), at a local parameter s in
+/// [0, 1] chosen by f64 Newton steps on g(s) (only to choose s; g = A / W with A, W the
+/// Bernstein polynomials of the coordinate and weight rows, g' = (A' - g W') / W,
+/// g'' = (A'' - 2 g' W' - g W'') / W from the hodographs). The parameter u = u_k + (u_{k+1} -
+/// u_k) s is never formed, so this works where derivatives with respect to u over- or
+/// underflow (knots near ±f64::MAX, spans of a few subnormals).
+///
+/// Why a value above t proves the certificate: de Casteljau evaluation in [`Ddi`] at the exact
+/// s encloses A(s) and W(s) of the exact segment (its coefficients are enclosed, and every
+/// step is inclusion isotone), so A(s) / W(s) encloses the piece's value at some real u of the
+/// closed span. That is a curve value, or (at s = 1 before a jump) the left limit of curve
+/// values; either way some curve value exceeds t when the enclosure's lower end does.
+/// At most [`BEZIER_SEARCH_SPANS`] spans; the largest centre seen goes to `guess`.
+fn bezier_search(
+    ev: &mut Evals,
+    j: usize,
+    sign: f64,
+    t: f64,
+    cands: &[Extremum],
+    guess: &mut f64,
+) -> bool {
+    let c = ev.c;
+    let (p, n) = (c.degree(), c.num_points() - 1);
+    let kn = c.knots();
+    let mut done: Vec<usize> = Vec::new();
+    for x in cands {
+        for k in p..=n {
+            let (ua, ub) = (kn[k], kn[k + 1]);
+            if ua >= ub || ua > x.u_hi || ub < x.u_lo || done.contains(&k) {
+                continue;
+            }
+            if done.len() >= BEZIER_SEARCH_SPANS {
+                return false;
+            }
+            done.push(k);
+            let h = ev.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
+            let seg = h.bezier_segment(k);
+            let hd = seg.hdim();
+            let row = |r: usize| -> Vec<Ddi> { (0..=p).map(|i| seg.pts[i * hd + r]).collect() };
+            let a = row(j);
+            let w = seg.rational.then(|| row(seg.dim));
+            // f64 rows (signed) and their hodographs, only to choose s
+            let af: Vec<f64> = a.iter().map(|d| sign * d.to_f64()).collect();
+            let wf: Vec<f64> = match &w {
+                Some(w) => w.iter().map(Ddi::to_f64).collect(),
+                None => vec![1.0; p + 1],
+            };
+            let (a1, w1) = (hodograph(&af), hodograph(&wf));
+            let (a2, w2) = (hodograph(&a1), hodograph(&w1));
+            // the candidate's midpoint in the local parameter (halved: no overflow)
+            let (lo, hi) = (x.u_lo.max(ua), x.u_hi.min(ub));
+            let um = 0.5 * lo + 0.5 * hi;
+            let s0 = (0.5 * um - 0.5 * ua) / (0.5 * ub - 0.5 * ua);
+            let mut s = if s0.is_finite() {
+                s0.clamp(0.0, 1.0)
+            } else {
+                0.5
+            };
+            for _ in 0..2 * NEWTON_STEPS {
+                let ev = |b: &[f64]| de_casteljau_eval(b, &s);
+                let (wv, w1v, w2v) = (ev(&wf), ev(&w1), ev(&w2));
+                let g = ev(&af) / wv;
+                let g1 = (ev(&a1) - g * w1v) / wv;
+                let g2 = (ev(&a2) - 2.0 * g1 * w1v - g * w2v) / wv;
+                if g2.is_nan() || g2 >= 0.0 || !g1.is_finite() {
+                    break;
+                }
+                let next = (s - g1 / g2).clamp(0.0, 1.0);
+                if !next.is_finite() || next == s {
+                    break;
+                }
+                s = next;
+            }
+            for v in [s, s.next_down(), s.next_up()] {
+                if !(0.0..=1.0).contains(&v) {
+                    continue;
+                }
+                let vd = Ddi::exact(v);
+                let num = de_casteljau_eval(&a, &vd);
+                let g = match &w {
+                    Some(w) => num / de_casteljau_eval(w, &vd),
+                    None => num,
+                };
+                let g = signed(g, sign);
+                // (its centre only: the upper ends near a clamped end's exact value would
+                // hide that value as the largest one seen)
+                *guess = guess.max(g.to_f64());
+                if g.is_above(t) {
+                    return true;
+                }
+            }
+        }
+    }
+    false
 }
 
 /// Stage 3 of the module docs: exact values at the best candidates' parameters and at exact
