@@ -819,7 +819,9 @@ fn prove_at_most(
 /// halved towards it (at most [`MAX_PIECES`] halvings per proof, depth [`BEZIER_DEPTH`]): near
 /// the end the other control points approach the end value along the end tangent, so they
 /// drop below t once the piece is short enough (for g'(end) pointing into the domain below
-/// t). Other pieces are halved to depth [`BEZIER_DEPTH_INTERIOR`] only (the control points
+/// t). So are the pieces of a span with extreme knots (beyond 2^±900, where the box rules'
+/// derivatives in u over- or underflow). Other pieces are halved to depth
+/// [`BEZIER_DEPTH_INTERIOR`] only (the control points
 /// converge to the curve quadratically in the piece length, also for extreme weights, where
 /// interval derivatives of the quotient are wide). Every undecided piece is returned as a
 /// parameter box (its range in u, rounded outward and clamped to the span) for the box
@@ -844,6 +846,10 @@ fn bezier_rule(
     let seg = h.bezier_segment(k);
     let (hd, dim, rational, p) = (seg.hdim(), seg.dim, seg.rational, seg.degree);
     let half = Ddi::exact(0.5);
+    // a span whose parameter boxes the box rules cannot handle (its length or its knots
+    // beyond 2^±900: derivatives in u over- or underflow there) is halved as deep as an end
+    let big = 2f64.powi(900);
+    let extreme = !(ub - ua < big && ub - ua > 1.0 / big && ua.abs() < big && ub.abs() < big);
     let mut out = Vec::new();
     // (points, local start, local end, depth); local parameters are dyadic, so exact
     let mut stack = vec![(seg.pts, 0.0f64, 1.0f64, 0u32)];
@@ -875,7 +881,7 @@ fn bezier_rule(
             continue;
         }
         let at_end = (s0 == 0.0 && exact_start.is_some()) || (s1 == 1.0 && exact_end.is_some());
-        let max_depth = if at_end {
+        let max_depth = if at_end || extreme {
             BEZIER_DEPTH
         } else {
             BEZIER_DEPTH_INTERIOR
