@@ -25,6 +25,12 @@
 //!    derivative kernels run on big rationals, no rounding) at an f64 or dyadic parameter u is
 //!    > t (compared exactly).
 //!
+//! A coordinate of extreme magnitude (control values beyond 2^±80: near f64::MAX, where
+//! double-double error terms overflow, or subnormal, where no bits lie below 2^-1074) is
+//! evaluated on a copy of the curve with that coordinate multiplied by an exact power of two
+//! 2^-s (`scaled_coordinate`); a proof about the scaled g against t 2^-s rounded up (for
+//! "above") or a target rounded down (for "at most") is the same proof about g.
+//!
 //! The lower bound is the same statement for -C_j. Nothing else sets a flag, so a wrong `true`
 //! would need a wrong outer bound, a wrong inner bound or a wrong enclosure / exact value, all
 //! of which are the crate's soundness guarantees already.
@@ -92,7 +98,8 @@
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
-use super::{CandidateKind, CoordBox, Enclosure, Extremum};
+use super::driver::{exponent, ldexp_exact};
+use super::{scale_outward, CandidateKind, CoordBox, Enclosure, Extremum};
 use crate::num::{iv, Ddi, Exact, Scalar};
 use crate::spline::bezier::{de_casteljau_eval, de_casteljau_split, hodograph};
 use crate::spline::bspline::HSpline;
@@ -159,9 +166,58 @@ pub fn certify(c: &NurbsCurve, e: &mut Enclosure) {
             cb.optimal_hi = false;
             continue;
         }
-        cb.optimal_hi = certify_side(&mut ev, j, cb, true);
-        cb.optimal_lo = certify_side(&mut ev, j, cb, false);
+        match scaled_coordinate(c, j) {
+            Some((s, cs)) => {
+                let mut evs = Evals::new(&cs);
+                cb.optimal_hi = certify_side(&mut evs, j, cb, true, s);
+                cb.optimal_lo = certify_side(&mut evs, j, cb, false, s);
+            }
+            None => {
+                cb.optimal_hi = certify_side(&mut ev, j, cb, true, 0);
+                cb.optimal_lo = certify_side(&mut ev, j, cb, false, 0);
+            }
+        }
     }
+}
+
+/// Coordinates whose largest control value lies outside 2^±COORD_WINDOW are certified on a
+/// scaled copy ([`scaled_coordinate`]).
+const COORD_WINDOW: i32 = 80;
+
+/// The curve with coordinate j multiplied by 2^-s, s the binary exponent of its largest
+/// control value, when that lies outside 2^±[`COORD_WINDOW`] and every control value of the
+/// coordinate scales exactly (`None` otherwise). Then the scaled curve's coordinate j is
+/// exactly 2^-s C_j at every u: C_j = sum_i R_i P_ij with rational basis functions R_i that do
+/// not depend on the coordinates (thesis def. 3.1), the same argument as the driver's
+/// rescaling. Its values near 1 keep the double-double enclosures ~2^-100 relative narrow,
+/// which values near f64::MAX (overflowing error terms) or subnormal values (no bits below
+/// 2^-1074) are not.
+fn scaled_coordinate(c: &NurbsCurve, j: usize) -> Option<(i32, NurbsCurve)> {
+    let d = c.dim();
+    let pts = c.points_flat();
+    let big = pts
+        .iter()
+        .skip(j)
+        .step_by(d)
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let s = exponent(big);
+    if s.abs() <= COORD_WINDOW {
+        return None;
+    }
+    let scaled: Option<Vec<f64>> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, &x)| {
+            if i % d == j {
+                ldexp_exact(x, -s)
+            } else {
+                Some(x)
+            }
+        })
+        .collect();
+    let w = c.weights().map(<[f64]>::to_vec);
+    let cs = NurbsCurve::from_flat(c.degree(), d, c.knots().to_vec(), scaled?, w).ok()?;
+    Some((s, cs))
 }
 
 /// Lazily built evaluators of the curve (double-double with two derivative levels, exact).
@@ -354,8 +410,18 @@ fn signed(x: Ddi, sign: f64) -> Ddi {
 
 /// The certificate of one side (`max_side`: hi, as the maximum of g = C_j; otherwise lo, as the
 /// maximum of g = -C_j), lowering the bound where [`prove_at_most`] allows it.
-fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> bool {
+///
+/// `ev` evaluates the curve with coordinate j multiplied by 2^-`s` (exactly: see
+/// [`scaled_coordinate`]; s = 0 for the curve itself); bounds, attained values and witnesses
+/// stay in the curve's own units. A proof that the scaled g exceeds up(t) >= t 2^-s (t 2^-s
+/// rounded up) shows g > t; a proof that the scaled g is <= dn(t') <= t' 2^-s (rounded down)
+/// shows g <= t' ([`scale_outward`]; identities for s = 0).
+fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: i32) -> bool {
     let sign = if max_side { 1.0 } else { -1.0 };
+    let up = |x: f64| scale_outward(x, -s, true);
+    let dn = |x: f64| scale_outward(x, -s, false);
+    // (a scaled value seen, back in the curve's units: only to choose lowering targets)
+    let back = |x: f64| scale_outward(x, s, true);
     let (mut bound, inner, witness) = if max_side {
         (cb.hi, cb.inner_hi, cb.witness_hi)
     } else {
@@ -379,12 +445,13 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // (1c. a clamped end's value, exactly the end control point, above t: after a
         // lowering the end value is often the new bound's witness)
         let (a, b) = ev.c.domain();
-        let end_value = [a, b]
+        let end_scaled = [a, b]
             .into_iter()
             .filter_map(|u| ev.clamped_end_value(j, u))
             .map(|x| sign * x)
             .fold(f64::NEG_INFINITY, f64::max);
-        if end_value > t {
+        let end_value = back(end_scaled);
+        if end_scaled > up(t) {
             proved = true;
             break;
         }
@@ -396,17 +463,18 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // (1d. a bound reached only as the limit at a jump: the left piece's value there)
         if cands
             .iter()
-            .any(|x| x.u_lo == x.u_hi && ev.left_limit_above(j, sign, x.u_lo, t))
+            .any(|x| x.u_lo == x.u_hi && ev.left_limit_above(j, sign, x.u_lo, up(t)))
         {
             proved = true;
             break;
         }
-        let scale = bound.abs().max(ev.c.coord_scale(j));
+        let scale = bound.abs().max(back(ev.c.coord_scale(j)));
         let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(scale);
         if bound - inner > near_scale {
             break;
         }
-        let d = ddi_stage(ev, j, sign, t, cands);
+        let d = ddi_stage(ev, j, sign, up(t), cands);
+        let guess = back(d.guess);
         if d.proved {
             proved = true;
             break;
@@ -417,7 +485,7 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // double just above the values seen first (RU(max) when the search found the
         // extremum), then one ulp below the bound; double-double rules first, then the exact
         // stage (3.) and the exact concavity rule.
-        let target = d.guess.max(inner).max(end_value);
+        let target = guess.max(inner).max(end_value);
         // A value whose double-double enclosure holds t (a straddle) has g within ~2^-100
         // relative of t, so max g <= t could only be shown in exact arithmetic (double-double
         // enclosures near the maximiser straddle t as well): without the exact stage for this
@@ -425,7 +493,7 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // (above LOWER_MAX_DEGREE only when a clamped end's value is the largest value seen,
         // the likely maximum, which the Bézier rule decides with a few halvings of the end
         // spans)
-        let at_clamped_end = end_value.is_finite() && end_value >= nth_down(d.guess, 2);
+        let at_clamped_end = end_value.is_finite() && end_value >= nth_down(guess, 2);
         let lower = round < MAX_LOWERINGS
             && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end)
             && (!d.straddle || ev.exact_possible())
@@ -441,16 +509,16 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
             } else {
                 t
             };
-            if prove_at_most(ev, j, sign, goal, cands, exact) {
+            if prove_at_most(ev, j, sign, dn(goal), cands, exact) {
                 return Some(goal);
             }
-            (exact && goal < t && prove_at_most(ev, j, sign, t, cands, true)).then_some(t)
+            (exact && goal < t && prove_at_most(ev, j, sign, dn(t), cands, true)).then_some(t)
         };
         if let Some(nb) = try_lower(ev, false) {
             bound = nb;
             continue;
         }
-        if exact_stage(ev, j, sign, t, &d) {
+        if exact_stage(ev, j, sign, up(t), &d) {
             proved = true;
             break;
         }

@@ -75,7 +75,7 @@ const KNOT_WINDOW: i32 = 30;
 
 /// The binary exponent e with |x| in [2^(e-1), 2^e), for finite non-zero x (0 for 0).
 #[inline]
-fn exponent(x: f64) -> i32 {
+pub(crate) fn exponent(x: f64) -> i32 {
     let x = x.abs();
     if x == 0.0 || !x.is_finite() {
         return 0;
@@ -115,7 +115,7 @@ fn ldexp(x: f64, k: i32) -> f64 {
 }
 
 /// x * 2^k exactly, or `None` if the product is not exactly representable.
-fn ldexp_exact(x: f64, k: i32) -> Option<f64> {
+pub(crate) fn ldexp_exact(x: f64, k: i32) -> Option<f64> {
     let y = ldexp(x, k);
     // A finite result that is normal (or an exact zero from a zero) is exact; otherwise
     // check by scaling back (a subnormal y may still be exact).
