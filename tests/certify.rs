@@ -164,6 +164,24 @@ mod mpfr {
         Ok(())
     }
 
+    /// Every curve checked against MPFR (all strategies, [`check`]); newton's certified
+    /// bounds and all its bounds.
+    fn checked_newton_certificates(
+        name: &str,
+        curves: impl IntoIterator<Item = NurbsCurve>,
+    ) -> (usize, usize) {
+        let (mut certified, mut total) = (0, 0);
+        for c in curves {
+            check(name, &c).unwrap();
+            let e = strategy_by_name("newton", None).unwrap().enclose(&c);
+            for cb in &e.coords {
+                total += 2;
+                certified += cb.optimal_lo as usize + cb.optimal_hi as usize;
+            }
+        }
+        (certified, total)
+    }
+
     proptest! {
         #![proptest_config(config(64))]
 
@@ -194,6 +212,52 @@ mod mpfr {
                 prop_assert!(false, "{m}");
             }
         }
+    }
+
+    /// Curves at the corners of the f64 range (knots near ±f64::MAX next to subnormal knots,
+    /// which no power-of-two rescaling maps exactly; huge and subnormal coordinates): every
+    /// `true` agrees with MPFR for every strategy, and `newton` certifies most bounds (the
+    /// double-double values of the span pieces in their local Bézier parameter do not over-
+    /// or underflow where derivatives with respect to u do, and huge or subnormal
+    /// coordinates are evaluated scaled by an exact power of two).
+    #[test]
+    fn range_limit_curves_certificates_agree_with_mpfr() {
+        let curves = (0..40).map(|seed| gen::range_limit_curve(&mut gen::rng(1000 + seed)));
+        let (certified, total) = checked_newton_certificates("range_limits", curves);
+        // (97 of these 144 bounds; 77 without the scaled coordinates, 75 also without the
+        // search in the local Bézier parameter)
+        assert!(
+            certified * 1000 >= total * 660,
+            "only {certified} of {total} range-limit bounds certified"
+        );
+    }
+
+    /// Subnormal coordinates (control values k 2^-1074 with integers |k| <= 1000, cubics):
+    /// double-double values have no bits below 2^-1074 there, so the certificate evaluates the
+    /// coordinate scaled by an exact power of two. Every `true` agrees with MPFR, and newton
+    /// certifies nearly every bound.
+    #[test]
+    fn subnormal_coordinates_are_certified() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let tiny = f64::from_bits(1);
+        let curves: Vec<NurbsCurve> = (0..40)
+            .map(|_| {
+                let pts: Vec<Vec<f64>> = (0..4)
+                    .map(|_| {
+                        (0..2)
+                            .map(|_| r.random_range(-1000i32..=1000) as f64 * tiny)
+                            .collect()
+                    })
+                    .collect();
+                bezier_curve(pts, None)
+            })
+            .collect();
+        let (certified, total) = checked_newton_certificates("subnormal", curves);
+        assert!(
+            certified * 100 >= total * 95,
+            "only {certified} of {total} subnormal bounds certified"
+        );
     }
 
     /// Near-ties: the certified bound is the optimal double on either side of the tie, and
@@ -289,4 +353,95 @@ fn supremum_at_a_jump_is_certified() {
         assert!(cb.inner_hi < 5.0, "{s}: the supremum is not attained");
         assert!(cb.optimal_hi && cb.optimal_lo, "{s}: {cb:?}");
     }
+}
+
+/// A maximum attained at a clamped end, on curves whose control polygon rises above the end
+/// value (so the convex hull of the control points does not show it): a bound one ulp (or a
+/// few) above the end value is lowered to it and certified, for degrees on both sides of
+/// `certify::LOWER_MAX_DEGREE` and with weights. On the mirrored curve the same holds for
+/// the minimum, and a curve that rises just above its end value is never lowered below its
+/// maximum.
+#[test]
+fn bound_above_a_clamped_end_maximum_is_lowered_and_certified() {
+    use nurbs_box::enclose::certify::{certify, LOWER_MAX_DEGREE};
+    let mut checked = 0;
+    let degrees = [3usize, 5, 7, 12];
+    assert!(degrees.iter().any(|&p| p > LOWER_MAX_DEGREE));
+    for p in degrees {
+        for rational in [false, true] {
+            // P_0 = 0.8 (the maximum, at u = 0), a low arc, one control point at 1.3 in the
+            // middle: its Bernstein weight stays far below (0.8 - 0) / (1.3 - 0)
+            let mid = p / 2 + 1;
+            let pts: Vec<Vec<f64>> = (0..=p)
+                .map(|i| {
+                    let y = if i == 0 {
+                        0.8
+                    } else if i == mid {
+                        1.3
+                    } else {
+                        0.1
+                    };
+                    vec![y, -y]
+                })
+                .collect();
+            // (weights from 1e-2 to 1e3: interval derivatives of the quotient are wide there)
+            let w = rational.then(|| {
+                (0..=p)
+                    .map(|i| {
+                        if i == mid {
+                            1.0
+                        } else {
+                            [1.0, 1e3, 1e-2][i % 3]
+                        }
+                    })
+                    .collect()
+            });
+            let c = bezier_curve(pts, w);
+            for s in ["newton", "bezier"] {
+                let mut e = strategy_by_name(s, None).unwrap().enclose(&c);
+                // the strategy's own result: optimal and certified
+                assert_eq!((e.coords[0].hi, e.coords[1].lo), (0.8, -0.8), "{s} p{p}");
+                assert!(e.coords[0].optimal_hi && e.coords[1].optimal_lo, "{s} p{p}");
+                // a bound a few ulps too high (and no attained value equal to it: the attained
+                // value is set one ulp below the end value) is lowered
+                for ulps in [1, 3] {
+                    let mut hi = 0.8f64;
+                    for _ in 0..ulps {
+                        hi = hi.next_up();
+                    }
+                    e.coords[0].hi = hi;
+                    e.coords[0].inner_hi = 0.8f64.next_down();
+                    e.coords[0].witness_hi = f64::NEG_INFINITY;
+                    e.coords[1].lo = -hi;
+                    e.coords[1].inner_lo = -(0.8f64.next_down());
+                    e.coords[1].witness_lo = f64::INFINITY;
+                    certify(&c, &mut e);
+                    let name = format!("{s} p{p} rational {rational} +{ulps} ulps");
+                    assert_eq!(e.coords[0].hi, 0.8, "{name}");
+                    assert!(e.coords[0].optimal_hi, "{name}");
+                    assert_eq!(e.coords[1].lo, -0.8, "{name}");
+                    assert!(e.coords[1].optimal_lo, "{name}");
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 32);
+    // a cubic that starts at 0.8 and rises: the maximum is above the end value, so a bound at
+    // next_up(max) must never drop to 0.8
+    let c = bezier_curve(
+        vec![vec![0.8], vec![0.8 + 1e-6], vec![0.1], vec![0.1]],
+        None,
+    );
+    let mut e = strategy_by_name("newton", None).unwrap().enclose(&c);
+    let hi = e.coords[0].hi;
+    assert!(hi > 0.8);
+    e.coords[0].hi = hi.next_up();
+    e.coords[0].inner_hi = 0.8;
+    certify(&c, &mut e);
+    assert!(
+        e.coords[0].hi >= hi,
+        "lowered below the maximum: {}",
+        e.coords[0].hi
+    );
 }

@@ -11,7 +11,7 @@
 //!
 //! 1. **An attained value equal to hi**: `inner_hi == hi` (the strategy, or the driver's facts
 //!    such as a clamped end control point, proved that the curve reaches a value >= inner_hi);
-//!    then M = hi. Or the strategy's strict witness `witness_hi >= t` (the strategy proved
+//!    then M = hi. Or a clamped end's value (the end control point, exact) above t. Or the strategy's strict witness `witness_hi >= t` (the strategy proved
 //!    that the curve reaches a value > witness_hi, e.g. by a double-double value at a proved
 //!    critical point: [`Ddi::strictly_below`]); then M > t. This costs nothing extra.
 //! 2. **A verified enclosure above t**: a double-double enclosure ([`Ddi`], rigorous, about
@@ -25,6 +25,12 @@
 //!    derivative kernels run on big rationals, no rounding) at an f64 or dyadic parameter u is
 //!    > t (compared exactly).
 //!
+//! A coordinate of extreme magnitude (control values beyond 2^±80: near f64::MAX, where
+//! double-double error terms overflow, or subnormal, where no bits lie below 2^-1074) is
+//! evaluated on a copy of the curve with that coordinate multiplied by an exact power of two
+//! 2^-s (`scaled_coordinate`); a proof about the scaled g against t 2^-s rounded up (for
+//! "above") or a target rounded down (for "at most") is the same proof about g.
+//!
 //! The lower bound is the same statement for -C_j. Nothing else sets a flag, so a wrong `true`
 //! would need a wrong outer bound, a wrong inner bound or a wrong enclosure / exact value, all
 //! of which are the crate's soundness guarantees already.
@@ -37,7 +43,10 @@
 //! * the `Ddi` value at its midpoint (or its point, for a knot or an end);
 //! * up to [`NEWTON_STEPS`] Newton steps u <- u - g'(u)/g''(u) on g = ±C_j with double-double
 //!   derivatives (only to *choose* u, never part of the proof), then the `Ddi` value at u and
-//!   its two f64 neighbours. At the f64 u nearest the extremum u*, g(u) = M - O(g'' ulp(u)^2),
+//!   its two f64 neighbours; then the same in the local parameter s of the candidates' spans
+//!   (`bezier_search`: the span's Bézier form in double-double, Newton steps on s, values by
+//!   de Casteljau), which needs no derivative with respect to u (those over- or underflow
+//!   for knots near ±f64::MAX or spans of a few subnormals). At the f64 u nearest the extremum u*, g(u) = M - O(g'' ulp(u)^2),
 //!   i.e. ~2^-106 relative below M: this decides every bound with M - t above ~2^-100 M;
 //! * if that fails with t inside some enclosure (a near-tie: M within ~2^-100 relative above
 //!   t) and the degree is at most [`EXACT_MAX_DEGREE`] ([`EXACT_MAX_DEGREE_RATIONAL`] for a
@@ -54,8 +63,12 @@
 //! the search found the extremum), else for t' = t; on success the bound becomes t' (still a
 //! proved bound) and the certificate is tried again, at most [`MAX_LOWERINGS`] times. The
 //! proof is a branch and bound over every span (each polynomial / rational piece on its closed
-//! span, which covers every value of the curve, jumps included), with these rules per
-//! parameter box X:
+//! span, which covers every value of the curve, jumps included). A span is first tested by the
+//! strong convex hull of its B-spline control points, then of its Bézier pieces
+//! (`bezier_rule`: the span's Bézier form in double-double, halved by de Casteljau; at a
+//! clamped domain end the end point is the end control point exactly, so a maximum attained
+//! there, an exact tie with t, is decided without rounding error, at any degree). What the
+//! pieces leave undecided goes to these rules per parameter box X:
 //!
 //! * f64 interval enclosures (inari, outward rounded) of g over X, natural and mean value form
 //!   g(m) + g'(X)(X - m): upper end <= t' (most boxes, away from the extremum);
@@ -78,13 +91,17 @@
 //! exact stage only for the best candidate and degree <= [`EXACT_MAX_DEGREE`] (its exact
 //! Newton levels only for a value within 2^-96 of t, two exact Newton steps per level of
 //! [`ZIV_BITS`]); lowering only up to degree [`LOWER_MAX_DEGREE`], a lowering proof at most
-//! [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; no search at all
+//! [`MAX_BOXES`] boxes, [`MAX_PIECES`] Bézier halvings and [`MAX_EXACT_TRIES`] exact
+//! concavity arguments (above [`LOWER_MAX_DEGREE`] a lowering is tried only when a clamped
+//! end's value is the largest value seen, where the Bézier rule decides cheaply); no search at all
 //! above degree [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
-use super::{CandidateKind, CoordBox, Enclosure, Extremum};
+use super::driver::{exponent, ldexp_exact};
+use super::{scale_outward, CandidateKind, CoordBox, Enclosure, Extremum};
 use crate::num::{iv, Ddi, Exact, Scalar};
+use crate::spline::bezier::{de_casteljau_eval, de_casteljau_split, hodograph};
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
@@ -121,6 +138,15 @@ pub const MAX_LOWERINGS: usize = 2;
 pub const LOWER_WITHIN_ULPS: usize = 8;
 /// Parameter boxes per lowering proof (branch and bound over the whole domain).
 pub const MAX_BOXES: usize = 64;
+/// Spans searched in their Bézier form per side ([`bezier_search`]).
+const BEZIER_SEARCH_SPANS: usize = 2;
+/// Bézier halvings per lowering proof ([`bezier_rule`], towards clamped domain ends).
+pub const MAX_PIECES: usize = 96;
+/// Halving depth of the Bézier rule at a clamped domain end.
+const BEZIER_DEPTH: u32 = 48;
+/// Halving depth of the Bézier rule elsewhere (an interior maximum is left to the box rules,
+/// whose mean value and concavity forms converge faster there).
+const BEZIER_DEPTH_INTERIOR: u32 = 6;
 /// Bisection depth per span in a lowering proof.
 const MAX_DEPTH: u32 = 64;
 /// Exact concavity arguments per lowering proof.
@@ -140,9 +166,58 @@ pub fn certify(c: &NurbsCurve, e: &mut Enclosure) {
             cb.optimal_hi = false;
             continue;
         }
-        cb.optimal_hi = certify_side(&mut ev, j, cb, true);
-        cb.optimal_lo = certify_side(&mut ev, j, cb, false);
+        match scaled_coordinate(c, j) {
+            Some((s, cs)) => {
+                let mut evs = Evals::new(&cs);
+                cb.optimal_hi = certify_side(&mut evs, j, cb, true, s);
+                cb.optimal_lo = certify_side(&mut evs, j, cb, false, s);
+            }
+            None => {
+                cb.optimal_hi = certify_side(&mut ev, j, cb, true, 0);
+                cb.optimal_lo = certify_side(&mut ev, j, cb, false, 0);
+            }
+        }
     }
+}
+
+/// Coordinates whose largest control value lies outside 2^±COORD_WINDOW are certified on a
+/// scaled copy ([`scaled_coordinate`]).
+const COORD_WINDOW: i32 = 80;
+
+/// The curve with coordinate j multiplied by 2^-s, s the binary exponent of its largest
+/// control value, when that lies outside 2^±[`COORD_WINDOW`] and every control value of the
+/// coordinate scales exactly (`None` otherwise). Then the scaled curve's coordinate j is
+/// exactly 2^-s C_j at every u: C_j = sum_i R_i P_ij with rational basis functions R_i that do
+/// not depend on the coordinates (thesis def. 3.1), the same argument as the driver's
+/// rescaling. Its values near 1 keep the double-double enclosures ~2^-100 relative narrow,
+/// which values near f64::MAX (overflowing error terms) or subnormal values (no bits below
+/// 2^-1074) are not.
+fn scaled_coordinate(c: &NurbsCurve, j: usize) -> Option<(i32, NurbsCurve)> {
+    let d = c.dim();
+    let pts = c.points_flat();
+    let big = pts
+        .iter()
+        .skip(j)
+        .step_by(d)
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let s = exponent(big);
+    if s.abs() <= COORD_WINDOW {
+        return None;
+    }
+    let scaled: Option<Vec<f64>> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, &x)| {
+            if i % d == j {
+                ldexp_exact(x, -s)
+            } else {
+                Some(x)
+            }
+        })
+        .collect();
+    let w = c.weights().map(<[f64]>::to_vec);
+    let cs = NurbsCurve::from_flat(c.degree(), d, c.knots().to_vec(), scaled?, w).ok()?;
+    Some((s, cs))
 }
 
 /// Lazily built evaluators of the curve (double-double with two derivative levels, exact).
@@ -354,8 +429,18 @@ pub(crate) fn quick(bound: f64, inner: f64, witness: f64, scale: f64) -> Option<
 
 /// The certificate of one side (`max_side`: hi, as the maximum of g = C_j; otherwise lo, as the
 /// maximum of g = -C_j), lowering the bound where [`prove_at_most`] allows it.
-fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> bool {
+///
+/// `ev` evaluates the curve with coordinate j multiplied by 2^-`s` (exactly: see
+/// [`scaled_coordinate`]; s = 0 for the curve itself); bounds, attained values and witnesses
+/// stay in the curve's own units. A proof that the scaled g exceeds up(t) >= t 2^-s (t 2^-s
+/// rounded up) shows g > t; a proof that the scaled g is <= dn(t') <= t' 2^-s (rounded down)
+/// shows g <= t' ([`scale_outward`]; identities for s = 0).
+fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: i32) -> bool {
     let sign = if max_side { 1.0 } else { -1.0 };
+    let up = |x: f64| scale_outward(x, -s, true);
+    let dn = |x: f64| scale_outward(x, -s, false);
+    // (a scaled value seen, back in the curve's units: only to choose lowering targets)
+    let back = |x: f64| scale_outward(x, s, true);
     let (mut bound, inner, witness) = if max_side {
         (cb.hi, cb.inner_hi, cb.witness_hi)
     } else {
@@ -376,25 +461,39 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
             proved = true;
             break;
         }
+        // (1c. a clamped end's value, exactly the end control point, above t: after a
+        // lowering the end value is often the new bound's witness)
+        let (a, b) = ev.c.domain();
+        let end_scaled = [a, b]
+            .into_iter()
+            .filter_map(|u| ev.clamped_end_value(j, u))
+            .map(|x| sign * x)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let end_value = back(end_scaled);
+        if end_scaled > up(t) {
+            proved = true;
+            break;
+        }
         // The search stages only try to complete what the strategy nearly proved: when its
         // own attained value is more than LOWER_WITHIN_ULPS ulps of the coordinate scale below
         // the bound (a loose bound such as the control hull's), the answer is `false` at once.
         // This keeps the certificate's cost a small part of a loose strategy's (cheap) run; a
         // tight strategy's gap is within its tolerance, about an ulp of the scale.
-        // (1c. a bound reached only as the limit at a jump: the left piece's value there)
+        // (1d. a bound reached only as the limit at a jump: the left piece's value there)
         if cands
             .iter()
-            .any(|x| x.u_lo == x.u_hi && ev.left_limit_above(j, sign, x.u_lo, t))
+            .any(|x| x.u_lo == x.u_hi && ev.left_limit_above(j, sign, x.u_lo, up(t)))
         {
             proved = true;
             break;
         }
-        let scale = bound.abs().max(ev.c.coord_scale(j));
+        let scale = bound.abs().max(back(ev.c.coord_scale(j)));
         let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(scale);
         if bound - inner > near_scale {
             break;
         }
-        let d = ddi_stage(ev, j, sign, t, cands);
+        let d = ddi_stage(ev, j, sign, up(t), cands);
+        let guess = back(d.guess);
         if d.proved {
             proved = true;
             break;
@@ -405,13 +504,17 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
         // double just above the values seen first (RU(max) when the search found the
         // extremum), then one ulp below the bound; double-double rules first, then the exact
         // stage (3.) and the exact concavity rule.
-        let target = d.guess.max(inner);
+        let target = guess.max(inner).max(end_value);
         // A value whose double-double enclosure holds t (a straddle) has g within ~2^-100
         // relative of t, so max g <= t could only be shown in exact arithmetic (double-double
         // enclosures near the maximiser straddle t as well): without the exact stage for this
         // curve, a lowering proof would spend its boxes and fail.
+        // (above LOWER_MAX_DEGREE only when a clamped end's value is the largest value seen,
+        // the likely maximum, which the Bézier rule decides with a few halvings of the end
+        // spans)
+        let at_clamped_end = end_value.is_finite() && end_value >= nth_down(guess, 2);
         let lower = round < MAX_LOWERINGS
-            && ev.c.degree() <= LOWER_MAX_DEGREE
+            && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end)
             && (!d.straddle || ev.exact_possible())
             && (target >= nth_down(bound, LOWER_WITHIN_ULPS) || bound - target <= near_scale);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
@@ -425,16 +528,16 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool) -> 
             } else {
                 t
             };
-            if prove_at_most(ev, j, sign, goal, cands, exact) {
+            if prove_at_most(ev, j, sign, dn(goal), cands, exact) {
                 return Some(goal);
             }
-            (exact && goal < t && prove_at_most(ev, j, sign, t, cands, true)).then_some(t)
+            (exact && goal < t && prove_at_most(ev, j, sign, dn(t), cands, true)).then_some(t)
         };
         if let Some(nb) = try_lower(ev, false) {
             bound = nb;
             continue;
         }
-        if exact_stage(ev, j, sign, t, &d) {
+        if exact_stage(ev, j, sign, up(t), &d) {
             proved = true;
             break;
         }
@@ -559,9 +662,111 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
         }
         best.push(top);
     }
+    // 2b. the same in the local parameter of the candidates' spans (Bézier form)
+    if bezier_search(ev, j, sign, t, cands, guess) {
+        out.proved = true;
+        return out;
+    }
     out.straddle = straddle;
     out.best = best;
     out
+}
+
+/// Stage 2b: double-double values of the candidates' span pieces in their Bézier form
+/// ([`HSpline::bezier_segment`], NURBS Book A5.6; thesis sec. 4.2), at a local parameter s in
+/// [0, 1] chosen by f64 Newton steps on g(s) (only to choose s; g = A / W with A, W the
+/// Bernstein polynomials of the coordinate and weight rows, g' = (A' - g W') / W,
+/// g'' = (A'' - 2 g' W' - g W'') / W from the hodographs). The parameter u = u_k + (u_{k+1} -
+/// u_k) s is never formed, so this works where derivatives with respect to u over- or
+/// underflow (knots near ±f64::MAX, spans of a few subnormals).
+///
+/// Why a value above t proves the certificate: de Casteljau evaluation in [`Ddi`] at the exact
+/// s encloses A(s) and W(s) of the exact segment (its coefficients are enclosed, and every
+/// step is inclusion isotone), so A(s) / W(s) encloses the piece's value at some real u of the
+/// closed span. That is a curve value, or (at s = 1 before a jump) the left limit of curve
+/// values; either way some curve value exceeds t when the enclosure's lower end does.
+/// At most [`BEZIER_SEARCH_SPANS`] spans; the largest centre seen goes to `guess`.
+fn bezier_search(
+    ev: &mut Evals,
+    j: usize,
+    sign: f64,
+    t: f64,
+    cands: &[Extremum],
+    guess: &mut f64,
+) -> bool {
+    let c = ev.c;
+    let (p, n) = (c.degree(), c.num_points() - 1);
+    let kn = c.knots();
+    let mut done: Vec<usize> = Vec::new();
+    for x in cands {
+        for k in p..=n {
+            let (ua, ub) = (kn[k], kn[k + 1]);
+            if ua >= ub || ua > x.u_hi || ub < x.u_lo || done.contains(&k) {
+                continue;
+            }
+            if done.len() >= BEZIER_SEARCH_SPANS {
+                return false;
+            }
+            done.push(k);
+            let h = ev.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
+            let seg = h.bezier_segment(k);
+            let hd = seg.hdim();
+            let row = |r: usize| -> Vec<Ddi> { (0..=p).map(|i| seg.pts[i * hd + r]).collect() };
+            let a = row(j);
+            let w = seg.rational.then(|| row(seg.dim));
+            // f64 rows (signed) and their hodographs, only to choose s
+            let af: Vec<f64> = a.iter().map(|d| sign * d.to_f64()).collect();
+            let wf: Vec<f64> = match &w {
+                Some(w) => w.iter().map(Ddi::to_f64).collect(),
+                None => vec![1.0; p + 1],
+            };
+            let (a1, w1) = (hodograph(&af), hodograph(&wf));
+            let (a2, w2) = (hodograph(&a1), hodograph(&w1));
+            // the candidate's midpoint in the local parameter (halved: no overflow)
+            let (lo, hi) = (x.u_lo.max(ua), x.u_hi.min(ub));
+            let um = 0.5 * lo + 0.5 * hi;
+            let s0 = (0.5 * um - 0.5 * ua) / (0.5 * ub - 0.5 * ua);
+            let mut s = if s0.is_finite() {
+                s0.clamp(0.0, 1.0)
+            } else {
+                0.5
+            };
+            for _ in 0..2 * NEWTON_STEPS {
+                let ev = |b: &[f64]| de_casteljau_eval(b, &s);
+                let (wv, w1v, w2v) = (ev(&wf), ev(&w1), ev(&w2));
+                let g = ev(&af) / wv;
+                let g1 = (ev(&a1) - g * w1v) / wv;
+                let g2 = (ev(&a2) - 2.0 * g1 * w1v - g * w2v) / wv;
+                if g2.is_nan() || g2 >= 0.0 || !g1.is_finite() {
+                    break;
+                }
+                let next = (s - g1 / g2).clamp(0.0, 1.0);
+                if !next.is_finite() || next == s {
+                    break;
+                }
+                s = next;
+            }
+            for v in [s, s.next_down(), s.next_up()] {
+                if !(0.0..=1.0).contains(&v) {
+                    continue;
+                }
+                let vd = Ddi::exact(v);
+                let num = de_casteljau_eval(&a, &vd);
+                let g = match &w {
+                    Some(w) => num / de_casteljau_eval(w, &vd),
+                    None => num,
+                };
+                let g = signed(g, sign);
+                // (its centre only: the upper ends near a clamped end's exact value would
+                // hide that value as the largest one seen)
+                *guess = guess.max(g.to_f64());
+                if g.is_above(t) {
+                    return true;
+                }
+            }
+        }
+    }
+    false
 }
 
 /// Stage 3 of the module docs: exact values at the best candidates' parameters and at exact
@@ -636,6 +841,7 @@ fn prove_at_most(
     let (p, n) = (c.degree(), c.num_points() - 1);
     let kn = c.knots();
     let mut boxes = 0usize;
+    let mut pieces = MAX_PIECES;
     // (without `exact`: no exact evaluation at all)
     let mut exact_tries = if exact { 0 } else { MAX_EXACT_TRIES };
     // spans nearest the candidates first: an early failure costs least
@@ -652,7 +858,13 @@ fn prove_at_most(
         if local <= t {
             continue;
         }
-        let mut stack = vec![(kn[k], kn[k + 1], 0u32)];
+        // the span's Bézier pieces first (exact values at clamped domain ends); what they
+        // leave undecided goes to the box rules
+        let Some(rest) = bezier_rule(ev, k, j, sign, t, &mut pieces) else {
+            return false;
+        };
+        let mut stack: Vec<(f64, f64, u32)> =
+            rest.into_iter().map(|(lo, hi)| (lo, hi, 0)).collect();
         while let Some((lo, hi, depth)) = stack.pop() {
             boxes += 1;
             if boxes > MAX_BOXES {
@@ -676,6 +888,110 @@ fn prove_at_most(
         }
     }
     true
+}
+
+/// The Bézier rule of the lowering proof on span k: whether g <= t on the span's piece, by the
+/// strong convex hull property of its Bézier form (NURBS Book A5.6 DecomposeCurve via
+/// [`HSpline::bezier_segment`], then de Casteljau halving, thesis sec. 4.2; for a rational
+/// piece the Cartesian points Q_i = Q^w_i / w_i with weights w_i > 0, so every value of a
+/// piece is a convex combination of its Q_i, NURBS Book P4.3). A piece is decided when every
+/// Q_i (enclosed in [`Ddi`]: the Boehm insertions, the halvings at the exact t = 1/2 and the
+/// division are rigorous enclosures, ~2^-100 relative wide) is <= t.
+///
+/// The first point of a piece is the curve's value at the piece's start (end interpolation of
+/// a Bézier curve), the last its value at the end. At a clamped domain end that value is the
+/// end control point exactly ([`NurbsCurve::clamped_ends`]), so there it is compared with t
+/// exactly instead of through its enclosure: this decides a maximum attained at a clamped end
+/// (the common exact tie g = t there) without any rounding error. Pieces at such an end are
+/// halved towards it (at most [`MAX_PIECES`] halvings per proof, depth [`BEZIER_DEPTH`]): near
+/// the end the other control points approach the end value along the end tangent, so they
+/// drop below t once the piece is short enough (for g'(end) pointing into the domain below
+/// t). So are the pieces of a span with extreme knots (beyond 2^±900, where the box rules'
+/// derivatives in u over- or underflow). Other pieces are halved to depth
+/// [`BEZIER_DEPTH_INTERIOR`] only (the control points
+/// converge to the curve quadratically in the piece length, also for extreme weights, where
+/// interval derivatives of the quotient are wide). Every undecided piece is returned as a
+/// parameter box (its range in u, rounded outward and clamped to the span) for the box
+/// rules. `None`: a piece's end value is above t
+/// (t is not a bound).
+fn bezier_rule(
+    ev: &mut Evals,
+    k: usize,
+    j: usize,
+    sign: f64,
+    t: f64,
+    pieces: &mut usize,
+) -> Option<Vec<(f64, f64)>> {
+    let c = ev.c;
+    let kn = c.knots();
+    let (ua, ub) = (kn[k], kn[k + 1]);
+    let (a, b) = c.domain();
+    let cl = c.clamped_ends();
+    let exact_start = (ua == a && cl[0]).then(|| sign * c.control_point(0)[j]);
+    let exact_end = (ub == b && cl[1]).then(|| sign * c.control_point(c.num_points() - 1)[j]);
+    let h = ev.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
+    let seg = h.bezier_segment(k);
+    let (hd, dim, rational, p) = (seg.hdim(), seg.dim, seg.rational, seg.degree);
+    let half = Ddi::exact(0.5);
+    // a span whose parameter boxes the box rules cannot handle (its length or its knots
+    // beyond 2^±900: derivatives in u over- or underflow there) is halved as deep as an end
+    let big = 2f64.powi(900);
+    let extreme = !(ub - ua < big && ub - ua > 1.0 / big && ua.abs() < big && ub.abs() < big);
+    let mut out = Vec::new();
+    // (points, local start, local end, depth); local parameters are dyadic, so exact
+    let mut stack = vec![(seg.pts, 0.0f64, 1.0f64, 0u32)];
+    while let Some((pts, s0, s1, depth)) = stack.pop() {
+        let mut below = true;
+        for i in 0..=p {
+            let x = if rational {
+                pts[i * hd + j] / pts[i * hd + dim]
+            } else {
+                pts[i * hd + j]
+            };
+            let x = signed(x, sign);
+            let exact = match i {
+                0 if s0 == 0.0 => exact_start,
+                _ if i == p && s1 == 1.0 => exact_end,
+                _ => None,
+            };
+            let ok = exact.map_or_else(|| x.is_at_most(t), |v| v <= t);
+            if !ok {
+                // an end point is a curve value: above t refutes t
+                if (i == 0 || i == p) && exact.map_or_else(|| x.is_above(t), |v| v > t) {
+                    return None;
+                }
+                below = false;
+                break;
+            }
+        }
+        if below {
+            continue;
+        }
+        let at_end = (s0 == 0.0 && exact_start.is_some()) || (s1 == 1.0 && exact_end.is_some());
+        let max_depth = if at_end || extreme {
+            BEZIER_DEPTH
+        } else {
+            BEZIER_DEPTH_INTERIOR
+        };
+        if depth < max_depth && *pieces > 0 {
+            *pieces -= 1;
+            let (l, r) = de_casteljau_split(&pts, hd, &half);
+            let m = 0.5 * (s0 + s1); // exact: s0, s1 dyadic with few bits
+            stack.push((r, m, s1, depth + 1));
+            stack.push((l, s0, m, depth + 1));
+        } else {
+            // the piece's parameter range ua + (ub - ua) [s0, s1], rounded outward (an
+            // overflow gives ENTIRE, i.e. the whole span)
+            let at = |s: f64| iv::point(ua) + (iv::point(ub) - iv::point(ua)) * iv::point(s);
+            let lo = at(s0).inf().max(ua);
+            let hi = at(s1).sup().min(ub);
+            out.push((
+                if lo <= hi { lo } else { ua },
+                if lo <= hi { hi } else { ub },
+            ));
+        }
+    }
+    Some(out)
 }
 
 /// What one box of the branch and bound showed.

@@ -115,7 +115,7 @@ fn ldexp(x: f64, k: i32) -> f64 {
 }
 
 /// x * 2^k exactly, or `None` if the product is not exactly representable.
-fn ldexp_exact(x: f64, k: i32) -> Option<f64> {
+pub(crate) fn ldexp_exact(x: f64, k: i32) -> Option<f64> {
     let y = ldexp(x, k);
     // A finite result that is normal (or an exact zero from a zero) is exact; otherwise
     // check by scaling back (a subnormal y may still be exact).
