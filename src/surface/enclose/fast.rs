@@ -251,15 +251,29 @@ impl FastSurface {
         let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         let mut vertex = true;
         let mut coef_max = SmallVec::<[f64; 1]>::new();
+        let corners = [
+            0,
+            self.q,
+            self.p * (self.q + 1),
+            self.p * (self.q + 1) + self.q,
+        ];
         for (k, g) in grids.iter().enumerate() {
-            for (r, c) in [(0, 0), (0, self.q), (self.p, 0), (self.p, self.q)] {
-                let x = self.ratio(k, g, r * (self.q + 1) + c, j, sign);
+            let mut corner_max = f64::NEG_INFINITY;
+            for i in corners {
+                let x = self.ratio(k, g, i, j, sign);
                 lo = lo.max(x.inf());
                 hi = hi.max(x.sup());
+                corner_max = corner_max.max(if x.sup().is_nan() {
+                    f64::INFINITY
+                } else {
+                    x.sup()
+                });
             }
+            // (the corners as above; the other coefficients need no exact-corner lookup)
             let m = (0..(self.p + 1) * (self.q + 1))
-                .map(|i| self.ratio(k, g, i, j, sign).sup())
-                .fold(f64::NEG_INFINITY, |m, x| {
+                .filter(|i| !corners.contains(i))
+                .map(|i| g.ratio(i, self.rational).sup())
+                .fold(corner_max, |m, x| {
                     if x.is_nan() {
                         f64::INFINITY
                     } else {
@@ -450,6 +464,50 @@ struct Piece<const N: usize> {
     prio: f64,
 }
 
+/// The layout of a de Casteljau split of a coefficient grid along one direction: `lines`
+/// lines of coefficients `stride` apart, the lines `lstride` apart, split at t.
+struct Lines {
+    lines: usize,
+    stride: usize,
+    lstride: usize,
+    t: f64,
+}
+
+impl Lines {
+    /// de Casteljau on every line (degree D1 - 1, a constant so that the loops unroll):
+    /// the halves into `lo` / `hi`; returns the largest |coefficient| M of `src` read (see
+    /// [`Piece::split_into`] for the error bound, which this routine's arithmetic is:
+    /// b_i + t (b_{i+1} - b_i) per step).
+    #[inline(always)]
+    fn split<const D1: usize, const N: usize>(
+        &self,
+        src: &[f64; N],
+        lo: &mut [f64; N],
+        hi: &mut [f64; N],
+    ) -> f64 {
+        let (t, stride) = (self.t, self.stride);
+        let mut m = 0.0f64;
+        for k in 0..self.lines {
+            let base = k * self.lstride;
+            let mut b = [0.0f64; D1];
+            for (i, x) in b.iter_mut().enumerate() {
+                *x = src[base + i * stride];
+                m = m.max(x.abs());
+            }
+            lo[base] = b[0];
+            hi[base + (D1 - 1) * stride] = b[D1 - 1];
+            for lev in 1..D1 {
+                for i in 0..D1 - lev {
+                    b[i] += t * (b[i + 1] - b[i]);
+                }
+                lo[base + lev * stride] = b[0];
+                hi[base + (D1 - 1 - lev) * stride] = b[D1 - 1 - lev];
+            }
+        }
+        m
+    }
+}
+
 /// Index of coefficient k of boundary curve e (0: u = 0, 1: u = 1, 2: v = 0, 3: v = 1) in
 /// the grid of a patch of degrees n.
 fn edge_index(e: usize, n: [usize; 2], k: usize) -> usize {
@@ -604,26 +662,23 @@ impl<const N: usize> Piece<N> {
         let grow = |e: f64, m: f64| {
             up(e + n as f64 * ((2.0 * delta + 6.0 * UNIT) * m * (1.0 + 1e-12) + 2e-323))
         };
+        // (the degree as a constant, so that the loops unroll; n <= MAX_DEGREE = 5, the
+        // fast path's restriction)
         let run = |src: &[f64; N], lo: &mut [f64; N], hi: &mut [f64; N]| {
-            let mut b = [0.0f64; MAX_DEGREE + 1];
-            let mut m = 0.0f64;
-            for k in 0..lines {
-                let base = k * lstride;
-                for (i, x) in b.iter_mut().enumerate().take(n + 1) {
-                    *x = src[base + i * stride];
-                    m = m.max(x.abs());
-                }
-                lo[base] = b[0];
-                hi[base + n * stride] = b[n];
-                for lev in 1..=n {
-                    for i in 0..=n - lev {
-                        b[i] += t * (b[i + 1] - b[i]);
-                    }
-                    lo[base + lev * stride] = b[0];
-                    hi[base + (n - lev) * stride] = b[n - lev];
-                }
+            let g = Lines {
+                lines,
+                stride,
+                lstride,
+                t,
+            };
+            match n {
+                0 => g.split::<1, N>(src, lo, hi),
+                1 => g.split::<2, N>(src, lo, hi),
+                2 => g.split::<3, N>(src, lo, hi),
+                3 => g.split::<4, N>(src, lo, hi),
+                4 => g.split::<5, N>(src, lo, hi),
+                _ => g.split::<{ MAX_DEGREE + 1 }, N>(src, lo, hi),
             }
-            m
         };
         let ma = run(&self.a, &mut l.a, &mut r.a);
         l.ea = grow(self.ea, ma);
