@@ -1228,7 +1228,9 @@ impl<const N: usize> Prover<'_, N> {
             *self.budget -= 1;
             self.st.subdivisions += 1;
             let mut buf = [0.0f64; N];
-            let Some((f, e)) = pc.f_values(self.ub, &mut buf) else {
+            // (the ub of f: a curvature bound from f holds for F = A - ub_f w only)
+            let ub_f = self.ub;
+            let Some((f, e)) = pc.f_values(ub_f, &mut buf) else {
                 return false;
             };
             if pc.excluded(f, e, self.ub) {
@@ -1244,7 +1246,16 @@ impl<const N: usize> Prover<'_, N> {
                     };
                     if !done && touches && pc.monotone(f, e, d, down) {
                         // a boundary curve's sides are patch corners (<= ub: candidates)
+                        let ub0 = self.ub;
                         done = slot < 4 || self.edge(root, 2 * d + end, g);
+                        // (the edge proof may raise ub; for a rational patch F = A - ub w
+                        // then changes shape, so its monotonicity is checked again)
+                        if done && self.ub != ub0 && self.rational {
+                            let mut b2 = [0.0f64; N];
+                            done = pc
+                                .f_values(self.ub, &mut b2)
+                                .is_some_and(|(f2, e2)| pc.monotone(f2, e2, d, down));
+                        }
                     }
                 }
             }
@@ -1252,10 +1263,10 @@ impl<const N: usize> Prover<'_, N> {
                 continue;
             }
             if let Some(mu) = pc.concavity(f, e) {
-                if self.concave(&pc, root, slot, mu, g) {
+                if self.concave(&pc, root, slot, (mu, ub_f), g) {
                     continue;
                 }
-            } else if self.ridge(&pc, root, f, e, g) {
+            } else if self.ridge(&pc, root, (f, e, ub_f), g) {
                 continue;
             } else if pc.depth >= 2 && self.searches > 0 && pc.max_coef() > self.ub {
                 // a maximum the first candidates missed: Newton from this piece's centre
@@ -1325,13 +1336,15 @@ impl<const N: usize> Prover<'_, N> {
     /// that sign. c is an f64 estimate of the maximiser of S over P (box-constrained Newton,
     /// [`constrained_max`]), so near the maximum the terms are at the rounding level and the
     /// bound is F(c) + ~2^-100; F(c), g are `Ddi` enclosures. If S(c) beats `ub`, `ub` is
-    /// raised to it first (and `lo` records the attained value).
+    /// raised to it first (and `lo` records the attained value). (`mu` holds for
+    /// F = A - ub0 w, ub0 the ub the piece's coefficients were computed with; after a raise
+    /// of ub it is computed again, [`Prover::mu_after_raise`].)
     fn concave(
         &mut self,
         pc: &Piece<N>,
         root: &Piece<N>,
         slot: usize,
-        mu: f64,
+        (mu, ub0): (f64, f64),
         g: &DdGrid<N>,
     ) -> bool {
         let inside = |c: &Cand| (0..2).all(|k| pc.t[k].0 <= c.t[k] && c.t[k] <= pc.t[k].1);
@@ -1379,6 +1392,9 @@ impl<const N: usize> Prover<'_, N> {
         let ub = Ddi::exact(self.ub);
         let fc = (a[0] - ub * w[0]).to_interval();
         let gr = [1, 2].map(|k| (a[k] - ub * w[k]).to_interval());
+        let Some(mu) = self.mu_after_raise(pc, mu, ub0, None) else {
+            return false;
+        };
         if self.bound(pc, c, mu, wd, fc, gr, free) {
             return true;
         }
@@ -1397,7 +1413,26 @@ impl<const N: usize> Prover<'_, N> {
         let ub = iv::point(self.ub);
         let fc = ai[0] - ub * wi[0];
         let gr = [1, 2].map(|k| ai[k] - ub * wi[k]);
+        let Some(mu) = self.mu_after_raise(pc, mu, ub0, None) else {
+            return false;
+        };
         self.bound(pc, cs, mu, wd, fc, gr, free)
+    }
+
+    /// The curvature bound mu of a piece (of F = A - ub0 w: [`Piece::concavity`], or
+    /// [`Piece::curvature`] along `dir`) valid for the current `ub`: unchanged for a
+    /// polynomial patch (F'' = S'' does not depend on ub) or if ub did not move; else
+    /// computed again, since F'' = A'' - ub w'' changes with ub.
+    fn mu_after_raise(&self, pc: &Piece<N>, mu: f64, ub0: f64, dir: Option<usize>) -> Option<f64> {
+        if !self.rational || self.ub == ub0 {
+            return Some(mu);
+        }
+        let mut buf = [0.0f64; N];
+        let (f, e) = pc.f_values(self.ub, &mut buf)?;
+        match dir {
+            None => pc.concavity(f, e),
+            Some(d) => pc.curvature(f, e, d),
+        }
     }
 
     /// F <= 0 on a 2-D piece where F is strictly concave along one direction d only: a
@@ -1418,13 +1453,14 @@ impl<const N: usize> Prover<'_, N> {
     /// exact ridge the iso-line coefficients are all the ridge value, so the bound is the
     /// ridge value plus the rounding of its enclosure. c_d is an f64 maximiser of S along d at
     /// the middle of the o range (any c_d in the range is valid); its value is attained and
-    /// raises `ub` when it provably beats it.
+    /// raises `ub` when it provably beats it. (`f`, `e` are the piece's coefficients of
+    /// F = A - ub0 w; after a raise of ub the curvature is computed again,
+    /// [`Prover::mu_after_raise`].)
     fn ridge(
         &mut self,
         pc: &Piece<N>,
         root: &Piece<N>,
-        f: &[f64; N],
-        e: f64,
+        (f, e, ub0): (&[f64; N], f64, f64),
         g: &DdGrid<N>,
     ) -> bool {
         if pc.n[0] == 0 || pc.n[1] == 0 || root.n != pc.full {
@@ -1472,6 +1508,9 @@ impl<const N: usize> Prover<'_, N> {
             }
             let cnt = (pc.full[0] + 1) * (pc.full[1] + 1);
             let lines = iso_line(&g.a[..cnt], &g.w[..cnt], pc.full, d, t[d], self.ub, pc.t[o]);
+            let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
+                continue;
+            };
             if self.ridge_bound(pc, t, d, mu, lines) {
                 return true;
             }
@@ -1491,6 +1530,9 @@ impl<const N: usize> Prover<'_, N> {
                 .map(|i| (g.a[i].to_interval(), g.w[i].to_interval()))
                 .unzip();
             let lines = iso_line(&ga, &gw, pc.full, d, cs[d], self.ub, pc.t[o]);
+            let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
+                continue;
+            };
             if self.ridge_bound(pc, cs, d, mu, lines) {
                 return true;
             }
