@@ -447,10 +447,10 @@ fn optimality_flags_mark_exactly_the_attained_bounds() {
 
 /// The float-first fast path of `bezier` and `newton` on shapes with a known answer: an
 /// interior maximum that is a float (exact), a saddle, a corner-extreme patch (vertex test),
-/// rational patches (one ulp), and a ridge, which the fast path cannot prove (no strict
-/// concavity) and hands to the general search: a sound box within a few ulps, not the net box.
+/// rational patches (one ulp), and a ridge (no strict concavity: proven by the ridge test,
+/// concave along one direction, constant along the other), without the general search.
 #[test]
-fn fast_path_proves_interior_saddle_corner_rational_and_falls_back_on_a_ridge() {
+fn fast_path_proves_interior_saddle_corner_rational_and_ridge() {
     use nurbs_box::surface::gen::bezier_patch;
     let fam = families();
     let get = |n: &str| fam.iter().find(|f| f.0 == n).unwrap().1.clone();
@@ -522,17 +522,143 @@ fn fast_path_proves_interior_saddle_corner_rational_and_falls_back_on_a_ridge() 
             }
             assert_eq!(e.stats().fast_fallbacks, 0, "{name} {label}");
         }
-        // the ridge z = 4 u (1 - u): maximum 1 on the line u = 1/2
+        // the ridge z = 4 u (1 - u): maximum 1 on the line u = 1/2, proven float first (no
+        // fallback to the general search) and exact; also along v (transposed)
         let ridge = get("ridge");
-        let e = st.enclose(&ridge);
-        check("ridge", &ridge, &e, &samples(&ridge, 40), 2e-2);
-        assert!(e.coords[2].stats.fast_fallbacks >= 1, "{name}");
-        assert!(
-            e.coords[2].hi - 1.0 <= 4.0 * f64::EPSILON,
-            "{name} {}",
-            e.coords[2].hi
-        );
-        assert!(e.coords[2].inner_hi >= 1.0 - 4.0 * f64::EPSILON, "{name}");
+        for (label, s) in [("ridge", ridge.clone()), ("ridge_v", ridge.transposed())] {
+            let e = st.enclose(&s);
+            check(label, &s, &e, &samples(&s, 40), 2e-2);
+            assert_eq!(e.stats().fast_fallbacks, 0, "{name} {label}");
+            assert_eq!(
+                (e.coords[2].hi, e.coords[2].inner_hi),
+                (1.0, 1.0),
+                "{name} {label}"
+            );
+        }
+    }
+}
+
+/// Ridges of every kind the fast path meets in CAD data: a bicubic ridge at a non-dyadic
+/// line, a ridge across a two-patch surface, a rational one (a cylinder patch: x = cos
+/// along the arc, constant along the axis), and ridges of both signs. Each side must be
+/// proven float first (no fallback), within one ulp of the closed form, and contain dense
+/// verified samples.
+#[test]
+fn fast_path_proves_ridges() {
+    use nurbs_box::surface::gen::bezier_patch;
+    // z = g(u) with g's Bernstein coefficients 0, 1.3, 0.7, 0.2: an interior maximum of g at
+    // a non-dyadic u, constant along v (every column equal)
+    let g = [0.0, 1.3, 0.7, 0.2];
+    let gmax = {
+        // g(u) = sum g_i B_i(u): maximise by bisection on g' (closed form is a quadratic root)
+        let dg = |u: f64| {
+            let d = [g[1] - g[0], g[2] - g[1], g[3] - g[2]];
+            3.0 * (d[0] * (1.0 - u) * (1.0 - u) + 2.0 * d[1] * u * (1.0 - u) + d[2] * u * u)
+        };
+        let (mut a, mut b) = (0.0f64, 1.0f64);
+        for _ in 0..200 {
+            let m = 0.5 * (a + b);
+            if dg(m) > 0.0 {
+                a = m
+            } else {
+                b = m
+            }
+        }
+        let u = 0.5 * (a + b);
+        g[0] * (1.0 - u).powi(3)
+            + 3.0 * g[1] * u * (1.0 - u).powi(2)
+            + 3.0 * g[2] * u * u * (1.0 - u)
+            + g[3] * u.powi(3)
+    };
+    let cubic = bezier_patch(
+        3,
+        2,
+        (0..4)
+            .map(|r| {
+                (0..3)
+                    .map(|c| vec![r as f64 / 3.0, c as f64 / 2.0, g[r]])
+                    .collect()
+            })
+            .collect(),
+        None,
+    );
+    // the same profile negated (a valley: the minimum side) and on two patches in v
+    let valley = bezier_patch(
+        3,
+        2,
+        (0..4)
+            .map(|r| {
+                (0..3)
+                    .map(|c| vec![r as f64 / 3.0, c as f64 / 2.0, -g[r]])
+                    .collect()
+            })
+            .collect(),
+        None,
+    );
+    let two = NurbsSurface::new(
+        3,
+        2,
+        vec![0., 0., 0., 0., 1., 1., 1., 1.],
+        vec![0., 0., 0., 0.4, 1., 1., 1.],
+        (0..4)
+            .map(|r| {
+                (0..4)
+                    .map(|c| vec![r as f64 / 3.0, c as f64 / 3.0, g[r]])
+                    .collect()
+            })
+            .collect(),
+        None,
+    )
+    .unwrap();
+    // a quarter cylinder: (cos t, sin t) along u (rational quadratic arc), the axis along v
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let arc = [(1.0, 0.0, 1.0), (1.0, 1.0, h), (0.0, 1.0, 1.0)];
+    let cyl = bezier_patch(
+        2,
+        1,
+        arc.iter()
+            .map(|&(x, y, _)| (0..2).map(|c| vec![x, y, c as f64]).collect())
+            .collect(),
+        Some(arc.iter().map(|&(_, _, w)| vec![w; 2]).collect()),
+    );
+    // a rotated quarter: x = cos t over t in [-45°, 45°] has its ridge x = 1 inside
+    let arc2 = [(h, -h, 1.0), (2.0 * h, 0.0, h), (h, h, 1.0)];
+    let cyl2 = bezier_patch(
+        2,
+        1,
+        arc2.iter()
+            .map(|&(x, y, _)| (0..2).map(|c| vec![x, y, c as f64]).collect())
+            .collect(),
+        Some(arc2.iter().map(|&(_, _, w)| vec![w; 2]).collect()),
+    );
+    for name in ["bezier", "newton"] {
+        let st = surface_strategy_by_name(name, None).unwrap();
+        for (label, s, j, hi, want) in [
+            ("cubic", &cubic, 2, true, gmax),
+            ("valley", &valley, 2, false, -gmax),
+            ("two patches", &two, 2, true, gmax),
+            ("cubic v", &cubic.transposed(), 2, true, gmax),
+            ("cylinder2", &cyl2, 0, true, 1.0),
+        ] {
+            let e = st.enclose(s);
+            check(label, s, &e, &samples(s, 40), 2e-2);
+            let cb = &e.coords[j];
+            let (b, inner) = if hi {
+                (cb.hi, cb.inner_hi)
+            } else {
+                (cb.lo, cb.inner_lo)
+            };
+            let u = ulp(s.coord_scale(j));
+            assert!(
+                (b - want).abs() <= 4.0 * u && (inner - want).abs() <= 4.0 * u,
+                "{name} {label}: [{inner}, {b}] vs {want}"
+            );
+            assert!(cb.gap() <= u, "{name} {label}: gap {}", cb.gap() / u);
+            assert_eq!(e.stats().fast_fallbacks, 0, "{name} {label}");
+        }
+        let e = st.enclose(&cyl);
+        check("cylinder", &cyl, &e, &samples(&cyl, 40), 2e-2);
+        assert_eq!(e.stats().fast_fallbacks, 0, "{name} cylinder");
     }
 }
 

@@ -136,6 +136,31 @@ pub fn families() -> Vec<(&'static str, NurbsSurface, Option<Vec<(f64, f64)>>)> 
         ),
         unit.clone(),
     ));
+    // z = g(u) with Bernstein coefficients 0, 1.3, 0.7, 0.2: a ridge on a non-dyadic line
+    // (its value is not a float), constant along v
+    let g = [0.0, 1.3, 0.7, 0.2];
+    out.push((
+        "ridge_cubic",
+        bezier_patch(3, 2, graph(3, 2, |r, _| g[r]), None),
+        None,
+    ));
+    // a cylinder patch: (cos t, sin t) for t in [-45°, 45°] along u (rational quadratic arc),
+    // the axis along v: a rational ridge x = 1 (up to the rounding of the data) at u = 1/2
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let section = [(h, -h, 1.0), (2.0 * h, 0.0, h), (h, h, 1.0)];
+    out.push((
+        "cylinder",
+        bezier_patch(
+            2,
+            1,
+            section
+                .iter()
+                .map(|&(x, y, _)| (0..2).map(|c| vec![x, y, c as f64]).collect())
+                .collect(),
+            Some(section.iter().map(|&(_, _, w)| vec![w; 2]).collect()),
+        ),
+        None,
+    ));
     // an octant of the unit sphere: the row at u = 1 collapses to the pole (0, 0, 1)
     let mer = [
         (1.0, 0.0, 1.0),

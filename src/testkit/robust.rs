@@ -14,6 +14,7 @@ use crate::enclose::{
 };
 use crate::error::CurveError;
 use crate::spline::curve::NurbsCurve;
+use crate::surface::{NurbsSurface, SurfaceError};
 use crate::testkit::validate::{check_containment, dense_params};
 
 /// Reads bytes from the front; zeros once exhausted (so every input decodes).
@@ -236,15 +237,38 @@ pub fn check_enclosure(
     guarantee: Guarantee,
     params: &[f64],
 ) -> Result<(), String> {
-    if e.coords.len() != c.dim() {
+    if !check_boxes(e, c.dim(), guarantee)? {
+        return Ok(());
+    }
+    let r = check_containment(c, e, params);
+    if let Some(m) = r.misses.first() {
         return Err(format!(
-            "{} coordinate boxes for dimension {}",
-            e.coords.len(),
-            c.dim()
+            "containment miss at u = {:e} (bits {:#x}), coordinate {}: value in [{:e}, {:e}], box [{:e}, {:e}] ({} misses)",
+            m.param,
+            m.param.to_bits(),
+            m.coord,
+            m.value_lo,
+            m.value_hi,
+            m.bound_lo,
+            m.bound_hi,
+            r.misses.len()
+        ));
+    }
+    Ok(())
+}
+
+/// The checks of an enclosure that need no evaluation (curves and surfaces): one box per
+/// coordinate; for a verified strategy (`Ok(true)`: go on with containment) the flag, no
+/// NaN, no inner bound outside the outer box.
+fn check_boxes(e: &Enclosure, dim: usize, guarantee: Guarantee) -> Result<bool, String> {
+    if e.coords.len() != dim {
+        return Err(format!(
+            "{} coordinate boxes for dimension {dim}",
+            e.coords.len()
         ));
     }
     if guarantee != Guarantee::Verified {
-        return Ok(());
+        return Ok(false);
     }
     if !e.verified {
         return Err("a verified strategy returned verified = false".into());
@@ -262,21 +286,7 @@ pub fn check_enclosure(
             ));
         }
     }
-    let r = check_containment(c, e, params);
-    if let Some(m) = r.misses.first() {
-        return Err(format!(
-            "containment miss at u = {:e} (bits {:#x}), coordinate {}: value in [{:e}, {:e}], box [{:e}, {:e}] ({} misses)",
-            m.param,
-            m.param.to_bits(),
-            m.coord,
-            m.value_lo,
-            m.value_hi,
-            m.bound_lo,
-            m.bound_hi,
-            r.misses.len()
-        ));
-    }
-    Ok(())
+    Ok(true)
 }
 
 /// Run `s` on `c` and check the result ([`check_enclosure`]).
@@ -352,6 +362,146 @@ pub fn low_limit_strategies() -> Vec<Box<dyn BoxEncloser>> {
     })
 }
 
+/// Surfaces larger than this (net size times (p + 1)(q + 1) times dimension) are decoded but
+/// not enclosed by the surface target (one input must stay fast).
+pub const MAX_SURFACE_WORK: usize = 20_000;
+
+/// Decode a NURBS surface from arbitrary bytes (the surface fuzz target's input): the first
+/// byte splits the rest into two parts, each decoded by [`curve_from_bytes`] into a curve
+/// C (along u) and D (along v), so surfaces inherit every extreme of the curve decoder
+/// (degrees, knot patterns with multiplicities, unclamped and overflowing knots, magnitudes,
+/// raw bits, weights). The net is the translational one, P_ij = a_i + b_j over the common
+/// dimensions, with weights alpha_i beta_j; then one byte per net point (read from the end
+/// of the data) may replace P_ij by the value of a neighbour (flat runs, hence ridges: a
+/// curve D with zero points makes S constant along v) or perturb it. `None` when either
+/// curve is invalid; otherwise whatever [`NurbsSurface::new`] says.
+pub fn surface_from_bytes(data: &[u8]) -> Option<Result<NurbsSurface, SurfaceError>> {
+    let (&b0, rest) = data.split_first()?;
+    let cut = usize::from(b0) * rest.len() / 256;
+    let cu = curve_from_bytes(&rest[..cut]).ok()?;
+    let cv = curve_from_bytes(&rest[cut..]).ok()?;
+    let dim = cu.dim().min(cv.dim());
+    let (n, m) = (cu.num_points(), cv.num_points());
+    let mut tail = rest.iter().rev();
+    let zero_v = b0 % 7 == 3;
+    let mut net: Vec<Vec<Vec<f64>>> = (0..n)
+        .map(|i| {
+            (0..m)
+                .map(|j| {
+                    (0..dim)
+                        .map(|k| {
+                            let b = if zero_v { 0.0 } else { cv.control_point(j)[k] };
+                            cu.control_point(i)[k] + b
+                        })
+                        .collect()
+                })
+                .collect()
+        })
+        .collect();
+    for i in 0..n {
+        for j in 0..m {
+            match tail.next().copied().unwrap_or(0) {
+                // the neighbour's value: flat runs along v / u
+                250 if j > 0 => net[i][j] = net[i][j - 1].clone(),
+                251 if i > 0 => net[i][j] = net[i - 1][j].clone(),
+                b @ 240..=249 => {
+                    for x in &mut net[i][j] {
+                        *x += (f64::from(b) - 244.0) / 8.0;
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    let weights = (cu.weights().is_some() || cv.weights().is_some()).then(|| {
+        (0..n)
+            .map(|i| (0..m).map(|j| cu.weight(i) * cv.weight(j)).collect())
+            .collect()
+    });
+    Some(NurbsSurface::new(
+        cu.degree(),
+        cv.degree(),
+        cu.knots().to_vec(),
+        cv.knots().to_vec(),
+        net,
+        weights,
+    ))
+}
+
+/// The surface in the JSON form of `enclose` (for a finding's message).
+pub fn surface_json(s: &NurbsSurface) -> String {
+    serde_json::json!({
+        "degree_u": s.degree_u(),
+        "degree_v": s.degree_v(),
+        "knots_u": s.knots_u(),
+        "knots_v": s.knots_v(),
+        "control_points": s.control_points(),
+        "weights": s.weights_nested(),
+    })
+    .to_string()
+}
+
+/// Parameters at which a surface target checks containment: a 9 x 9 grid over the domain,
+/// the distinct knots inside it in each direction (where pieces meet), and pairs decoded
+/// from `extra` (fractions of the domain).
+fn surface_params(s: &NurbsSurface, extra: &[f64]) -> Vec<(f64, f64)> {
+    let ((a, b), (c, d)) = s.domain();
+    let along = |lo: f64, hi: f64, kn: &[f64]| -> Vec<f64> {
+        let mut v: Vec<f64> = (0..=8)
+            .map(|i| (lo + (hi - lo) * (i as f64 / 8.0)).clamp(lo, hi))
+            .filter(|x| x.is_finite())
+            .collect();
+        v.extend(kn.iter().copied().filter(|&k| k > lo && k < hi));
+        v.extend(extra.iter().map(|f| (lo + (hi - lo) * f).clamp(lo, hi)));
+        v.retain(|x| x.is_finite());
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        v
+    };
+    let (us, vs) = (along(a, b, s.knots_u()), along(c, d, s.knots_v()));
+    us.iter()
+        .flat_map(|&u| vs.iter().map(move |&v| (u, v)))
+        .collect()
+}
+
+/// Check a surface enclosure: one box per coordinate, a verified strategy says so, no NaN,
+/// no inner bound outside the outer box (a contradiction), and no sampled point (verified
+/// interval evaluation) provably outside the box.
+pub fn check_surface_enclosure(
+    s: &NurbsSurface,
+    e: &Enclosure,
+    guarantee: Guarantee,
+    params: &[(f64, f64)],
+) -> Result<(), String> {
+    if !check_boxes(e, s.dim(), guarantee)? {
+        return Ok(());
+    }
+    for (j, cb) in e.coords.iter().enumerate() {
+        if (cb.optimal_lo && cb.inner_lo != cb.lo) || (cb.optimal_hi && cb.inner_hi != cb.hi) {
+            return Err(format!(
+                "coordinate {j}: an optimal flag on an unattained bound"
+            ));
+        }
+    }
+    for &(u, v) in params {
+        let Ok(x) = s.enclose_derivative(u, v, 0, 0) else {
+            continue;
+        };
+        for (j, (xj, cb)) in x.iter().zip(&e.coords).enumerate() {
+            if !xj.is_empty() && (xj.inf() > cb.hi || xj.sup() < cb.lo) {
+                return Err(format!(
+                    "containment miss at ({u:e}, {v:e}), coordinate {j}: value in [{:e}, {:e}], box [{:e}, {:e}]",
+                    xj.inf(),
+                    xj.sup(),
+                    cb.lo,
+                    cb.hi
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The fuzz target bodies, as plain functions (they panic on a violation, which is what a
 /// fuzzer reports; tests call them on the committed corpus).
 pub mod targets {
@@ -417,6 +567,40 @@ pub mod targets {
         };
         let v = check_strategies(&strategies, &c, 4, &extra);
         assert!(v.is_empty(), "{v:?}\n{}", crate::io::curve_to_json(&c));
+    }
+
+    /// Structured bytes -> surface ([`surface_from_bytes`]) -> every surface strategy (the
+    /// first byte chooses default settings or a work limit of one), checked at a grid, the
+    /// knot lines and parameters decoded from the tail ([`check_surface_enclosure`]).
+    pub fn surface(data: &[u8]) {
+        let Some(Ok(s)) = surface_from_bytes(data) else {
+            return;
+        };
+        let work = s.rows() * s.cols() * (s.degree_u() + 1) * (s.degree_v() + 1) * s.dim();
+        if work > MAX_SURFACE_WORK {
+            return;
+        }
+        let extra: Vec<f64> = data
+            .iter()
+            .rev()
+            .take(6)
+            .map(|&b| f64::from(b) / 255.0)
+            .collect();
+        let settings = if data.first().is_some_and(|b| b % 4 == 1) {
+            Settings {
+                max_work: 1,
+                ..Settings::default()
+            }
+        } else {
+            Settings::default()
+        };
+        let params = surface_params(&s, &extra);
+        for st in crate::surface::enclose::all_surface_strategies(&settings) {
+            let e = st.enclose(&s);
+            if let Err(what) = check_surface_enclosure(&s, &e, st.guarantee(), &params) {
+                panic!("{}: {what}\n{}", st.name(), surface_json(&s));
+            }
+        }
     }
 }
 

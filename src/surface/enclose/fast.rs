@@ -37,12 +37,18 @@
 //!      maximiser, F(c) and g are `Ddi` enclosures: near the maximum the correction is at the
 //!      rounding level and the bound is F(c) + ~2^-100. A maximiser that provably beats `ub`
 //!      raises it (every earlier proof stays valid: F only decreases as `ub` grows).
+//!    * it lies on a **ridge**: F is strictly concave along one parameter direction d and
+//!      constant (or nearly so) along the other, so no piece across the ridge is strictly
+//!      concave in both. Then F(x) <= F(c_d, x_o) + F_d(c_d, x_o) (x_d - c_d) - mu |x_d - c_d|^2 / 2
+//!      for a maximiser c_d along d, and the iso-line functions F(c_d, .), F_d(c_d, .) are
+//!      bounded by their `Ddi` Bernstein coefficients over the piece ([`Prover::ridge`]); on
+//!      an exact ridge this is the ridge value plus rounding, so a ridge ends in a tight
+//!      proven bound without the general search.
 //!
 //!    Everything else is halved (both directions) up to [`MAX_DEPTH`] levels and [`BUDGET`]
-//!    pieces per side. If the proof fails (a ridge, where S_j is constant along a line and
-//!    F is nowhere strictly concave; a flat or tiny coordinate; a missed candidate), it is
-//!    retried once with `ub` one ulp higher, then the side falls back to the strategy's
-//!    general search ([`Stats::fast_fallbacks`]). A proven side counts in
+//!    pieces per side. If the proof fails (a ridge not along a parameter line; a flat or
+//!    tiny coordinate; a missed candidate), it is retried once with `ub` one ulp higher,
+//!    then the side falls back to the strategy's general search ([`Stats::fast_fallbacks`]). A proven side counts in
 //!    [`Stats::fast_proofs`]; its gap is the width of the best candidate's enclosure rounded
 //!    outward: one ulp, or 0 when the value is a float.
 //!
@@ -245,15 +251,29 @@ impl FastSurface {
         let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         let mut vertex = true;
         let mut coef_max = SmallVec::<[f64; 1]>::new();
+        let corners = [
+            0,
+            self.q,
+            self.p * (self.q + 1),
+            self.p * (self.q + 1) + self.q,
+        ];
         for (k, g) in grids.iter().enumerate() {
-            for (r, c) in [(0, 0), (0, self.q), (self.p, 0), (self.p, self.q)] {
-                let x = self.ratio(k, g, r * (self.q + 1) + c, j, sign);
+            let mut corner_max = f64::NEG_INFINITY;
+            for i in corners {
+                let x = self.ratio(k, g, i, j, sign);
                 lo = lo.max(x.inf());
                 hi = hi.max(x.sup());
+                corner_max = corner_max.max(if x.sup().is_nan() {
+                    f64::INFINITY
+                } else {
+                    x.sup()
+                });
             }
+            // (the corners as above; the other coefficients need no exact-corner lookup)
             let m = (0..(self.p + 1) * (self.q + 1))
-                .map(|i| self.ratio(k, g, i, j, sign).sup())
-                .fold(f64::NEG_INFINITY, |m, x| {
+                .filter(|i| !corners.contains(i))
+                .map(|i| g.ratio(i, self.rational).sup())
+                .fold(corner_max, |m, x| {
                     if x.is_nan() {
                         f64::INFINITY
                     } else {
@@ -326,7 +346,12 @@ impl FastSurface {
                     } else {
                         grids[k]
                     };
-                    match snapped(&ge, root.n, c.t, &root) {
+                    let exact = if near_float(&dd, self.rational, root.max_abs()) {
+                        snapped(&ge, root.n, c.t, &root)
+                    } else {
+                        None
+                    };
+                    match exact {
                         // an exact value at least as good: attained, and the bound to prove
                         Some((_, [a, w])) if (a[0] / w[0]).inf() >= val.inf() => {
                             let v = (a[0] / w[0]).inf();
@@ -439,6 +464,50 @@ struct Piece<const N: usize> {
     prio: f64,
 }
 
+/// The layout of a de Casteljau split of a coefficient grid along one direction: `lines`
+/// lines of coefficients `stride` apart, the lines `lstride` apart, split at t.
+struct Lines {
+    lines: usize,
+    stride: usize,
+    lstride: usize,
+    t: f64,
+}
+
+impl Lines {
+    /// de Casteljau on every line (degree D1 - 1, a constant so that the loops unroll):
+    /// the halves into `lo` / `hi`; returns the largest |coefficient| M of `src` read (see
+    /// [`Piece::split_into`] for the error bound, which this routine's arithmetic is:
+    /// b_i + t (b_{i+1} - b_i) per step).
+    #[inline(always)]
+    fn split<const D1: usize, const N: usize>(
+        &self,
+        src: &[f64; N],
+        lo: &mut [f64; N],
+        hi: &mut [f64; N],
+    ) -> f64 {
+        let (t, stride) = (self.t, self.stride);
+        let mut m = 0.0f64;
+        for k in 0..self.lines {
+            let base = k * self.lstride;
+            let mut b = [0.0f64; D1];
+            for (i, x) in b.iter_mut().enumerate() {
+                *x = src[base + i * stride];
+                m = m.max(x.abs());
+            }
+            lo[base] = b[0];
+            hi[base + (D1 - 1) * stride] = b[D1 - 1];
+            for lev in 1..D1 {
+                for i in 0..D1 - lev {
+                    b[i] += t * (b[i + 1] - b[i]);
+                }
+                lo[base + lev * stride] = b[0];
+                hi[base + (D1 - 1 - lev) * stride] = b[D1 - 1 - lev];
+            }
+        }
+        m
+    }
+}
+
 /// Index of coefficient k of boundary curve e (0: u = 0, 1: u = 1, 2: v = 0, 3: v = 1) in
 /// the grid of a patch of degrees n.
 fn edge_index(e: usize, n: [usize; 2], k: usize) -> usize {
@@ -530,8 +599,21 @@ impl<const N: usize> Piece<N> {
         [at(0, r), at(1, c)]
     }
 
+    /// The largest |coefficient ratio| (f64; a scale only).
+    fn max_abs(&self) -> f64 {
+        (0..self.count())
+            .map(|i| (self.a[i] / self.w[i]).abs())
+            .fold(0.0, f64::max)
+    }
+
     fn max_coef(&self) -> f64 {
         let cnt = self.count();
+        if !self.rational {
+            // (w = 1: no divisions)
+            return self.a[..cnt]
+                .iter()
+                .fold(f64::NEG_INFINITY, |m, &x| m.max(x));
+        }
         (0..cnt)
             .map(|i| self.a[i] / self.w[i])
             .fold(f64::NEG_INFINITY, f64::max)
@@ -550,9 +632,26 @@ impl<const N: usize> Piece<N> {
     /// <= 5.01 u M plus eta (2^-1074, the underflow error of the product). A split of degree
     /// n has n levels: e' = e + n ((2 delta + 6 u) M + 2 eta), rounded up (Lemma B of
     /// `num::ddi`).
-    fn split(&self, dir: usize, t: f64, delta: f64) -> (Piece<N>, Piece<N>) {
-        let mut l = *self;
-        let mut r = *self;
+    ///
+    /// The halves are written into `l` and `r` (any pieces: every field is set), so the
+    /// caller can split straight into the slots of its work list (a `Piece` is a few hundred
+    /// bytes; copies of it were a fifth of the proof's cost).
+    #[inline]
+    fn split_into(&self, dir: usize, t: f64, delta: f64, l: &mut Piece<N>, r: &mut Piece<N>) {
+        for x in [&mut *l, &mut *r] {
+            x.t = self.t;
+            x.n = self.n;
+            x.ea = self.ea;
+            x.ew = self.ew;
+            x.rational = self.rational;
+            x.depth = self.depth + 1;
+            x.full = self.full;
+            x.prio = self.prio;
+            if !self.rational {
+                // (never read for a polynomial piece except as the divisor 1 of a ratio)
+                x.w = self.w;
+            }
+        }
         let n = self.n[dir];
         let [_, n1] = self.n;
         let (stride, lines, lstride) = if dir == 0 {
@@ -563,26 +662,23 @@ impl<const N: usize> Piece<N> {
         let grow = |e: f64, m: f64| {
             up(e + n as f64 * ((2.0 * delta + 6.0 * UNIT) * m * (1.0 + 1e-12) + 2e-323))
         };
+        // (the degree as a constant, so that the loops unroll; n <= MAX_DEGREE = 5, the
+        // fast path's restriction)
         let run = |src: &[f64; N], lo: &mut [f64; N], hi: &mut [f64; N]| {
-            let mut b = [0.0f64; MAX_DEGREE + 1];
-            let mut m = 0.0f64;
-            for k in 0..lines {
-                let base = k * lstride;
-                for (i, x) in b.iter_mut().enumerate().take(n + 1) {
-                    *x = src[base + i * stride];
-                    m = m.max(x.abs());
-                }
-                lo[base] = b[0];
-                hi[base + n * stride] = b[n];
-                for lev in 1..=n {
-                    for i in 0..=n - lev {
-                        b[i] += t * (b[i + 1] - b[i]);
-                    }
-                    lo[base + lev * stride] = b[0];
-                    hi[base + (n - lev) * stride] = b[n - lev];
-                }
+            let g = Lines {
+                lines,
+                stride,
+                lstride,
+                t,
+            };
+            match n {
+                0 => g.split::<1, N>(src, lo, hi),
+                1 => g.split::<2, N>(src, lo, hi),
+                2 => g.split::<3, N>(src, lo, hi),
+                3 => g.split::<4, N>(src, lo, hi),
+                4 => g.split::<5, N>(src, lo, hi),
+                _ => g.split::<{ MAX_DEGREE + 1 }, N>(src, lo, hi),
             }
-            m
         };
         let ma = run(&self.a, &mut l.a, &mut r.a);
         l.ea = grow(self.ea, ma);
@@ -596,9 +692,6 @@ impl<const N: usize> Piece<N> {
         let m = (a + t * (b - a)).clamp(a, b);
         l.t[dir] = (a, m);
         r.t[dir] = (m, b);
-        l.depth += 1;
-        r.depth += 1;
-        (l, r)
     }
 
     /// The coefficients g of a polynomial that has F's derivatives, and their error bound:
@@ -607,7 +700,10 @@ impl<const N: usize> Piece<N> {
     fn f_values<'a>(&'a self, ub: f64, f: &'a mut [f64; N]) -> Option<(&'a [f64; N], f64)> {
         let cnt = self.count();
         if !self.rational {
-            return Some((&self.a, self.ea));
+            // (a split may overflow near +-f64::MAX; every test below needs finite
+            // coefficients: `f64::max` would skip a NaN)
+            return (self.ea.is_finite() && self.a[..cnt].iter().all(|x| x.is_finite()))
+                .then_some((&self.a, self.ea));
         }
         let mut m = 0.0f64;
         for (i, fi) in f.iter_mut().enumerate().take(cnt) {
@@ -670,43 +766,14 @@ impl<const N: usize> Piece<N> {
     /// both equal when a0 c0 > b0^2). All in interval arithmetic.
     fn concavity(&self, f: &[f64; N], e: f64) -> Option<f64> {
         let [n0, n1] = self.n;
-        let cnt = self.count();
-        let m = f[..cnt].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let err = iv::point(up(4.0 * e + 9.0 * UNIT * m));
-        let pm = Interval::try_from((-err.sup(), err.sup())).ok()?;
         let at = |r: usize, c: usize| f[r * (n1 + 1) + c];
-        // (max over the coefficients in f64 first: (d + pm) k is increasing in d for k > 0)
-        let sup_of = |k: usize, it: &mut dyn Iterator<Item = f64>| -> f64 {
-            let m = it.fold(f64::NEG_INFINITY, f64::max);
-            ((iv::point(m) + pm) * iv::point(k as f64)).sup()
+        let a0 = match n0 {
+            0 => None,
+            _ => Some(self.curvature(f, e, 0)?),
         };
-        // upper bounds of F_uu, F_vv (must be < 0) and of |F_uv|
-        let huu = (n0 >= 2).then(|| {
-            sup_of(
-                n0 * (n0 - 1),
-                &mut (0..n0 - 1).flat_map(|r| {
-                    (0..=n1).map(move |c| (at(r + 2, c) - at(r + 1, c)) - (at(r + 1, c) - at(r, c)))
-                }),
-            )
-        });
-        let hvv = (n1 >= 2).then(|| {
-            sup_of(
-                n1 * (n1 - 1),
-                &mut (0..=n0).flat_map(|r| {
-                    (0..n1 - 1)
-                        .map(move |c| (at(r, c + 2) - at(r, c + 1)) - (at(r, c + 1) - at(r, c)))
-                }),
-            )
-        });
-        let a0 = match (n0, huu) {
-            (0, _) => None,
-            (_, Some(h)) if h < 0.0 => Some(-h),
-            _ => return None,
-        };
-        let c0 = match (n1, hvv) {
-            (0, _) => None,
-            (_, Some(h)) if h < 0.0 => Some(-h),
-            _ => return None,
+        let c0 = match n1 {
+            0 => None,
+            _ => Some(self.curvature(f, e, 1)?),
         };
         match (a0, c0) {
             (Some(a), None) | (None, Some(a)) => Some(a),
@@ -720,7 +787,7 @@ impl<const N: usize> Piece<N> {
                     }
                 }
                 // |(d + pm) k| <= (|d| + err) k
-                let b0 = ((iv::point(dm) + pm) * kk).sup();
+                let b0 = ((iv::point(dm) + iv::point(self.second_error(f, e))) * kk).sup();
                 let rr = (a / c).sqrt();
                 if !(rr.is_finite() && rr > 0.0) {
                     return None;
@@ -731,6 +798,51 @@ impl<const N: usize> Piece<N> {
             }
             (None, None) => None,
         }
+    }
+
+    /// The error bound of a computed second difference of the coefficients f (each within e
+    /// of the exact one): 4 e + 9 u M (see [`Piece::concavity`]); infinite if some f is not
+    /// finite.
+    fn second_error(&self, f: &[f64; N], e: f64) -> f64 {
+        let cnt = self.count();
+        let m = f[..cnt].iter().fold(0.0f64, |m, x| {
+            if x.is_finite() {
+                m.max(x.abs())
+            } else {
+                f64::INFINITY
+            }
+        });
+        up(4.0 * e + 9.0 * UNIT * m)
+    }
+
+    /// a > 0 with F_dd <= -a on the whole piece (d = `dir`, in the piece's own parameter),
+    /// or `None`: the Bernstein coefficients of F_dd are n (n - 1) times the second
+    /// differences of the coefficients along d (each within [`Piece::second_error`] of the
+    /// exact one), and F_dd lies in their hull.
+    fn curvature(&self, f: &[f64; N], e: f64, dir: usize) -> Option<f64> {
+        let [n0, n1] = self.n;
+        let nd = self.n[dir];
+        if nd < 2 {
+            return None;
+        }
+        let err = self.second_error(f, e);
+        if !err.is_finite() {
+            return None;
+        }
+        let step = if dir == 0 { n1 + 1 } else { 1 };
+        let mut mx = f64::NEG_INFINITY;
+        for r in 0..=n0 {
+            for c in 0..=n1 {
+                if (dir == 0 && r + 2 > n0) || (dir == 1 && c + 2 > n1) {
+                    continue;
+                }
+                let i = r * (n1 + 1) + c;
+                mx = mx.max((f[i + 2 * step] - f[i + step]) - (f[i + step] - f[i]));
+            }
+        }
+        // ((d + err) k is increasing in d for k > 0: the largest d first)
+        let h = ((iv::point(mx) + iv::point(err)) * iv::point((nd * (nd - 1)) as f64)).sup();
+        (h < 0.0).then_some(-h)
     }
 }
 
@@ -948,6 +1060,129 @@ fn snapped<const N: usize>(
     (val.inf() == val.sup() && val.sup().is_finite()).then_some((cs, [a, w]))
 }
 
+/// Whether the `Ddi` value A / w at a candidate is within 2^-70 (relative to the value or to
+/// `scale`, the largest |coefficient|) of a float: only then can the value at a nearby short
+/// dyadic point be a float, so only then is [`snapped`] (interval evaluation, the costlier
+/// part of a candidate) tried. A filter for tightness only: soundness never depends on it.
+fn near_float(d: &[[Ddi; 6]; 2], rational: bool, scale: f64) -> bool {
+    let v = if rational { d[0][0] / d[1][0] } else { d[0][0] };
+    let off = v.lo().abs() + v.rad();
+    off.is_finite() && off <= f64::powi(2.0, -70) * v.hi().abs().max(scale)
+}
+
+/// Whether F looks like a ridge along the direction o other than d: its second differences
+/// along d are all negative, and those along o and the mixed ones are negligible against
+/// them (f64 estimates; the filter of [`Prover::ridge`], no soundness role: the proof takes
+/// its curvature from [`Piece::curvature`]).
+fn flat_across<const N: usize>(pc: &Piece<N>, f: &[f64; N], d: usize) -> bool {
+    let [n0, n1] = pc.n;
+    let (nd, no) = (pc.n[d], pc.n[1 - d]);
+    if nd < 2 {
+        return false;
+    }
+    let at = |r: usize, c: usize| f[r * (n1 + 1) + c];
+    let second = |r: usize, c: usize, along: usize| {
+        if along == 0 {
+            (at(r + 2, c) - at(r + 1, c)) - (at(r + 1, c) - at(r, c))
+        } else {
+            (at(r, c + 2) - at(r, c + 1)) - (at(r, c + 1) - at(r, c))
+        }
+    };
+    let fits = |r: usize, c: usize, along: usize| {
+        if along == 0 {
+            r + 2 <= n0
+        } else {
+            c + 2 <= n1
+        }
+    };
+    // (separate passes, each ending early: most pieces fail the first one)
+    let mut dd = f64::NEG_INFINITY;
+    for r in 0..=n0 {
+        for c in 0..=n1 {
+            if fits(r, c, d) {
+                dd = dd.max(second(r, c, d));
+                if dd >= 0.0 {
+                    return false;
+                }
+            }
+        }
+    }
+    let limit = 1e-6 * (-dd) * (nd * (nd - 1)) as f64;
+    let (ko, km) = ((no * no.saturating_sub(1)) as f64, (n0 * n1) as f64);
+    for r in 0..=n0 {
+        for c in 0..=n1 {
+            let mut k = 0.0;
+            if r < n0 && c < n1 {
+                k += km * ((at(r + 1, c + 1) - at(r + 1, c)) - (at(r, c + 1) - at(r, c))).abs();
+            }
+            if fits(r, c, 1 - d) {
+                k += ko * second(r, c, 1 - d).abs();
+            }
+            // (each term alone must be negligible; NaN fails)
+            if k > limit || k.is_nan() {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// The Bernstein coefficients, over the range `range` of the other direction o, of the
+/// iso-line functions F(c, .) and F_d(c, .) at x_d = c (F = A - ub w from the patch grid `g`
+/// of degrees n, derivatives in the patch parameter), enclosed in `Ddi`: de Casteljau
+/// along d at c (with the derivative, [`bern2`]) on every line of the grid, then
+/// subdivision along o at the range's ends (exact parameters, the second one a `Ddi`
+/// quotient: every result encloses the exact coefficients; `spline::bezier`).
+/// (Generic over the number type: `Ddi`, or intervals, which stay exact on dyadic data at a
+/// short dyadic c where `Ddi` always carries a radius.)
+#[allow(clippy::type_complexity)]
+fn iso_line<S: Scalar + Copy>(
+    ga: &[S],
+    gw: &[S],
+    n: [usize; 2],
+    d: usize,
+    c: f64,
+    ub: f64,
+    range: (f64, f64),
+) -> Option<(Vec<S>, Vec<S>)> {
+    let (nd, no) = (n[d], n[1 - d]);
+    let stride = n[1] + 1;
+    let (tc, ub) = (S::from_f64(c), S::from_f64(ub));
+    let mut fv = Vec::with_capacity(no + 1);
+    let mut fd = Vec::with_capacity(no + 1);
+    for k in 0..=no {
+        let idx = |i: usize| {
+            if d == 0 {
+                i * stride + k
+            } else {
+                k * stride + i
+            }
+        };
+        let mut ba = [S::zero(); MAX_DEGREE + 1];
+        let mut bw = [S::zero(); MAX_DEGREE + 1];
+        for i in 0..=nd {
+            ba[i] = ga[idx(i)];
+            bw[i] = gw[idx(i)];
+        }
+        let [va, da, _] = bern2(&mut ba[..=nd], tc);
+        let [vw, dw, _] = bern2(&mut bw[..=nd], tc);
+        fv.push(va - ub * vw);
+        fd.push(da - ub * dw);
+    }
+    let (o0, o1) = range;
+    let restrict = |mut x: Vec<S>| -> Vec<S> {
+        if o1 < 1.0 {
+            x = crate::spline::bezier::de_casteljau_split(&x, 1, &S::from_f64(o1)).0;
+        }
+        if o0 > 0.0 {
+            let t = S::from_f64(o0) / S::from_f64(o1);
+            x = crate::spline::bezier::de_casteljau_split(&x, 1, &t).1;
+        }
+        x
+    };
+    (o0 < o1).then(|| (restrict(fv), restrict(fd)))
+}
+
 /// A / w enclosed.
 fn value_of(d: &[[Ddi; 6]; 2], rational: bool) -> Interval {
     if rational {
@@ -993,7 +1228,9 @@ impl<const N: usize> Prover<'_, N> {
             *self.budget -= 1;
             self.st.subdivisions += 1;
             let mut buf = [0.0f64; N];
-            let Some((f, e)) = pc.f_values(self.ub, &mut buf) else {
+            // (the ub of f: a curvature bound from f holds for F = A - ub_f w only)
+            let ub_f = self.ub;
+            let Some((f, e)) = pc.f_values(ub_f, &mut buf) else {
                 return false;
             };
             if pc.excluded(f, e, self.ub) {
@@ -1009,7 +1246,16 @@ impl<const N: usize> Prover<'_, N> {
                     };
                     if !done && touches && pc.monotone(f, e, d, down) {
                         // a boundary curve's sides are patch corners (<= ub: candidates)
+                        let ub0 = self.ub;
                         done = slot < 4 || self.edge(root, 2 * d + end, g);
+                        // (the edge proof may raise ub; for a rational patch F = A - ub w
+                        // then changes shape, so its monotonicity is checked again)
+                        if done && self.ub != ub0 && self.rational {
+                            let mut b2 = [0.0f64; N];
+                            done = pc
+                                .f_values(self.ub, &mut b2)
+                                .is_some_and(|(f2, e2)| pc.monotone(f2, e2, d, down));
+                        }
                     }
                 }
             }
@@ -1017,9 +1263,11 @@ impl<const N: usize> Prover<'_, N> {
                 continue;
             }
             if let Some(mu) = pc.concavity(f, e) {
-                if self.concave(&pc, root, slot, mu, g) {
+                if self.concave(&pc, root, slot, (mu, ub_f), g) {
                     continue;
                 }
+            } else if self.ridge(&pc, root, (f, e, ub_f), g) {
+                continue;
             } else if pc.depth >= 2 && self.searches > 0 && pc.max_coef() > self.ub {
                 // a maximum the first candidates missed: Newton from this piece's centre
                 self.searches -= 1;
@@ -1035,26 +1283,32 @@ impl<const N: usize> Prover<'_, N> {
             if pc.depth >= MAX_DEPTH {
                 return false;
             }
-            let mut push = |mut k: Piece<N>| {
-                k.depth = pc.depth + 1;
-                k.prio = k.max_coef();
-                work.push(k);
-            };
+            // the children are split straight into new slots of `work`
+            let base = work.len();
             match free {
                 [true, true] => {
-                    let (l, r) = pc.split(0, 0.5, 0.0);
-                    for h in [l, r] {
-                        let (a, b) = h.split(1, 0.5, 0.0);
-                        push(a);
-                        push(b);
+                    let mut h = [pc; 2];
+                    let [h0, h1] = &mut h;
+                    pc.split_into(0, 0.5, 0.0, h0, h1);
+                    for _ in 0..4 {
+                        work.push(pc);
+                    }
+                    for (k, hk) in h.iter().enumerate() {
+                        let (x, y) = work[base + 2 * k..].split_at_mut(1);
+                        hk.split_into(1, 0.5, 0.0, &mut x[0], &mut y[0]);
                     }
                 }
                 _ => {
                     let d = if free[0] { 0 } else { 1 };
-                    let (a, b) = pc.split(d, 0.5, 0.0);
-                    push(a);
-                    push(b);
+                    work.push(pc);
+                    work.push(pc);
+                    let (x, y) = work[base..].split_at_mut(1);
+                    pc.split_into(d, 0.5, 0.0, &mut x[0], &mut y[0]);
                 }
+            }
+            for k in &mut work[base..] {
+                k.depth = pc.depth + 1;
+                k.prio = k.max_coef();
             }
         }
         true
@@ -1082,13 +1336,15 @@ impl<const N: usize> Prover<'_, N> {
     /// that sign. c is an f64 estimate of the maximiser of S over P (box-constrained Newton,
     /// [`constrained_max`]), so near the maximum the terms are at the rounding level and the
     /// bound is F(c) + ~2^-100; F(c), g are `Ddi` enclosures. If S(c) beats `ub`, `ub` is
-    /// raised to it first (and `lo` records the attained value).
+    /// raised to it first (and `lo` records the attained value). (`mu` holds for
+    /// F = A - ub0 w, ub0 the ub the piece's coefficients were computed with; after a raise
+    /// of ub it is computed again, [`Prover::mu_after_raise`].)
     fn concave(
         &mut self,
         pc: &Piece<N>,
         root: &Piece<N>,
         slot: usize,
-        mu: f64,
+        (mu, ub0): (f64, f64),
         g: &DdGrid<N>,
     ) -> bool {
         let inside = |c: &Cand| (0..2).all(|k| pc.t[k].0 <= c.t[k] && c.t[k] <= pc.t[k].1);
@@ -1136,12 +1392,18 @@ impl<const N: usize> Prover<'_, N> {
         let ub = Ddi::exact(self.ub);
         let fc = (a[0] - ub * w[0]).to_interval();
         let gr = [1, 2].map(|k| (a[k] - ub * w[k]).to_interval());
-        if self.bound(pc, c, mu, wd, fc, gr) {
+        let Some(mu) = self.mu_after_raise(pc, mu, ub0, None) else {
+            return false;
+        };
+        if self.bound(pc, c, mu, wd, fc, gr, free) {
             return true;
         }
         // A maximum that is a float at a short dyadic point (a bump's top at t = 1/2): there
         // interval arithmetic can be exact, F(c) = 0 and g = 0, where `Ddi` always carries a
         // radius.
+        if !near_float(&[a, w], self.rational, pc.max_abs()) {
+            return false;
+        }
         let Some((cs, [ai, wi])) = snapped(g, pn, c, pc) else {
             return false;
         };
@@ -1151,11 +1413,166 @@ impl<const N: usize> Prover<'_, N> {
         let ub = iv::point(self.ub);
         let fc = ai[0] - ub * wi[0];
         let gr = [1, 2].map(|k| ai[k] - ub * wi[k]);
-        self.bound(pc, cs, mu, wd, fc, gr)
+        let Some(mu) = self.mu_after_raise(pc, mu, ub0, None) else {
+            return false;
+        };
+        self.bound(pc, cs, mu, wd, fc, gr, free)
+    }
+
+    /// The curvature bound mu of a piece (of F = A - ub0 w: [`Piece::concavity`], or
+    /// [`Piece::curvature`] along `dir`) valid for the current `ub`: unchanged for a
+    /// polynomial patch (F'' = S'' does not depend on ub) or if ub did not move; else
+    /// computed again, since F'' = A'' - ub w'' changes with ub.
+    fn mu_after_raise(&self, pc: &Piece<N>, mu: f64, ub0: f64, dir: Option<usize>) -> Option<f64> {
+        if !self.rational || self.ub == ub0 {
+            return Some(mu);
+        }
+        let mut buf = [0.0f64; N];
+        let (f, e) = pc.f_values(self.ub, &mut buf)?;
+        match dir {
+            None => pc.concavity(f, e),
+            Some(d) => pc.curvature(f, e, d),
+        }
+    }
+
+    /// F <= 0 on a 2-D piece where F is strictly concave along one direction d only: a
+    /// ridge, where S_j is constant (or nearly so) along the other direction o, so that no
+    /// piece across it is strictly concave in both directions and [`Prover::concave`] never
+    /// applies. Tried only where the curvature along o and the mixed one are negligible
+    /// against the curvature along d (a filter, no soundness role).
+    ///
+    /// For x in the piece and c_d in its d range, F_dd <= -mu_t on the segment from
+    /// (c_d, x_o) to x (the piece is a box), so Taylor's formula with the integral
+    /// remainder gives F(x) <= F(c_d, x_o) + F_d(c_d, x_o) (x_d - c_d) - mu_t (x_d - c_d)^2 / 2
+    /// (mu_t = mu / W_d^2 in the patch parameter). The iso-line functions F(c_d, .) and
+    /// F_d(c_d, .) are polynomials in x_o whose Bernstein coefficients over the piece's o
+    /// range are enclosed in `Ddi` ([`iso_line`]: de Casteljau along d at c_d on every line
+    /// of the patch grid, then de Casteljau subdivision along o at exact parameters); their
+    /// hulls bound F(c_d, x_o) from above and F_d(c_d, x_o) on both sides, and the separable
+    /// maximum over x_d is that of [`Prover::bound`] with d the only free direction. On an
+    /// exact ridge the iso-line coefficients are all the ridge value, so the bound is the
+    /// ridge value plus the rounding of its enclosure. c_d is an f64 maximiser of S along d at
+    /// the middle of the o range (any c_d in the range is valid); its value is attained and
+    /// raises `ub` when it provably beats it. (`f`, `e` are the piece's coefficients of
+    /// F = A - ub0 w; after a raise of ub the curvature is computed again,
+    /// [`Prover::mu_after_raise`].)
+    fn ridge(
+        &mut self,
+        pc: &Piece<N>,
+        root: &Piece<N>,
+        (f, e, ub0): (&[f64; N], f64, f64),
+        g: &DdGrid<N>,
+    ) -> bool {
+        if pc.n[0] == 0 || pc.n[1] == 0 || root.n != pc.full {
+            return false;
+        }
+        for d in 0..2 {
+            if !flat_across(pc, f, d) {
+                continue;
+            }
+            let Some(mu) = pc.curvature(f, e, d) else {
+                continue;
+            };
+            self.st.newton_iterations += 1;
+            let o = 1 - d;
+            let mid = |k: usize| 0.5 * pc.t[k].0 + 0.5 * pc.t[k].1;
+            let mut t = [mid(0), mid(1)];
+            for _ in 0..16 {
+                let a = eval2(&root.a[..], root.n, t);
+                let dv = if self.rational {
+                    quotient(a, eval2(&root.w[..], root.n, t))
+                } else {
+                    a
+                };
+                let (g1, g2) = (dv[1 + d], dv[3 + 2 * d]);
+                if g2 >= 0.0 || g2.is_nan() {
+                    break;
+                }
+                let nt = (t[d] - g1 / g2).clamp(pc.t[d].0, pc.t[d].1);
+                if !nt.is_finite() {
+                    break;
+                }
+                let moved = (nt - t[d]).abs() > 4.0 * f64::EPSILON;
+                t[d] = nt;
+                if !moved {
+                    break;
+                }
+            }
+            let val = tight_value(g, pc.full, t, self.rational);
+            if val.is_empty() || !val.sup().is_finite() {
+                return false;
+            }
+            self.lo = self.lo.max(val.inf());
+            if val.inf() > self.ub {
+                self.ub = val.sup();
+            }
+            let cnt = (pc.full[0] + 1) * (pc.full[1] + 1);
+            let lines = iso_line(&g.a[..cnt], &g.w[..cnt], pc.full, d, t[d], self.ub, pc.t[o]);
+            let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
+                continue;
+            };
+            if self.ridge_bound(pc, t, d, mu, lines) {
+                return true;
+            }
+            // a ridge value that is a float (a short dyadic c_d on dyadic data): interval
+            // arithmetic can be exact there, where `Ddi` always carries a radius
+            let dd = tight_derivs(g, pc.full, t, self.rational);
+            if !near_float(&dd, self.rational, pc.max_abs()) {
+                continue;
+            }
+            let Some((cs, [ai, wi])) = snapped(g, pc.full, t, pc) else {
+                continue;
+            };
+            let v = (ai[0] / wi[0]).sup();
+            self.lo = self.lo.max(v);
+            self.ub = self.ub.max(v);
+            let (ga, gw): (Vec<Interval>, Vec<Interval>) = (0..cnt)
+                .map(|i| (g.a[i].to_interval(), g.w[i].to_interval()))
+                .unzip();
+            let lines = iso_line(&ga, &gw, pc.full, d, cs[d], self.ub, pc.t[o]);
+            let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
+                continue;
+            };
+            if self.ridge_bound(pc, cs, d, mu, lines) {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// The bound of [`Prover::ridge`] from the iso-line coefficients `lines` (F(c_d, .) and
+    /// F_d(c_d, .) over the piece's o range) at c: whether it is <= 0.
+    fn ridge_bound<S: Scalar>(
+        &self,
+        pc: &Piece<N>,
+        c: [f64; 2],
+        d: usize,
+        mu: f64,
+        lines: Option<(Vec<S>, Vec<S>)>,
+    ) -> bool {
+        let Some((fv, fd)) = lines else {
+            return false;
+        };
+        let hull = |c: &[S]| {
+            c.iter()
+                .map(|x| x.to_interval())
+                .fold(Interval::EMPTY, |h, x| h.convex_hull(x))
+        };
+        let (fh, gh) = (hull(&fv), hull(&fd));
+        if fh.is_empty() || gh.is_empty() || !fh.sup().is_finite() || !gh.is_common_interval() {
+            return false;
+        }
+        let wd = iv::point(pc.t[d].1) - iv::point(pc.t[d].0);
+        let mut gr = [Interval::EMPTY; 2];
+        gr[d] = gh;
+        let mut free = [false; 2];
+        free[d] = true;
+        self.bound(pc, c, mu, wd, iv::point(fh.sup()), gr, free)
     }
 
     /// The bound of [`Prover::concave`] at c from F(c) and grad F(c) (enclosures), mu and
-    /// the piece width `wd`: whether it is <= 0.
+    /// the piece width `wd`, over the directions `free`: whether it is <= 0.
+    #[allow(clippy::too_many_arguments)]
     fn bound(
         &self,
         pc: &Piece<N>,
@@ -1164,8 +1581,8 @@ impl<const N: usize> Prover<'_, N> {
         wd: Interval,
         fc: Interval,
         gr: [Interval; 2],
+        free: [bool; 2],
     ) -> bool {
-        let free = [pc.n[0] > 0, pc.n[1] > 0];
         let mut_ = iv::point(mu) / wd.sqr();
         let half = iv::point(0.5);
         let mut bound = fc;
