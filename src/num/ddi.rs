@@ -646,7 +646,9 @@ impl Scalar for Ddi {
     /// instead of ~2^-100. The convex form propagates `(1 - a) r_lo + a r_hi <= max(r_lo, r_hi)`
     /// for a point-like a in [0, 1] (no growth); the thesis form is better when `a` is a wide set
     /// and hi ~ lo (its `rad(a)` term is `rad(a) |hi - lo|`, not `rad(a) (|lo| + |hi|)`).
-    #[inline]
+    // (always: the corner-cutting loops of de Casteljau and knot insertion are its hot callers;
+    // an out-of-line call there cost the degree-10 span a third more time)
+    #[inline(always)]
     fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
         let thesis = a.mul_add(*hi - *lo, *lo);
         let convex = a.mul_add(*hi, (Ddi::exact(1.0) - *a) * *lo);
