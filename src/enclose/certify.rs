@@ -420,11 +420,23 @@ pub(crate) fn quick(bound: f64, inner: f64, witness: f64, scale: f64) -> Option<
     if !bound.is_finite() {
         return Some(false);
     }
-    if inner == bound || witness >= bound.next_down() {
+    if attained_rule(bound, inner, witness) {
         return Some(true);
     }
-    let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(bound.abs().max(scale));
-    (bound - inner > near_scale).then_some(false)
+    far_below(bound, inner, scale).then_some(false)
+}
+
+/// The first rule: an attained value equal to the bound, or a strict witness at or above
+/// next_down(bound) (the curve exceeds it), proves bound = RU(max).
+fn attained_rule(bound: f64, inner: f64, witness: f64) -> bool {
+    inner == bound || witness >= bound.next_down()
+}
+
+/// Whether the attained value is more than [`LOWER_WITHIN_ULPS`] ulps of the scale
+/// (max(|bound|, `scale`)) below the bound: a loose bound, which the search stages do not try
+/// to complete.
+fn far_below(bound: f64, inner: f64, scale: f64) -> bool {
+    bound - inner > LOWER_WITHIN_ULPS as f64 * crate::num::ulp(bound.abs().max(scale))
 }
 
 /// The certificate of one side (`max_side`: hi, as the maximum of g = C_j; otherwise lo, as the
@@ -457,7 +469,7 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         // next_down(bound)
         let t = bound.next_down();
         // (1b. the strategy's strict witness: g(u) > witness >= t for some u)
-        if inner == bound || witness >= t {
+        if attained_rule(bound, inner, witness) {
             proved = true;
             break;
         }
@@ -487,11 +499,11 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
             proved = true;
             break;
         }
-        let scale = bound.abs().max(back(ev.c.coord_scale(j)));
-        let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(scale);
-        if bound - inner > near_scale {
+        let scale = back(ev.c.coord_scale(j));
+        if far_below(bound, inner, scale) {
             break;
         }
+        let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(bound.abs().max(scale));
         let d = ddi_stage(ev, j, sign, up(t), cands);
         let guess = back(d.guess);
         if d.proved {

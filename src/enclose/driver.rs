@@ -62,7 +62,7 @@
 //! the end control point exactly ([`NurbsCurve::clamped_ends`]), an attained value for the
 //! inner bounds (this makes an end value such as f64::MAX an exact, attained bound).
 
-use super::{BoxEncloser, Enclosure, Guarantee, Termination};
+use super::{BoxEncloser, CoordBox, Enclosure, Guarantee, Termination};
 use crate::spline::curve::NurbsCurve;
 
 /// Values whose binary exponent lies within ±`WINDOW` of 0 are left alone: with coordinates
@@ -387,6 +387,31 @@ pub fn degree_fallback<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclos
     }
 }
 
+/// The driver's facts for one coordinate (see the module docs): the outer bounds clamped to the
+/// exact control-point range `(plo, phi)`; for a verified result also the values at clamped
+/// ends (`ends`, the end control points) as attained values, and the inner bounds made
+/// consistent with the outer ones. Shared by [`drive_with`] and the lane (`super::lane`).
+#[inline]
+pub(crate) fn apply_facts(
+    cb: &mut CoordBox,
+    (plo, phi): (f64, f64),
+    ends: [Option<f64>; 2],
+    verified: bool,
+) {
+    // (f64::max/min return the non-NaN operand: a NaN bound becomes the hull's)
+    cb.lo = cb.lo.max(plo);
+    cb.hi = cb.hi.min(phi);
+    if !verified {
+        return;
+    }
+    for x in ends.into_iter().flatten() {
+        cb.inner_lo = cb.inner_lo.min(x);
+        cb.inner_hi = cb.inner_hi.max(x);
+    }
+    cb.inner_lo = cb.inner_lo.min(cb.hi).max(cb.lo);
+    cb.inner_hi = cb.inner_hi.max(cb.lo).min(cb.hi);
+}
+
 /// Enclose `c` with `s`, rescaling it first if its magnitudes are extreme (see the module
 /// docs); the result is an enclosure of `c` itself. Above [`MAX_SEARCH_DEGREE`] the result is
 /// the control-point box ([`degree_fallback`]).
@@ -429,22 +454,8 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
     let cl = c.clamped_ends();
     let verified = s.guarantee() == Guarantee::Verified;
     for (j, cb) in e.coords.iter_mut().enumerate() {
-        let (plo, phi) = c.coord_range(j, 0..=n);
-        // (f64::max/min return the non-NaN operand: a NaN bound becomes the hull's)
-        cb.lo = cb.lo.max(plo);
-        cb.hi = cb.hi.min(phi);
-        if !verified {
-            continue;
-        }
-        for (end, i) in [(0, 0), (1, n)] {
-            if cl[end] {
-                let x = c.control_point(i)[j];
-                cb.inner_lo = cb.inner_lo.min(x);
-                cb.inner_hi = cb.inner_hi.max(x);
-            }
-        }
-        cb.inner_lo = cb.inner_lo.min(cb.hi).max(cb.lo);
-        cb.inner_hi = cb.inner_hi.max(cb.lo).min(cb.hi);
+        let ends = [(0, 0), (1, n)].map(|(end, i)| cl[end].then(|| c.control_point(i)[j]));
+        apply_facts(cb, c.coord_range(j, 0..=n), ends, verified);
     }
     if certify {
         super::certify::certify(c, &mut e);

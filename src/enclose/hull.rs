@@ -65,6 +65,7 @@ impl BoxEncloser for ControlHull {
 /// the inner bounds `inner(j, lo, hi)` (the caller's reason why the curve reaches them),
 /// argmin / argmax at the supports of the extreme control points, and `termination`. O(n d):
 /// shared by [`ControlHull`] and the high-degree fallback (`driver::degree_fallback`).
+#[inline]
 pub(crate) fn control_point_box(
     c: &NurbsCurve,
     inner: impl Fn(usize, f64, f64) -> (f64, f64),
@@ -89,8 +90,8 @@ pub(crate) fn control_point_box(
     for j in 0..d {
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut ilo, mut ihi) = (0, 0);
-        for (i, x) in pts.iter().skip(j).step_by(d).enumerate() {
-            let x = *x;
+        for i in 0..pts.len() / d {
+            let x = pts[i * d + j];
             if x < lo {
                 lo = x;
                 ilo = i;

@@ -24,12 +24,13 @@
 //! flags are those of the general path.
 
 use super::bezier::single::{raw_sides, RawSide, Segment};
-use super::bezier::span_bounds;
+use super::bezier::{end_kind, span_bounds};
+use super::driver::apply_facts;
 use super::driver::{exponent, COORD_WINDOW};
 use super::{certify, CandidateKind, Clock, CoordBox, Coords, Enclosure, Extrema, Extremum};
 use super::{SideData, Stats, Termination};
 use crate::num::ddi::Ddi;
-use crate::num::Scalar as _;
+use crate::num::Scalar;
 use crate::spline::bspline::clamp_span;
 use crate::spline::curve::NurbsCurve;
 use smallvec::SmallVec;
@@ -50,6 +51,7 @@ const KNOT_EXP: i32 = 1000;
 /// every coordinate moderate.
 #[derive(Debug, Clone, Copy)]
 pub struct Simple<'a> {
+    curve: &'a NurbsCurve,
     p: usize,
     /// the last control point's index (n = p: a single segment)
     n: usize,
@@ -129,6 +131,7 @@ impl<'a> Simple<'a> {
             *r = (lo, hi);
         }
         Some(Simple {
+            curve: c,
             p,
             n,
             d,
@@ -335,19 +338,12 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
         if bk <= key(attained) {
             break;
         }
-        let mut t = [0.0f64; 8];
         // step 2: f64 coefficients and their a-priori bound; the span goes back with that
         // bound, so that the double-double stage runs only on the span whose f64 bound is the
         // largest left (usually the one with the maximum)
         if !filtered {
-            t[..2 * p + 2].copy_from_slice(&kn[k - p..=k + p + 1]);
-            let mut q = [0.0f64; 4];
-            let mut m = 0.0f64;
-            for (i, v) in q.iter_mut().enumerate().take(p + 1) {
-                *v = s.pts[(k - p + i) * d + j];
-                m = m.max(v.abs());
-            }
-            clamp_span(p, 1, &mut t[..2 * p + 2], &mut q[..=p]);
+            let q = span_coefficients::<f64>(s, j, k);
+            let m = (k - p..=k).fold(0.0f64, |m, i| m.max(x(i).abs()));
             let signed = q.map(|v| sign * v);
             let (ub, at) = span_bounds(&signed[..=p], m, true)?;
             attained = attained.max(at);
@@ -357,12 +353,7 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
             continue;
         }
         // step 3: double-double coefficients and the root-isolating proof
-        t[..2 * p + 2].copy_from_slice(&kn[k - p..=k + p + 1]);
-        let mut qd = [Ddi::exact(0.0); 4];
-        for (i, v) in qd.iter_mut().enumerate().take(p + 1) {
-            *v = Ddi::exact(s.pts[(k - p + i) * d + j]);
-        }
-        clamp_span(p, 1, &mut t[..2 * p + 2], &mut qd[..=p]);
+        let qd = span_coefficients::<Ddi>(s, j, k);
         // (the end-coefficient rule of the `bezier` strategy first: if an end coefficient has
         // the largest upper end, the span's maximum is at most that, and the end coefficient is
         // a value of the curve, C(u_k) or C(u_{k+1}); its enclosure is about an ulp wide)
@@ -389,7 +380,7 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
                         u_lo: u,
                         u_hi: u,
                         unique: false,
-                        kind: end_kind(s, u),
+                        kind: end_kind(s.curve, u),
                     },
                 ));
                 continue;
@@ -399,7 +390,7 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
             c: &qd[..=p],
             a: kn[k],
             b: kn[k + 1],
-            end_kinds: [end_kind(s, kn[k]), end_kind(s, kn[k + 1])],
+            end_kinds: [end_kind(s.curve, kn[k]), end_kind(s.curve, kn[k + 1])],
             right_attained: true,
         };
         let side = if sign > 0.0 { 0 } else { 1 };
@@ -428,16 +419,20 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
     })
 }
 
-/// What a span end at knot u is: a domain end, a non-differentiable knot (multiplicity >= p,
-/// thesis ch. 6), or a plain point of the curve.
-fn end_kind(s: &Simple, u: f64) -> CandidateKind {
-    if u == s.a || u == s.b {
-        CandidateKind::EndPoint
-    } else if crate::spline::knots::multiplicity(s.knots, u) >= s.p {
-        CandidateKind::Knot
-    } else {
-        CandidateKind::Critical
+/// The Bézier coefficients of coordinate j on span k (degree <= 3), in `S`: the span's p + 1
+/// local control values clamped at both ends on stack buffers (`bspline::clamp_span`, the
+/// body of `HSpline::bezier_segment`); for f64 within the a-priori bound of
+/// `bezier::span_filter`, for `Ddi` enclosures of the exact ones.
+fn span_coefficients<S: Scalar>(s: &Simple, j: usize, k: usize) -> [S; 4] {
+    let p = s.p;
+    let mut t = [0.0f64; 8];
+    t[..2 * p + 2].copy_from_slice(&s.knots[k - p..=k + p + 1]);
+    let mut q: [S; 4] = std::array::from_fn(|_| S::zero());
+    for (i, v) in q.iter_mut().enumerate().take(p + 1) {
+        *v = S::from_f64(s.pts[(k - p + i) * s.d + j]);
     }
+    clamp_span(p, 1, &mut t[..2 * p + 2], &mut q[..=p]);
+    q
 }
 
 /// The hull sides `[max, min]` of coordinate j: control-point box, attained end values.
@@ -489,14 +484,12 @@ pub fn enclose(
     certify: bool,
 ) -> Option<Enclosure> {
     let mut coords = Coords::new();
-    let mut open = false;
     for j in 0..s.d {
         let clock = Clock::start();
         let ([hi, lo], term) = match lane {
             Lane::Hull => (hull_sides(s, j), Termination::Direct),
             Lane::Tight => (tight_sides(s, j)?, Termination::Converged),
         };
-        let (plo, phi) = s.range[j];
         let n = |k: usize| (hi.counts[k] + lo.counts[k]) as u64;
         let stats = Stats {
             fast_exits: n(0),
@@ -506,14 +499,13 @@ pub fn enclose(
             time_total: clock.elapsed(),
             ..Stats::default()
         };
-        let mut cb = CoordBox::from_sides(hi.data, lo.data, stats, term);
-        // the driver's facts: clamp to the control-point box, the clamped end values are
-        // attained, inner bounds consistent with the outer ones
-        cb.lo = cb.lo.max(plo);
-        cb.hi = cb.hi.min(phi);
-        let (e0, e1) = (s.pts[j], s.pts[s.n * s.d + j]);
-        cb.inner_lo = cb.inner_lo.min(e0).min(e1).min(cb.hi).max(cb.lo);
-        cb.inner_hi = cb.inner_hi.max(e0).max(e1).max(cb.lo).min(cb.hi);
+        coords.push(CoordBox::from_sides(hi.data, lo.data, stats, term));
+    }
+    let mut open = false;
+    for (j, cb) in coords.iter_mut().enumerate() {
+        let (plo, phi) = s.range[j];
+        let ends = [s.pts[j], s.pts[s.n * s.d + j]].map(Some);
+        apply_facts(cb, (plo, phi), ends, true);
         if certify {
             let scale = plo.abs().max(phi.abs()).max(f64::MIN_POSITIVE);
             let q_hi = certify::quick(cb.hi, cb.inner_hi, cb.witness_hi, scale);
@@ -522,7 +514,6 @@ pub fn enclose(
             cb.optimal_lo = q_lo == Some(true);
             open |= q_hi.is_none() || q_lo.is_none();
         }
-        coords.push(cb);
     }
     let mut e = Enclosure {
         strategy: name,
