@@ -1,9 +1,9 @@
 //! The `bezier` strategy: Bézier decomposition with subdivision (NURBS Book A5.6, then
 //! branch and bound on the Bernstein coefficients).
 //!
-//! 1. Knot insertion turns every non-empty span into a Bézier segment, in interval arithmetic
-//!    (`HSpline<Interval>::decompose`, NURBS Book A5.6), so the coefficients enclose the exact
-//!    ones.
+//! 1. Knot insertion turns every non-empty span into a Bézier segment, in verified
+//!    midpoint-radius arithmetic (`HSpline<Mr>::bezier_segment`, NURBS Book A5.6), so the
+//!    coefficients enclose the exact ones.
 //! 2. Per segment and coordinate the Cartesian Bernstein coefficients b_i = (w P_j)_i / w_i
 //!    bound the segment: min b_i <= C_j <= max b_i (convex hull property; for a rational segment
 //!    valid because all w_i > 0, so C_j is a convex combination of the ratios b_i).
@@ -28,7 +28,7 @@
 //!   few test points (an f64 filter with an a-priori error bound, `Ddi` where it is unsure),
 //!   root counting, and a `Ddi` Taylor enclosure over each tiny bracket. It hands the curve to
 //!   the branch and bound below when it cannot prove a result within two ulps.
-//! * Before a span is converted in interval arithmetic, its f64 Bézier coefficients with an
+//! * Before a span is converted in verified arithmetic, its f64 Bézier coefficients with an
 //!   a-priori knot-insertion error bound ([`span_filter`]) give a cheap, sound upper bound and
 //!   an attained value, which prune most spans of long splines without interval work.
 //!
@@ -40,6 +40,8 @@ use super::{
 use crate::num::ddi::Ddi;
 use smallvec::SmallVec;
 use crate::num::iv;
+use crate::num::mr::Mr;
+use crate::num::Scalar;
 use crate::spline::bezier::{cartesian, de_casteljau_eval_in_place, hodograph};
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
@@ -149,7 +151,7 @@ fn bern(c: &[f64], t: f64) -> f64 {
 /// Newton's method on the numerator N = A' w - A w' of C_j' (N = A' if non-rational), using
 /// the midpoints of the interval coefficients. `None` if Newton leaves the piece. The estimate
 /// is only a place to split; nothing about soundness depends on it.
-fn critical(seg: &BezierSeg<Interval>, s0: f64, s1: f64) -> Option<f64> {
+fn critical(seg: &BezierSeg<Mr>, s0: f64, s1: f64) -> Option<f64> {
     let (a, b) = (seg.a, seg.b);
     let (av, wv): (Vec<f64>, Vec<f64>) = if seg.rational {
         seg.pts.chunks(2).map(|c| (c[0].mid(), c[1].mid())).unzip()
@@ -191,17 +193,25 @@ fn critical(seg: &BezierSeg<Interval>, s0: f64, s1: f64) -> Option<f64> {
 
 /// Sign-adjusted Cartesian coefficient enclosures of `seg` (one coordinate, homogeneous rows)
 /// restricted to the global parameter range [s0, s1] inside [seg.a, seg.b].
-fn sub_coeffs(seg: &BezierSeg<Interval>, s0: f64, s1: f64, sign: f64) -> Vec<Interval> {
+///
+/// The corner cutting runs in midpoint-radius arithmetic ([`Mr`]: a few inlined flops per
+/// step, where inari's `Interval` makes every operation an out-of-line call); the local
+/// parameters are enclosed in `Interval` (one division each) and converted exactly
+/// ([`Mr::from_bounds`] encloses the interval), and only the final coefficients are rounded
+/// outward to `Interval` ([`Scalar::to_interval`]). Every step encloses its exact result, so
+/// the coefficients enclose the exact ones over [s0, s1] (see [`BezierSeg::sub_points`]).
+fn sub_coeffs(seg: &BezierSeg<Mr>, s0: f64, s1: f64, sign: f64) -> Vec<Interval> {
     let (a, b) = (seg.a, seg.b);
     let (pa, pb, p0, p1) = (iv::point(a), iv::point(b), iv::point(s0), iv::point(s1));
+    let mr = |x: Interval| Mr::from_bounds(x.inf(), x.sup());
     // local t1 = (s1 - a) / (b - a); t0 relative to [a, s1]: (s0 - a) / (s1 - a), enclosed
-    let t1 = (s1 < b).then(|| (p1 - pa) / (pb - pa));
-    let t0 = (s0 > a).then(|| (p0 - pa) / (p1 - pa));
+    let t1 = (s1 < b).then(|| mr((p1 - pa) / (pb - pa)));
+    let t0 = (s0 > a).then(|| mr((p0 - pa) / (p1 - pa)));
     let pts = seg.sub_points(t1.as_ref(), t0.as_ref());
     let s = iv::point(sign);
     cartesian(pts, 1, seg.rational)
         .into_iter()
-        .map(|x| s * x)
+        .map(|x| s * x.to_interval())
         .collect()
 }
 
@@ -263,8 +273,8 @@ struct Item {
 /// The per-curve data of the branch and bound, built when some coordinate side needs it.
 struct Ctx<'a> {
     vals: Values<'a>,
-    /// homogeneous spline in interval arithmetic (Bézier segments for the search)
-    hs: HSpline<Interval>,
+    /// homogeneous spline in midpoint-radius arithmetic (Bézier segments for the search)
+    hs: HSpline<Mr>,
     /// the same in f64 for the span filter (non-rational curves only)
     hf: Option<HSpline<f64>>,
     /// the same in double-double for the `single` fast path on spans (non-rational curves of
@@ -272,7 +282,7 @@ struct Ctx<'a> {
     hd: Option<HSpline<Ddi>>,
     /// non-empty spans
     spans: Vec<usize>,
-    segs: Vec<Option<BezierSeg<Interval>>>,
+    segs: Vec<Option<BezierSeg<Mr>>>,
     fsegs: Vec<Option<BezierSeg<f64>>>,
     dsegs: Vec<Option<BezierSeg<Ddi>>>,
 }
@@ -284,7 +294,7 @@ impl<'a> Ctx<'a> {
         let kn = c.knots();
         Ctx {
             vals: Values::new(c),
-            hs: HSpline::<Interval>::from_curve(c),
+            hs: HSpline::<Mr>::from_curve(c),
             hf: (!c.is_rational()).then(|| HSpline::<f64>::from_curve(c)),
             hd: (fast && !c.is_rational() && (2..=3).contains(&p))
                 .then(|| HSpline::<Ddi>::from_curve(c)),
@@ -317,7 +327,7 @@ impl BezierSubdivision {
     ///
     /// Spans enter with the bound max_i sign * P_ij over their p + 1 local control points
     /// (exact f64; the curve on span k is a convex combination of P_{k-p} .. P_k, weights > 0),
-    /// and are converted to Bézier segments (interval knot insertion) only when that bound
+    /// and are converted to Bézier segments (verified knot insertion) only when that bound
     /// exceeds the largest value found so far. Once the best remaining bound is <= a value
     /// the curve provably attains, everything left is pruned (soundly: see `Side`).
     fn maximize(&self, ctx: &mut Ctx, j: usize, sign: f64) -> Side {

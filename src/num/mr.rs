@@ -60,6 +60,35 @@ impl Mr {
         Mr::checked(c, dist_up(c, lo).max(dist_up(hi, c)))
     }
 
+    /// `(1 - t) lo + t hi` for an exact parameter t in [0, 1] (corner cutting at an f64
+    /// parameter: de Casteljau, knot insertion), in about ten flops.
+    ///
+    /// Soundness: let X in [x - rx, x + rx], Y in [y - ry, y + ry] (x = lo.c, y = hi.c). Then
+    /// (1 - t) X + t Y = (1 - t) x + t y + e with |e| <= (1 - t) rx + t ry (t in [0, 1]). The
+    /// centre is c = fl(t d + x) (one FMA) with d = fl(y - x): |d - (y - x)| <= u |y - x| <=
+    /// U1 |d| (a difference has no underflow error) and |c - (t d + x)| <= U1 |c| + eta, so
+    /// |c - ((1 - t) x + t y)| <= U1 |c| + t U1 |d| + eta. The radius bound
+    /// T = U1 (|c| + t |d|) + fl(1 - t) rx + t ry + ETA16 (ETA16 >= eta) is evaluated with
+    /// nonnegative intermediates only; fl(1 - t) >= (1 - t)(1 - u) is one more rounding by a
+    /// factor at most (1 - u) of a nonnegative exact value, which is what Lemma B counts (at
+    /// most 15 roundings on a path, here 6), so `up` bounds it from above. Exact cases stay
+    /// exact: t = 0 or 1 returns an end, and equal exact ends return that value. Anything
+    /// non-finite gives ENTIRE (`checked`). The radius does not grow along a corner-cutting
+    /// chain beyond the convex combination of the radii and the few rounding units added here.
+    #[inline(always)]
+    fn lerp_point(t: f64, lo: &Mr, hi: &Mr) -> Mr {
+        if t == 0.0 || (lo.r == 0.0 && hi.r == 0.0 && lo.c == hi.c) {
+            return *lo;
+        }
+        if t == 1.0 {
+            return *hi;
+        }
+        let d = hi.c - lo.c;
+        let c = t.mul_add(d, lo.c);
+        let r = U1 * (c.abs() + t * d.abs()) + (1.0 - t) * lo.r + t * hi.r + ETA16;
+        Mr::checked(c, up(r))
+    }
+
     /// Centre.
     #[inline]
     pub fn mid(&self) -> f64 {
@@ -167,6 +196,9 @@ impl Scalar for Mr {
     // an out-of-line call there cost the degree-10 span a third more time)
     #[inline(always)]
     fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
+        if a.r == 0.0 && (0.0..=1.0).contains(&a.c) {
+            return Mr::lerp_point(a.c, lo, hi);
+        }
         let convex = (Mr::from_f64(1.0) - *a) * *lo + *a * *hi;
         if a.r <= a.c.abs() * (1.0 / 1_099_511_627_776.0) {
             return convex;
@@ -292,6 +324,54 @@ mod tests {
                 // both enclose the exact point: they must overlap; and Mr stays narrow
                 assert!(!m.to_interval().intersection(*i).is_empty(), "{m:?} {i:?}");
                 assert!(m.rad() <= 1e-12 * m.mid().abs().max(1.0), "{m:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn point_lerp_encloses_exact_convex_combinations() {
+        // (1 - t) X + t Y in exact rationals at the corners X = x +- rx, Y = y +- ry (a linear
+        // function of X, Y: its extremes over the box are at corners) must lie in the result.
+        use crate::num::exact::Exact;
+        use std::cmp::Ordering;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let mags = [1e-310, 1e-300, 1e-20, 1.0, 1e20, 1e300, 8e307];
+        for k in 0..20_000 {
+            let m = |rng: &mut rand_chacha::ChaCha8Rng| mags[rng.random_range(0..mags.len())];
+            let x = rng.random_range(-1.0..1.0) * m(&mut rng);
+            let y = if k % 5 == 0 {
+                x * (1.0 + rng.random_range(-1e-15..1e-15))
+            } else {
+                rng.random_range(-1.0..1.0) * m(&mut rng)
+            };
+            let rad = |rng: &mut rand_chacha::ChaCha8Rng, v: f64| match rng.random_range(0..3) {
+                0 => 0.0,
+                1 => f64::from_bits(rng.random_range(1..1000)),
+                _ => v.abs() * rng.random_range(0.0..1e-10),
+            };
+            let (rx, ry) = (rad(&mut rng, x), rad(&mut rng, y));
+            let t = match k % 4 {
+                0 => rng.random_range(0.0..1.0),
+                1 => rng.random_range(0.0..1e-300),
+                2 => 1.0 - rng.random_range(0.0..1e-15),
+                _ => [0.0, 1.0, 0.5, 0.25][rng.random_range(0..4)],
+            };
+            let (lo, hi) = (Mr::checked(x, rx), Mr::checked(y, ry));
+            let z = <Mr as Scalar>::lerp(&Mr::from_f64(t), &lo, &hi);
+            if z.r == f64::INFINITY {
+                continue;
+            }
+            let et = Exact::of(t);
+            for sx in [-1.0, 1.0] {
+                for sy in [-1.0, 1.0] {
+                    let xe = Exact::of(x) + Exact::of(sx) * Exact::of(rx);
+                    let ye = Exact::of(y) + Exact::of(sy) * Exact::of(ry);
+                    let v = (Exact::of(1.0) - et.clone()) * xe + et.clone() * ye;
+                    let dev = v - Exact::of(z.c);
+                    let ok = (dev.clone() - Exact::of(z.r)).signum() != Some(Ordering::Greater)
+                        && (dev + Exact::of(z.r)).signum() != Some(Ordering::Less);
+                    assert!(ok, "lerp({t}, {lo:?}, {hi:?}) = {z:?}");
+                }
             }
         }
     }
