@@ -42,7 +42,7 @@ use smallvec::SmallVec;
 use crate::num::iv;
 use crate::num::mr::Mr;
 use crate::num::Scalar;
-use crate::spline::bezier::{cartesian, de_casteljau_eval_in_place, hodograph};
+use crate::spline::bezier::{cartesian, hodograph};
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
 use crate::spline::tight::TightEval;
@@ -131,20 +131,10 @@ impl<'a> Values<'a> {
     }
 }
 
-/// f64 Bernstein polynomial value by the shared de Casteljau kernel
-/// [`de_casteljau_eval_in_place`] (only used for estimates), on a stack buffer: no allocation
-/// up to degree 63 in this Newton loop.
+/// f64 Bernstein polynomial value (only used for estimates), in O(p) operations by the
+/// shared kernel [`crate::spline::bezier::bernstein_value`].
 fn bern(c: &[f64], t: f64) -> f64 {
-    let mut stack = [0.0f64; 64];
-    let mut heap;
-    let b: &mut [f64] = if c.len() <= 64 {
-        stack[..c.len()].copy_from_slice(c);
-        &mut stack[..c.len()]
-    } else {
-        heap = c.to_vec();
-        &mut heap
-    };
-    de_casteljau_eval_in_place(b, &t)
+    crate::spline::bezier::bernstein_value(c, t)
 }
 
 /// An f64 estimate of a critical point of C_j in (s0, s1) on the coordinate segment `seg`:

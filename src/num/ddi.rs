@@ -653,11 +653,12 @@ impl Scalar for Ddi {
     /// only the convex form is computed: its radius, (1 - t) r_lo + t r_hi plus rounding, is
     /// then never above the thesis form's t (r_lo + r_hi) + r_lo plus rounding, so the choice
     /// is the same and the thesis form's work is saved; t = 0 and t = 1 return the end itself
-    /// (exactly the value of both forms).
+    /// (exactly the value of both forms), and so do equal ends (a convex combination of two
+    /// points of one interval lies in it; the thesis form's exact case, hi - lo = 0).
     #[inline(always)]
     fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
         if a.is_f64() && (0.0..=1.0).contains(&a.hi) {
-            if a.hi == 0.0 {
+            if a.hi == 0.0 || lo == hi {
                 return *lo;
             }
             if a.hi == 1.0 {

@@ -72,12 +72,14 @@ impl Mr {
     /// nonnegative intermediates only; fl(1 - t) >= (1 - t)(1 - u) is one more rounding by a
     /// factor at most (1 - u) of a nonnegative exact value, which is what Lemma B counts (at
     /// most 15 roundings on a path, here 6), so `up` bounds it from above. Exact cases stay
-    /// exact: t = 0 or 1 returns an end, and equal exact ends return that value. Anything
+    /// exact: t = 0 or 1 returns an end, equal ends return that set (a convex combination of two
+    /// points of one interval lies in it), and exact data whose result is exact stays exact
+    /// ([`exact_lerp`]). Anything
     /// non-finite gives ENTIRE (`checked`). The radius does not grow along a corner-cutting
     /// chain beyond the convex combination of the radii and the few rounding units added here.
     #[inline(always)]
     fn lerp_point(t: f64, lo: &Mr, hi: &Mr) -> Mr {
-        if t == 0.0 || (lo.r == 0.0 && hi.r == 0.0 && lo.c == hi.c) {
+        if t == 0.0 || lo == hi {
             return *lo;
         }
         if t == 1.0 {
@@ -85,6 +87,9 @@ impl Mr {
         }
         let d = hi.c - lo.c;
         let c = t.mul_add(d, lo.c);
+        if lo.r == 0.0 && hi.r == 0.0 && exact_lerp(t, lo.c, hi.c, d, c) {
+            return Mr::checked(c, 0.0);
+        }
         let r = U1 * (c.abs() + t * d.abs()) + (1.0 - t) * lo.r + t * hi.r + ETA16;
         Mr::checked(c, up(r))
     }
@@ -100,6 +105,29 @@ impl Mr {
     pub fn rad(&self) -> f64 {
         self.r
     }
+}
+
+/// Whether c = fl(t d + x) with d = fl(y - x) is exactly x + t (y - x) (exact data stays
+/// exact along corner cutting, as with the exactness tests of `Mr`'s `+` and `*`): d is exact
+/// when its TwoSum error term is 0; then t d is exact when its TwoProd error term is 0 and the
+/// product cannot have lost bits to underflow (|fl(t d)| >= 1e-290 > 2^-964, or d = 0: a
+/// product that underflows to 0 is not exact); then c is exact
+/// when the TwoSum error of fl(t d) + x is 0 (and then c equals the FMA's result).
+#[inline]
+fn exact_lerp(t: f64, x: f64, y: f64, d: f64, c: f64) -> bool {
+    let two_sum_exact = |a: f64, b: f64, s: f64| {
+        let bb = s - a;
+        (a - (s - bb)) + (b - bb) == 0.0
+    };
+    if !two_sum_exact(y, -x, d) {
+        return false;
+    }
+    let p = t * d;
+    if t.mul_add(d, -p) != 0.0 || (d != 0.0 && p.abs() < 1e-290) {
+        return false;
+    }
+    let s = p + x;
+    s == c && two_sum_exact(p, x, s)
 }
 
 impl Add for Mr {

@@ -45,6 +45,9 @@ pub(super) struct SpanPoly {
     f: BezierSeg<Mr>,
     /// F', degree n - 1 (one zero coefficient for n = 0)
     df: BezierSeg<Mr>,
+    /// the segment of `seg` in double-double, built on the first [`SpanPoly::values_tight`]
+    /// (knot insertion in `Ddi` costs more than the rest of a candidate's evaluation)
+    dseg: std::cell::OnceCell<BezierSeg<Ddi>>,
 }
 
 impl SpanPoly {
@@ -94,6 +97,7 @@ impl SpanPoly {
             f: poly(fco),
             df: poly(dco),
             seg,
+            dseg: std::cell::OnceCell::new(),
         }
     }
 
@@ -138,9 +142,11 @@ impl SpanPoly {
     /// boxes, where the few hundred ulps of the Mr points would show in the bounds.
     pub(super) fn values_tight(&self, c: &NurbsCurve, j: usize, t: T) -> (Interval, Interval) {
         let (t0, t1) = (t.lo, t.hi);
-        let seg: BezierSeg<Ddi> = shifted_segment(c, j, self.k, self.c);
+        let seg = self
+            .dseg
+            .get_or_init(|| shifted_segment(c, j, self.k, self.c));
         let r = self.seg.rational;
-        let over = hull(&cartesian(Self::restrict(&seg, t0, t1), r));
+        let over = hull(&cartesian(Self::restrict(seg, t0, t1), r));
         let at = hull(&cartesian(
             seg.eval_local(&Ddi::from_f64(midpoint(t0, t1))),
             r,
@@ -276,16 +282,7 @@ impl SpanPoly {
 /// where the sign changes once: Newton's method from the midpoint, a bisection step whenever
 /// it leaves the bracket (an estimate only; see [`SpanPoly::zero_estimates`]).
 fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64) -> f64 {
-    let mut stack = [0.0f64; 64];
-    let mut eval = |v: &[f64], t: f64| -> f64 {
-        if v.len() <= 64 {
-            let b = &mut stack[..v.len()];
-            b.copy_from_slice(v);
-            crate::spline::bezier::de_casteljau_eval_in_place(b, &t)
-        } else {
-            crate::spline::bezier::de_casteljau_eval(v, &t)
-        }
-    };
+    let eval = |v: &[f64], t: f64| crate::spline::bezier::bernstein_value(v, t);
     let f0 = eval(c, t0);
     let mut t = 0.5 * (t0 + t1);
     for _ in 0..60 {
