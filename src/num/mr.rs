@@ -60,37 +60,50 @@ impl Mr {
         Mr::checked(c, dist_up(c, lo).max(dist_up(hi, c)))
     }
 
-    /// `(1 - t) lo + t hi` for an exact parameter t in [0, 1] (corner cutting at an f64
-    /// parameter: de Casteljau, knot insertion), in about ten flops.
+    /// `(1 - A) lo + A hi` for every A in the parameter set [t - ra, t + ra] with centre t in
+    /// [0, 1] (corner cutting at an f64 parameter, ra = 0, or at an enclosed knot ratio, ra
+    /// tiny: de Casteljau, knot insertion), in about a dozen flops.
     ///
-    /// Soundness: let X in [x - rx, x + rx], Y in [y - ry, y + ry] (x = lo.c, y = hi.c). Then
-    /// (1 - t) X + t Y = (1 - t) x + t y + e with |e| <= (1 - t) rx + t ry (t in [0, 1]). The
-    /// centre is c = fl(t d + x) (one FMA) with d = fl(y - x): |d - (y - x)| <= u |y - x| <=
-    /// U1 |d| (a difference has no underflow error) and |c - (t d + x)| <= U1 |c| + eta, so
+    /// Soundness: let X in [x - rx, x + rx], Y in [y - ry, y + ry] (x = lo.c, y = hi.c) and
+    /// |A - t| <= ra. Then (1 - A) X + A Y = (1 - t) X + t Y + (A - t)(Y - X), where
+    /// (1 - t) X + t Y = (1 - t) x + t y + e with |e| <= (1 - t) rx + t ry (t in [0, 1]) and
+    /// |(A - t)(Y - X)| <= ra (|x| + |y| + rx + ry). The centre is c = fl(t d + x) (one FMA)
+    /// with d = fl(y - x): |d - (y - x)| <= u |y - x| <= U1 |d| (a difference has no
+    /// underflow error) and |c - (t d + x)| <= U1 |c| + eta, so
     /// |c - ((1 - t) x + t y)| <= U1 |c| + t U1 |d| + eta. The radius bound
-    /// T = U1 (|c| + t |d|) + fl(1 - t) rx + t ry + ETA16 (ETA16 >= eta) is evaluated with
-    /// nonnegative intermediates only; fl(1 - t) >= (1 - t)(1 - u) is one more rounding by a
-    /// factor at most (1 - u) of a nonnegative exact value, which is what Lemma B counts (at
-    /// most 15 roundings on a path, here 6), so `up` bounds it from above. Exact cases stay
-    /// exact: t = 0 or 1 returns an end, equal ends return that set (a convex combination of two
-    /// points of one interval lies in it), and exact data whose result is exact stays exact
-    /// ([`exact_lerp`]). Anything
-    /// non-finite gives ENTIRE (`checked`). The radius does not grow along a corner-cutting
-    /// chain beyond the convex combination of the radii and the few rounding units added here.
+    /// T = U1 (|c| + t |d|) + fl(1 - t) rx + t ry + ra (|x| + |y| + rx + ry) + ETA16
+    /// (ETA16 >= eta) is evaluated with nonnegative intermediates only; fl(1 - t) >=
+    /// (1 - t)(1 - u) is one more rounding by a factor at most (1 - u) of a nonnegative exact
+    /// value, which is what Lemma B counts (at most 15 roundings on a path, here 7), so `up`
+    /// bounds it from above. Exact cases stay exact: for an exact parameter (ra = 0) t = 0 or 1
+    /// returns an end and equal ends return that set (a convex combination of two points of one
+    /// interval lies in it); equal exact ends (rx = 0) return that point for any A; and exact
+    /// data whose result is exact stays exact ([`exact_lerp`]). Anything non-finite gives
+    /// ENTIRE (`checked`). The radius does not grow along a corner-cutting chain beyond the
+    /// convex combination of the radii and the few rounding units added here.
     #[inline(always)]
-    fn lerp_point(t: f64, lo: &Mr, hi: &Mr) -> Mr {
-        if t == 0.0 || lo == hi {
+    fn lerp_narrow(t: f64, ra: f64, lo: &Mr, hi: &Mr) -> Mr {
+        if lo == hi && (ra == 0.0 || lo.r == 0.0) {
             return *lo;
         }
-        if t == 1.0 {
-            return *hi;
+        if ra == 0.0 {
+            if t == 0.0 {
+                return *lo;
+            }
+            if t == 1.0 {
+                return *hi;
+            }
         }
         let d = hi.c - lo.c;
         let c = t.mul_add(d, lo.c);
-        if lo.r == 0.0 && hi.r == 0.0 && exact_lerp(t, lo.c, hi.c, d, c) {
+        if ra == 0.0 && lo.r == 0.0 && hi.r == 0.0 && exact_lerp(t, lo.c, hi.c, d, c) {
             return Mr::checked(c, 0.0);
         }
-        let r = U1 * (c.abs() + t * d.abs()) + (1.0 - t) * lo.r + t * hi.r + ETA16;
+        let r = U1 * (c.abs() + t * d.abs())
+            + (1.0 - t) * lo.r
+            + t * hi.r
+            + ra * (lo.c.abs() + hi.c.abs() + lo.r + hi.r)
+            + ETA16;
         Mr::checked(c, up(r))
     }
 
@@ -224,8 +237,10 @@ impl Scalar for Mr {
     // an out-of-line call there cost the degree-10 span a third more time)
     #[inline(always)]
     fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
-        if a.r == 0.0 && (0.0..=1.0).contains(&a.c) {
-            return Mr::lerp_point(a.c, lo, hi);
+        // (a point-like parameter, radius <= 2^-40 |a|, with its centre in [0, 1]: the
+        // convex form in a dozen flops; otherwise both forms as below)
+        if a.r <= a.c.abs() * (1.0 / 1_099_511_627_776.0) && (0.0..=1.0).contains(&a.c) {
+            return Mr::lerp_narrow(a.c, a.r, lo, hi);
         }
         let convex = (Mr::from_f64(1.0) - *a) * *lo + *a * *hi;
         if a.r <= a.c.abs() * (1.0 / 1_099_511_627_776.0) {
@@ -385,20 +400,25 @@ mod tests {
                 _ => [0.0, 1.0, 0.5, 0.25][rng.random_range(0..4)],
             };
             let (lo, hi) = (Mr::checked(x, rx), Mr::checked(y, ry));
-            let z = <Mr as Scalar>::lerp(&Mr::from_f64(t), &lo, &hi);
+            // an exact parameter, or one enclosed with a tiny radius (a knot ratio)
+            let ra = if k % 3 == 0 { t * 1e-16 } else { 0.0 };
+            let a = Mr::checked(t, ra);
+            let z = <Mr as Scalar>::lerp(&a, &lo, &hi);
             if z.r == f64::INFINITY {
                 continue;
             }
-            let et = Exact::of(t);
-            for sx in [-1.0, 1.0] {
-                for sy in [-1.0, 1.0] {
-                    let xe = Exact::of(x) + Exact::of(sx) * Exact::of(rx);
-                    let ye = Exact::of(y) + Exact::of(sy) * Exact::of(ry);
-                    let v = (Exact::of(1.0) - et.clone()) * xe + et.clone() * ye;
-                    let dev = v - Exact::of(z.c);
-                    let ok = (dev.clone() - Exact::of(z.r)).signum() != Some(Ordering::Greater)
-                        && (dev + Exact::of(z.r)).signum() != Some(Ordering::Less);
-                    assert!(ok, "lerp({t}, {lo:?}, {hi:?}) = {z:?}");
+            for st in [-1.0, 1.0] {
+                let et = Exact::of(t) + Exact::of(st) * Exact::of(ra);
+                for sx in [-1.0, 1.0] {
+                    for sy in [-1.0, 1.0] {
+                        let xe = Exact::of(x) + Exact::of(sx) * Exact::of(rx);
+                        let ye = Exact::of(y) + Exact::of(sy) * Exact::of(ry);
+                        let v = (Exact::of(1.0) - et.clone()) * xe + et.clone() * ye;
+                        let dev = v - Exact::of(z.c);
+                        let ok = (dev.clone() - Exact::of(z.r)).signum() != Some(Ordering::Greater)
+                            && (dev + Exact::of(z.r)).signum() != Some(Ordering::Less);
+                        assert!(ok, "lerp({t} +- {ra}, {lo:?}, {hi:?}) = {z:?}");
+                    }
                 }
             }
         }
