@@ -316,7 +316,11 @@ impl<'a> Engine<'a> {
             ];
             let mut enc = self.tight.coord_over(self.j, lo, hi);
             let mut cm = cm;
-            if let (Some(t), Some(sp)) = (cd.t, self.span_poly(k)) {
+            // (skipped when the Taylor enclosure is already within two ulps: the Bézier hull
+            // below cannot make it narrower than the f64 resolution, and C(m) above is
+            // already an attained value)
+            let narrow = enc.sup() <= enc.inf().next_up().next_up();
+            if let (false, Some(t), Some(sp)) = (narrow, cd.t, self.span_poly(k)) {
                 // The hull of the Bézier points of the piece over [t0, t1] (convex hull
                 // property, see SpanPoly::values): also an enclosure of its values on the box,
                 // and far tighter than [lo, hi] when the span is below the f64 resolution of
