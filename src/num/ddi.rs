@@ -654,9 +654,14 @@ impl Scalar for Ddi {
     /// then never above the thesis form's t (r_lo + r_hi) + r_lo plus rounding, so the choice
     /// is the same and the thesis form's work is saved; t = 0 and t = 1 return the end itself
     /// (exactly the value of both forms), and so do equal ends (a convex combination of two
-    /// points of one interval lies in it; the thesis form's exact case, hi - lo = 0).
+    /// points of one interval lies in it; the thesis form's exact case, hi - lo = 0). Equal
+    /// exact ends are returned for any parameter. A narrow parameter (radius <= 2^-40 |a|,
+    /// centre in [0, 1]) also takes the convex form only.
     #[inline(always)]
     fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
+        if lo == hi && lo.rad == 0.0 {
+            return *lo; // x + a (x - x) = x for every a
+        }
         if a.is_f64() && (0.0..=1.0).contains(&a.hi) {
             if a.hi == 0.0 || lo == hi {
                 return *lo;
@@ -664,6 +669,11 @@ impl Scalar for Ddi {
             if a.hi == 1.0 {
                 return *hi;
             }
+            return a.mul_add(*hi, (Ddi::exact(1.0) - *a) * *lo);
+        }
+        if a.rad <= a.hi.abs() * (1.0 / 1_099_511_627_776.0) && (0.0..=1.0).contains(&a.hi) {
+            // a narrow parameter (an enclosed knot ratio, radius ~2^-105 |a|): the thesis form
+            // can only win by about rad(a) (|lo| + |hi|), far below the f64 resolution
             return a.mul_add(*hi, (Ddi::exact(1.0) - *a) * *lo);
         }
         let thesis = a.mul_add(*hi - *lo, *lo);
@@ -731,6 +741,47 @@ mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
+
+    #[test]
+    fn lerp_encloses_exact_convex_combinations() {
+        // (1 - A) X + A Y in exact rationals at the corners of the parameter and point sets (a
+        // multilinear function: its extremes over the box are at corners) must lie in the
+        // result: exact, narrow (an enclosed knot ratio) and wide parameters, equal ends.
+        use crate::num::exact::Exact;
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        for k in 0..6000 {
+            let t: f64 = rng.random_range(0.0..1.0);
+            let ra = [0.0, t * 1e-31, t * 1e-3][k % 3];
+            let a = Ddi::new(t, t * 1e-17 * (k % 2) as f64, ra);
+            let x = rng.random_range(-1.0..1.0) * 10f64.powi(rng.random_range(-20..20));
+            let y = if k % 7 == 0 {
+                x
+            } else {
+                rng.random_range(-1.0..1.0)
+            };
+            let rx = if k % 5 == 0 { 0.0 } else { x.abs() * 1e-25 };
+            let ry = if k % 5 == 0 { 0.0 } else { y.abs() * 1e-25 };
+            let (lo, hi) = (Ddi::new(x, x * 1e-18, rx), Ddi::new(y, 0.0, ry));
+            let z = <Ddi as Scalar>::lerp(&a, &lo, &hi);
+            let ex = |d: Ddi, s: f64| {
+                Exact::of(d.hi) + Exact::of(d.lo) + Exact::of(s) * Exact::of(d.rad)
+            };
+            let zc = Exact::of(z.hi) + Exact::of(z.lo);
+            for sa in [-1.0, 1.0] {
+                for sx in [-1.0, 1.0] {
+                    for sy in [-1.0, 1.0] {
+                        let (av, xv, yv) = (ex(a, sa), ex(lo, sx), ex(hi, sy));
+                        let v = (Exact::of(1.0) - av.clone()) * xv + av * yv;
+                        let dev = v - zc.clone();
+                        let ok = (dev.clone() - Exact::of(z.rad)).signum()
+                            != Some(Ordering::Greater)
+                            && (dev + Exact::of(z.rad)).signum() != Some(Ordering::Less);
+                        assert!(ok, "lerp({a:?}, {lo:?}, {hi:?}) = {z:?}");
+                    }
+                }
+            }
+        }
+    }
 
     /// `strictly_below` is the largest f64 below the exact lower end (checked with exact
     /// rationals), on random sets, sets whose lower end is a double, and tiny radii.
