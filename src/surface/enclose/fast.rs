@@ -1212,106 +1212,147 @@ struct Prover<'a, const N: usize> {
 
 impl<const N: usize> Prover<'_, N> {
     /// F <= 0 on the piece `root` (the patch, `slot` 4, or its boundary curve `slot`).
+    ///
+    /// The pieces live in `pool` and never move: the open list holds their indices, a
+    /// settled piece's slot is reused, and a split writes its halves straight into slots (a
+    /// `Piece` is a few hundred bytes; moving pieces in and out of a work list was a quarter
+    /// of the proof's cost).
     fn prove(&mut self, root: &Piece<N>, slot: usize, g: &DdGrid<N>) -> bool {
         let free = [root.n[0] > 0, root.n[1] > 0];
-        let mut work: SmallVec<[Piece<N>; 16]> = SmallVec::new();
-        work.push(*root);
+        let mut pool: SmallVec<[Piece<N>; 12]> = SmallVec::new();
+        pool.push(*root);
+        let mut open: SmallVec<[usize; 16]> = SmallVec::new();
+        open.push(0);
+        let mut spare: SmallVec<[usize; 16]> = SmallVec::new();
+        // a free slot (a new one holds a copy of the root until it is written)
+        let take = |pool: &mut SmallVec<[Piece<N>; 12]>, spare: &mut SmallVec<[usize; 16]>| {
+            spare.pop().unwrap_or_else(|| {
+                pool.push(*root);
+                pool.len() - 1
+            })
+        };
         // best first (the largest coefficient): the pieces around the maximum are refined
         // first, so `ub` reaches it before the others are judged against it
-        while let Some(pc) = {
-            let best = (0..work.len()).max_by(|&x, &y| work[x].prio.total_cmp(&work[y].prio));
-            best.map(|i| work.swap_remove(i))
+        while let Some(k) = {
+            let best =
+                (0..open.len()).max_by(|&x, &y| pool[open[x]].prio.total_cmp(&pool[open[y]].prio));
+            best.map(|i| open.swap_remove(i))
         } {
             if *self.budget == 0 {
                 return false;
             }
             *self.budget -= 1;
             self.st.subdivisions += 1;
-            let mut buf = [0.0f64; N];
-            // (the ub of f: a curvature bound from f holds for F = A - ub_f w only)
-            let ub_f = self.ub;
-            let Some((f, e)) = pc.f_values(ub_f, &mut buf) else {
-                return false;
-            };
-            if pc.excluded(f, e, self.ub) {
-                continue;
-            }
-            let mut done = false;
-            for d in (0..2).filter(|&d| free[d]) {
-                for (end, down) in [(0usize, true), (1, false)] {
-                    let touches = if end == 0 {
-                        pc.t[d].0 == 0.0
-                    } else {
-                        pc.t[d].1 == 1.0
-                    };
-                    if !done && touches && pc.monotone(f, e, d, down) {
-                        // a boundary curve's sides are patch corners (<= ub: candidates)
-                        let ub0 = self.ub;
-                        done = slot < 4 || self.edge(root, 2 * d + end, g);
-                        // (the edge proof may raise ub; for a rational patch F = A - ub w
-                        // then changes shape, so its monotonicity is checked again)
-                        if done && self.ub != ub0 && self.rational {
-                            let mut b2 = [0.0f64; N];
-                            done = pc
-                                .f_values(self.ub, &mut b2)
-                                .is_some_and(|(f2, e2)| pc.monotone(f2, e2, d, down));
-                        }
-                    }
-                }
-            }
-            if done {
-                continue;
-            }
-            if let Some(mu) = pc.concavity(f, e) {
-                if self.concave(&pc, root, slot, (mu, ub_f), g) {
+            match self.settle(&pool[k], root, slot, g, free) {
+                None => return false,
+                Some(true) => {
+                    spare.push(k);
                     continue;
                 }
-            } else if self.ridge(&pc, root, (f, e, ub_f), g) {
-                continue;
-            } else if pc.depth >= 2 && self.searches > 0 && pc.max_coef() > self.ub {
-                // a maximum the first candidates missed: Newton from this piece's centre
-                self.searches -= 1;
-                if let Some(c) = newton_from(root, self.rational, pc.argmax_point()) {
-                    let val = tight_value(g, pc.full, c.t, self.rational);
-                    self.lo = self.lo.max(val.inf());
-                    if val.inf() > self.ub {
-                        self.ub = val.sup();
-                    }
-                    self.found.push(c);
-                }
+                Some(false) => {}
             }
-            if pc.depth >= MAX_DEPTH {
+            let depth = pool[k].depth;
+            if depth >= MAX_DEPTH {
                 return false;
             }
-            // the children are split straight into new slots of `work`
-            let base = work.len();
-            match free {
+            // the children, split straight into their slots
+            let kids: SmallVec<[usize; 4]> = match free {
                 [true, true] => {
-                    let mut h = [pc; 2];
-                    let [h0, h1] = &mut h;
-                    pc.split_into(0, 0.5, 0.0, h0, h1);
-                    for _ in 0..4 {
-                        work.push(pc);
-                    }
-                    for (k, hk) in h.iter().enumerate() {
-                        let (x, y) = work[base + 2 * k..].split_at_mut(1);
-                        hk.split_into(1, 0.5, 0.0, &mut x[0], &mut y[0]);
-                    }
+                    // u halves into a, b; then a's v halves into k (free again) and c, b's
+                    // into a (free again) and d
+                    let (a, b) = (take(&mut pool, &mut spare), take(&mut pool, &mut spare));
+                    let [x, l, r] = pool.get_disjoint_mut([k, a, b]).expect("distinct slots");
+                    x.split_into(0, 0.5, 0.0, l, r);
+                    let c = take(&mut pool, &mut spare);
+                    let [x, l, r] = pool.get_disjoint_mut([a, k, c]).expect("distinct slots");
+                    x.split_into(1, 0.5, 0.0, l, r);
+                    let d = take(&mut pool, &mut spare);
+                    let [x, l, r] = pool.get_disjoint_mut([b, a, d]).expect("distinct slots");
+                    x.split_into(1, 0.5, 0.0, l, r);
+                    spare.push(b);
+                    [k, c, a, d].into_iter().collect()
                 }
                 _ => {
-                    let d = if free[0] { 0 } else { 1 };
-                    work.push(pc);
-                    work.push(pc);
-                    let (x, y) = work[base..].split_at_mut(1);
-                    pc.split_into(d, 0.5, 0.0, &mut x[0], &mut y[0]);
+                    let dir = if free[0] { 0 } else { 1 };
+                    let (a, b) = (take(&mut pool, &mut spare), take(&mut pool, &mut spare));
+                    let [x, l, r] = pool.get_disjoint_mut([k, a, b]).expect("distinct slots");
+                    x.split_into(dir, 0.5, 0.0, l, r);
+                    spare.push(k);
+                    [a, b].into_iter().collect()
                 }
-            }
-            for k in &mut work[base..] {
-                k.depth = pc.depth + 1;
-                k.prio = k.max_coef();
+            };
+            for i in kids {
+                let pc = &mut pool[i];
+                pc.depth = depth + 1;
+                pc.prio = pc.max_coef();
+                open.push(i);
             }
         }
         true
+    }
+
+    /// One piece of [`Prover::prove`]: `Some(true)` if F <= 0 on it is proven (coefficients,
+    /// monotone towards a proven side, concave, ridge), `Some(false)` if it is to be split,
+    /// `None` if the proof fails (coefficients not finite).
+    fn settle(
+        &mut self,
+        pc: &Piece<N>,
+        root: &Piece<N>,
+        slot: usize,
+        g: &DdGrid<N>,
+        free: [bool; 2],
+    ) -> Option<bool> {
+        let mut buf = [0.0f64; N];
+        // (the ub of f: a curvature bound from f holds for F = A - ub_f w only)
+        let ub_f = self.ub;
+        let (f, e) = pc.f_values(ub_f, &mut buf)?;
+        if pc.excluded(f, e, self.ub) {
+            return Some(true);
+        }
+        for d in (0..2).filter(|&d| free[d]) {
+            for (end, down) in [(0usize, true), (1, false)] {
+                let touches = if end == 0 {
+                    pc.t[d].0 == 0.0
+                } else {
+                    pc.t[d].1 == 1.0
+                };
+                if touches && pc.monotone(f, e, d, down) {
+                    // a boundary curve's sides are patch corners (<= ub: candidates)
+                    let ub0 = self.ub;
+                    let mut done = slot < 4 || self.edge(root, 2 * d + end, g);
+                    // (the edge proof may raise ub; for a rational patch F = A - ub w
+                    // then changes shape, so its monotonicity is checked again)
+                    if done && self.ub != ub0 && self.rational {
+                        let mut b2 = [0.0f64; N];
+                        done = pc
+                            .f_values(self.ub, &mut b2)
+                            .is_some_and(|(f2, e2)| pc.monotone(f2, e2, d, down));
+                    }
+                    if done {
+                        return Some(true);
+                    }
+                }
+            }
+        }
+        if let Some(mu) = pc.concavity(f, e) {
+            if self.concave(pc, root, slot, (mu, ub_f), g) {
+                return Some(true);
+            }
+        } else if self.ridge(pc, root, (f, e, ub_f), g) {
+            return Some(true);
+        } else if pc.depth >= 2 && self.searches > 0 && pc.max_coef() > self.ub {
+            // a maximum the first candidates missed: Newton from this piece's centre
+            self.searches -= 1;
+            if let Some(c) = newton_from(root, self.rational, pc.argmax_point()) {
+                let val = tight_value(g, pc.full, c.t, self.rational);
+                self.lo = self.lo.max(val.inf());
+                if val.inf() > self.ub {
+                    self.ub = val.sup();
+                }
+                self.found.push(c);
+            }
+        }
+        Some(false)
     }
 
     /// F <= 0 on boundary curve e of the patch (cached).
