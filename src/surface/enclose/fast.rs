@@ -850,19 +850,32 @@ impl<const N: usize> Piece<N> {
 /// A1.5): `[p, p', p'']`, the derivatives from the second-to-last levels of the pyramid
 /// (p' = n (c_1 - c_0) at level n - 1, p'' = n (n - 1) (b_2 - 2 b_1 + b_0) at level n - 2;
 /// Farin, derivatives of a Bézier curve). For verified types every result encloses the exact
-/// one. `b` is overwritten.
+/// one. `b` is overwritten. (The degree is dispatched to a constant, [`bern2_fixed`], so that
+/// the loops unroll: this is the inner loop of every Newton iteration.)
 fn bern2<S: Scalar + Copy>(b: &mut [S], t: S) -> [S; 3] {
+    fn fixed<S: Scalar + Copy, const D1: usize>(b: &mut [S], t: S) -> [S; 3] {
+        bern2_fixed::<S, D1>(b.try_into().expect("length D1"), t)
+    }
+    match b.len() {
+        1 => [b[0], S::zero(), S::zero()],
+        2 => fixed::<S, 2>(b, t),
+        3 => fixed::<S, 3>(b, t),
+        4 => fixed::<S, 4>(b, t),
+        5 => fixed::<S, 5>(b, t),
+        _ => fixed::<S, { MAX_DEGREE + 1 }>(b, t),
+    }
+}
+
+/// [`bern2`] for degree n = D1 - 1 >= 1.
+#[inline(always)]
+fn bern2_fixed<S: Scalar + Copy, const D1: usize>(b: &mut [S; D1], t: S) -> [S; 3] {
     // lo + t (hi - lo) as one Horner step (one fused, enclosed step for `Ddi`: over at most
     // 2 MAX_DEGREE levels its radius growth is immaterial; plain arithmetic for f64)
     #[inline(always)]
     fn step<S: Scalar + Copy>(t: &S, lo: &S, hi: &S) -> S {
         S::horner_step(&(*hi - *lo), t, lo)
     }
-    let n = b.len() - 1;
-    let z = S::zero();
-    if n == 0 {
-        return [b[0], z, z];
-    }
+    let n = D1 - 1;
     for lev in 1..n.saturating_sub(1) {
         for i in 0..=n - lev {
             b[i] = step(&t, &b[i], &b[i + 1]);
@@ -871,7 +884,7 @@ fn bern2<S: Scalar + Copy>(b: &mut [S], t: S) -> [S; 3] {
     let d2 = if n >= 2 {
         S::from_usize(n * (n - 1)) * ((b[2] - b[1]) - (b[1] - b[0]))
     } else {
-        z
+        S::zero()
     };
     if n >= 2 {
         b[0] = step(&t, &b[0], &b[1]);
@@ -884,10 +897,22 @@ fn bern2<S: Scalar + Copy>(b: &mut [S], t: S) -> [S; 3] {
 /// The tensor Bernstein polynomial with coefficients `c` (grid `(n[0] + 1) x (n[1] + 1)`) at
 /// t: `[f, f_u, f_v, f_uu, f_uv, f_vv]` (generic over the number type: f64 for the Newton
 /// iterations, `Ddi` for the values the proofs use). The v direction first on every row,
-/// then u on the results.
+/// then u on the results; a boundary curve (a degree 0) is one curve evaluation, the
+/// derivatives across it 0.
 fn eval2<S: Scalar + Copy>(c: &[S], n: [usize; 2], t: [f64; 2]) -> [S; 6] {
     let z = S::zero();
     let (tu, tv) = (S::from_f64(t[0]), S::from_f64(t[1]));
+    if n[0] == 0 || n[1] == 0 {
+        let (d, tc) = if n[0] == 0 { (1, tv) } else { (0, tu) };
+        let mut b = [z; MAX_DEGREE + 1];
+        b[..=n[d]].copy_from_slice(&c[..=n[d]]);
+        let [f, fd, fdd] = bern2(&mut b[..=n[d]], tc);
+        return if d == 0 {
+            [f, fd, z, fdd, z, z]
+        } else {
+            [f, z, fd, z, z, fdd]
+        };
+    }
     let mut g = [[z; MAX_DEGREE + 1]; 3];
     let mut row = [z; MAX_DEGREE + 1];
     for r in 0..=n[0] {
@@ -1403,12 +1428,23 @@ impl<const N: usize> Prover<'_, N> {
             .map(|k| iv::point(pc.t[k].1) - iv::point(pc.t[k].0))
             .fold(Interval::EMPTY, |x, y| x.convex_hull(y));
         // f64 pre-check (no soundness role): skip the `Ddi` work where the bound would
-        // clearly fail (a point below ub whose quadratic bound clearly exceeds it)
+        // clearly fail (a point below ub whose quadratic bound clearly exceeds it). As in
+        // [`Prover::bound`], a direction where c sits on a side of the piece with the
+        // gradient pointing out of it adds nothing (the parabola falls into the piece): a
+        // concave piece beside the maximum, whose maximum is on its side, is proven here
+        // instead of being halved again.
         {
             let w2 = wd.sup() * wd.sup();
             let q: f64 = (0..2)
                 .filter(|&k| free[k])
-                .map(|k| est[1 + k] / mu * est[1 + k] * w2 * 0.5)
+                .map(|k| {
+                    let g = est[1 + k];
+                    if (c[k] >= pc.t[k].1 && g > 0.0) || (c[k] <= pc.t[k].0 && g < 0.0) {
+                        0.0
+                    } else {
+                        g / mu * g * w2 * 0.5
+                    }
+                })
                 .sum();
             let scale = self.ub.abs().max(est[0].abs());
             if est[0] <= self.ub && est[0] - self.ub + q > 1e-12 * scale {
