@@ -304,7 +304,7 @@ impl FastSurface {
                 let root = &roots[k];
                 for (e, c) in cs.iter_mut().enumerate().take(4) {
                     let edge = root.edge(e);
-                    if edge.max_coef() > hi {
+                    if edge.prio > hi {
                         *c = newton(&edge, self.rational);
                         st.newton_iterations += 1;
                     }
@@ -460,7 +460,10 @@ struct Piece<const N: usize> {
     depth: u32,
     /// the degrees of the patch (for evaluations at points of the patch)
     full: [usize; 2],
-    /// the largest coefficient ratio (f64; the search order only)
+    /// the largest coefficient ratio (f64; set with the coefficients by [`Piece::root`],
+    /// [`Piece::edge`], and for the halves of a split by [`Prover::prove`]): the search
+    /// order, and for a polynomial piece the largest coefficient that [`Piece::excluded`]
+    /// tests
     prio: f64,
 }
 
@@ -554,6 +557,7 @@ impl<const N: usize> Piece<N> {
         // (a sum of two nonnegative f64 rounded up: Lemma B of `num::ddi`)
         pc.ea = up(pc.ea);
         pc.ew = up(pc.ew);
+        pc.prio = pc.max_coef();
         (pc.a[..cnt].iter().all(|x| x.is_finite()) && pc.w[..cnt].iter().all(|x| x.is_finite()))
             .then_some(pc)
     }
@@ -577,6 +581,7 @@ impl<const N: usize> Piece<N> {
             pc.a[k] = self.a[edge_index(e, self.n, k)];
             pc.w[k] = self.w[edge_index(e, self.n, k)];
         }
+        pc.prio = pc.max_coef();
         pc
     }
 
@@ -633,9 +638,11 @@ impl<const N: usize> Piece<N> {
     /// n has n levels: e' = e + n ((2 delta + 6 u) M + 2 eta), rounded up (Lemma B of
     /// `num::ddi`).
     ///
-    /// The halves are written into `l` and `r` (any pieces: every field is set), so the
-    /// caller can split straight into the slots of its work list (a `Piece` is a few hundred
-    /// bytes; copies of it were a fifth of the proof's cost).
+    /// The halves are written into `l` and `r` (any pieces of the same patch: every field is
+    /// set but the weights of a polynomial piece, which are 1 in every piece of it, as
+    /// [`Piece::root`] and [`Piece::edge`] made them), so the caller can split straight into
+    /// the slots of its work list (a `Piece` is a few hundred bytes; copies of it were a
+    /// fifth of the proof's cost).
     #[inline]
     fn split_into(&self, dir: usize, t: f64, delta: f64, l: &mut Piece<N>, r: &mut Piece<N>) {
         for x in [&mut *l, &mut *r] {
@@ -646,11 +653,6 @@ impl<const N: usize> Piece<N> {
             x.rational = self.rational;
             x.depth = self.depth + 1;
             x.full = self.full;
-            x.prio = self.prio;
-            if !self.rational {
-                // (never read for a polynomial piece except as the divisor 1 of a ratio)
-                x.w = self.w;
-            }
         }
         let n = self.n[dir];
         let [_, n1] = self.n;
@@ -720,14 +722,14 @@ impl<const N: usize> Piece<N> {
     /// a_i + ea <= ub (the sum rounded up), rational f_i + E <= 0 (the sign of a sum of two
     /// floats is exact).
     fn excluded(&self, f: &[f64; N], e: f64, ub: f64) -> bool {
+        if !self.rational {
+            // (f = a: its largest coefficient is `prio`, kept with the coefficients)
+            return (self.prio + e).next_up() <= ub;
+        }
         let m = f[..self.count()]
             .iter()
             .fold(f64::NEG_INFINITY, |m, &x| m.max(x));
-        if self.rational {
-            m + e <= 0.0
-        } else {
-            (m + e).next_up() <= ub
-        }
+        m + e <= 0.0
     }
 
     /// Whether F is non-increasing (`down`) / non-decreasing along `dir` on the piece: every
@@ -767,13 +769,18 @@ impl<const N: usize> Piece<N> {
     fn concavity(&self, f: &[f64; N], e: f64) -> Option<f64> {
         let [n0, n1] = self.n;
         let at = |r: usize, c: usize| f[r * (n1 + 1) + c];
+        // (one error bound for all second differences)
+        let err = self.second_error(f, e);
+        if !err.is_finite() {
+            return None;
+        }
         let a0 = match n0 {
             0 => None,
-            _ => Some(self.curvature(f, e, 0)?),
+            _ => Some(self.curvature_within(f, err, 0)?),
         };
         let c0 = match n1 {
             0 => None,
-            _ => Some(self.curvature(f, e, 1)?),
+            _ => Some(self.curvature_within(f, err, 1)?),
         };
         match (a0, c0) {
             (Some(a), None) | (None, Some(a)) => Some(a),
@@ -787,7 +794,7 @@ impl<const N: usize> Piece<N> {
                     }
                 }
                 // |(d + pm) k| <= (|d| + err) k
-                let b0 = ((iv::point(dm) + iv::point(self.second_error(f, e))) * kk).sup();
+                let b0 = ((iv::point(dm) + iv::point(err)) * kk).sup();
                 let rr = (a / c).sqrt();
                 if !(rr.is_finite() && rr > 0.0) {
                     return None;
@@ -820,13 +827,18 @@ impl<const N: usize> Piece<N> {
     /// differences of the coefficients along d (each within [`Piece::second_error`] of the
     /// exact one), and F_dd lies in their hull.
     fn curvature(&self, f: &[f64; N], e: f64, dir: usize) -> Option<f64> {
+        let err = self.second_error(f, e);
+        if !err.is_finite() {
+            return None;
+        }
+        self.curvature_within(f, err, dir)
+    }
+
+    /// [`Piece::curvature`] with the finite error bound `err` of the second differences.
+    fn curvature_within(&self, f: &[f64; N], err: f64, dir: usize) -> Option<f64> {
         let [n0, n1] = self.n;
         let nd = self.n[dir];
         if nd < 2 {
-            return None;
-        }
-        let err = self.second_error(f, e);
-        if !err.is_finite() {
             return None;
         }
         let step = if dir == 0 { n1 + 1 } else { 1 };
