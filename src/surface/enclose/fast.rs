@@ -439,8 +439,9 @@ struct Cand {
     t: [f64; 2],
     /// the f64 estimate of its value
     est: f64,
-    /// `Ddi` enclosures of A, w and their derivatives there, once computed
-    dd: Option<[[Ddi; 6]; 2]>,
+    /// `Ddi` enclosures of A, w and their first derivatives there ([`tight_derivs`]), once
+    /// computed
+    dd: Option<[[Ddi; 3]; 2]>,
 }
 
 /// A box of a patch's parameter space with the f64 Bernstein coefficients of sign * A_j and w
@@ -862,25 +863,30 @@ impl<const N: usize> Piece<N> {
 /// A1.5): `[p, p', p'']`, the derivatives from the second-to-last levels of the pyramid
 /// (p' = n (c_1 - c_0) at level n - 1, p'' = n (n - 1) (b_2 - 2 b_1 + b_0) at level n - 2;
 /// Farin, derivatives of a Bézier curve). For verified types every result encloses the exact
-/// one. `b` is overwritten. (The degree is dispatched to a constant, [`bern2_fixed`], so that
-/// the loops unroll: this is the inner loop of every Newton iteration.)
-fn bern2<S: Scalar + Copy>(b: &mut [S], t: S) -> [S; 3] {
-    fn fixed<S: Scalar + Copy, const D1: usize>(b: &mut [S], t: S) -> [S; 3] {
-        bern2_fixed::<S, D1>(b.try_into().expect("length D1"), t)
+/// one. `b` is overwritten. Derivatives of order above `ORDER` are not computed (0): the
+/// `Ddi` and interval evaluations need the value and the gradient only. (The degree is
+/// dispatched to a constant, [`bern2_fixed`], so that the loops unroll: this is the inner
+/// loop of every Newton iteration.)
+fn bern2<S: Scalar + Copy, const ORDER: usize>(b: &mut [S], t: S) -> [S; 3] {
+    fn fixed<S: Scalar + Copy, const D1: usize, const ORDER: usize>(b: &mut [S], t: S) -> [S; 3] {
+        bern2_fixed::<S, D1, ORDER>(b.try_into().expect("length D1"), t)
     }
     match b.len() {
         1 => [b[0], S::zero(), S::zero()],
-        2 => fixed::<S, 2>(b, t),
-        3 => fixed::<S, 3>(b, t),
-        4 => fixed::<S, 4>(b, t),
-        5 => fixed::<S, 5>(b, t),
-        _ => fixed::<S, { MAX_DEGREE + 1 }>(b, t),
+        2 => fixed::<S, 2, ORDER>(b, t),
+        3 => fixed::<S, 3, ORDER>(b, t),
+        4 => fixed::<S, 4, ORDER>(b, t),
+        5 => fixed::<S, 5, ORDER>(b, t),
+        _ => fixed::<S, { MAX_DEGREE + 1 }, ORDER>(b, t),
     }
 }
 
 /// [`bern2`] for degree n = D1 - 1 >= 1.
 #[inline(always)]
-fn bern2_fixed<S: Scalar + Copy, const D1: usize>(b: &mut [S; D1], t: S) -> [S; 3] {
+fn bern2_fixed<S: Scalar + Copy, const D1: usize, const ORDER: usize>(
+    b: &mut [S; D1],
+    t: S,
+) -> [S; 3] {
     // lo + t (hi - lo) as one Horner step (one fused, enclosed step for `Ddi`: over at most
     // 2 MAX_DEGREE levels its radius growth is immaterial; plain arithmetic for f64)
     #[inline(always)]
@@ -893,7 +899,7 @@ fn bern2_fixed<S: Scalar + Copy, const D1: usize>(b: &mut [S; D1], t: S) -> [S; 
             b[i] = step(&t, &b[i], &b[i + 1]);
         }
     }
-    let d2 = if n >= 2 {
+    let d2 = if n >= 2 && ORDER >= 2 {
         S::from_usize(n * (n - 1)) * ((b[2] - b[1]) - (b[1] - b[0]))
     } else {
         S::zero()
@@ -902,23 +908,27 @@ fn bern2_fixed<S: Scalar + Copy, const D1: usize>(b: &mut [S; D1], t: S) -> [S; 
         b[0] = step(&t, &b[0], &b[1]);
         b[1] = step(&t, &b[1], &b[2]);
     }
-    let d1 = S::from_usize(n) * (b[1] - b[0]);
+    let d1 = if ORDER >= 1 {
+        S::from_usize(n) * (b[1] - b[0])
+    } else {
+        S::zero()
+    };
     [step(&t, &b[0], &b[1]), d1, d2]
 }
 
 /// The tensor Bernstein polynomial with coefficients `c` (grid `(n[0] + 1) x (n[1] + 1)`) at
 /// t: `[f, f_u, f_v, f_uu, f_uv, f_vv]` (generic over the number type: f64 for the Newton
-/// iterations, `Ddi` for the values the proofs use). The v direction first on every row,
-/// then u on the results; a boundary curve (a degree 0) is one curve evaluation, the
-/// derivatives across it 0.
-fn eval2<S: Scalar + Copy>(c: &[S], n: [usize; 2], t: [f64; 2]) -> [S; 6] {
+/// iterations, `Ddi` for the values the proofs use), the derivatives of order above `ORDER`
+/// not computed (0). The v direction first on every row, then u on the results; a boundary
+/// curve (a degree 0) is one curve evaluation, the derivatives across it 0.
+fn eval2<S: Scalar + Copy, const ORDER: usize>(c: &[S], n: [usize; 2], t: [f64; 2]) -> [S; 6] {
     let z = S::zero();
     let (tu, tv) = (S::from_f64(t[0]), S::from_f64(t[1]));
     if n[0] == 0 || n[1] == 0 {
         let (d, tc) = if n[0] == 0 { (1, tv) } else { (0, tu) };
         let mut b = [z; MAX_DEGREE + 1];
         b[..=n[d]].copy_from_slice(&c[..=n[d]]);
-        let [f, fd, fdd] = bern2(&mut b[..=n[d]], tc);
+        let [f, fd, fdd] = bern2::<S, ORDER>(&mut b[..=n[d]], tc);
         return if d == 0 {
             [f, fd, z, fdd, z, z]
         } else {
@@ -929,14 +939,26 @@ fn eval2<S: Scalar + Copy>(c: &[S], n: [usize; 2], t: [f64; 2]) -> [S; 6] {
     let mut row = [z; MAX_DEGREE + 1];
     for r in 0..=n[0] {
         row[..=n[1]].copy_from_slice(&c[r * (n[1] + 1)..(r + 1) * (n[1] + 1)]);
-        let [v, dv, dvv] = bern2(&mut row[..=n[1]], tv);
+        let [v, dv, dvv] = bern2::<S, ORDER>(&mut row[..=n[1]], tv);
         g[0][r] = v;
         g[1][r] = dv;
         g[2][r] = dvv;
     }
-    let [f, fu, fuu] = bern2(&mut g[0][..=n[0]], tu);
-    let [fv, fuv, _] = bern2(&mut g[1][..=n[0]], tu);
-    let [fvv, _, _] = bern2(&mut g[2][..=n[0]], tu);
+    let [f, fu, fuu] = bern2::<S, ORDER>(&mut g[0][..=n[0]], tu);
+    // (f_v and f_uv from the v derivatives, f_vv from the second ones: one order less each)
+    let (fv, fuv) = match ORDER {
+        0 => (z, z),
+        1 => (bern2::<S, 0>(&mut g[1][..=n[0]], tu)[0], z),
+        _ => {
+            let [fv, fuv, _] = bern2::<S, 1>(&mut g[1][..=n[0]], tu);
+            (fv, fuv)
+        }
+    };
+    let fvv = if ORDER >= 2 {
+        bern2::<S, 0>(&mut g[2][..=n[0]], tu)[0]
+    } else {
+        z
+    };
     [f, fu, fv, fuu, fuv, fvv]
 }
 
@@ -991,9 +1013,9 @@ fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -
     let mut ok = false;
     let mut last = false;
     for _ in 0..24 {
-        let a = eval2(&fa[..], pn, t);
+        let a = eval2::<f64, 2>(&fa[..], pn, t);
         let d = if rational {
-            quotient(a, eval2(&fw[..], pn, t))
+            quotient(a, eval2::<f64, 2>(&fw[..], pn, t))
         } else {
             a
         };
@@ -1033,9 +1055,9 @@ fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -
         }
         last = step.iter().all(|s| s.abs() <= 1e-9);
     }
-    let a = eval2(&fa[..], pn, t);
+    let a = eval2::<f64, 0>(&fa[..], pn, t);
     let est = if rational {
-        a[0] / eval2(&fw[..], pn, t)[0]
+        a[0] / eval2::<f64, 0>(&fw[..], pn, t)[0]
     } else {
         a[0]
     };
@@ -1050,37 +1072,47 @@ fn tight_value<const N: usize>(
     t: [f64; 2],
     rational: bool,
 ) -> Interval {
-    value_of(&tight_derivs(g, n, t, rational), rational)
+    value_of(&tight_jets::<N, 0>(g, n, t, rational), rational)
 }
 
-/// The `Ddi` enclosures of sign * A_j and w and their derivatives at t (w = 1 for a
-/// polynomial patch).
+/// The `Ddi` enclosures of sign * A_j and w and their first derivatives at t:
+/// `[[A, A_u, A_v], [w, w_u, w_v]]` (w = 1 for a polynomial patch).
 fn tight_derivs<const N: usize>(
     g: &DdGrid<N>,
     n: [usize; 2],
     t: [f64; 2],
     rational: bool,
-) -> [[Ddi; 6]; 2] {
-    let a: [Ddi; 6] = eval2(&g.a[..], n, t);
-    let w: [Ddi; 6] = if rational {
-        eval2(&g.w[..], n, t)
+) -> [[Ddi; 3]; 2] {
+    tight_jets::<N, 1>(g, n, t, rational)
+}
+
+/// [`tight_derivs`] with the derivatives up to `ORDER` (<= 1) computed, the others 0.
+fn tight_jets<const N: usize, const ORDER: usize>(
+    g: &DdGrid<N>,
+    n: [usize; 2],
+    t: [f64; 2],
+    rational: bool,
+) -> [[Ddi; 3]; 2] {
+    let first = |x: [Ddi; 6]| [x[0], x[1], x[2]];
+    let a = first(eval2::<Ddi, ORDER>(&g.a[..], n, t));
+    let w = if rational {
+        first(eval2::<Ddi, ORDER>(&g.w[..], n, t))
     } else {
-        let mut w = [Ddi::exact(0.0); 6];
-        w[0] = Ddi::exact(1.0);
-        w
+        [Ddi::exact(1.0), Ddi::exact(0.0), Ddi::exact(0.0)]
     };
     [a, w]
 }
 
 /// c rounded to a multiple of 2^-30 inside the piece, and the interval (inari) enclosures
-/// of A, w and their derivatives there, if the value A / w comes out a single float (exact).
+/// of A, w and their first derivatives there (as [`tight_derivs`]), if the value A / w comes
+/// out a single float (exact).
 #[allow(clippy::type_complexity)]
 fn snapped<const N: usize>(
     g: &DdGrid<N>,
     n: [usize; 2],
     c: [f64; 2],
     pc: &Piece<N>,
-) -> Option<([f64; 2], [[Interval; 6]; 2])> {
+) -> Option<([f64; 2], [[Interval; 3]; 2])> {
     let snap =
         |k: usize| ((c[k] * 1_073_741_824.0).round() / 1_073_741_824.0).clamp(pc.t[k].0, pc.t[k].1);
     let cs = [snap(0), snap(1)];
@@ -1091,8 +1123,9 @@ fn snapped<const N: usize>(
         ga[i] = g.a[i].to_interval();
         gw[i] = g.w[i].to_interval();
     }
-    let a: [Interval; 6] = eval2(&ga[..cnt], n, cs);
-    let w: [Interval; 6] = eval2(&gw[..cnt], n, cs);
+    let first = |x: [Interval; 6]| [x[0], x[1], x[2]];
+    let a = first(eval2::<Interval, 1>(&ga[..cnt], n, cs));
+    let w = first(eval2::<Interval, 1>(&gw[..cnt], n, cs));
     let val = a[0] / w[0];
     (val.inf() == val.sup() && val.sup().is_finite()).then_some((cs, [a, w]))
 }
@@ -1101,7 +1134,7 @@ fn snapped<const N: usize>(
 /// `scale`, the largest |coefficient|) of a float: only then can the value at a nearby short
 /// dyadic point be a float, so only then is [`snapped`] (interval evaluation, the costlier
 /// part of a candidate) tried. A filter for tightness only: soundness never depends on it.
-fn near_float(d: &[[Ddi; 6]; 2], rational: bool, scale: f64) -> bool {
+fn near_float(d: &[[Ddi; 3]; 2], rational: bool, scale: f64) -> bool {
     let v = if rational { d[0][0] / d[1][0] } else { d[0][0] };
     let off = v.lo().abs() + v.rad();
     off.is_finite() && off <= f64::powi(2.0, -70) * v.hi().abs().max(scale)
@@ -1201,8 +1234,8 @@ fn iso_line<S: Scalar + Copy>(
             ba[i] = ga[idx(i)];
             bw[i] = gw[idx(i)];
         }
-        let [va, da, _] = bern2(&mut ba[..=nd], tc);
-        let [vw, dw, _] = bern2(&mut bw[..=nd], tc);
+        let [va, da, _] = bern2::<S, 1>(&mut ba[..=nd], tc);
+        let [vw, dw, _] = bern2::<S, 1>(&mut bw[..=nd], tc);
         fv.push(va - ub * vw);
         fd.push(da - ub * dw);
     }
@@ -1221,7 +1254,7 @@ fn iso_line<S: Scalar + Copy>(
 }
 
 /// A / w enclosed.
-fn value_of(d: &[[Ddi; 6]; 2], rational: bool) -> Interval {
+fn value_of(d: &[[Ddi; 3]; 2], rational: bool) -> Interval {
     if rational {
         (d[0][0] / d[1][0]).to_interval()
     } else {
@@ -1567,9 +1600,9 @@ impl<const N: usize> Prover<'_, N> {
             let mid = |k: usize| 0.5 * pc.t[k].0 + 0.5 * pc.t[k].1;
             let mut t = [mid(0), mid(1)];
             for _ in 0..16 {
-                let a = eval2(&root.a[..], root.n, t);
+                let a = eval2::<f64, 2>(&root.a[..], root.n, t);
                 let dv = if self.rational {
-                    quotient(a, eval2(&root.w[..], root.n, t))
+                    quotient(a, eval2::<f64, 2>(&root.w[..], root.n, t))
                 } else {
                     a
                 };
@@ -1721,9 +1754,9 @@ fn constrained_max<const N: usize>(
     let free = [pc.n[0] > 0, pc.n[1] > 0];
     let mut est = [f64::NAN; 3];
     for _ in 0..12 {
-        let a = eval2(&fa[..], pn, t);
+        let a = eval2::<f64, 2>(&fa[..], pn, t);
         let d = if rational {
-            quotient(a, eval2(&fw[..], pn, t))
+            quotient(a, eval2::<f64, 2>(&fw[..], pn, t))
         } else {
             a
         };
