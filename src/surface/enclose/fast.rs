@@ -303,9 +303,8 @@ impl FastSurface {
             if coef_max[k] > hi {
                 let root = &roots[k];
                 for (e, c) in cs.iter_mut().enumerate().take(4) {
-                    let edge = root.edge(e);
-                    if edge.prio > hi {
-                        *c = newton(&edge, self.rational);
+                    if root.edge_max(e) > hi {
+                        *c = newton(&root.edge(e), self.rational);
                         st.newton_iterations += 1;
                     }
                 }
@@ -610,6 +609,18 @@ impl<const N: usize> Piece<N> {
         (0..self.count())
             .map(|i| (self.a[i] / self.w[i]).abs())
             .fold(0.0, f64::max)
+    }
+
+    /// The largest coefficient ratio of boundary curve e (the `max_coef` of
+    /// [`Piece::edge`], without building the curve's piece).
+    fn edge_max(&self, e: usize) -> f64 {
+        let len = if e < 2 { self.n[1] + 1 } else { self.n[0] + 1 };
+        (0..len)
+            .map(|k| {
+                let i = edge_index(e, self.n, k);
+                self.a[i] / self.w[i]
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     fn max_coef(&self) -> f64 {
@@ -1011,7 +1022,6 @@ fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -
     // evaluate on the whole patch grid (a boundary curve is the patch at a fixed side)
     let (pn, fa, fw) = (pc.n, &pc.a, &pc.w);
     let mut ok = false;
-    let mut last = false;
     for _ in 0..24 {
         let a = eval2::<f64, 2>(&fa[..], pn, t);
         let d = if rational {
@@ -1046,14 +1056,13 @@ fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -
         if !(nt.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x))) {
             return None;
         }
-        // quadratic convergence: after a step below 1e-9 one more reaches the rounding level
-        let small = step.iter().all(|s| s.abs() <= 4.0 * f64::EPSILON);
+        // quadratic convergence: after a step below 1e-9 the point is within ~1e-18 of the
+        // maximiser, the rounding level of t in [0, 1]
         t = nt;
-        if small || last {
+        if step.iter().all(|s| s.abs() <= 1e-9) {
             ok = true;
             break;
         }
-        last = step.iter().all(|s| s.abs() <= 1e-9);
     }
     let a = eval2::<f64, 0>(&fa[..], pn, t);
     let est = if rational {
