@@ -84,11 +84,13 @@ pub(crate) struct FastSurface {
     rational: bool,
     /// per patch `[(r * (q + 1) + c) * h + k]`, h = dim + rational
     patches: Vec<Vec<Ddi>>,
-    /// (patch, coefficient index, point): the corner coefficients that are a clamped domain
+    /// (patch, coefficient index): the corner coefficients that are a clamped domain
     /// corner, where the surface is the control point exactly (the only non-zero basis
     /// products are N_r N_c = 1; the weights cancel). A `Ddi` quotient w P / w would come out
     /// an ulp wider on each side.
-    exact: Vec<(usize, usize, Vec<f64>)>,
+    exact: SmallVec<[(usize, usize); 4]>,
+    /// the points of `exact`, `dim` coordinates each (inline up to 4-D: no allocation)
+    exact_pts: SmallVec<[f64; 16]>,
     /// per patch, corner (0, 0), (0, q), (p, 0), (p, q) and coordinate: the corner value from
     /// the interval (inari) extraction (several patches only), intersected with the `Ddi` one:
     /// both enclose the same value, and interval knot insertion stays exact on dyadic data,
@@ -148,14 +150,15 @@ impl FastSurface {
         let nv = (q..s.cols()).filter(|&k| kv[k] < kv[k + 1]).count();
         let np = patches.len();
         let ((a, b), (c, d)) = s.domain();
-        let mut exact = Vec::new();
+        let (mut exact, mut exact_pts) = (SmallVec::new(), SmallVec::new());
         for (u, ul, at_u) in [(a, false, 0), (b, true, 1)] {
             for (v, vl, at_v) in [(c, false, 0), (d, true, 1)] {
                 if let (Some(r), Some(k)) = (s.exact_row_at(u, ul), s.exact_column_at(v, vl)) {
                     let patch =
                         if at_u == 0 { 0 } else { np - nv } + if at_v == 0 { 0 } else { nv - 1 };
                     let i = (at_u * p) * (q + 1) + at_v * q;
-                    exact.push((patch, i, s.control_point(r, k).to_vec()));
+                    exact.push((patch, i));
+                    exact_pts.extend_from_slice(s.control_point(r, k));
                 }
             }
         }
@@ -166,6 +169,7 @@ impl FastSurface {
             rational: s.is_rational(),
             patches,
             exact,
+            exact_pts,
             corner_iv,
         })
     }
@@ -180,8 +184,8 @@ impl FastSurface {
         j: usize,
         sign: f64,
     ) -> Interval {
-        if let Some((_, _, x)) = self.exact.iter().find(|e| e.0 == k && e.1 == i) {
-            return iv::point(sign * x[j]);
+        if let Some(m) = self.exact.iter().position(|e| e.0 == k && e.1 == i) {
+            return iv::point(sign * self.exact_pts[m * self.dim + j]);
         }
         let r = g.ratio(i, self.rational);
         let (p, q) = (self.p, self.q);
@@ -571,11 +575,24 @@ impl<const N: usize> Piece<N> {
     /// coefficients). Only for the root piece.
     fn edge(&self, e: usize) -> Piece<N> {
         let [n0, n1] = self.n;
-        let mut pc = *self;
         let (dir, at) = (e / 2, if e % 2 == 0 { 0.0 } else { 1.0 });
-        pc.n[dir] = 0;
-        pc.full = pc.n;
-        pc.t[dir] = (at, at);
+        let mut n = self.n;
+        n[dir] = 0;
+        let mut t = self.t;
+        t[dir] = (at, at);
+        // (built afresh, not copied: only the curve's coefficients are read)
+        let mut pc = Piece {
+            t,
+            n,
+            a: [0.0; N],
+            w: [1.0; N],
+            ea: self.ea,
+            ew: self.ew,
+            rational: self.rational,
+            depth: self.depth,
+            full: n,
+            prio: 0.0,
+        };
         let len = if dir == 0 { n1 + 1 } else { n0 + 1 };
         for k in 0..len {
             pc.a[k] = self.a[edge_index(e, self.n, k)];
