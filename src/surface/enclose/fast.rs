@@ -248,9 +248,10 @@ impl FastSurface {
         st: &mut Stats,
     ) -> Option<(f64, f64)> {
         let n = [self.p, self.q];
-        let grids: SmallVec<[DdGrid<N>; 1]> = (0..self.patches.len())
-            .map(|k| self.dd_grid(k, j, sign))
-            .collect();
+        let mut grids: SmallVec<[DdGrid<N>; 1]> = SmallVec::new();
+        for k in 0..self.patches.len() {
+            grids.push(self.dd_grid(k, j, sign));
+        }
         // corners: values the surface takes (continuous surface), and the vertex test
         let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         let mut vertex = true;
@@ -297,13 +298,16 @@ impl FastSurface {
             return Some((hi, lo));
         }
         // candidates on the patches the vertex test did not settle
-        let roots: SmallVec<[Piece<N>; 1]> = grids
-            .iter()
-            .map(|g| Piece::root(g, n, self.rational))
-            .collect::<Option<_>>()?;
+        // (pushed and filled in place: a grid, a piece and the candidates are hundreds of
+        // bytes each)
+        let mut roots: SmallVec<[Piece<N>; 1]> = SmallVec::new();
+        for g in &grids {
+            roots.push(Piece::root(g, n, self.rational)?);
+        }
         let mut cands: SmallVec<[[Option<Cand>; 5]; 1]> = SmallVec::new();
         for k in 0..grids.len() {
-            let mut cs: [Option<Cand>; 5] = [None; 5];
+            cands.push([None; 5]);
+            let cs = &mut cands[k];
             if coef_max[k] > hi {
                 let root = &roots[k];
                 for (e, c) in cs.iter_mut().enumerate().take(4) {
@@ -315,7 +319,6 @@ impl FastSurface {
                 cs[4] = newton(root, self.rational);
                 st.newton_iterations += 1;
             }
-            cands.push(cs);
         }
         // the tight (`Ddi`) values of the candidates that may be the best (f64 estimates)
         let best = cands
@@ -1338,10 +1341,16 @@ impl<const N: usize> Prover<'_, N> {
         let mut open: SmallVec<[usize; 16]> = SmallVec::new();
         open.push(0);
         let mut spare: SmallVec<[usize; 16]> = SmallVec::new();
-        // a free slot (a new one holds a copy of the root until it is written)
+        // a free slot (a new one holds the root's fields and blank coefficients, weights 1
+        // as every polynomial piece has them, until a split writes it: no copy of the
+        // root's coefficients)
         let take = |pool: &mut SmallVec<[Piece<N>; 12]>, spare: &mut SmallVec<[usize; 16]>| {
             spare.pop().unwrap_or_else(|| {
-                pool.push(*root);
+                pool.push(Piece {
+                    a: [0.0; N],
+                    w: [1.0; N],
+                    ..*root
+                });
                 pool.len() - 1
             })
         };
