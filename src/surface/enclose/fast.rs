@@ -801,18 +801,27 @@ impl<const N: usize> Piece<N> {
     fn concavity(&self, f: &[f64; N], e: f64) -> Option<f64> {
         let [n0, n1] = self.n;
         let at = |r: usize, c: usize| f[r * (n1 + 1) + c];
-        // (one error bound for all second differences)
+        // (the signs first: most pieces fail there, before any error bound; then one error
+        // bound for all second differences)
+        let m0 = match n0 {
+            0 => None,
+            _ => Some(self.second_max(f, 0)?),
+        };
+        let m1 = match n1 {
+            0 => None,
+            _ => Some(self.second_max(f, 1)?),
+        };
         let err = self.second_error(f, e);
         if !err.is_finite() {
             return None;
         }
-        let a0 = match n0 {
-            0 => None,
-            _ => Some(self.curvature_within(f, err, 0)?),
+        let a0 = match m0 {
+            None => None,
+            Some(mx) => Some(self.curvature_within(mx, err, 0)?),
         };
-        let c0 = match n1 {
-            0 => None,
-            _ => Some(self.curvature_within(f, err, 1)?),
+        let c0 = match m1 {
+            None => None,
+            Some(mx) => Some(self.curvature_within(mx, err, 1)?),
         };
         match (a0, c0) {
             (Some(a), None) | (None, Some(a)) => Some(a),
@@ -859,18 +868,20 @@ impl<const N: usize> Piece<N> {
     /// differences of the coefficients along d (each within [`Piece::second_error`] of the
     /// exact one), and F_dd lies in their hull.
     fn curvature(&self, f: &[f64; N], e: f64, dir: usize) -> Option<f64> {
+        let mx = self.second_max(f, dir)?;
         let err = self.second_error(f, e);
         if !err.is_finite() {
             return None;
         }
-        self.curvature_within(f, err, dir)
+        self.curvature_within(mx, err, dir)
     }
 
-    /// [`Piece::curvature`] with the finite error bound `err` of the second differences.
-    fn curvature_within(&self, f: &[f64; N], err: f64, dir: usize) -> Option<f64> {
+    /// The largest computed second difference of the coefficients along `dir`; `None` for a
+    /// degree below 2, and as soon as one difference is not < 0 (or NaN): then
+    /// (d + err) k >= 0 for every err >= 0 and [`Piece::curvature_within`] would fail.
+    fn second_max(&self, f: &[f64; N], dir: usize) -> Option<f64> {
         let [n0, n1] = self.n;
-        let nd = self.n[dir];
-        if nd < 2 {
+        if self.n[dir] < 2 {
             return None;
         }
         let step = if dir == 0 { n1 + 1 } else { 1 };
@@ -881,9 +892,20 @@ impl<const N: usize> Piece<N> {
                     continue;
                 }
                 let i = r * (n1 + 1) + c;
-                mx = mx.max((f[i + 2 * step] - f[i + step]) - (f[i + step] - f[i]));
+                let d = (f[i + 2 * step] - f[i + step]) - (f[i + step] - f[i]);
+                if d >= 0.0 || d.is_nan() {
+                    return None;
+                }
+                mx = mx.max(d);
             }
         }
+        Some(mx)
+    }
+
+    /// [`Piece::curvature`] from the largest second difference `mx` along `dir`
+    /// ([`Piece::second_max`]) and the finite error bound `err` of the second differences.
+    fn curvature_within(&self, mx: f64, err: f64, dir: usize) -> Option<f64> {
+        let nd = self.n[dir];
         // ((d + err) k is increasing in d for k > 0: the largest d first)
         let h = ((iv::point(mx) + iv::point(err)) * iv::point((nd * (nd - 1)) as f64)).sup();
         (h < 0.0).then_some(-h)
