@@ -468,9 +468,8 @@ struct Piece<const N: usize> {
     /// the degrees of the patch (for evaluations at points of the patch)
     full: [usize; 2],
     /// the largest coefficient ratio (f64; set with the coefficients by [`Piece::root`],
-    /// [`Piece::edge`], and for the halves of a split by [`Prover::prove`]): the search
-    /// order, and for a polynomial piece the largest coefficient that [`Piece::excluded`]
-    /// tests
+    /// [`Piece::edge`] and [`Piece::split_into`]): the search order, and for a polynomial
+    /// piece the largest coefficient that [`Piece::excluded`] tests
     prio: f64,
 }
 
@@ -487,16 +486,18 @@ impl Lines {
     /// de Casteljau on every line (degree D1 - 1, a constant so that the loops unroll):
     /// the halves into `lo` / `hi`; returns the largest |coefficient| M of `src` read (see
     /// [`Piece::split_into`] for the error bound, which this routine's arithmetic is:
-    /// b_i + t (b_{i+1} - b_i) per step).
+    /// b_i + t (b_{i+1} - b_i) per step), and the largest coefficient written to `lo` and to
+    /// `hi` (`f64::max`: a NaN is skipped, as in [`Piece::max_coef`]).
     #[inline(always)]
     fn split<const D1: usize, const N: usize>(
         &self,
         src: &[f64; N],
         lo: &mut [f64; N],
         hi: &mut [f64; N],
-    ) -> f64 {
+    ) -> [f64; 3] {
         let (t, stride) = (self.t, self.stride);
         let mut m = 0.0f64;
+        let (mut ml, mut mh) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         for k in 0..self.lines {
             let base = k * self.lstride;
             let mut b = [0.0f64; D1];
@@ -506,15 +507,19 @@ impl Lines {
             }
             lo[base] = b[0];
             hi[base + (D1 - 1) * stride] = b[D1 - 1];
+            ml = ml.max(b[0]);
+            mh = mh.max(b[D1 - 1]);
             for lev in 1..D1 {
                 for i in 0..D1 - lev {
                     b[i] += t * (b[i + 1] - b[i]);
                 }
                 lo[base + lev * stride] = b[0];
                 hi[base + (D1 - 1 - lev) * stride] = b[D1 - 1 - lev];
+                ml = ml.max(b[0]);
+                mh = mh.max(b[D1 - 1 - lev]);
             }
         }
-        m
+        [m, ml, mh]
     }
 }
 
@@ -714,13 +719,19 @@ impl<const N: usize> Piece<N> {
                 _ => g.split::<{ MAX_DEGREE + 1 }, N>(src, lo, hi),
             }
         };
-        let ma = run(&self.a, &mut l.a, &mut r.a);
+        let [ma, pl, pr] = run(&self.a, &mut l.a, &mut r.a);
         l.ea = grow(self.ea, ma);
         r.ea = l.ea;
         if self.rational {
-            let mw = run(&self.w, &mut l.w, &mut r.w);
+            let [mw, _, _] = run(&self.w, &mut l.w, &mut r.w);
             l.ew = grow(self.ew, mw);
             r.ew = l.ew;
+            l.prio = l.max_coef();
+            r.prio = r.max_coef();
+        } else {
+            // (the largest coefficients, found while they were written)
+            l.prio = pl;
+            r.prio = pr;
         }
         let (a, b) = self.t[dir];
         let m = (a + t * (b - a)).clamp(a, b);
@@ -1427,9 +1438,7 @@ impl<const N: usize> Prover<'_, N> {
                 }
             };
             for i in kids {
-                let pc = &mut pool[i];
-                pc.depth = depth + 1;
-                pc.prio = pc.max_coef();
+                pool[i].depth = depth + 1;
                 open.push(i);
             }
         }
