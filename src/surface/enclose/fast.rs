@@ -464,6 +464,13 @@ struct Piece<const N: usize> {
     ea: f64,
     ew: f64,
     rational: bool,
+    /// every coefficient of `a` and `w` is finite: true for [`Piece::root`] (it checks) and
+    /// [`Piece::edge`] (a subset of the root's), and for the halves of a split of a finite
+    /// piece whose coefficients are at most f64::MAX / 4 in magnitude (each de Casteljau
+    /// step b + t (b' - b), t in [0, 1], has |b' - b| <= 2 M' and a result within a factor
+    /// 1 + 9u of a convex combination, so over <= MAX_DEGREE levels every intermediate stays
+    /// below 2 M (1 + 50 u)^2 < f64::MAX); false: not known, [`Piece::f_values`] checks
+    finite: bool,
     depth: u32,
     /// the degrees of the patch (for evaluations at points of the patch)
     full: [usize; 2],
@@ -552,6 +559,8 @@ impl<const N: usize> Piece<N> {
             ea: 0.0,
             ew: 0.0,
             rational,
+            // (returned only if every coefficient is finite, below)
+            finite: true,
             depth: 0,
             full: n,
             prio: 0.0,
@@ -597,6 +606,7 @@ impl<const N: usize> Piece<N> {
             ea: self.ea,
             ew: self.ew,
             rational: self.rational,
+            finite: self.finite,
             depth: self.depth,
             full: n,
             prio: 0.0,
@@ -722,10 +732,12 @@ impl<const N: usize> Piece<N> {
         let [ma, pl, pr] = run(&self.a, &mut l.a, &mut r.a);
         l.ea = grow(self.ea, ma);
         r.ea = l.ea;
+        l.finite = self.finite && ma <= f64::MAX / 4.0;
         if self.rational {
             let [mw, _, _] = run(&self.w, &mut l.w, &mut r.w);
             l.ew = grow(self.ew, mw);
             r.ew = l.ew;
+            l.finite &= mw <= f64::MAX / 4.0;
             l.prio = l.max_coef();
             r.prio = r.max_coef();
         } else {
@@ -733,6 +745,7 @@ impl<const N: usize> Piece<N> {
             l.prio = pl;
             r.prio = pr;
         }
+        r.finite = l.finite;
         let (a, b) = self.t[dir];
         let m = (a + t * (b - a)).clamp(a, b);
         l.t[dir] = (a, m);
@@ -746,9 +759,10 @@ impl<const N: usize> Piece<N> {
         let cnt = self.count();
         if !self.rational {
             // (a split may overflow near +-f64::MAX; every test below needs finite
-            // coefficients: `f64::max` would skip a NaN)
-            return (self.ea.is_finite() && self.a[..cnt].iter().all(|x| x.is_finite()))
-                .then_some((&self.a, self.ea));
+            // coefficients: `f64::max` would skip a NaN; known for most pieces, `finite`)
+            return (self.ea.is_finite()
+                && (self.finite || self.a[..cnt].iter().all(|x| x.is_finite())))
+            .then_some((&self.a, self.ea));
         }
         let mut m = 0.0f64;
         for (i, fi) in f.iter_mut().enumerate().take(cnt) {
