@@ -494,7 +494,8 @@ impl Lines {
     /// the halves into `lo` / `hi`; returns the largest |coefficient| M of `src` read (see
     /// [`Piece::split_into`] for the error bound, which this routine's arithmetic is:
     /// b_i + t (b_{i+1} - b_i) per step), and the largest coefficient written to `lo` and to
-    /// `hi` (`f64::max`: a NaN is skipped, as in [`Piece::max_coef`]).
+    /// `hi` (a NaN is skipped, as `f64::max` does in [`Piece::max_coef`]; the comparisons
+    /// below compile to single max instructions, `f64::max` to a NaN-checking sequence).
     #[inline(always)]
     fn split<const D1: usize, const N: usize>(
         &self,
@@ -503,6 +504,13 @@ impl Lines {
         hi: &mut [f64; N],
     ) -> [f64; 3] {
         let (t, stride) = (self.t, self.stride);
+        // (never NaN: a NaN compares false and is skipped)
+        #[inline(always)]
+        fn raise(m: &mut f64, x: f64) {
+            if x > *m {
+                *m = x;
+            }
+        }
         let mut m = 0.0f64;
         let (mut ml, mut mh) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         for k in 0..self.lines {
@@ -510,20 +518,20 @@ impl Lines {
             let mut b = [0.0f64; D1];
             for (i, x) in b.iter_mut().enumerate() {
                 *x = src[base + i * stride];
-                m = m.max(x.abs());
+                raise(&mut m, x.abs());
             }
             lo[base] = b[0];
             hi[base + (D1 - 1) * stride] = b[D1 - 1];
-            ml = ml.max(b[0]);
-            mh = mh.max(b[D1 - 1]);
+            raise(&mut ml, b[0]);
+            raise(&mut mh, b[D1 - 1]);
             for lev in 1..D1 {
                 for i in 0..D1 - lev {
                     b[i] += t * (b[i + 1] - b[i]);
                 }
                 lo[base + lev * stride] = b[0];
                 hi[base + (D1 - 1 - lev) * stride] = b[D1 - 1 - lev];
-                ml = ml.max(b[0]);
-                mh = mh.max(b[D1 - 1 - lev]);
+                raise(&mut ml, b[0]);
+                raise(&mut mh, b[D1 - 1 - lev]);
             }
         }
         [m, ml, mh]
