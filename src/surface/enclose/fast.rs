@@ -504,13 +504,6 @@ impl Lines {
         hi: &mut [f64; N],
     ) -> [f64; 3] {
         let (t, stride) = (self.t, self.stride);
-        // (never NaN: a NaN compares false and is skipped)
-        #[inline(always)]
-        fn raise(m: &mut f64, x: f64) {
-            if x > *m {
-                *m = x;
-            }
-        }
         let mut m = 0.0f64;
         let (mut ml, mut mh) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         for k in 0..self.lines {
@@ -535,6 +528,16 @@ impl Lines {
             }
         }
         [m, ml, mh]
+    }
+}
+
+/// m = max(m, x) for a running maximum m that is not NaN, skipping a NaN x (as `f64::max`
+/// does) by a comparison: one max instruction, where `f64::max` is a NaN-checking sequence
+/// (the maxima of the proof's inner loops).
+#[inline(always)]
+fn raise(m: &mut f64, x: f64) {
+    if x > *m {
+        *m = x;
     }
 }
 
@@ -670,13 +673,15 @@ impl<const N: usize> Piece<N> {
         let cnt = self.count();
         if !self.rational {
             // (w = 1: no divisions)
-            return self.a[..cnt]
-                .iter()
-                .fold(f64::NEG_INFINITY, |m, &x| m.max(x));
+            return self.a[..cnt].iter().fold(f64::NEG_INFINITY, |mut m, &x| {
+                raise(&mut m, x);
+                m
+            });
         }
-        (0..cnt)
-            .map(|i| self.a[i] / self.w[i])
-            .fold(f64::NEG_INFINITY, f64::max)
+        (0..cnt).fold(f64::NEG_INFINITY, |mut m, i| {
+            raise(&mut m, self.a[i] / self.w[i]);
+            m
+        })
     }
 
     /// de Casteljau subdivision along `dir` at the local parameter `t` in [0, 1], an f64
@@ -886,9 +891,10 @@ impl<const N: usize> Piece<N> {
     /// finite.
     fn second_error(&self, f: &[f64; N], e: f64) -> f64 {
         let cnt = self.count();
-        let m = f[..cnt].iter().fold(0.0f64, |m, x| {
+        let m = f[..cnt].iter().fold(0.0f64, |mut m, x| {
             if x.is_finite() {
-                m.max(x.abs())
+                raise(&mut m, x.abs());
+                m
             } else {
                 f64::INFINITY
             }
@@ -929,7 +935,7 @@ impl<const N: usize> Piece<N> {
                 if d >= 0.0 || d.is_nan() {
                     return None;
                 }
-                mx = mx.max(d);
+                raise(&mut mx, d);
             }
         }
         Some(mx)
