@@ -84,11 +84,13 @@ pub(crate) struct FastSurface {
     rational: bool,
     /// per patch `[(r * (q + 1) + c) * h + k]`, h = dim + rational
     patches: Vec<Vec<Ddi>>,
-    /// (patch, coefficient index, point): the corner coefficients that are a clamped domain
+    /// (patch, coefficient index): the corner coefficients that are a clamped domain
     /// corner, where the surface is the control point exactly (the only non-zero basis
     /// products are N_r N_c = 1; the weights cancel). A `Ddi` quotient w P / w would come out
     /// an ulp wider on each side.
-    exact: Vec<(usize, usize, Vec<f64>)>,
+    exact: SmallVec<[(usize, usize); 4]>,
+    /// the points of `exact`, `dim` coordinates each (inline up to 4-D: no allocation)
+    exact_pts: SmallVec<[f64; 16]>,
     /// per patch, corner (0, 0), (0, q), (p, 0), (p, q) and coordinate: the corner value from
     /// the interval (inari) extraction (several patches only), intersected with the `Ddi` one:
     /// both enclose the same value, and interval knot insertion stays exact on dyadic data,
@@ -148,14 +150,15 @@ impl FastSurface {
         let nv = (q..s.cols()).filter(|&k| kv[k] < kv[k + 1]).count();
         let np = patches.len();
         let ((a, b), (c, d)) = s.domain();
-        let mut exact = Vec::new();
+        let (mut exact, mut exact_pts) = (SmallVec::new(), SmallVec::new());
         for (u, ul, at_u) in [(a, false, 0), (b, true, 1)] {
             for (v, vl, at_v) in [(c, false, 0), (d, true, 1)] {
                 if let (Some(r), Some(k)) = (s.exact_row_at(u, ul), s.exact_column_at(v, vl)) {
                     let patch =
                         if at_u == 0 { 0 } else { np - nv } + if at_v == 0 { 0 } else { nv - 1 };
                     let i = (at_u * p) * (q + 1) + at_v * q;
-                    exact.push((patch, i, s.control_point(r, k).to_vec()));
+                    exact.push((patch, i));
+                    exact_pts.extend_from_slice(s.control_point(r, k));
                 }
             }
         }
@@ -166,6 +169,7 @@ impl FastSurface {
             rational: s.is_rational(),
             patches,
             exact,
+            exact_pts,
             corner_iv,
         })
     }
@@ -180,8 +184,8 @@ impl FastSurface {
         j: usize,
         sign: f64,
     ) -> Interval {
-        if let Some((_, _, x)) = self.exact.iter().find(|e| e.0 == k && e.1 == i) {
-            return iv::point(sign * x[j]);
+        if let Some(m) = self.exact.iter().position(|e| e.0 == k && e.1 == i) {
+            return iv::point(sign * self.exact_pts[m * self.dim + j]);
         }
         let r = g.ratio(i, self.rational);
         let (p, q) = (self.p, self.q);
@@ -244,9 +248,10 @@ impl FastSurface {
         st: &mut Stats,
     ) -> Option<(f64, f64)> {
         let n = [self.p, self.q];
-        let grids: SmallVec<[DdGrid<N>; 1]> = (0..self.patches.len())
-            .map(|k| self.dd_grid(k, j, sign))
-            .collect();
+        let mut grids: SmallVec<[DdGrid<N>; 1]> = SmallVec::new();
+        for k in 0..self.patches.len() {
+            grids.push(self.dd_grid(k, j, sign));
+        }
         // corners: values the surface takes (continuous surface), and the vertex test
         let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         let mut vertex = true;
@@ -293,26 +298,27 @@ impl FastSurface {
             return Some((hi, lo));
         }
         // candidates on the patches the vertex test did not settle
-        let roots: SmallVec<[Piece<N>; 1]> = grids
-            .iter()
-            .map(|g| Piece::root(g, n, self.rational))
-            .collect::<Option<_>>()?;
+        // (pushed and filled in place: a grid, a piece and the candidates are hundreds of
+        // bytes each)
+        let mut roots: SmallVec<[Piece<N>; 1]> = SmallVec::new();
+        for g in &grids {
+            roots.push(Piece::root(g, n, self.rational)?);
+        }
         let mut cands: SmallVec<[[Option<Cand>; 5]; 1]> = SmallVec::new();
         for k in 0..grids.len() {
-            let mut cs: [Option<Cand>; 5] = [None; 5];
+            cands.push([None; 5]);
+            let cs = &mut cands[k];
             if coef_max[k] > hi {
                 let root = &roots[k];
                 for (e, c) in cs.iter_mut().enumerate().take(4) {
-                    let edge = root.edge(e);
-                    if edge.max_coef() > hi {
-                        *c = newton(&edge, self.rational);
+                    if root.edge_max(e) > hi {
+                        *c = newton(&root.edge(e), self.rational);
                         st.newton_iterations += 1;
                     }
                 }
                 cs[4] = newton(root, self.rational);
                 st.newton_iterations += 1;
             }
-            cands.push(cs);
         }
         // the tight (`Ddi`) values of the candidates that may be the best (f64 estimates)
         let best = cands
@@ -439,8 +445,9 @@ struct Cand {
     t: [f64; 2],
     /// the f64 estimate of its value
     est: f64,
-    /// `Ddi` enclosures of A, w and their derivatives there, once computed
-    dd: Option<[[Ddi; 6]; 2]>,
+    /// `Ddi` enclosures of A, w and their first derivatives there ([`tight_derivs`]), once
+    /// computed
+    dd: Option<[[Ddi; 3]; 2]>,
 }
 
 /// A box of a patch's parameter space with the f64 Bernstein coefficients of sign * A_j and w
@@ -457,10 +464,19 @@ struct Piece<const N: usize> {
     ea: f64,
     ew: f64,
     rational: bool,
+    /// every coefficient of `a` and `w` is finite: true for [`Piece::root`] (it checks) and
+    /// [`Piece::edge`] (a subset of the root's), and for the halves of a split of a finite
+    /// piece whose coefficients are at most f64::MAX / 4 in magnitude (each de Casteljau
+    /// step b + t (b' - b), t in [0, 1], has |b' - b| <= 2 M' and a result within a factor
+    /// 1 + 9u of a convex combination, so over <= MAX_DEGREE levels every intermediate stays
+    /// below 2 M (1 + 50 u)^2 < f64::MAX); false: not known, [`Piece::f_values`] checks
+    finite: bool,
     depth: u32,
     /// the degrees of the patch (for evaluations at points of the patch)
     full: [usize; 2],
-    /// the largest coefficient ratio (f64; the search order only)
+    /// the largest coefficient ratio (f64; set with the coefficients by [`Piece::root`],
+    /// [`Piece::edge`] and [`Piece::split_into`]): the search order, and for a polynomial
+    /// piece the largest coefficient that [`Piece::excluded`] tests
     prio: f64,
 }
 
@@ -477,34 +493,51 @@ impl Lines {
     /// de Casteljau on every line (degree D1 - 1, a constant so that the loops unroll):
     /// the halves into `lo` / `hi`; returns the largest |coefficient| M of `src` read (see
     /// [`Piece::split_into`] for the error bound, which this routine's arithmetic is:
-    /// b_i + t (b_{i+1} - b_i) per step).
+    /// b_i + t (b_{i+1} - b_i) per step), and the largest coefficient written to `lo` and to
+    /// `hi` (a NaN is skipped, as `f64::max` does in [`Piece::max_coef`]; the comparisons
+    /// below compile to single max instructions, `f64::max` to a NaN-checking sequence).
     #[inline(always)]
     fn split<const D1: usize, const N: usize>(
         &self,
         src: &[f64; N],
         lo: &mut [f64; N],
         hi: &mut [f64; N],
-    ) -> f64 {
+    ) -> [f64; 3] {
         let (t, stride) = (self.t, self.stride);
         let mut m = 0.0f64;
+        let (mut ml, mut mh) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         for k in 0..self.lines {
             let base = k * self.lstride;
             let mut b = [0.0f64; D1];
             for (i, x) in b.iter_mut().enumerate() {
                 *x = src[base + i * stride];
-                m = m.max(x.abs());
+                raise(&mut m, x.abs());
             }
             lo[base] = b[0];
             hi[base + (D1 - 1) * stride] = b[D1 - 1];
+            raise(&mut ml, b[0]);
+            raise(&mut mh, b[D1 - 1]);
             for lev in 1..D1 {
                 for i in 0..D1 - lev {
                     b[i] += t * (b[i + 1] - b[i]);
                 }
                 lo[base + lev * stride] = b[0];
                 hi[base + (D1 - 1 - lev) * stride] = b[D1 - 1 - lev];
+                raise(&mut ml, b[0]);
+                raise(&mut mh, b[D1 - 1 - lev]);
             }
         }
-        m
+        [m, ml, mh]
+    }
+}
+
+/// m = max(m, x) for a running maximum m that is not NaN, skipping a NaN x (as `f64::max`
+/// does) by a comparison: one max instruction, where `f64::max` is a NaN-checking sequence
+/// (the maxima of the proof's inner loops).
+#[inline(always)]
+fn raise(m: &mut f64, x: f64) {
+    if x > *m {
+        *m = x;
     }
 }
 
@@ -537,6 +570,8 @@ impl<const N: usize> Piece<N> {
             ea: 0.0,
             ew: 0.0,
             rational,
+            // (returned only if every coefficient is finite, below)
+            finite: true,
             depth: 0,
             full: n,
             prio: 0.0,
@@ -554,6 +589,7 @@ impl<const N: usize> Piece<N> {
         // (a sum of two nonnegative f64 rounded up: Lemma B of `num::ddi`)
         pc.ea = up(pc.ea);
         pc.ew = up(pc.ew);
+        pc.prio = pc.max_coef();
         (pc.a[..cnt].iter().all(|x| x.is_finite()) && pc.w[..cnt].iter().all(|x| x.is_finite()))
             .then_some(pc)
     }
@@ -567,16 +603,31 @@ impl<const N: usize> Piece<N> {
     /// coefficients). Only for the root piece.
     fn edge(&self, e: usize) -> Piece<N> {
         let [n0, n1] = self.n;
-        let mut pc = *self;
         let (dir, at) = (e / 2, if e % 2 == 0 { 0.0 } else { 1.0 });
-        pc.n[dir] = 0;
-        pc.full = pc.n;
-        pc.t[dir] = (at, at);
+        let mut n = self.n;
+        n[dir] = 0;
+        let mut t = self.t;
+        t[dir] = (at, at);
+        // (built afresh, not copied: only the curve's coefficients are read)
+        let mut pc = Piece {
+            t,
+            n,
+            a: [0.0; N],
+            w: [1.0; N],
+            ea: self.ea,
+            ew: self.ew,
+            rational: self.rational,
+            finite: self.finite,
+            depth: self.depth,
+            full: n,
+            prio: 0.0,
+        };
         let len = if dir == 0 { n1 + 1 } else { n0 + 1 };
         for k in 0..len {
             pc.a[k] = self.a[edge_index(e, self.n, k)];
             pc.w[k] = self.w[edge_index(e, self.n, k)];
         }
+        pc.prio = pc.max_coef();
         pc
     }
 
@@ -606,17 +657,31 @@ impl<const N: usize> Piece<N> {
             .fold(0.0, f64::max)
     }
 
+    /// The largest coefficient ratio of boundary curve e (the `max_coef` of
+    /// [`Piece::edge`], without building the curve's piece).
+    fn edge_max(&self, e: usize) -> f64 {
+        let len = if e < 2 { self.n[1] + 1 } else { self.n[0] + 1 };
+        (0..len)
+            .map(|k| {
+                let i = edge_index(e, self.n, k);
+                self.a[i] / self.w[i]
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
     fn max_coef(&self) -> f64 {
         let cnt = self.count();
         if !self.rational {
             // (w = 1: no divisions)
-            return self.a[..cnt]
-                .iter()
-                .fold(f64::NEG_INFINITY, |m, &x| m.max(x));
+            return self.a[..cnt].iter().fold(f64::NEG_INFINITY, |mut m, &x| {
+                raise(&mut m, x);
+                m
+            });
         }
-        (0..cnt)
-            .map(|i| self.a[i] / self.w[i])
-            .fold(f64::NEG_INFINITY, f64::max)
+        (0..cnt).fold(f64::NEG_INFINITY, |mut m, i| {
+            raise(&mut m, self.a[i] / self.w[i]);
+            m
+        })
     }
 
     /// de Casteljau subdivision along `dir` at the local parameter `t` in [0, 1], an f64
@@ -633,9 +698,11 @@ impl<const N: usize> Piece<N> {
     /// n has n levels: e' = e + n ((2 delta + 6 u) M + 2 eta), rounded up (Lemma B of
     /// `num::ddi`).
     ///
-    /// The halves are written into `l` and `r` (any pieces: every field is set), so the
-    /// caller can split straight into the slots of its work list (a `Piece` is a few hundred
-    /// bytes; copies of it were a fifth of the proof's cost).
+    /// The halves are written into `l` and `r` (any pieces of the same patch: every field is
+    /// set but the weights of a polynomial piece, which are 1 in every piece of it, as
+    /// [`Piece::root`] and [`Piece::edge`] made them), so the caller can split straight into
+    /// the slots of its work list (a `Piece` is a few hundred bytes; copies of it were a
+    /// fifth of the proof's cost).
     #[inline]
     fn split_into(&self, dir: usize, t: f64, delta: f64, l: &mut Piece<N>, r: &mut Piece<N>) {
         for x in [&mut *l, &mut *r] {
@@ -646,11 +713,6 @@ impl<const N: usize> Piece<N> {
             x.rational = self.rational;
             x.depth = self.depth + 1;
             x.full = self.full;
-            x.prio = self.prio;
-            if !self.rational {
-                // (never read for a polynomial piece except as the divisor 1 of a ratio)
-                x.w = self.w;
-            }
         }
         let n = self.n[dir];
         let [_, n1] = self.n;
@@ -680,14 +742,23 @@ impl<const N: usize> Piece<N> {
                 _ => g.split::<{ MAX_DEGREE + 1 }, N>(src, lo, hi),
             }
         };
-        let ma = run(&self.a, &mut l.a, &mut r.a);
+        let [ma, pl, pr] = run(&self.a, &mut l.a, &mut r.a);
         l.ea = grow(self.ea, ma);
         r.ea = l.ea;
+        l.finite = self.finite && ma <= f64::MAX / 4.0;
         if self.rational {
-            let mw = run(&self.w, &mut l.w, &mut r.w);
+            let [mw, _, _] = run(&self.w, &mut l.w, &mut r.w);
             l.ew = grow(self.ew, mw);
             r.ew = l.ew;
+            l.finite &= mw <= f64::MAX / 4.0;
+            l.prio = l.max_coef();
+            r.prio = r.max_coef();
+        } else {
+            // (the largest coefficients, found while they were written)
+            l.prio = pl;
+            r.prio = pr;
         }
+        r.finite = l.finite;
         let (a, b) = self.t[dir];
         let m = (a + t * (b - a)).clamp(a, b);
         l.t[dir] = (a, m);
@@ -701,9 +772,10 @@ impl<const N: usize> Piece<N> {
         let cnt = self.count();
         if !self.rational {
             // (a split may overflow near +-f64::MAX; every test below needs finite
-            // coefficients: `f64::max` would skip a NaN)
-            return (self.ea.is_finite() && self.a[..cnt].iter().all(|x| x.is_finite()))
-                .then_some((&self.a, self.ea));
+            // coefficients: `f64::max` would skip a NaN; known for most pieces, `finite`)
+            return (self.ea.is_finite()
+                && (self.finite || self.a[..cnt].iter().all(|x| x.is_finite())))
+            .then_some((&self.a, self.ea));
         }
         let mut m = 0.0f64;
         for (i, fi) in f.iter_mut().enumerate().take(cnt) {
@@ -720,14 +792,14 @@ impl<const N: usize> Piece<N> {
     /// a_i + ea <= ub (the sum rounded up), rational f_i + E <= 0 (the sign of a sum of two
     /// floats is exact).
     fn excluded(&self, f: &[f64; N], e: f64, ub: f64) -> bool {
+        if !self.rational {
+            // (f = a: its largest coefficient is `prio`, kept with the coefficients)
+            return (self.prio + e).next_up() <= ub;
+        }
         let m = f[..self.count()]
             .iter()
             .fold(f64::NEG_INFINITY, |m, &x| m.max(x));
-        if self.rational {
-            m + e <= 0.0
-        } else {
-            (m + e).next_up() <= ub
-        }
+        m + e <= 0.0
     }
 
     /// Whether F is non-increasing (`down`) / non-decreasing along `dir` on the piece: every
@@ -767,13 +839,27 @@ impl<const N: usize> Piece<N> {
     fn concavity(&self, f: &[f64; N], e: f64) -> Option<f64> {
         let [n0, n1] = self.n;
         let at = |r: usize, c: usize| f[r * (n1 + 1) + c];
-        let a0 = match n0 {
+        // (the signs first: most pieces fail there, before any error bound; then one error
+        // bound for all second differences)
+        let m0 = match n0 {
             0 => None,
-            _ => Some(self.curvature(f, e, 0)?),
+            _ => Some(self.second_max(f, 0)?),
         };
-        let c0 = match n1 {
+        let m1 = match n1 {
             0 => None,
-            _ => Some(self.curvature(f, e, 1)?),
+            _ => Some(self.second_max(f, 1)?),
+        };
+        let err = self.second_error(f, e);
+        if !err.is_finite() {
+            return None;
+        }
+        let a0 = match m0 {
+            None => None,
+            Some(mx) => Some(self.curvature_within(mx, err, 0)?),
+        };
+        let c0 = match m1 {
+            None => None,
+            Some(mx) => Some(self.curvature_within(mx, err, 1)?),
         };
         match (a0, c0) {
             (Some(a), None) | (None, Some(a)) => Some(a),
@@ -787,7 +873,7 @@ impl<const N: usize> Piece<N> {
                     }
                 }
                 // |(d + pm) k| <= (|d| + err) k
-                let b0 = ((iv::point(dm) + iv::point(self.second_error(f, e))) * kk).sup();
+                let b0 = ((iv::point(dm) + iv::point(err)) * kk).sup();
                 let rr = (a / c).sqrt();
                 if !(rr.is_finite() && rr > 0.0) {
                     return None;
@@ -805,9 +891,10 @@ impl<const N: usize> Piece<N> {
     /// finite.
     fn second_error(&self, f: &[f64; N], e: f64) -> f64 {
         let cnt = self.count();
-        let m = f[..cnt].iter().fold(0.0f64, |m, x| {
+        let m = f[..cnt].iter().fold(0.0f64, |mut m, x| {
             if x.is_finite() {
-                m.max(x.abs())
+                raise(&mut m, x.abs());
+                m
             } else {
                 f64::INFINITY
             }
@@ -820,13 +907,20 @@ impl<const N: usize> Piece<N> {
     /// differences of the coefficients along d (each within [`Piece::second_error`] of the
     /// exact one), and F_dd lies in their hull.
     fn curvature(&self, f: &[f64; N], e: f64, dir: usize) -> Option<f64> {
-        let [n0, n1] = self.n;
-        let nd = self.n[dir];
-        if nd < 2 {
-            return None;
-        }
+        let mx = self.second_max(f, dir)?;
         let err = self.second_error(f, e);
         if !err.is_finite() {
+            return None;
+        }
+        self.curvature_within(mx, err, dir)
+    }
+
+    /// The largest computed second difference of the coefficients along `dir`; `None` for a
+    /// degree below 2, and as soon as one difference is not < 0 (or NaN): then
+    /// (d + err) k >= 0 for every err >= 0 and [`Piece::curvature_within`] would fail.
+    fn second_max(&self, f: &[f64; N], dir: usize) -> Option<f64> {
+        let [n0, n1] = self.n;
+        if self.n[dir] < 2 {
             return None;
         }
         let step = if dir == 0 { n1 + 1 } else { 1 };
@@ -837,9 +931,20 @@ impl<const N: usize> Piece<N> {
                     continue;
                 }
                 let i = r * (n1 + 1) + c;
-                mx = mx.max((f[i + 2 * step] - f[i + step]) - (f[i + step] - f[i]));
+                let d = (f[i + 2 * step] - f[i + step]) - (f[i + step] - f[i]);
+                if d >= 0.0 || d.is_nan() {
+                    return None;
+                }
+                raise(&mut mx, d);
             }
         }
+        Some(mx)
+    }
+
+    /// [`Piece::curvature`] from the largest second difference `mx` along `dir`
+    /// ([`Piece::second_max`]) and the finite error bound `err` of the second differences.
+    fn curvature_within(&self, mx: f64, err: f64, dir: usize) -> Option<f64> {
+        let nd = self.n[dir];
         // ((d + err) k is increasing in d for k > 0: the largest d first)
         let h = ((iv::point(mx) + iv::point(err)) * iv::point((nd * (nd - 1)) as f64)).sup();
         (h < 0.0).then_some(-h)
@@ -850,56 +955,102 @@ impl<const N: usize> Piece<N> {
 /// A1.5): `[p, p', p'']`, the derivatives from the second-to-last levels of the pyramid
 /// (p' = n (c_1 - c_0) at level n - 1, p'' = n (n - 1) (b_2 - 2 b_1 + b_0) at level n - 2;
 /// Farin, derivatives of a Bézier curve). For verified types every result encloses the exact
-/// one. `b` is overwritten.
-fn bern2<S: Scalar + Copy>(b: &mut [S], t: S) -> [S; 3] {
+/// one. `b` is overwritten. Derivatives of order above `ORDER` are not computed (0): the
+/// `Ddi` and interval evaluations need the value and the gradient only. (The degree is
+/// dispatched to a constant, [`bern2_fixed`], so that the loops unroll: this is the inner
+/// loop of every Newton iteration.)
+fn bern2<S: Scalar + Copy, const ORDER: usize>(b: &mut [S], t: S) -> [S; 3] {
+    fn fixed<S: Scalar + Copy, const D1: usize, const ORDER: usize>(b: &mut [S], t: S) -> [S; 3] {
+        bern2_fixed::<S, D1, ORDER>(b.try_into().expect("length D1"), t)
+    }
+    match b.len() {
+        1 => [b[0], S::zero(), S::zero()],
+        2 => fixed::<S, 2, ORDER>(b, t),
+        3 => fixed::<S, 3, ORDER>(b, t),
+        4 => fixed::<S, 4, ORDER>(b, t),
+        5 => fixed::<S, 5, ORDER>(b, t),
+        _ => fixed::<S, { MAX_DEGREE + 1 }, ORDER>(b, t),
+    }
+}
+
+/// [`bern2`] for degree n = D1 - 1 >= 1.
+#[inline(always)]
+fn bern2_fixed<S: Scalar + Copy, const D1: usize, const ORDER: usize>(
+    b: &mut [S; D1],
+    t: S,
+) -> [S; 3] {
     // lo + t (hi - lo) as one Horner step (one fused, enclosed step for `Ddi`: over at most
     // 2 MAX_DEGREE levels its radius growth is immaterial; plain arithmetic for f64)
     #[inline(always)]
     fn step<S: Scalar + Copy>(t: &S, lo: &S, hi: &S) -> S {
         S::horner_step(&(*hi - *lo), t, lo)
     }
-    let n = b.len() - 1;
-    let z = S::zero();
-    if n == 0 {
-        return [b[0], z, z];
-    }
+    let n = D1 - 1;
     for lev in 1..n.saturating_sub(1) {
         for i in 0..=n - lev {
             b[i] = step(&t, &b[i], &b[i + 1]);
         }
     }
-    let d2 = if n >= 2 {
+    let d2 = if n >= 2 && ORDER >= 2 {
         S::from_usize(n * (n - 1)) * ((b[2] - b[1]) - (b[1] - b[0]))
     } else {
-        z
+        S::zero()
     };
     if n >= 2 {
         b[0] = step(&t, &b[0], &b[1]);
         b[1] = step(&t, &b[1], &b[2]);
     }
-    let d1 = S::from_usize(n) * (b[1] - b[0]);
+    let d1 = if ORDER >= 1 {
+        S::from_usize(n) * (b[1] - b[0])
+    } else {
+        S::zero()
+    };
     [step(&t, &b[0], &b[1]), d1, d2]
 }
 
 /// The tensor Bernstein polynomial with coefficients `c` (grid `(n[0] + 1) x (n[1] + 1)`) at
 /// t: `[f, f_u, f_v, f_uu, f_uv, f_vv]` (generic over the number type: f64 for the Newton
-/// iterations, `Ddi` for the values the proofs use). The v direction first on every row,
-/// then u on the results.
-fn eval2<S: Scalar + Copy>(c: &[S], n: [usize; 2], t: [f64; 2]) -> [S; 6] {
+/// iterations, `Ddi` for the values the proofs use), the derivatives of order above `ORDER`
+/// not computed (0). The v direction first on every row, then u on the results; a boundary
+/// curve (a degree 0) is one curve evaluation, the derivatives across it 0.
+fn eval2<S: Scalar + Copy, const ORDER: usize>(c: &[S], n: [usize; 2], t: [f64; 2]) -> [S; 6] {
     let z = S::zero();
     let (tu, tv) = (S::from_f64(t[0]), S::from_f64(t[1]));
+    if n[0] == 0 || n[1] == 0 {
+        let (d, tc) = if n[0] == 0 { (1, tv) } else { (0, tu) };
+        let mut b = [z; MAX_DEGREE + 1];
+        b[..=n[d]].copy_from_slice(&c[..=n[d]]);
+        let [f, fd, fdd] = bern2::<S, ORDER>(&mut b[..=n[d]], tc);
+        return if d == 0 {
+            [f, fd, z, fdd, z, z]
+        } else {
+            [f, z, fd, z, z, fdd]
+        };
+    }
     let mut g = [[z; MAX_DEGREE + 1]; 3];
     let mut row = [z; MAX_DEGREE + 1];
     for r in 0..=n[0] {
         row[..=n[1]].copy_from_slice(&c[r * (n[1] + 1)..(r + 1) * (n[1] + 1)]);
-        let [v, dv, dvv] = bern2(&mut row[..=n[1]], tv);
+        let [v, dv, dvv] = bern2::<S, ORDER>(&mut row[..=n[1]], tv);
         g[0][r] = v;
         g[1][r] = dv;
         g[2][r] = dvv;
     }
-    let [f, fu, fuu] = bern2(&mut g[0][..=n[0]], tu);
-    let [fv, fuv, _] = bern2(&mut g[1][..=n[0]], tu);
-    let [fvv, _, _] = bern2(&mut g[2][..=n[0]], tu);
+    let [f, fu, fuu] = bern2::<S, ORDER>(&mut g[0][..=n[0]], tu);
+    // (f_v and f_uv from the v derivatives, f_vv from the second ones: one order less each)
+    let (fv, fuv) = match ORDER {
+        0 => (z, z),
+        1 => (bern2::<S, 0>(&mut g[1][..=n[0]], tu)[0], z),
+        _ => {
+            let [fv, fuv, _] = bern2::<S, 1>(&mut g[1][..=n[0]], tu);
+            (fv, fuv)
+        }
+    };
+    let fvv = if ORDER >= 2 {
+        bern2::<S, 0>(&mut g[2][..=n[0]], tu)[0]
+    } else {
+        z
+    };
     [f, fu, fv, fuu, fuv, fvv]
 }
 
@@ -952,11 +1103,10 @@ fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -
     // evaluate on the whole patch grid (a boundary curve is the patch at a fixed side)
     let (pn, fa, fw) = (pc.n, &pc.a, &pc.w);
     let mut ok = false;
-    let mut last = false;
     for _ in 0..24 {
-        let a = eval2(&fa[..], pn, t);
+        let a = eval2::<f64, 2>(&fa[..], pn, t);
         let d = if rational {
-            quotient(a, eval2(&fw[..], pn, t))
+            quotient(a, eval2::<f64, 2>(&fw[..], pn, t))
         } else {
             a
         };
@@ -987,18 +1137,17 @@ fn newton_from<const N: usize>(pc: &Piece<N>, rational: bool, mut t: [f64; 2]) -
         if !(nt.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x))) {
             return None;
         }
-        // quadratic convergence: after a step below 1e-9 one more reaches the rounding level
-        let small = step.iter().all(|s| s.abs() <= 4.0 * f64::EPSILON);
+        // quadratic convergence: after a step below 1e-9 the point is within ~1e-18 of the
+        // maximiser, the rounding level of t in [0, 1]
         t = nt;
-        if small || last {
+        if step.iter().all(|s| s.abs() <= 1e-9) {
             ok = true;
             break;
         }
-        last = step.iter().all(|s| s.abs() <= 1e-9);
     }
-    let a = eval2(&fa[..], pn, t);
+    let a = eval2::<f64, 0>(&fa[..], pn, t);
     let est = if rational {
-        a[0] / eval2(&fw[..], pn, t)[0]
+        a[0] / eval2::<f64, 0>(&fw[..], pn, t)[0]
     } else {
         a[0]
     };
@@ -1013,58 +1162,87 @@ fn tight_value<const N: usize>(
     t: [f64; 2],
     rational: bool,
 ) -> Interval {
-    value_of(&tight_derivs(g, n, t, rational), rational)
+    value_of(&tight_jets::<N, 0>(g, n, t, rational), rational)
 }
 
-/// The `Ddi` enclosures of sign * A_j and w and their derivatives at t (w = 1 for a
-/// polynomial patch).
+/// The `Ddi` enclosures of sign * A_j and w and their first derivatives at t:
+/// `[[A, A_u, A_v], [w, w_u, w_v]]` (w = 1 for a polynomial patch).
 fn tight_derivs<const N: usize>(
     g: &DdGrid<N>,
     n: [usize; 2],
     t: [f64; 2],
     rational: bool,
-) -> [[Ddi; 6]; 2] {
-    let a: [Ddi; 6] = eval2(&g.a[..], n, t);
-    let w: [Ddi; 6] = if rational {
-        eval2(&g.w[..], n, t)
+) -> [[Ddi; 3]; 2] {
+    tight_jets::<N, 1>(g, n, t, rational)
+}
+
+/// [`tight_derivs`] with the derivatives up to `ORDER` (<= 1) computed, the others 0.
+fn tight_jets<const N: usize, const ORDER: usize>(
+    g: &DdGrid<N>,
+    n: [usize; 2],
+    t: [f64; 2],
+    rational: bool,
+) -> [[Ddi; 3]; 2] {
+    let first = |x: [Ddi; 6]| [x[0], x[1], x[2]];
+    let a = first(eval2::<Ddi, ORDER>(&g.a[..], n, t));
+    let w = if rational {
+        first(eval2::<Ddi, ORDER>(&g.w[..], n, t))
     } else {
-        let mut w = [Ddi::exact(0.0); 6];
-        w[0] = Ddi::exact(1.0);
-        w
+        [Ddi::exact(1.0), Ddi::exact(0.0), Ddi::exact(0.0)]
     };
     [a, w]
 }
 
 /// c rounded to a multiple of 2^-30 inside the piece, and the interval (inari) enclosures
-/// of A, w and their derivatives there, if the value A / w comes out a single float (exact).
+/// of A, w and their first derivatives there (as [`tight_derivs`]), if the value A / w comes
+/// out a single float (exact).
 #[allow(clippy::type_complexity)]
 fn snapped<const N: usize>(
     g: &DdGrid<N>,
     n: [usize; 2],
     c: [f64; 2],
     pc: &Piece<N>,
-) -> Option<([f64; 2], [[Interval; 6]; 2])> {
+) -> Option<([f64; 2], [[Interval; 3]; 2])> {
     let snap =
         |k: usize| ((c[k] * 1_073_741_824.0).round() / 1_073_741_824.0).clamp(pc.t[k].0, pc.t[k].1);
     let cs = [snap(0), snap(1)];
-    let cnt = (n[0] + 1) * (n[1] + 1);
-    let mut ga = [Interval::EMPTY; N];
-    let mut gw = [iv::point(1.0); N];
-    for i in 0..cnt {
-        ga[i] = g.a[i].to_interval();
-        gw[i] = g.w[i].to_interval();
-    }
-    let a: [Interval; 6] = eval2(&ga[..cnt], n, cs);
-    let w: [Interval; 6] = eval2(&gw[..cnt], n, cs);
+    let [a, w] = interval_jets(g, n, cs, pc.rational);
     let val = a[0] / w[0];
     (val.inf() == val.sup() && val.sup().is_finite()).then_some((cs, [a, w]))
+}
+
+/// The interval (inari) enclosures of sign * A_j and w and their first derivatives at t, as
+/// [`tight_derivs`] but in f64 interval arithmetic on the hulls of the grid's `Ddi`
+/// coefficients: exact on dyadic data at a short dyadic t, else a few ulps wide.
+fn interval_jets<const N: usize>(
+    g: &DdGrid<N>,
+    n: [usize; 2],
+    t: [f64; 2],
+    rational: bool,
+) -> [[Interval; 3]; 2] {
+    let cnt = (n[0] + 1) * (n[1] + 1);
+    let first = |x: [Interval; 6]| [x[0], x[1], x[2]];
+    let hull = |x: &[Ddi; N]| {
+        let mut h = [Interval::EMPTY; N];
+        for i in 0..cnt {
+            h[i] = x[i].to_interval();
+        }
+        h
+    };
+    let a = first(eval2::<Interval, 1>(&hull(&g.a)[..cnt], n, t));
+    let w = if rational {
+        first(eval2::<Interval, 1>(&hull(&g.w)[..cnt], n, t))
+    } else {
+        [iv::point(1.0), iv::point(0.0), iv::point(0.0)]
+    };
+    [a, w]
 }
 
 /// Whether the `Ddi` value A / w at a candidate is within 2^-70 (relative to the value or to
 /// `scale`, the largest |coefficient|) of a float: only then can the value at a nearby short
 /// dyadic point be a float, so only then is [`snapped`] (interval evaluation, the costlier
 /// part of a candidate) tried. A filter for tightness only: soundness never depends on it.
-fn near_float(d: &[[Ddi; 6]; 2], rational: bool, scale: f64) -> bool {
+fn near_float(d: &[[Ddi; 3]; 2], rational: bool, scale: f64) -> bool {
     let v = if rational { d[0][0] / d[1][0] } else { d[0][0] };
     let off = v.lo().abs() + v.rad();
     off.is_finite() && off <= f64::powi(2.0, -70) * v.hi().abs().max(scale)
@@ -1164,8 +1342,8 @@ fn iso_line<S: Scalar + Copy>(
             ba[i] = ga[idx(i)];
             bw[i] = gw[idx(i)];
         }
-        let [va, da, _] = bern2(&mut ba[..=nd], tc);
-        let [vw, dw, _] = bern2(&mut bw[..=nd], tc);
+        let [va, da, _] = bern2::<S, 1>(&mut ba[..=nd], tc);
+        let [vw, dw, _] = bern2::<S, 1>(&mut bw[..=nd], tc);
         fv.push(va - ub * vw);
         fd.push(da - ub * dw);
     }
@@ -1184,7 +1362,7 @@ fn iso_line<S: Scalar + Copy>(
 }
 
 /// A / w enclosed.
-fn value_of(d: &[[Ddi; 6]; 2], rational: bool) -> Interval {
+fn value_of(d: &[[Ddi; 3]; 2], rational: bool) -> Interval {
     if rational {
         (d[0][0] / d[1][0]).to_interval()
     } else {
@@ -1212,106 +1390,151 @@ struct Prover<'a, const N: usize> {
 
 impl<const N: usize> Prover<'_, N> {
     /// F <= 0 on the piece `root` (the patch, `slot` 4, or its boundary curve `slot`).
+    ///
+    /// The pieces live in `pool` and never move: the open list holds their indices, a
+    /// settled piece's slot is reused, and a split writes its halves straight into slots (a
+    /// `Piece` is a few hundred bytes; moving pieces in and out of a work list was a quarter
+    /// of the proof's cost).
     fn prove(&mut self, root: &Piece<N>, slot: usize, g: &DdGrid<N>) -> bool {
         let free = [root.n[0] > 0, root.n[1] > 0];
-        let mut work: SmallVec<[Piece<N>; 16]> = SmallVec::new();
-        work.push(*root);
+        let mut pool: SmallVec<[Piece<N>; 12]> = SmallVec::new();
+        pool.push(*root);
+        let mut open: SmallVec<[usize; 16]> = SmallVec::new();
+        open.push(0);
+        let mut spare: SmallVec<[usize; 16]> = SmallVec::new();
+        // a free slot (a new one holds the root's fields and blank coefficients, weights 1
+        // as every polynomial piece has them, until a split writes it: no copy of the
+        // root's coefficients)
+        let take = |pool: &mut SmallVec<[Piece<N>; 12]>, spare: &mut SmallVec<[usize; 16]>| {
+            spare.pop().unwrap_or_else(|| {
+                pool.push(Piece {
+                    a: [0.0; N],
+                    w: [1.0; N],
+                    ..*root
+                });
+                pool.len() - 1
+            })
+        };
         // best first (the largest coefficient): the pieces around the maximum are refined
         // first, so `ub` reaches it before the others are judged against it
-        while let Some(pc) = {
-            let best = (0..work.len()).max_by(|&x, &y| work[x].prio.total_cmp(&work[y].prio));
-            best.map(|i| work.swap_remove(i))
+        while let Some(k) = {
+            let best =
+                (0..open.len()).max_by(|&x, &y| pool[open[x]].prio.total_cmp(&pool[open[y]].prio));
+            best.map(|i| open.swap_remove(i))
         } {
             if *self.budget == 0 {
                 return false;
             }
             *self.budget -= 1;
             self.st.subdivisions += 1;
-            let mut buf = [0.0f64; N];
-            // (the ub of f: a curvature bound from f holds for F = A - ub_f w only)
-            let ub_f = self.ub;
-            let Some((f, e)) = pc.f_values(ub_f, &mut buf) else {
-                return false;
-            };
-            if pc.excluded(f, e, self.ub) {
-                continue;
-            }
-            let mut done = false;
-            for d in (0..2).filter(|&d| free[d]) {
-                for (end, down) in [(0usize, true), (1, false)] {
-                    let touches = if end == 0 {
-                        pc.t[d].0 == 0.0
-                    } else {
-                        pc.t[d].1 == 1.0
-                    };
-                    if !done && touches && pc.monotone(f, e, d, down) {
-                        // a boundary curve's sides are patch corners (<= ub: candidates)
-                        let ub0 = self.ub;
-                        done = slot < 4 || self.edge(root, 2 * d + end, g);
-                        // (the edge proof may raise ub; for a rational patch F = A - ub w
-                        // then changes shape, so its monotonicity is checked again)
-                        if done && self.ub != ub0 && self.rational {
-                            let mut b2 = [0.0f64; N];
-                            done = pc
-                                .f_values(self.ub, &mut b2)
-                                .is_some_and(|(f2, e2)| pc.monotone(f2, e2, d, down));
-                        }
-                    }
-                }
-            }
-            if done {
-                continue;
-            }
-            if let Some(mu) = pc.concavity(f, e) {
-                if self.concave(&pc, root, slot, (mu, ub_f), g) {
+            match self.settle(&pool[k], root, slot, g, free) {
+                None => return false,
+                Some(true) => {
+                    spare.push(k);
                     continue;
                 }
-            } else if self.ridge(&pc, root, (f, e, ub_f), g) {
-                continue;
-            } else if pc.depth >= 2 && self.searches > 0 && pc.max_coef() > self.ub {
-                // a maximum the first candidates missed: Newton from this piece's centre
-                self.searches -= 1;
-                if let Some(c) = newton_from(root, self.rational, pc.argmax_point()) {
-                    let val = tight_value(g, pc.full, c.t, self.rational);
-                    self.lo = self.lo.max(val.inf());
-                    if val.inf() > self.ub {
-                        self.ub = val.sup();
-                    }
-                    self.found.push(c);
-                }
+                Some(false) => {}
             }
-            if pc.depth >= MAX_DEPTH {
+            let depth = pool[k].depth;
+            if depth >= MAX_DEPTH {
                 return false;
             }
-            // the children are split straight into new slots of `work`
-            let base = work.len();
-            match free {
+            // the children, split straight into their slots
+            let kids: SmallVec<[usize; 4]> = match free {
                 [true, true] => {
-                    let mut h = [pc; 2];
-                    let [h0, h1] = &mut h;
-                    pc.split_into(0, 0.5, 0.0, h0, h1);
-                    for _ in 0..4 {
-                        work.push(pc);
-                    }
-                    for (k, hk) in h.iter().enumerate() {
-                        let (x, y) = work[base + 2 * k..].split_at_mut(1);
-                        hk.split_into(1, 0.5, 0.0, &mut x[0], &mut y[0]);
-                    }
+                    // u halves into a, b; then a's v halves into k (free again) and c, b's
+                    // into a (free again) and d
+                    let (a, b) = (take(&mut pool, &mut spare), take(&mut pool, &mut spare));
+                    let [x, l, r] = pool.get_disjoint_mut([k, a, b]).expect("distinct slots");
+                    x.split_into(0, 0.5, 0.0, l, r);
+                    let c = take(&mut pool, &mut spare);
+                    let [x, l, r] = pool.get_disjoint_mut([a, k, c]).expect("distinct slots");
+                    x.split_into(1, 0.5, 0.0, l, r);
+                    let d = take(&mut pool, &mut spare);
+                    let [x, l, r] = pool.get_disjoint_mut([b, a, d]).expect("distinct slots");
+                    x.split_into(1, 0.5, 0.0, l, r);
+                    spare.push(b);
+                    [k, c, a, d].into_iter().collect()
                 }
                 _ => {
-                    let d = if free[0] { 0 } else { 1 };
-                    work.push(pc);
-                    work.push(pc);
-                    let (x, y) = work[base..].split_at_mut(1);
-                    pc.split_into(d, 0.5, 0.0, &mut x[0], &mut y[0]);
+                    let dir = if free[0] { 0 } else { 1 };
+                    let (a, b) = (take(&mut pool, &mut spare), take(&mut pool, &mut spare));
+                    let [x, l, r] = pool.get_disjoint_mut([k, a, b]).expect("distinct slots");
+                    x.split_into(dir, 0.5, 0.0, l, r);
+                    spare.push(k);
+                    [a, b].into_iter().collect()
                 }
-            }
-            for k in &mut work[base..] {
-                k.depth = pc.depth + 1;
-                k.prio = k.max_coef();
+            };
+            for i in kids {
+                pool[i].depth = depth + 1;
+                open.push(i);
             }
         }
         true
+    }
+
+    /// One piece of [`Prover::prove`]: `Some(true)` if F <= 0 on it is proven (coefficients,
+    /// monotone towards a proven side, concave, ridge), `Some(false)` if it is to be split,
+    /// `None` if the proof fails (coefficients not finite).
+    fn settle(
+        &mut self,
+        pc: &Piece<N>,
+        root: &Piece<N>,
+        slot: usize,
+        g: &DdGrid<N>,
+        free: [bool; 2],
+    ) -> Option<bool> {
+        let mut buf = [0.0f64; N];
+        // (the ub of f: a curvature bound from f holds for F = A - ub_f w only)
+        let ub_f = self.ub;
+        let (f, e) = pc.f_values(ub_f, &mut buf)?;
+        if pc.excluded(f, e, self.ub) {
+            return Some(true);
+        }
+        for d in (0..2).filter(|&d| free[d]) {
+            for (end, down) in [(0usize, true), (1, false)] {
+                let touches = if end == 0 {
+                    pc.t[d].0 == 0.0
+                } else {
+                    pc.t[d].1 == 1.0
+                };
+                if touches && pc.monotone(f, e, d, down) {
+                    // a boundary curve's sides are patch corners (<= ub: candidates)
+                    let ub0 = self.ub;
+                    let mut done = slot < 4 || self.edge(root, 2 * d + end, g);
+                    // (the edge proof may raise ub; for a rational patch F = A - ub w
+                    // then changes shape, so its monotonicity is checked again)
+                    if done && self.ub != ub0 && self.rational {
+                        let mut b2 = [0.0f64; N];
+                        done = pc
+                            .f_values(self.ub, &mut b2)
+                            .is_some_and(|(f2, e2)| pc.monotone(f2, e2, d, down));
+                    }
+                    if done {
+                        return Some(true);
+                    }
+                }
+            }
+        }
+        if let Some(mu) = pc.concavity(f, e) {
+            if self.concave(pc, root, slot, (mu, ub_f), g) {
+                return Some(true);
+            }
+        } else if self.ridge(pc, root, (f, e, ub_f), g) {
+            return Some(true);
+        } else if pc.depth >= 2 && self.searches > 0 && pc.max_coef() > self.ub {
+            // a maximum the first candidates missed: Newton from this piece's centre
+            self.searches -= 1;
+            if let Some(c) = newton_from(root, self.rational, pc.argmax_point()) {
+                let val = tight_value(g, pc.full, c.t, self.rational);
+                self.lo = self.lo.max(val.inf());
+                if val.inf() > self.ub {
+                    self.ub = val.sup();
+                }
+                self.found.push(c);
+            }
+        }
+        Some(false)
     }
 
     /// F <= 0 on boundary curve e of the patch (cached).
@@ -1362,22 +1585,56 @@ impl<const N: usize> Prover<'_, N> {
             .map(|k| iv::point(pc.t[k].1) - iv::point(pc.t[k].0))
             .fold(Interval::EMPTY, |x, y| x.convex_hull(y));
         // f64 pre-check (no soundness role): skip the `Ddi` work where the bound would
-        // clearly fail (a point below ub whose quadratic bound clearly exceeds it)
-        {
+        // clearly fail (a point below ub whose quadratic bound clearly exceeds it). As in
+        // [`Prover::bound`], a direction where c sits on a side of the piece with the
+        // gradient pointing out of it adds nothing (the parabola falls into the piece): a
+        // concave piece beside the maximum, whose maximum is on its side, is proven here
+        // instead of being halved again.
+        let clear = {
             let w2 = wd.sup() * wd.sup();
             let q: f64 = (0..2)
                 .filter(|&k| free[k])
-                .map(|k| est[1 + k] / mu * est[1 + k] * w2 * 0.5)
+                .map(|k| {
+                    let g = est[1 + k];
+                    if (c[k] >= pc.t[k].1 && g > 0.0) || (c[k] <= pc.t[k].0 && g < 0.0) {
+                        0.0
+                    } else {
+                        g / mu * g * w2 * 0.5
+                    }
+                })
                 .sum();
             let scale = self.ub.abs().max(est[0].abs());
             if est[0] <= self.ub && est[0] - self.ub + q > 1e-12 * scale {
                 return false;
             }
-        }
+            // (the bound clearly holds: a margin far above the rounding of f64 intervals)
+            est[0] - self.ub + q < -1e-9 * scale
+        };
         // (the candidate's own enclosures when c did not move)
         let [a, w] = match seed.and_then(|s| s.dd.filter(|_| s.t == c)) {
             Some(dd) => dd,
-            None => tight_derivs(g, pn, c, self.rational),
+            None => {
+                // Where the bound clearly holds (a piece beside the maximum), interval
+                // arithmetic at c is tight enough and costs a fraction of `Ddi`; the same
+                // bound, from enclosures of F(c) and grad F(c) as below.
+                if clear {
+                    let [ai, wi] = interval_jets(g, pn, c, self.rational);
+                    let val = ai[0] / wi[0];
+                    if !val.is_empty() {
+                        self.lo = self.lo.max(val.inf());
+                    }
+                    let ub = iv::point(self.ub);
+                    let fc = ai[0] - ub * wi[0];
+                    let gr = [1, 2].map(|k| ai[k] - ub * wi[k]);
+                    if self
+                        .mu_after_raise(pc, mu, ub0, None)
+                        .is_some_and(|mu| self.bound(pc, c, mu, wd, fc, gr, free))
+                    {
+                        return true;
+                    }
+                }
+                tight_derivs(g, pn, c, self.rational)
+            }
         };
         let val = if self.rational { a[0] / w[0] } else { a[0] }.to_interval();
         if val.is_empty() || !val.sup().is_finite() {
@@ -1478,9 +1735,9 @@ impl<const N: usize> Prover<'_, N> {
             let mid = |k: usize| 0.5 * pc.t[k].0 + 0.5 * pc.t[k].1;
             let mut t = [mid(0), mid(1)];
             for _ in 0..16 {
-                let a = eval2(&root.a[..], root.n, t);
+                let a = eval2::<f64, 2>(&root.a[..], root.n, t);
                 let dv = if self.rational {
-                    quotient(a, eval2(&root.w[..], root.n, t))
+                    quotient(a, eval2::<f64, 2>(&root.w[..], root.n, t))
                 } else {
                     a
                 };
@@ -1632,9 +1889,9 @@ fn constrained_max<const N: usize>(
     let free = [pc.n[0] > 0, pc.n[1] > 0];
     let mut est = [f64::NAN; 3];
     for _ in 0..12 {
-        let a = eval2(&fa[..], pn, t);
+        let a = eval2::<f64, 2>(&fa[..], pn, t);
         let d = if rational {
-            quotient(a, eval2(&fw[..], pn, t))
+            quotient(a, eval2::<f64, 2>(&fw[..], pn, t))
         } else {
             a
         };
