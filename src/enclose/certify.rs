@@ -140,6 +140,8 @@ pub const LOWER_WITHIN_ULPS: usize = 8;
 pub const MAX_BOXES: usize = 64;
 /// Spans searched in their Bézier form per side ([`bezier_search`]).
 const BEZIER_SEARCH_SPANS: usize = 2;
+/// Subintervals of a candidate whose ends are f64 starting points of [`bezier_search`].
+const SEARCH_SAMPLES: usize = 16;
 /// Bézier halvings per lowering proof ([`bezier_rule`], towards clamped domain ends).
 pub const MAX_PIECES: usize = 96;
 /// Halving depth of the Bézier rule at a clamped domain end.
@@ -686,9 +688,11 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
 
 /// Stage 2b: double-double values of the candidates' span pieces in their Bézier form
 /// ([`HSpline::bezier_segment`], NURBS Book A5.6; thesis sec. 4.2), at a local parameter s in
-/// [0, 1] chosen by f64 Newton steps on g(s) (only to choose s; g = A / W with A, W the
-/// Bernstein polynomials of the coordinate and weight rows, g' = (A' - g W') / W,
-/// g'' = (A'' - 2 g' W' - g W'') / W from the hodographs). The parameter u = u_k + (u_{k+1} -
+/// [0, 1] chosen by f64 Newton steps on g(s) from the best of [`SEARCH_SAMPLES`] + 1 f64
+/// samples over the candidate (only to choose s; g = A / W with A, W the Bernstein polynomials
+/// of the coordinate and weight rows, the coordinate row scaled by a power of two,
+/// g' = (A' - g W') / W, g'' = (A'' - 2 g' W' - g W'') / W from the hodographs), and at s = 0
+/// and s = 1 (the values at the span's knots). The parameter u = u_k + (u_{k+1} -
 /// u_k) s is never formed, so this works where derivatives with respect to u over- or
 /// underflow (knots near ±f64::MAX, spans of a few subnormals).
 ///
@@ -726,8 +730,16 @@ fn bezier_search(
             let row = |r: usize| -> Vec<Ddi> { (0..=p).map(|i| seg.pts[i * hd + r]).collect() };
             let a = row(j);
             let w = seg.rational.then(|| row(seg.dim));
-            // f64 rows (signed) and their hodographs, only to choose s
-            let af: Vec<f64> = a.iter().map(|d| sign * d.to_f64()).collect();
+            // f64 rows (signed) and their hodographs, only to choose s; the coordinate row
+            // scaled by a power of two to magnitudes near 1 (rows near f64::MAX overflow in
+            // the hodographs' differences)
+            let big = a.iter().fold(0.0f64, |m, d| m.max(d.to_f64().abs()));
+            let norm = if big.is_finite() && big > 0.0 {
+                2f64.powi(-exponent_of(big).clamp(-1000, 1000))
+            } else {
+                1.0
+            };
+            let af: Vec<f64> = a.iter().map(|d| sign * norm * d.to_f64()).collect();
             let wf: Vec<f64> = match &w {
                 Some(w) => w.iter().map(Ddi::to_f64).collect(),
                 None => vec![1.0; p + 1],
@@ -736,13 +748,29 @@ fn bezier_search(
             let (a2, w2) = (hodograph(&a1), hodograph(&w1));
             // the candidate's midpoint in the local parameter (halved: no overflow)
             let (lo, hi) = (x.u_lo.max(ua), x.u_hi.min(ub));
-            let um = 0.5 * lo + 0.5 * hi;
-            let s0 = (0.5 * um - 0.5 * ua) / (0.5 * ub - 0.5 * ua);
-            let mut s = if s0.is_finite() {
-                s0.clamp(0.0, 1.0)
-            } else {
-                0.5
+            let local = |u: f64, dflt: f64| {
+                let s = (0.5 * u - 0.5 * ua) / (0.5 * ub - 0.5 * ua);
+                if s.is_finite() {
+                    s.clamp(0.0, 1.0)
+                } else {
+                    dflt
+                }
             };
+            let (s_lo, s_hi) = (local(lo, 0.0), local(hi, 1.0));
+            let value = |s: f64| de_casteljau_eval(&af, &s) / de_casteljau_eval(&wf, &s);
+            // Newton from the largest f64 value among the candidate's midpoint and
+            // SEARCH_SAMPLES + 1 points evenly over it (from the midpoint alone, a piece
+            // that is convex there stops Newton at once)
+            let mut s = local(0.5 * lo + 0.5 * hi, 0.5);
+            let mut best = value(s);
+            for i in 0..=SEARCH_SAMPLES {
+                let f = i as f64 / SEARCH_SAMPLES as f64;
+                let v = (s_lo + f * (s_hi - s_lo)).clamp(0.0, 1.0);
+                let g = value(v);
+                if g > best {
+                    (s, best) = (v, g);
+                }
+            }
             for _ in 0..2 * NEWTON_STEPS {
                 let ev = |b: &[f64]| de_casteljau_eval(b, &s);
                 let (wv, w1v, w2v) = (ev(&wf), ev(&w1), ev(&w2));
@@ -758,8 +786,13 @@ fn bezier_search(
                 }
                 s = next;
             }
-            for v in [s, s.next_down(), s.next_up()] {
-                if !(0.0..=1.0).contains(&v) {
+            // (and the piece's two ends, the values at the span's knots: where the piece's
+            // maximum is at an end, e.g. a convex piece, Newton stops at the midpoint)
+            for (i, v) in [s, s.next_down(), s.next_up(), 0.0, 1.0]
+                .into_iter()
+                .enumerate()
+            {
+                if !(0.0..=1.0).contains(&v) || (i > 2 && (v - s).abs() <= f64::EPSILON) {
                     continue;
                 }
                 let vd = Ddi::exact(v);
