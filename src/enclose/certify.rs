@@ -206,6 +206,7 @@ fn scaled_coordinate(c: &NurbsCurve, j: usize) -> Option<(i32, NurbsCurve)> {
     if s.abs() <= COORD_WINDOW {
         return None;
     }
+    let w = c.weights().map(<[f64]>::to_vec);
     let scaled: Option<Vec<f64>> = pts
         .iter()
         .enumerate()
@@ -217,9 +218,34 @@ fn scaled_coordinate(c: &NurbsCurve, j: usize) -> Option<(i32, NurbsCurve)> {
             }
         })
         .collect();
-    let w = c.weights().map(<[f64]>::to_vec);
-    let cs = NurbsCurve::from_flat(c.degree(), d, c.knots().to_vec(), scaled?, w).ok()?;
+    let Some(scaled) = scaled else {
+        // not exactly scalable (values near f64::MAX next to subnormal ones): the weights
+        // scaled instead, if that is exact (see [`unit_weights`])
+        return (s > COORD_WINDOW)
+            .then(|| unit_weights(c))
+            .flatten()
+            .map(|cs| (0, cs));
+    };
+    let cs = NurbsCurve::from_flat(c.degree(), d, c.knots().to_vec(), scaled, w).ok()?;
     Some((s, cs))
+}
+
+/// A rational curve with every weight multiplied by the power of two 2^-e that brings the
+/// largest into [1/2, 1), when that is exact for every weight (`None` otherwise, or for a
+/// polynomial curve or weights already there). The rational basis functions
+/// R_i = w_i N_i / sum_l w_l N_l do not change when every weight is multiplied by the same
+/// factor (thesis def. 3.1), so the curve is the same at every u; its homogeneous control
+/// points w_i P_i are now at most |P_i|, which for coordinates near f64::MAX and weights
+/// above 1 would otherwise overflow (the double-double evaluators become ENTIRE).
+fn unit_weights(c: &NurbsCurve) -> Option<NurbsCurve> {
+    let w = c.weights()?;
+    let e = exponent(w.iter().fold(0.0f64, |m, &x| m.max(x)));
+    if e <= 0 {
+        return None;
+    }
+    let ws: Option<Vec<f64>> = w.iter().map(|&x| ldexp_exact(x, -e)).collect();
+    let pts = c.points_flat().to_vec();
+    NurbsCurve::from_flat(c.degree(), c.dim(), c.knots().to_vec(), pts, Some(ws?)).ok()
 }
 
 /// Lazily built evaluators of the curve (double-double with two derivative levels, exact).
@@ -795,16 +821,27 @@ fn bezier_search(
                 if !(0.0..=1.0).contains(&v) || (i > 2 && (v - s).abs() <= f64::EPSILON) {
                     continue;
                 }
-                let vd = Ddi::exact(v);
-                let num = de_casteljau_eval(&a, &vd);
-                let g = match &w {
-                    Some(w) => num / de_casteljau_eval(w, &vd),
-                    None => num,
+                // at a clamped domain end the end control point, exactly (as in
+                // `ddi_stage`: its upper end would otherwise hide that value as the largest
+                // one seen, and the lowering would aim one ulp too high)
+                let end = match v {
+                    0.0 => ev.clamped_end_value(j, ua),
+                    1.0 => ev.clamped_end_value(j, ub),
+                    _ => None,
                 };
-                let g = signed(g, sign);
-                // (its centre only: the upper ends near a clamped end's exact value would
-                // hide that value as the largest one seen)
-                *guess = guess.max(g.to_f64());
+                let g = match end {
+                    Some(x) => Ddi::exact(sign * x),
+                    None => {
+                        let vd = Ddi::exact(v);
+                        let num = de_casteljau_eval(&a, &vd);
+                        let g = match &w {
+                            Some(w) => num / de_casteljau_eval(w, &vd),
+                            None => num,
+                        };
+                        signed(g, sign)
+                    }
+                };
+                *guess = guess.max(g.to_interval().sup());
                 if g.is_above(t) {
                     return true;
                 }
