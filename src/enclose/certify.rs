@@ -404,6 +404,52 @@ impl<'a> Evals<'a> {
         }
     }
 
+    /// The value of the piece of span k at an end u of the span, exactly, when u is a knot of
+    /// multiplicity >= p (or a clamped domain end): there a single basis function is nonzero
+    /// (NURBS Book P2.1, P2.2 applied on the span; eq. 2.5 with m >= p), so the piece's value
+    /// is a control point, also for a rational curve (R_i = w_i N_i / sum w_l N_l = 1 for
+    /// that i). At the span's start u_k it is P_{k-p} (the value C(u_k), as for a clamped
+    /// start, P_0); at its end u_{k+1} it is P_k (the left limit at u_{k+1}, equal to C(u_{k+1})
+    /// unless u_{k+1} has multiplicity p + 1, a jump; as for a clamped end, P_n).
+    fn knot_value(&self, j: usize, k: usize, u: f64) -> Option<f64> {
+        let c = self.c;
+        let (kn, p) = (c.knots(), c.degree());
+        let i = if u == kn[k] {
+            k - p
+        } else if u == kn[k + 1] {
+            k
+        } else {
+            return None;
+        };
+        (multiplicity(kn, u) >= p).then(|| c.control_point(i)[j])
+    }
+
+    /// C_j(u) exactly when u is a clamped domain end or a knot of multiplicity >= p (the
+    /// value of the span `find_span` assigns to u, [`Evals::knot_value`]).
+    fn exact_value(&self, j: usize, u: f64) -> Option<f64> {
+        let c = self.c;
+        let (a, b) = c.domain();
+        if !(a <= u && u <= b) {
+            return None;
+        }
+        self.clamped_end_value(j, u)
+            .or_else(|| self.knot_value(j, c.find_span(u), u))
+    }
+
+    /// The largest of sign * v over the exact values v of every span's piece at its ends that
+    /// are knots of multiplicity >= p ([`Evals::knot_value`]): curve values, or left limits
+    /// of curve values at a jump; -inf if there are none.
+    fn max_knot_value(&self, j: usize, sign: f64) -> f64 {
+        let c = self.c;
+        let (kn, p, n) = (c.knots(), c.degree(), c.num_points() - 1);
+        (p..=n)
+            .filter(|&k| kn[k] < kn[k + 1])
+            .flat_map(|k| [(k, kn[k]), (k, kn[k + 1])])
+            .filter_map(|(k, u)| self.knot_value(j, k, u))
+            .map(|x| sign * x)
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// g, g', g'' (k = 2) of the piece of span `span` over the interval `u` inside the closed
     /// span, in f64 interval arithmetic (inari: outward rounding): the cheap first tier of the
     /// branch and bound.
@@ -503,12 +549,13 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         }
         // (1c. a clamped end's value, exactly the end control point, above t: after a
         // lowering the end value is often the new bound's witness)
+        // (and the same for the values at knots of multiplicity >= p, control points too)
         let (a, b) = ev.c.domain();
         let end_scaled = [a, b]
             .into_iter()
             .filter_map(|u| ev.clamped_end_value(j, u))
             .map(|x| sign * x)
-            .fold(f64::NEG_INFINITY, f64::max);
+            .fold(ev.max_knot_value(j, sign), f64::max);
         let end_value = back(end_scaled);
         if end_scaled > up(t) {
             proved = true;
@@ -528,7 +575,9 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
             break;
         }
         let scale = back(ev.c.coord_scale(j));
-        if far_below(bound, inner, scale) {
+        // (an exact end or knot value counts as attained here: a maximum at a knot of
+        // multiplicity >= p that the strategy did not record is nearly proved as well)
+        if far_below(bound, inner.max(end_value), scale) {
             break;
         }
         let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(bound.abs().max(scale));
@@ -622,7 +671,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
     let look = |ev: &mut Evals, u: f64, guess: &mut f64| -> Option<Ddi> {
         // at a clamped end the value is the end control point, exactly (a point set: an exact
         // tie with t is then no straddle, and the lowering proof decides it exactly)
-        let g = match ev.clamped_end_value(j, u) {
+        let g = match ev.exact_value(j, u) {
             Some(x) => Ddi::exact(sign * x),
             None => ev.ddi_value(j, sign, u)?,
         };
@@ -825,8 +874,8 @@ fn bezier_search(
                 // `ddi_stage`: its upper end would otherwise hide that value as the largest
                 // one seen, and the lowering would aim one ulp too high)
                 let end = match v {
-                    0.0 => ev.clamped_end_value(j, ua),
-                    1.0 => ev.clamped_end_value(j, ub),
+                    0.0 => ev.knot_value(j, k, ua),
+                    1.0 => ev.knot_value(j, k, ub),
                     _ => None,
                 };
                 let g = match end {
@@ -1009,8 +1058,16 @@ fn bezier_rule(
     let (ua, ub) = (kn[k], kn[k + 1]);
     let (a, b) = c.domain();
     let cl = c.clamped_ends();
-    let exact_start = (ua == a && cl[0]).then(|| sign * c.control_point(0)[j]);
-    let exact_end = (ub == b && cl[1]).then(|| sign * c.control_point(c.num_points() - 1)[j]);
+    // (and at an interior knot of multiplicity >= p, where the piece's end value is a control
+    // point too: [`Evals::knot_value`])
+    let exact_start = ev
+        .knot_value(j, k, ua)
+        .or_else(|| (ua == a && cl[0]).then(|| c.control_point(0)[j]))
+        .map(|x| sign * x);
+    let exact_end = ev
+        .knot_value(j, k, ub)
+        .or_else(|| (ub == b && cl[1]).then(|| c.control_point(c.num_points() - 1)[j]))
+        .map(|x| sign * x);
     let h = ev.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
     let seg = h.bezier_segment(k);
     let (hd, dim, rational, p) = (seg.hdim(), seg.dim, seg.rational, seg.degree);
@@ -1125,7 +1182,10 @@ fn box_at_most(
     }
     let exact_ok = *exact_tries < MAX_EXACT_TRIES;
     let point_at_most = |ev: &mut Evals, u: f64| -> Option<bool> {
-        if let Some(x) = ev.clamped_end_value(j, u) {
+        if let Some(x) = ev
+            .knot_value(j, k, u)
+            .or_else(|| ev.clamped_end_value(j, u))
+        {
             // the end control point, exactly (`NurbsCurve::clamped_ends`)
             return Some(sign * x <= t);
         }
