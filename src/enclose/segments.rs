@@ -26,7 +26,10 @@
 //! reaches >= v, C reaches >= v - κ R^lo (an attained value), and where C^hi reaches <= v,
 //! C reaches <= v + κ R^hi. For a polynomial curve κ = 0. Each piece is enclosed by the
 //! same strategy (so every strategy keeps its own character and convergence), rounding up or
-//! down every correction.
+//! down every correction. The pieces are not certified (`drive_with(s, piece, false)`): their
+//! flags would not carry over to the curve, and the driver certifies (and where it can,
+//! lowers) the curve's own bounds once; certifying every piece cost several times the
+//! pieces' enclosure and left the same bounds.
 //!
 //! The piece at t = 1 is the left limit at u_{k+1}: at a knot of multiplicity >= p + 1 inside
 //! the domain (a possible jump) it is not attained, so such a span contributes only its start
@@ -35,7 +38,7 @@
 //! Argmin / argmax are reported per span (the whole span [u_k, u_{k+1}]), since the map
 //! t -> u is what overflows here.
 
-use super::{drive, BoxEncloser, CoordBox, Enclosure, Extremum, Termination};
+use super::{drive_with, BoxEncloser, CoordBox, Enclosure, Extremum, Termination};
 use crate::num::{iv, Ddi, Scalar};
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
@@ -232,8 +235,12 @@ fn span_boxes<S: BoxEncloser + ?Sized>(
     let (Some(chi), Some(clo)) = (piece(&phi), piece(&plo)) else {
         return local_hull_boxes(c, k, coords);
     };
-    let ehi = drive(s, &chi);
-    let elo = if exact { ehi.clone() } else { drive(s, &clo) };
+    let ehi = drive_with(s, &chi, false);
+    let elo = if exact {
+        ehi.clone()
+    } else {
+        drive_with(s, &clo, false)
+    };
     let radius = |q: &[f64], j: usize| -> Interval {
         let (mn, mx) = crate::num::min_max((0..=p).map(|i| q[i * d + j]));
         let r = ((iv::point(mx) - iv::point(mn)) * iv::point(0.5)).sup();
