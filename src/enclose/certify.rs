@@ -11,7 +11,10 @@
 //!
 //! 1. **An attained value equal to hi**: `inner_hi == hi` (the strategy, or the driver's facts
 //!    such as a clamped end control point, proved that the curve reaches a value >= inner_hi);
-//!    then M = hi. Or a clamped end's value (the end control point, exact) above t. Or the strategy's strict witness `witness_hi >= t` (the strategy proved
+//!    then M = hi. Or a clamped end's value (the end control point, exact) above t, or the
+//!    value of a span's piece at a knot of multiplicity >= p (a control point, exact: a curve
+//!    value, or at a jump the left limit of curve values; `Evals::knot_value`) above t. Or the
+//!    strategy's strict witness `witness_hi >= t` (the strategy proved
 //!    that the curve reaches a value > witness_hi, e.g. by a double-double value at a proved
 //!    critical point: [`Ddi::strictly_below`]); then M > t. This costs nothing extra.
 //! 2. **A verified enclosure above t**: a double-double enclosure ([`Ddi`], rigorous, about
@@ -29,7 +32,10 @@
 //! double-double error terms overflow, or subnormal, where no bits lie below 2^-1074) is
 //! evaluated on a copy of the curve with that coordinate multiplied by an exact power of two
 //! 2^-s (`scaled_coordinate`); a proof about the scaled g against t 2^-s rounded up (for
-//! "above") or a target rounded down (for "at most") is the same proof about g.
+//! "above") or a target rounded down (for "at most") is the same proof about g. Where no
+//! power of two scales the coordinate exactly, a rational curve is evaluated with its weights
+//! scaled to at most 1 instead (`unit_weights`: the same curve, homogeneous points w P without
+//! overflow).
 //!
 //! The lower bound is the same statement for -C_j. Nothing else sets a flag, so a wrong `true`
 //! would need a wrong outer bound, a wrong inner bound or a wrong enclosure / exact value, all
