@@ -11,7 +11,10 @@
 //!
 //! 1. **An attained value equal to hi**: `inner_hi == hi` (the strategy, or the driver's facts
 //!    such as a clamped end control point, proved that the curve reaches a value >= inner_hi);
-//!    then M = hi. Or a clamped end's value (the end control point, exact) above t. Or the strategy's strict witness `witness_hi >= t` (the strategy proved
+//!    then M = hi. Or a clamped end's value (the end control point, exact) above t, or the
+//!    value of a span's piece at a knot of multiplicity >= p (a control point, exact: a curve
+//!    value, or at a jump the left limit of curve values; `Evals::knot_value`) above t. Or the
+//!    strategy's strict witness `witness_hi >= t` (the strategy proved
 //!    that the curve reaches a value > witness_hi, e.g. by a double-double value at a proved
 //!    critical point: [`Ddi::strictly_below`]); then M > t. This costs nothing extra.
 //! 2. **A verified enclosure above t**: a double-double enclosure ([`Ddi`], rigorous, about
@@ -29,7 +32,10 @@
 //! double-double error terms overflow, or subnormal, where no bits lie below 2^-1074) is
 //! evaluated on a copy of the curve with that coordinate multiplied by an exact power of two
 //! 2^-s (`scaled_coordinate`); a proof about the scaled g against t 2^-s rounded up (for
-//! "above") or a target rounded down (for "at most") is the same proof about g.
+//! "above") or a target rounded down (for "at most") is the same proof about g. Where no
+//! power of two scales the coordinate exactly, a rational curve is evaluated with its weights
+//! scaled to at most 1 instead (`unit_weights`: the same curve, homogeneous points w P without
+//! overflow).
 //!
 //! The lower bound is the same statement for -C_j. Nothing else sets a flag, so a wrong `true`
 //! would need a wrong outer bound, a wrong inner bound or a wrong enclosure / exact value, all
@@ -140,6 +146,8 @@ pub const LOWER_WITHIN_ULPS: usize = 8;
 pub const MAX_BOXES: usize = 64;
 /// Spans searched in their Bézier form per side ([`bezier_search`]).
 const BEZIER_SEARCH_SPANS: usize = 2;
+/// Subintervals of a candidate whose ends are f64 starting points of [`bezier_search`].
+const SEARCH_SAMPLES: usize = 16;
 /// Bézier halvings per lowering proof ([`bezier_rule`], towards clamped domain ends).
 pub const MAX_PIECES: usize = 96;
 /// Halving depth of the Bézier rule at a clamped domain end.
@@ -204,6 +212,7 @@ fn scaled_coordinate(c: &NurbsCurve, j: usize) -> Option<(i32, NurbsCurve)> {
     if s.abs() <= COORD_WINDOW {
         return None;
     }
+    let w = c.weights().map(<[f64]>::to_vec);
     let scaled: Option<Vec<f64>> = pts
         .iter()
         .enumerate()
@@ -215,9 +224,34 @@ fn scaled_coordinate(c: &NurbsCurve, j: usize) -> Option<(i32, NurbsCurve)> {
             }
         })
         .collect();
-    let w = c.weights().map(<[f64]>::to_vec);
-    let cs = NurbsCurve::from_flat(c.degree(), d, c.knots().to_vec(), scaled?, w).ok()?;
+    let Some(scaled) = scaled else {
+        // not exactly scalable (values near f64::MAX next to subnormal ones): the weights
+        // scaled instead, if that is exact (see [`unit_weights`])
+        return (s > COORD_WINDOW)
+            .then(|| unit_weights(c))
+            .flatten()
+            .map(|cs| (0, cs));
+    };
+    let cs = NurbsCurve::from_flat(c.degree(), d, c.knots().to_vec(), scaled, w).ok()?;
     Some((s, cs))
+}
+
+/// A rational curve with every weight multiplied by the power of two 2^-e that brings the
+/// largest into [1/2, 1), when that is exact for every weight (`None` otherwise, or for a
+/// polynomial curve or weights already there). The rational basis functions
+/// R_i = w_i N_i / sum_l w_l N_l do not change when every weight is multiplied by the same
+/// factor (thesis def. 3.1), so the curve is the same at every u; its homogeneous control
+/// points w_i P_i are now at most |P_i|, which for coordinates near f64::MAX and weights
+/// above 1 would otherwise overflow (the double-double evaluators become ENTIRE).
+fn unit_weights(c: &NurbsCurve) -> Option<NurbsCurve> {
+    let w = c.weights()?;
+    let e = exponent(w.iter().fold(0.0f64, |m, &x| m.max(x)));
+    if e <= 0 {
+        return None;
+    }
+    let ws: Option<Vec<f64>> = w.iter().map(|&x| ldexp_exact(x, -e)).collect();
+    let pts = c.points_flat().to_vec();
+    NurbsCurve::from_flat(c.degree(), c.dim(), c.knots().to_vec(), pts, Some(ws?)).ok()
 }
 
 /// Lazily built evaluators of the curve (double-double with two derivative levels, exact).
@@ -376,6 +410,52 @@ impl<'a> Evals<'a> {
         }
     }
 
+    /// The value of the piece of span k at an end u of the span, exactly, when u is a knot of
+    /// multiplicity >= p (or a clamped domain end): there a single basis function is nonzero
+    /// (NURBS Book P2.1, P2.2 applied on the span; eq. 2.5 with m >= p), so the piece's value
+    /// is a control point, also for a rational curve (R_i = w_i N_i / sum w_l N_l = 1 for
+    /// that i). At the span's start u_k it is P_{k-p} (the value C(u_k), as for a clamped
+    /// start, P_0); at its end u_{k+1} it is P_k (the left limit at u_{k+1}, equal to C(u_{k+1})
+    /// unless u_{k+1} has multiplicity p + 1, a jump; as for a clamped end, P_n).
+    fn knot_value(&self, j: usize, k: usize, u: f64) -> Option<f64> {
+        let c = self.c;
+        let (kn, p) = (c.knots(), c.degree());
+        let i = if u == kn[k] {
+            k - p
+        } else if u == kn[k + 1] {
+            k
+        } else {
+            return None;
+        };
+        (multiplicity(kn, u) >= p).then(|| c.control_point(i)[j])
+    }
+
+    /// C_j(u) exactly when u is a clamped domain end or a knot of multiplicity >= p (the
+    /// value of the span `find_span` assigns to u, [`Evals::knot_value`]).
+    fn exact_value(&self, j: usize, u: f64) -> Option<f64> {
+        let c = self.c;
+        let (a, b) = c.domain();
+        if !(a <= u && u <= b) {
+            return None;
+        }
+        self.clamped_end_value(j, u)
+            .or_else(|| self.knot_value(j, c.find_span(u), u))
+    }
+
+    /// The largest of sign * v over the exact values v of every span's piece at its ends that
+    /// are knots of multiplicity >= p ([`Evals::knot_value`]): curve values, or left limits
+    /// of curve values at a jump; -inf if there are none.
+    fn max_knot_value(&self, j: usize, sign: f64) -> f64 {
+        let c = self.c;
+        let (kn, p, n) = (c.knots(), c.degree(), c.num_points() - 1);
+        (p..=n)
+            .filter(|&k| kn[k] < kn[k + 1])
+            .flat_map(|k| [(k, kn[k]), (k, kn[k + 1])])
+            .filter_map(|(k, u)| self.knot_value(j, k, u))
+            .map(|x| sign * x)
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// g, g', g'' (k = 2) of the piece of span `span` over the interval `u` inside the closed
     /// span, in f64 interval arithmetic (inari: outward rounding): the cheap first tier of the
     /// branch and bound.
@@ -475,12 +555,13 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         }
         // (1c. a clamped end's value, exactly the end control point, above t: after a
         // lowering the end value is often the new bound's witness)
+        // (and the same for the values at knots of multiplicity >= p, control points too)
         let (a, b) = ev.c.domain();
         let end_scaled = [a, b]
             .into_iter()
             .filter_map(|u| ev.clamped_end_value(j, u))
             .map(|x| sign * x)
-            .fold(f64::NEG_INFINITY, f64::max);
+            .fold(ev.max_knot_value(j, sign), f64::max);
         let end_value = back(end_scaled);
         if end_scaled > up(t) {
             proved = true;
@@ -500,7 +581,9 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
             break;
         }
         let scale = back(ev.c.coord_scale(j));
-        if far_below(bound, inner, scale) {
+        // (an exact end or knot value counts as attained here: a maximum at a knot of
+        // multiplicity >= p that the strategy did not record is nearly proved as well)
+        if far_below(bound, inner.max(end_value), scale) {
             break;
         }
         let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(bound.abs().max(scale));
@@ -594,7 +677,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
     let look = |ev: &mut Evals, u: f64, guess: &mut f64| -> Option<Ddi> {
         // at a clamped end the value is the end control point, exactly (a point set: an exact
         // tie with t is then no straddle, and the lowering proof decides it exactly)
-        let g = match ev.clamped_end_value(j, u) {
+        let g = match ev.exact_value(j, u) {
             Some(x) => Ddi::exact(sign * x),
             None => ev.ddi_value(j, sign, u)?,
         };
@@ -686,9 +769,11 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
 
 /// Stage 2b: double-double values of the candidates' span pieces in their Bézier form
 /// ([`HSpline::bezier_segment`], NURBS Book A5.6; thesis sec. 4.2), at a local parameter s in
-/// [0, 1] chosen by f64 Newton steps on g(s) (only to choose s; g = A / W with A, W the
-/// Bernstein polynomials of the coordinate and weight rows, g' = (A' - g W') / W,
-/// g'' = (A'' - 2 g' W' - g W'') / W from the hodographs). The parameter u = u_k + (u_{k+1} -
+/// [0, 1] chosen by f64 Newton steps on g(s) from the best of [`SEARCH_SAMPLES`] + 1 f64
+/// samples over the candidate (only to choose s; g = A / W with A, W the Bernstein polynomials
+/// of the coordinate and weight rows, the coordinate row scaled by a power of two,
+/// g' = (A' - g W') / W, g'' = (A'' - 2 g' W' - g W'') / W from the hodographs), and at s = 0
+/// and s = 1 (the values at the span's knots). The parameter u = u_k + (u_{k+1} -
 /// u_k) s is never formed, so this works where derivatives with respect to u over- or
 /// underflow (knots near ±f64::MAX, spans of a few subnormals).
 ///
@@ -726,8 +811,16 @@ fn bezier_search(
             let row = |r: usize| -> Vec<Ddi> { (0..=p).map(|i| seg.pts[i * hd + r]).collect() };
             let a = row(j);
             let w = seg.rational.then(|| row(seg.dim));
-            // f64 rows (signed) and their hodographs, only to choose s
-            let af: Vec<f64> = a.iter().map(|d| sign * d.to_f64()).collect();
+            // f64 rows (signed) and their hodographs, only to choose s; the coordinate row
+            // scaled by a power of two to magnitudes near 1 (rows near f64::MAX overflow in
+            // the hodographs' differences)
+            let big = a.iter().fold(0.0f64, |m, d| m.max(d.to_f64().abs()));
+            let norm = if big.is_finite() && big > 0.0 {
+                2f64.powi(-exponent_of(big).clamp(-1000, 1000))
+            } else {
+                1.0
+            };
+            let af: Vec<f64> = a.iter().map(|d| sign * norm * d.to_f64()).collect();
             let wf: Vec<f64> = match &w {
                 Some(w) => w.iter().map(Ddi::to_f64).collect(),
                 None => vec![1.0; p + 1],
@@ -736,13 +829,29 @@ fn bezier_search(
             let (a2, w2) = (hodograph(&a1), hodograph(&w1));
             // the candidate's midpoint in the local parameter (halved: no overflow)
             let (lo, hi) = (x.u_lo.max(ua), x.u_hi.min(ub));
-            let um = 0.5 * lo + 0.5 * hi;
-            let s0 = (0.5 * um - 0.5 * ua) / (0.5 * ub - 0.5 * ua);
-            let mut s = if s0.is_finite() {
-                s0.clamp(0.0, 1.0)
-            } else {
-                0.5
+            let local = |u: f64, dflt: f64| {
+                let s = (0.5 * u - 0.5 * ua) / (0.5 * ub - 0.5 * ua);
+                if s.is_finite() {
+                    s.clamp(0.0, 1.0)
+                } else {
+                    dflt
+                }
             };
+            let (s_lo, s_hi) = (local(lo, 0.0), local(hi, 1.0));
+            let value = |s: f64| de_casteljau_eval(&af, &s) / de_casteljau_eval(&wf, &s);
+            // Newton from the largest f64 value among the candidate's midpoint and
+            // SEARCH_SAMPLES + 1 points evenly over it (from the midpoint alone, a piece
+            // that is convex there stops Newton at once)
+            let mut s = local(0.5 * lo + 0.5 * hi, 0.5);
+            let mut best = value(s);
+            for i in 0..=SEARCH_SAMPLES {
+                let f = i as f64 / SEARCH_SAMPLES as f64;
+                let v = (s_lo + f * (s_hi - s_lo)).clamp(0.0, 1.0);
+                let g = value(v);
+                if g > best {
+                    (s, best) = (v, g);
+                }
+            }
             for _ in 0..2 * NEWTON_STEPS {
                 let ev = |b: &[f64]| de_casteljau_eval(b, &s);
                 let (wv, w1v, w2v) = (ev(&wf), ev(&w1), ev(&w2));
@@ -758,20 +867,36 @@ fn bezier_search(
                 }
                 s = next;
             }
-            for v in [s, s.next_down(), s.next_up()] {
-                if !(0.0..=1.0).contains(&v) {
+            // (and the piece's two ends, the values at the span's knots: where the piece's
+            // maximum is at an end, e.g. a convex piece, Newton stops at the midpoint)
+            for (i, v) in [s, s.next_down(), s.next_up(), 0.0, 1.0]
+                .into_iter()
+                .enumerate()
+            {
+                if !(0.0..=1.0).contains(&v) || (i > 2 && (v - s).abs() <= f64::EPSILON) {
                     continue;
                 }
-                let vd = Ddi::exact(v);
-                let num = de_casteljau_eval(&a, &vd);
-                let g = match &w {
-                    Some(w) => num / de_casteljau_eval(w, &vd),
-                    None => num,
+                // at a clamped domain end the end control point, exactly (as in
+                // `ddi_stage`: its upper end would otherwise hide that value as the largest
+                // one seen, and the lowering would aim one ulp too high)
+                let end = match v {
+                    0.0 => ev.knot_value(j, k, ua),
+                    1.0 => ev.knot_value(j, k, ub),
+                    _ => None,
                 };
-                let g = signed(g, sign);
-                // (its centre only: the upper ends near a clamped end's exact value would
-                // hide that value as the largest one seen)
-                *guess = guess.max(g.to_f64());
+                let g = match end {
+                    Some(x) => Ddi::exact(sign * x),
+                    None => {
+                        let vd = Ddi::exact(v);
+                        let num = de_casteljau_eval(&a, &vd);
+                        let g = match &w {
+                            Some(w) => num / de_casteljau_eval(w, &vd),
+                            None => num,
+                        };
+                        signed(g, sign)
+                    }
+                };
+                *guess = guess.max(g.to_interval().sup());
                 if g.is_above(t) {
                     return true;
                 }
@@ -939,8 +1064,16 @@ fn bezier_rule(
     let (ua, ub) = (kn[k], kn[k + 1]);
     let (a, b) = c.domain();
     let cl = c.clamped_ends();
-    let exact_start = (ua == a && cl[0]).then(|| sign * c.control_point(0)[j]);
-    let exact_end = (ub == b && cl[1]).then(|| sign * c.control_point(c.num_points() - 1)[j]);
+    // (and at an interior knot of multiplicity >= p, where the piece's end value is a control
+    // point too: [`Evals::knot_value`])
+    let exact_start = ev
+        .knot_value(j, k, ua)
+        .or_else(|| (ua == a && cl[0]).then(|| c.control_point(0)[j]))
+        .map(|x| sign * x);
+    let exact_end = ev
+        .knot_value(j, k, ub)
+        .or_else(|| (ub == b && cl[1]).then(|| c.control_point(c.num_points() - 1)[j]))
+        .map(|x| sign * x);
     let h = ev.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
     let seg = h.bezier_segment(k);
     let (hd, dim, rational, p) = (seg.hdim(), seg.dim, seg.rational, seg.degree);
@@ -1055,7 +1188,10 @@ fn box_at_most(
     }
     let exact_ok = *exact_tries < MAX_EXACT_TRIES;
     let point_at_most = |ev: &mut Evals, u: f64| -> Option<bool> {
-        if let Some(x) = ev.clamped_end_value(j, u) {
+        if let Some(x) = ev
+            .knot_value(j, k, u)
+            .or_else(|| ev.clamped_end_value(j, u))
+        {
             // the end control point, exactly (`NurbsCurve::clamped_ends`)
             return Some(sign * x <= t);
         }

@@ -26,7 +26,10 @@
 //! reaches >= v, C reaches >= v - κ R^lo (an attained value), and where C^hi reaches <= v,
 //! C reaches <= v + κ R^hi. For a polynomial curve κ = 0. Each piece is enclosed by the
 //! same strategy (so every strategy keeps its own character and convergence), rounding up or
-//! down every correction.
+//! down every correction. The pieces are not certified (`drive_with(s, piece, false)`): their
+//! flags would not carry over to the curve, and the driver certifies (and where it can,
+//! lowers) the curve's own bounds once; certifying every piece cost several times the
+//! pieces' enclosure and left the same bounds.
 //!
 //! The piece at t = 1 is the left limit at u_{k+1}: at a knot of multiplicity >= p + 1 inside
 //! the domain (a possible jump) it is not attained, so such a span contributes only its start
@@ -35,9 +38,9 @@
 //! Argmin / argmax are reported per span (the whole span [u_k, u_{k+1}]), since the map
 //! t -> u is what overflows here.
 
-use super::{drive, BoxEncloser, CoordBox, Enclosure, Extremum, Termination};
-use crate::num::iv;
-use crate::spline::bspline::HSpline;
+use super::{drive_with, BoxEncloser, CoordBox, Enclosure, Extremum, Termination};
+use crate::num::{iv, Ddi, Scalar};
+use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
 use crate::spline::knots::multiplicity;
 use inari::Interval;
@@ -58,6 +61,7 @@ pub fn enclose_by_segments<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> En
     let kn = c.knots();
     let (_, b) = c.domain();
     let hs = HSpline::<Interval>::from_curve(c);
+    let hd = HSpline::<Ddi>::from_curve(c);
     let mut coords: super::Coords = (0..d)
         .map(|_| CoordBox {
             lo: f64::INFINITY,
@@ -81,7 +85,7 @@ pub fn enclose_by_segments<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> En
         }
         // left limit at u_{k+1} attained unless a possible jump inside the domain
         let right_attained = kn[k + 1] == b || multiplicity(kn, kn[k + 1]) <= p;
-        let boxes = span_boxes(s, c, &hs, k, right_attained, &mut coords);
+        let boxes = span_boxes(s, c, (&hs, &hd), k, right_attained, &mut coords);
         spans.push((k, boxes));
     }
     // merge: outer and attained values over the spans
@@ -123,6 +127,26 @@ pub fn enclose_by_segments<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> En
     }
 }
 
+/// The Bézier segment of span k with every homogeneous coefficient enclosed twice, by the
+/// extraction in f64 intervals and in double-double ([`Ddi`], ~2^-100 relative, rounded
+/// outward to f64 by `to_interval`), and the two enclosures intersected: both contain the
+/// exact coefficient (the same Boehm insertions, each arithmetic inclusion isotone), so their
+/// intersection does. The double-double one keeps the pieces' control points within an ulp
+/// (the f64 one loses a few ulps per insertion, which the pieces' bounds inherit); the f64 one
+/// stays finite where double-double error terms overflow (magnitudes near f64::MAX).
+fn extract(hs: &HSpline<Interval>, hd: &HSpline<Ddi>, k: usize) -> BezierSeg<Interval> {
+    let mut seg = hs.bezier_segment(k);
+    let fine = hd.bezier_segment(k);
+    for (x, y) in seg.pts.iter_mut().zip(&fine.pts) {
+        let both = x.intersection(y.to_interval());
+        // (never empty for enclosures of the same number; kept as is if it were)
+        if !both.is_empty() {
+            *x = both;
+        }
+    }
+    seg
+}
+
 /// x + y rounded up (y an interval bound of a correction term).
 fn add_up(x: f64, y: Interval) -> f64 {
     (iv::point(x) + y).sup()
@@ -137,13 +161,13 @@ fn sub_down(x: f64, y: Interval) -> f64 {
 fn span_boxes<S: BoxEncloser + ?Sized>(
     s: &S,
     c: &NurbsCurve,
-    hs: &HSpline<Interval>,
+    (hs, hd): (&HSpline<Interval>, &HSpline<Ddi>),
     k: usize,
     right_attained: bool,
     coords: &mut [CoordBox],
 ) -> Vec<SpanBox> {
     let (p, d, rational) = (c.degree(), c.dim(), c.is_rational());
-    let seg = hs.bezier_segment(k);
+    let seg = extract(hs, hd, k);
     let h = seg.hdim();
     // Cartesian point enclosures and weights
     let w: Vec<Interval> = (0..=p)
@@ -211,8 +235,12 @@ fn span_boxes<S: BoxEncloser + ?Sized>(
     let (Some(chi), Some(clo)) = (piece(&phi), piece(&plo)) else {
         return local_hull_boxes(c, k, coords);
     };
-    let ehi = drive(s, &chi);
-    let elo = if exact { ehi.clone() } else { drive(s, &clo) };
+    let ehi = drive_with(s, &chi, false);
+    let elo = if exact {
+        ehi.clone()
+    } else {
+        drive_with(s, &clo, false)
+    };
     let radius = |q: &[f64], j: usize| -> Interval {
         let (mn, mx) = crate::num::min_max((0..=p).map(|i| q[i * d + j]));
         let r = ((iv::point(mx) - iv::point(mn)) * iv::point(0.5)).sup();

@@ -536,6 +536,29 @@ impl Ddi {
         }
     }
 
+    /// The quotient for a divisor set y whose magnitude is below 2^-1000 (a difference of
+    /// subnormal knots, say), where [`Ddi::abs_lower`] gives up: a / b = (a 2^600) / (b 2^600)
+    /// for every a in x and b in y, and scaling a `Ddi` up by a power of two is exact (each
+    /// part is multiplied exactly unless it overflows, which `scale_exact` / `checked` turn
+    /// into `None` / ENTIRE). After the scaling |yh| >= 2^-474, so the quotient is formed
+    /// normally (no further recursion); a set y that may contain 0 still gives ENTIRE.
+    #[inline(never)]
+    fn div_tiny(x: Ddi, y: Ddi) -> Ddi {
+        const S: f64 = 4.149_515_568_880_993e180; // 2^600
+        if y.is_entire() || y.hi == 0.0 || y.hi.abs() >= 9.332_636_185_032_189e-302 {
+            return Ddi::ENTIRE;
+        }
+        match (x.scale_exact(S), y.scale_exact(S)) {
+            (Some(xs), Some(ys)) if !xs.is_entire() && !ys.is_entire() => {
+                match Ddi::abs_lower(ys) {
+                    Some(_) => Ddi::div_impl(xs, ys),
+                    None => Ddi::ENTIRE,
+                }
+            }
+            _ => Ddi::ENTIRE,
+        }
+    }
+
     /// Quotient. An approximate double-word quotient q is computed (Dekker-style correction
     /// q1 = xh / yh, q2 = (x - q1 y) / yh), then the residual set R = x - q y is enclosed with the
     /// rigorous `Ddi` product and difference (it contains a - q b for all a in x, b in y), and
@@ -546,7 +569,7 @@ impl Ddi {
     fn div_impl(x: Ddi, y: Ddi) -> Ddi {
         let ymin = match Ddi::abs_lower(y) {
             Some(m) => m,
-            None => return Ddi::ENTIRE,
+            None => return Ddi::div_tiny(x, y),
         };
         if x.is_zero() {
             return Ddi::exact(0.0);
@@ -891,6 +914,28 @@ mod tests {
         // Tiny operands: underflow is covered, not ignored.
         let t = Ddi::exact(1e-200) * Ddi::exact(1e-200);
         assert!(t.to_interval().contains(0.0) && t.rad() > 0.0);
+    }
+
+    /// Quotients by sets below 2^-1000 (differences of subnormal knots) are scaled, not given
+    /// up: 3 2^-1074 / 7 2^-1074 = 3/7 to double-word accuracy; a tiny set holding 0 stays
+    /// ENTIRE, and a quotient beyond f64::MAX too.
+    #[test]
+    fn tiny_divisors_are_scaled() {
+        let sub = |k: u64| Ddi::exact(f64::from_bits(k));
+        let q = sub(3) / sub(7);
+        let third = Ddi::exact(3.0) / Ddi::exact(7.0);
+        assert!(!q.is_entire() && q.rad() <= 1e-30);
+        assert!(q.to_interval().subset(third.to_interval()));
+        // -0.75 2^-100 / (3 2^-1074) = -2^972 exactly
+        let q = Ddi::exact(-0.75 * 2f64.powi(-100)) / (sub(4) - sub(1));
+        assert_eq!(
+            q.to_interval(),
+            Interval::try_from((-2f64.powi(972), -2f64.powi(972))).unwrap()
+        );
+        assert!((Ddi::exact(1.0) / Ddi::new(f64::from_bits(3), 0.0, 1e-320)).is_entire());
+        assert!((Ddi::exact(1.0) / sub(1)).is_entire());
+        let q = Ddi::exact(1e-310) / sub(1);
+        assert!(!q.is_entire() && q.to_interval().contains(1e-310 / 5e-324));
     }
 
     /// Against inari on f64 operands: the Ddi result must intersect the inari enclosure of the
