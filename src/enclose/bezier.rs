@@ -42,7 +42,7 @@ use smallvec::SmallVec;
 use crate::num::iv;
 use crate::num::mr::Mr;
 use crate::num::Scalar;
-use crate::spline::bezier::{cartesian, hodograph};
+use crate::spline::bezier::{bernstein_value as bern, cartesian, hodograph};
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
 use crate::spline::tight::TightEval;
@@ -129,12 +129,6 @@ impl<'a> Values<'a> {
     fn over(&self, j: usize, a: f64, b: f64) -> Interval {
         self.tight.coord_over(j, a, b)
     }
-}
-
-/// f64 Bernstein polynomial value (only used for estimates), in O(p) operations by the
-/// shared kernel [`crate::spline::bezier::bernstein_value`].
-fn bern(c: &[f64], t: f64) -> f64 {
-    crate::spline::bezier::bernstein_value(c, t)
 }
 
 /// An f64 estimate of a critical point of C_j in (s0, s1) on the coordinate segment `seg`:

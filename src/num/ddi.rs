@@ -669,8 +669,6 @@ impl Scalar for Ddi {
     /// instead of ~2^-100. The convex form propagates `(1 - a) r_lo + a r_hi <= max(r_lo, r_hi)`
     /// for a point-like a in [0, 1] (no growth); the thesis form is better when `a` is a wide set
     /// and hi ~ lo (its `rad(a)` term is `rad(a) |hi - lo|`, not `rad(a) (|lo| + |hi|)`).
-    // (always: the corner-cutting loops of de Casteljau and knot insertion are its hot callers;
-    // an out-of-line call there cost the degree-10 span a third more time)
     ///
     /// At an exact parameter t in [0, 1] (corner cutting at an f64 parameter, the common case)
     /// only the convex form is computed: its radius, (1 - t) r_lo + t r_hi plus rounding, is
@@ -680,23 +678,24 @@ impl Scalar for Ddi {
     /// points of one interval lies in it; the thesis form's exact case, hi - lo = 0). Equal
     /// exact ends are returned for any parameter. A narrow parameter (radius <= 2^-40 |a|,
     /// centre in [0, 1]) also takes the convex form only.
+    // (always: the corner-cutting loops of de Casteljau and knot insertion are its hot callers;
+    // an out-of-line call there cost the degree-10 span a third more time)
     #[inline(always)]
     fn lerp(a: &Self, lo: &Self, hi: &Self) -> Self {
         if lo == hi && lo.rad == 0.0 {
             return *lo; // x + a (x - x) = x for every a
         }
-        if a.is_f64() && (0.0..=1.0).contains(&a.hi) {
-            if a.hi == 0.0 || lo == hi {
-                return *lo;
-            }
-            if a.hi == 1.0 {
-                return *hi;
-            }
-            return a.mul_add(*hi, (Ddi::exact(1.0) - *a) * *lo);
-        }
+        // an exact or narrow parameter (an enclosed knot ratio, radius ~2^-105 |a|): the
+        // thesis form can only win by about rad(a) (|lo| + |hi|), far below the f64 resolution
         if a.rad <= a.hi.abs() * (1.0 / 1_099_511_627_776.0) && (0.0..=1.0).contains(&a.hi) {
-            // a narrow parameter (an enclosed knot ratio, radius ~2^-105 |a|): the thesis form
-            // can only win by about rad(a) (|lo| + |hi|), far below the f64 resolution
+            if a.is_f64() {
+                if a.hi == 0.0 || lo == hi {
+                    return *lo;
+                }
+                if a.hi == 1.0 {
+                    return *hi;
+                }
+            }
             return a.mul_add(*hi, (Ddi::exact(1.0) - *a) * *lo);
         }
         let thesis = a.mul_add(*hi - *lo, *lo);
@@ -784,8 +783,12 @@ mod tests {
             };
             let rx = if k % 5 == 0 { 0.0 } else { x.abs() * 1e-25 };
             let ry = if k % 5 == 0 { 0.0 } else { y.abs() * 1e-25 };
-            let (lo, hi) = (Ddi::new(x, x * 1e-18, rx), Ddi::new(y, 0.0, ry));
+            let lo = Ddi::new(x, x * 1e-18, rx);
+            let hi = if x == y { lo } else { Ddi::new(y, 0.0, ry) };
             let z = <Ddi as Scalar>::lerp(&a, &lo, &hi);
+            if lo == hi && rx == 0.0 {
+                assert_eq!(z, lo, "equal exact ends are returned for any parameter");
+            }
             let ex = |d: Ddi, s: f64| {
                 Exact::of(d.hi) + Exact::of(d.lo) + Exact::of(s) * Exact::of(d.rad)
             };

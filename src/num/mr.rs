@@ -404,6 +404,9 @@ mod tests {
             let ra = if k % 3 == 0 { t * 1e-16 } else { 0.0 };
             let a = Mr::checked(t, ra);
             let z = <Mr as Scalar>::lerp(&a, &lo, &hi);
+            if x == y && rx == 0.0 && ry == 0.0 {
+                assert_eq!(z, lo, "equal exact ends are returned for any parameter");
+            }
             if z.r == f64::INFINITY {
                 continue;
             }
@@ -422,6 +425,24 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn exact_corner_cuts_stay_exact() {
+        let m = Mr::from_f64;
+        let cut = |t: f64, a: f64, b: f64| <Mr as Scalar>::lerp(&m(t), &m(a), &m(b));
+        // exact results keep radius 0 (t = 0, 1, equal ends, an exact FMA step)
+        assert_eq!(cut(0.5, 1.0, 3.0), m(2.0));
+        assert_eq!(cut(0.25, 0.0, 1.0), m(0.25));
+        assert_eq!(cut(0.0, -7.0, 1e300), m(-7.0));
+        assert_eq!(cut(1.0, -7.0, 1e300), m(1e300));
+        assert_eq!(cut(0.3, 2.5, 2.5), m(2.5));
+        // an inexact one does not, and encloses the exact value
+        let z = cut(0.1, 0.0, 1.0 / 3.0);
+        assert!(z.rad() > 0.0);
+        // a product that underflows to 0 is not exact
+        let z = cut(1e-300, 0.0, 1e-300);
+        assert!(z.rad() > 0.0 && z.to_interval().contains(0.0));
     }
 
     #[test]
