@@ -24,12 +24,13 @@ pub fn de_casteljau_split<S: Scalar>(pts: &[S], h: usize, t: &S) -> (Vec<S>, Vec
     left.extend_from_slice(&b[0..h]);
     right[p * h..(p + 1) * h].clone_from_slice(&b[p * h..(p + 1) * h]);
     for r in 1..=p {
-        for i in 0..=p - r {
-            for c in 0..h {
-                let lo = b[i * h + c].clone();
-                let hi = b[(i + 1) * h + c].clone();
-                b[i * h + c] = S::lerp(t, &lo, &hi);
-            }
+        // entry k = i h + c (point i, row c) becomes lerp(t, b_k, b_{k+h}), in increasing k
+        // (b_{k+h} is still the previous level's); one flat loop, no per-row inner loop
+        let len = (p - r + 1) * h;
+        let level = &mut b[..len + h];
+        for k in 0..len {
+            let hi = level[k + h].clone();
+            level[k] = S::lerp(t, &level[k], &hi);
         }
         left.extend_from_slice(&b[0..h]);
         right[(p - r) * h..(p - r + 1) * h].clone_from_slice(&b[(p - r) * h..(p - r + 1) * h]);
@@ -74,15 +75,48 @@ pub fn bernstein_value(c: &[f64], t: f64) -> f64 {
     };
     let coef = |i: usize| if rev { c[n - i] } else { c[i] };
     // sum_i coef(i) C(n, i) s^i by Horner from the top: acc = coef(n); acc = acc s + C(n, i)
-    // coef(i), with binomials generated downwards: C(n, i - 1) = C(n, i) i / (n - i + 1).
-    let mut binom = 1.0f64; // C(n, n)
+    // coef(i); the binomials from the table (no division in the loop: the recurrence's
+    // dependent divisions took most of the time), above its degree generated downwards by
+    // C(n, i - 1) = C(n, i) i / (n - i + 1).
     let mut acc = coef(n);
-    for i in (0..n).rev() {
-        binom = binom * (i + 1) as f64 / (n - i) as f64;
-        acc = acc * s + binom * coef(i);
+    if n <= BINOM_TABLE_MAX {
+        let row = &BINOM_TABLE[n * (n + 1) / 2..n * (n + 1) / 2 + n + 1];
+        for i in (0..n).rev() {
+            acc = acc * s + row[i] * coef(i);
+        }
+    } else {
+        let mut binom = 1.0f64; // C(n, n)
+        for i in (0..n).rev() {
+            binom = binom * (i + 1) as f64 / (n - i) as f64;
+            acc = acc * s + binom * coef(i);
+        }
     }
     acc * q.powi(n as i32)
 }
+
+/// Highest degree of [`BINOM_TABLE`].
+const BINOM_TABLE_MAX: usize = 64;
+
+/// Binomial coefficients C(n, i), n <= [`BINOM_TABLE_MAX`], row n at n (n + 1) / 2 (Pascal's
+/// triangle in f64: exact up to n = 56, where C(n, i) < 2^53; rounded above, which the
+/// estimates of [`bernstein_value`] do not mind).
+static BINOM_TABLE: [f64; (BINOM_TABLE_MAX + 1) * (BINOM_TABLE_MAX + 2) / 2] = {
+    let mut t = [0.0f64; (BINOM_TABLE_MAX + 1) * (BINOM_TABLE_MAX + 2) / 2];
+    let mut n = 0;
+    while n <= BINOM_TABLE_MAX {
+        let row = n * (n + 1) / 2;
+        t[row] = 1.0;
+        t[row + n] = 1.0;
+        let mut i = 1;
+        while i < n {
+            let prev = (n - 1) * n / 2;
+            t[row + i] = t[prev + i - 1] + t[prev + i];
+            i += 1;
+        }
+        n += 1;
+    }
+    t
+};
 
 /// de Casteljau evaluation of one Bernstein polynomial at t (copying the coefficients; see
 /// [`de_casteljau_eval_in_place`]).
@@ -186,7 +220,19 @@ pub fn cartesian<S: Scalar>(homogeneous: Vec<S>, dim: usize, rational: bool) -> 
 mod tests {
     #[test]
     fn bernstein_value_matches_de_casteljau() {
-        for n in 0..30usize {
+        // the binomial table is Pascal's triangle: exact where f64 holds C(n, i) exactly
+        for n in 0..=56usize {
+            for i in 0..=n {
+                let row = n * (n + 1) / 2;
+                assert_eq!(
+                    super::BINOM_TABLE[row + i],
+                    crate::num::binom(n, i),
+                    "C({n}, {i})"
+                );
+            }
+        }
+        // degrees in the table and above it (the recurrence)
+        for n in (0..30usize).chain([63, 64, 65, 80]) {
             let c: Vec<f64> = (0..=n).map(|i| ((i * 7919) % 13) as f64 - 6.3).collect();
             let scale: f64 = c.iter().map(|x| x.abs()).sum::<f64>().max(1.0);
             for k in 0..=64 {

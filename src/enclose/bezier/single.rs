@@ -14,6 +14,10 @@
 //!    a_k = binom(p, k) Δ^k c_0 (Farin, *Curves and Surfaces for CAGD*, monomial form of a
 //!    Bézier curve), in [`Ddi`]: the first differences Δc_i are exact double-words (TwoSum)
 //!    for f64 data, so every coefficient encloses the exact one about 2^-100 relative wide.
+//!    Built only where needed: for enclosed coefficients (spans), and for a derivative sign
+//!    the f64 filter of step 3 leaves open; the values x(m) of step 5 from f64 data come
+//!    from the compensated de Casteljau algorithm instead ([`Ddi::de_casteljau_f64`], an
+//!    a-priori bound of 2^-99 of the scale).
 //! 2. f64 estimates of the roots of x' (quadratic formula in the cancellation-free form).
 //!    Nothing about soundness depends on them: they only choose test points.
 //! 3. Test points 0 = z_0 < z_1 < ... < z_k = 1: both ends and r ± h around each estimate r
@@ -39,7 +43,7 @@
 //!    the maximum, and those from negative to positive for the minimum.
 //!    x(0) = c_0 and x(1) = c_p exactly (clamped ends). Over a sign-change interval B with
 //!    midpoint m the second-order Taylor form (Moore 1966; Neumaier 1990, sec. 2.3)
-//!    x(B) ⊆ x(m) + x'(m) (B - m) + (x''(B) / 2) (B - m)^2 is evaluated in `Ddi` and rounded
+//!    x(B) ⊆ x(m) + x'(m) (B - m) + (x''(B) / 2) (B - m)^2 is evaluated in `Ddi` (x(m) as in step 1) and rounded
 //!    outward; x(m) is a value the curve attains (inner bound). With h = 2^-40 the correction
 //!    terms are ~2^-75 of the coordinate scale, so the bound is that of x(m), about one ulp.
 //! 6. The result is used only if each side's certified gap (bound minus attained value) is at
@@ -411,13 +415,13 @@ pub(crate) fn raw_sides(seg: &Segment, need: [bool; 2]) -> Option<[RawSide; 2]> 
     // The f64 filter: straight from f64 data (approximating x' / p), or from the `Ddi` power
     // form of enclosed coefficients (approximating x'). Only signs are read from it, and the
     // Taylor correction below scales it back by `dscale` (4 >= p, or 1).
+    let mut fv = [0.0; 4];
     let (deriv, dscale) = if all_f64 {
-        let mut v = [0.0; 4];
-        for (x, y) in v.iter_mut().zip(c) {
+        for (x, y) in fv.iter_mut().zip(c) {
             *x = y.hi();
         }
         // (4 >= p, a power of two: the scaling of the correction below is exact)
-        (Deriv::from_f64(&v[..=p]), 4.0)
+        (Deriv::from_f64(&fv[..=p]), 4.0)
     } else {
         (Deriv::new(co.poly()), 1.0)
     };
@@ -533,7 +537,13 @@ pub(crate) fn raw_sides(seg: &Segment, need: [bool; 2]) -> Option<[RawSide; 2]> 
         derivative_evaluations += 1;
         let corr = up(dscale * ((deriv.approx(m).abs() + deriv.err) * r) + m2 * r2);
         // (Lemma B: dscale is 1 or 4, an exact scaling of the product term)
-        let xm = co.poly().x(Ddi::exact(m));
+        // x(m): for f64 data the compensated de Casteljau value (a priori bound, no power
+        // form), else Horner on the enclosed power form.
+        let xm = if all_f64 {
+            Ddi::de_casteljau_f64(&fv[..=p], m)
+        } else {
+            co.poly().x(Ddi::exact(m))
+        };
         let e = extremum(a, b, t0, t1, true, CandidateKind::Critical);
         let vb = xm.widen(corr).to_interval();
         let side = if is_max { &mut hi } else { &mut lo };
