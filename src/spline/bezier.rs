@@ -23,19 +23,35 @@ pub fn de_casteljau_split<S: Scalar>(pts: &[S], h: usize, t: &S) -> (Vec<S>, Vec
     let mut right = vec![S::zero(); b.len()];
     left.extend_from_slice(&b[0..h]);
     right[p * h..(p + 1) * h].clone_from_slice(&b[p * h..(p + 1) * h]);
-    for r in 1..=p {
-        // entry k = i h + c (point i, row c) becomes lerp(t, b_k, b_{k+h}), in increasing k
-        // (b_{k+h} is still the previous level's); one flat loop, no per-row inner loop
-        let len = (p - r + 1) * h;
-        let level = &mut b[..len + h];
-        for k in 0..len {
-            let hi = level[k + h].clone();
-            level[k] = S::lerp(t, &level[k], &hi);
-        }
+    de_casteljau_levels(&mut b, h, t, |r, b| {
         left.extend_from_slice(&b[0..h]);
         right[(p - r) * h..(p - r + 1) * h].clone_from_slice(&b[(p - r) * h..(p - r + 1) * h]);
-    }
+    });
     (left, right)
+}
+
+/// The corner cuts of de Casteljau's triangle, in place on the points `b` (`h` rows each):
+/// level r = 1..=p turns entry k = i h + c (point i, row c) into lerp(t, b_k, b_{k+h}) in
+/// increasing k (so b_{k+h} is still the previous level's), in one flat loop; `level(r, b)` is
+/// called after each level (points 0..=p - r of `b` are that level's). Afterwards the first
+/// `h` entries are the value at t (NURBS Book A1.5).
+#[inline]
+pub fn de_casteljau_levels<S: Scalar>(
+    b: &mut [S],
+    h: usize,
+    t: &S,
+    mut level: impl FnMut(usize, &[S]),
+) {
+    let p = (b.len() / h).saturating_sub(1);
+    for r in 1..=p {
+        let len = (p - r + 1) * h;
+        let lv = &mut b[..len + h];
+        for k in 0..len {
+            let hi = lv[k + h].clone();
+            lv[k] = S::lerp(t, &lv[k], &hi);
+        }
+        level(r, b);
+    }
 }
 
 /// de Casteljau evaluation (NURBS Book A1.5) of the Bernstein polynomial with coefficients

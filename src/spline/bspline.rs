@@ -324,11 +324,13 @@ impl<S: Scalar> BezierSeg<S> {
 
     /// de Casteljau evaluation at local t (lecture "Modellierung mit Kurven"; all rows): the first
     /// point of the right half of the split at t.
+    /// The same corner cuts as the split, without storing the halves.
     pub fn eval_local(&self, t: &S) -> Vec<S> {
         let h = self.hdim();
-        let (_, mut right) = self.split_points(t);
-        right.truncate(h);
-        right
+        let mut b = self.pts.clone();
+        crate::spline::bezier::de_casteljau_levels(&mut b, h, t, |_, _| {});
+        b.truncate(h);
+        b
     }
 
     /// de Casteljau subdivision at local t: the control points of the halves over [0, t] and

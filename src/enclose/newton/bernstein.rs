@@ -45,6 +45,8 @@ pub(super) struct SpanPoly {
     f: BezierSeg<Mr>,
     /// F', degree n - 1 (one zero coefficient for n = 0)
     df: BezierSeg<Mr>,
+    /// an enclosure of F'' over the span (hull of its Bernstein coefficients)
+    d2: Interval,
     /// the segment of `seg` in double-double, built on the first [`SpanPoly::values_tight`]
     /// (knot insertion in `Ddi` costs more than the rest of a candidate's evaluation)
     dseg: std::cell::OnceCell<BezierSeg<Ddi>>,
@@ -91,11 +93,20 @@ impl SpanPoly {
             rational: false,
             pts,
         };
+        // hull of F'' over [0, 1]: its Bernstein coefficients (n - 1)(F'_{i+1} - F'_i)
+        let d2 = if dco.len() < 2 {
+            iv::point(0.0)
+        } else {
+            let nm = Mr::from_usize(dco.len() - 1);
+            dco.windows(2)
+                .fold(Interval::EMPTY, |h, w| h.convex_hull((nm * (w[1] - w[0])).to_interval()))
+        };
         SpanPoly {
             k,
             c: shift,
             f: poly(fco),
             df: poly(dco),
+            d2,
             seg,
             dseg: std::cell::OnceCell::new(),
         }
@@ -121,11 +132,28 @@ impl SpanPoly {
         hull(&Self::restrict(&self.f, t0, t1))
     }
 
-    /// F' over the box t = [t0, t1] (at t0 for a point).
+    /// F' over the box t = [t0, t1] (at t0 for a point). A small box (the first Newton boxes
+    /// around the zero estimates: width in [2^-40, 2^-20]; the converged boxes below keep the
+    /// restriction, whose last bits decide the final box) first tries the mean value form
+    /// F'(m) + F''([0, 1])
+    /// ([t0, t1] - m), m the midpoint: F'(t) = F'(m) + F''(ξ)(t - m) with ξ between t and m,
+    /// F''(ξ) in the hull of F'''s hodograph coefficients (`d2`, convex hull property), all in
+    /// outward-rounded interval arithmetic; one de Casteljau evaluation instead of the two
+    /// splits of the restriction. It is used when it excludes 0 (else the restriction's hull,
+    /// which is sharper where F'' varies much).
     pub(super) fn df(&self, t: T) -> Interval {
         let (t0, t1) = (t.lo, t.hi);
         if t0 == t1 {
             return self.df.eval_local(&Mr::from_f64(t0))[0].to_interval();
+        }
+        let w = t1 - t0;
+        if (1.0 / 1_099_511_627_776.0..=1.0 / 1_048_576.0).contains(&w) && !self.d2.is_entire() {
+            let m = midpoint(t0, t1);
+            let dm = self.df.eval_local(&Mr::from_f64(m))[0].to_interval();
+            let mv = dm + self.d2 * (iv::span(t0, t1) - iv::point(m));
+            if !mv.is_empty() && !mv.contains(0.0) {
+                return mv;
+            }
         }
         hull(&Self::restrict(&self.df, t0, t1))
     }
