@@ -317,15 +317,21 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
         }
     };
     let mut spans: Vec<(u64, usize, bool)> = Vec::with_capacity(n + 1 - p);
-    for k in p..=n {
-        if kn[k] < kn[k + 1] {
-            let mut b = x(k - p);
-            for i in k + 1 - p..=k {
-                let v = x(i);
-                if v > b {
-                    b = v;
-                }
-            }
+    // (the coordinate's values as one slice (copied out for d > 1), then per span the window
+    // of its p + 1 values and its two knots: iterators, no index arithmetic per value)
+    let copy: SmallVec<[f64; 64]>;
+    let xs: &[f64] = if d == 1 {
+        s.pts
+    } else {
+        copy = s.pts[j..].iter().step_by(d).copied().collect();
+        &copy
+    };
+    let windows = xs.windows(p + 1).zip(kn[p..=n + 1].windows(2));
+    for (k, (w, kw)) in (p..=n).zip(windows) {
+        if kw[0] < kw[1] {
+            let b = w[1..]
+                .iter()
+                .fold(sign * w[0], |b, &v| if sign * v > b { sign * v } else { b });
             // (spans below the attained end values are never taken)
             if b > attained {
                 spans.push((key(b), k, false));

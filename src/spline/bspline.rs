@@ -414,6 +414,7 @@ impl<S: Scalar> BezierSeg<S> {
 }
 
 /// Reverse the order of the points of `q` (`h` rows each; rows stay together).
+#[inline]
 pub(crate) fn reverse_points<S: Clone>(h: usize, q: &mut [S]) {
     let n = q.len() / h;
     for i in 0..n / 2 {
@@ -429,6 +430,7 @@ pub(crate) fn reverse_points<S: Clone>(h: usize, q: &mut [S]) {
 /// clamped by Boehm knot insertion ([`clamp_left`], then the same on the mirrored curve:
 /// reversed points, knots t'_j = -t_{2p+1-j}, negation is exact), after which `q` holds the
 /// span's Bézier points. `t` is left in an unspecified state.
+#[inline]
 pub(crate) fn clamp_span<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
     clamp_left(p, h, t, q);
     reverse_points(h, q);
@@ -440,6 +442,7 @@ pub(crate) fn clamp_span<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [
 
 /// Point i of a row-major buffer (`h` values per point) becomes the convex combination
 /// lerp(alpha, P_i, P_{i+1}) (the corner cut of Boehm's knot insertion, NURBS Book A5.1).
+#[inline]
 fn lerp_next<S: Scalar>(buf: &mut [S], i: usize, h: usize, alpha: &S) {
     for c in 0..h {
         let lo = buf[i * h + c].clone();
@@ -460,6 +463,7 @@ fn lerp_next<S: Scalar>(buf: &mut [S], i: usize, h: usize, alpha: &S) {
 /// `Rw[0]` and `Rw[p-j-s]` to Q_j and Q_{p+r-j-s}; index m = p-s-j of the kept points is last
 /// touched by step j, later steps touch smaller indices only); the kept knots are
 /// t_{p-s}, u (p times), t_{p+1}..t_{2p+1}.
+#[inline]
 fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
     let u = t[p];
     let s = t[..=p].iter().rev().take_while(|&&x| x == u).count();
