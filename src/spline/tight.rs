@@ -303,6 +303,18 @@ impl TightEval {
         if !u.is_finite() {
             return Interval::ENTIRE; // no value to enclose; the safe answer
         }
+        // At a clamped domain end the value is the end control point exactly
+        // (`NurbsCurve::clamped_ends`): no span expansion is built for it.
+        let (a, b) = self.curve.domain();
+        if u == a || u == b {
+            let cl = self.curve.clamped_ends();
+            if u == a && cl[0] {
+                return iv::point(self.curve.control_point(0)[j]);
+            }
+            if u == b && cl[1] {
+                return iv::point(self.curve.control_point(self.curve.num_points() - 1)[j]);
+            }
+        }
         let k = self.curve.find_span(u);
         let v = self.ddi_at(j, k, u);
         if !v.is_entire() {
@@ -768,6 +780,40 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn clamped_ends_are_exact_control_points() {
+        // rational, clamped: C(a) = P_0 and C(b) = P_n exactly (no rounding of w P / w)
+        let c = NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 0.3, 1., 1., 1.],
+            vec![
+                vec![0.1, 3.0],
+                vec![1.0, -2.0],
+                vec![2.5, 0.7],
+                vec![1.0 / 3.0, 0.2],
+            ],
+            Some(vec![0.7, 3.0, 0.01, 1.3]),
+        )
+        .unwrap();
+        let t = TightEval::new(&c);
+        assert_eq!(t.coord_at(0, 0.0), iv::point(0.1));
+        assert_eq!(t.coord_at(1, 1.0), iv::point(0.2));
+        // unclamped ends: an enclosure of the de Boor value (the generic path), not a
+        // control point
+        let u = NurbsCurve::new(
+            2,
+            vec![0., 1., 2., 3., 4., 5., 6.],
+            vec![vec![0.0], vec![1.0], vec![4.0], vec![2.0]],
+            None,
+        )
+        .unwrap();
+        let (a, b) = u.domain();
+        let tu = TightEval::new(&u);
+        // C(2) = (P_0 + P_1) / 2 = 0.5 and C(4) = (P_2 + P_3) / 2 = 3 (uniform quadratic)
+        assert!(tu.coord_at(0, a).contains(0.5) && tu.coord_at(0, a).wid() < 1e-15);
+        assert!(tu.coord_at(0, b).contains(3.0) && tu.coord_at(0, b).wid() < 1e-15);
     }
 
     #[test]
