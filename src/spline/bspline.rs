@@ -322,9 +322,9 @@ impl<S: Scalar> BezierSeg<S> {
         self.dim + self.rational as usize
     }
 
-    /// de Casteljau evaluation at local t (lecture "Modellierung mit Kurven"; all rows): the first
-    /// point of the right half of the split at t.
-    /// The same corner cuts as the split, without storing the halves.
+    /// de Casteljau evaluation at local t (lecture "Modellierung mit Kurven"; all rows): the
+    /// first point of the right half of the split at t, by the same corner cuts
+    /// ([`crate::spline::bezier::de_casteljau_levels`]) without storing the halves.
     pub fn eval_local(&self, t: &S) -> Vec<S> {
         let h = self.hdim();
         let mut b = self.pts.clone();

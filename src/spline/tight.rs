@@ -72,6 +72,8 @@ struct Taylor {
 struct SpanSlot {
     left: OnceLock<Option<Taylor>>,
     right: OnceLock<Option<Taylor>>,
+    /// the span's double-double Bézier points, shared by both expansions
+    seg: OnceLock<Vec<Ddi>>,
 }
 
 /// The generic evaluators per coordinate (coordinate j as a 1-D NURBS curve with the same
@@ -220,15 +222,15 @@ impl TightEval {
         let cell = if right { &slot.right } else { &slot.left };
         cell.get_or_init(|| {
             let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
-            let seg = hs.bezier_segment(k);
-            let (p, h) = (seg.degree, seg.hdim());
-            let len = Ddi::diff(seg.b, seg.a);
+            let pts = slot.seg.get_or_init(|| hs.bezier_segment(k).pts);
+            let (p, h) = (hs.degree, hs.hdim());
+            let len = Ddi::diff(hs.knots[k + 1], hs.knots[k]);
             if right {
-                let mut q = seg.pts;
+                let mut q = pts.clone();
                 crate::spline::bspline::reverse_points(h, &mut q);
                 Taylor::from_bezier(&q, p, h, len, -1.0)
             } else {
-                Taylor::from_bezier(&seg.pts, p, h, len, 1.0)
+                Taylor::from_bezier(pts, p, h, len, 1.0)
             }
         })
         .as_ref()
