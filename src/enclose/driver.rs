@@ -192,9 +192,11 @@ pub(crate) fn knot_scaling(c: &NurbsCurve) -> (i32, bool) {
     // b/2 - a/2 cannot overflow; halving may round only for subnormals (irrelevant here:
     // the exponent is only a choice, exactness is checked on the knots themselves)
     let want = exponent(0.5 * b - 0.5 * a) + 1;
-    // (knots are non-decreasing, so the largest |u| is at an end; `exponent` is monotone in
-    // |u|: one look instead of a pass)
-    let max_e = exponent(kn[0]).max(exponent(kn[kn.len() - 1]));
+    // (knots are non-decreasing, so the largest |u| is at an end: one look instead of a
+    // pass; `exponent` is monotone in |u| > 0, and the larger end is non-zero for a non-empty
+    // domain: the exponent of max(|u_0|, |u_m|), not the larger of the two exponents, since
+    // `exponent(0)` is 0, which for a domain [0, 2^-1068] would claim knots near 1)
+    let max_e = exponent(kn[0].abs().max(kn[kn.len() - 1].abs()));
     if want.abs() <= KNOT_WINDOW && max_e <= KNOT_MAX_EXP {
         return (0, true);
     }
@@ -496,6 +498,26 @@ mod tests {
         assert_eq!(scale_outward(-1.5, 1024, true), -f64::MAX);
         assert_eq!(ldexp_exact(f64::from_bits(3), -1), None);
         assert_eq!(ldexp_exact(f64::from_bits(2), -1), Some(f64::from_bits(1)));
+    }
+
+    #[test]
+    fn a_subnormal_domain_from_zero_is_scaled_to_a_moderate_one() {
+        // knots [0, 2^-1068]: a zero knot must not count as a knot of magnitude ~1 (which
+        // limited the scaling to 2^1019, a domain of 2^-49, enclosed span by span)
+        let d = f64::from_bits(64);
+        let c = NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, d, d, d],
+            vec![vec![1.0], vec![2.0], vec![0.5]],
+            None,
+        )
+        .unwrap();
+        let (s, moderate) = knot_scaling(&c);
+        assert!(moderate);
+        let b = ldexp_exact(d, -s).unwrap();
+        assert!((0.5..1.0).contains(&b), "domain length {b:e}");
+        let r = Rescaling::of(&c).unwrap();
+        assert!(r.knots_moderate && r.knot_exp == s);
     }
 
     #[test]
