@@ -28,18 +28,35 @@
 //!    derivative kernels run on big rationals, no rounding) at an f64 or dyadic parameter u is
 //!    > t (compared exactly).
 //!
-//! A coordinate of extreme magnitude (control values beyond 2^±80: near f64::MAX, where
-//! double-double error terms overflow, or subnormal, where no bits lie below 2^-1074) is
-//! evaluated on a copy of the curve with that coordinate multiplied by an exact power of two
-//! 2^-s (`scaled_coordinate`); a proof about the scaled g against t 2^-s rounded up (for
-//! "above") or a target rounded down (for "at most") is the same proof about g. Where no
-//! power of two scales the coordinate exactly, a rational curve is evaluated with its weights
-//! scaled to at most 1 instead (`unit_weights`: the same curve, homogeneous points w P without
-//! overflow).
-//!
 //! The lower bound is the same statement for -C_j. Nothing else sets a flag, so a wrong `true`
 //! would need a wrong outer bound, a wrong inner bound or a wrong enclosure / exact value, all
 //! of which are the crate's soundness guarantees already.
+//!
+//! # Extreme magnitudes
+//!
+//! A curve the driver rescales (`Rescaling`: coordinates beyond 2^±80, weights beyond 2^±30,
+//! knots far from a domain of length ~1) is certified on rescaled copies, built per coordinate
+//! j and side (`Rescaling::apply_coord`):
+//!
+//! * the knots multiplied by the driver's exact power of two 2^-k: an exact reparametrisation
+//!   with the same image (the driver's module docs), so the same extrema; the strategy's
+//!   candidates are mapped to the new parameters, rounded outward (they only say where to
+//!   look). Parameters that are a few subnormals apart (a domain [0, 2^-1068]) become
+//!   parameters of ~1: f64 points and boxes between the knots, Newton steps that converge;
+//! * the weights multiplied by the driver's exact power of two: the same curve;
+//! * coordinate j multiplied by 2^-s, s chosen so that the values near the bound are near 1
+//!   (`coord_exponent`: double-double enclosures ~2^-100 relative narrow, which values near
+//!   f64::MAX, with overflowing error terms, or subnormal values, with no bits below 2^-1074,
+//!   are not). C_j = sum_i R_i P_ij with rational basis functions R_i >= 0, sum R_i = 1, that
+//!   do not depend on the coordinates (thesis def. 3.1), so exact scaled control values give
+//!   exactly 2^-s C_j. Where a scaled control value is not exact (it fell into the subnormal
+//!   range), it is rounded down in one copy and up in another: C_dn <= 2^-s C_j <= C_up at
+//!   every u (a convex combination of values each moved down, or up). A value above a target
+//!   is then proved on the copy below g = ±C_j (C_dn for the maximum, C_up for the minimum),
+//!   g <= t on the copy above it ([`Curves`]); with exact values both copies are one curve.
+//!
+//! A proof about the scaled g against t 2^-s rounded up (for "above") or a target rounded
+//! down (for "at most") is then the same proof about g ([`scale_outward`]).
 //!
 //! # Choosing u (Ziv's strategy)
 //!
@@ -104,7 +121,7 @@
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
-use super::driver::{exponent, ldexp_exact};
+use super::driver::{exponent, Rescaling};
 use super::{scale_outward, CandidateKind, CoordBox, Enclosure, Extremum};
 use crate::num::{iv, Ddi, Exact, Scalar};
 use crate::spline::bezier::{de_casteljau_eval, de_casteljau_split, hodograph};
@@ -142,6 +159,10 @@ pub const MAX_LOWERINGS: usize = 2;
 /// of the bound, or within this many ulps of the coordinate scale (a strategy's tolerance is
 /// relative to the scale, so near zero its bound can be many doubles of the value away).
 pub const LOWER_WITHIN_ULPS: usize = 8;
+/// The same for a curve the driver rescaled (extreme magnitudes): the strategies then work on
+/// a rescaled copy, or span by span on Bézier segments whose control points are enclosures,
+/// and their attained values lie up to ~20 ulps below their bounds (`range_limits`).
+pub const LOWER_WITHIN_ULPS_RESCALED: usize = 32;
 /// Parameter boxes per lowering proof (branch and bound over the whole domain).
 pub const MAX_BOXES: usize = 64;
 /// Spans searched in their Bézier form per side ([`bezier_search`]).
@@ -166,92 +187,155 @@ const EXACT_CANDIDATES: usize = 1;
 /// docs), lowering a bound where a proof shows that a smaller double is a bound too. A
 /// heuristic result (`verified == false`) gets `false` everywhere and is left unchanged.
 pub fn certify(c: &NurbsCurve, e: &mut Enclosure) {
+    certify_with(c, e, Rescaling::of(c).as_ref());
+}
+
+/// [`certify`] with the driver's rescaling of `c` (`Rescaling::of(c)`, computed once by the
+/// driver): the proofs run on the rescaled curve(s) (module docs, "Extreme magnitudes").
+pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescaling>) {
     let verified = e.verified;
-    let mut ev = Evals::new(c);
-    for (j, cb) in e.coords.iter_mut().enumerate() {
-        if !verified {
+    if !verified {
+        for cb in &mut e.coords {
             cb.optimal_lo = false;
             cb.optimal_hi = false;
-            continue;
         }
-        match scaled_coordinate(c, j) {
-            Some((s, cs)) => {
-                let mut evs = Evals::new(&cs);
-                cb.optimal_hi = certify_side(&mut evs, j, cb, true, s);
-                cb.optimal_lo = certify_side(&mut evs, j, cb, false, s);
-            }
-            None => {
-                cb.optimal_hi = certify_side(&mut ev, j, cb, true, 0);
-                cb.optimal_lo = certify_side(&mut ev, j, cb, false, 0);
-            }
+        return;
+    }
+    let Some(r) = r else {
+        // moderate magnitudes (the common case): the curve itself
+        let mut ev = Evals::new(c);
+        for (j, cb) in e.coords.iter_mut().enumerate() {
+            let mut cv = Curves {
+                dn: &mut ev,
+                up: None,
+            };
+            cb.optimal_hi = certify_side(&mut cv, j, cb, true, &Scaling::NONE);
+            cb.optimal_lo = certify_side(&mut cv, j, cb, false, &Scaling::NONE);
         }
-    }
-}
-
-/// Coordinates whose largest control value lies outside 2^±COORD_WINDOW are certified on a
-/// scaled copy ([`scaled_coordinate`]).
-const COORD_WINDOW: i32 = 80;
-
-/// The curve with coordinate j multiplied by 2^-s, s the binary exponent of its largest
-/// control value, when that lies outside 2^±[`COORD_WINDOW`] and every control value of the
-/// coordinate scales exactly (`None` otherwise). Then the scaled curve's coordinate j is
-/// exactly 2^-s C_j at every u: C_j = sum_i R_i P_ij with rational basis functions R_i that do
-/// not depend on the coordinates (thesis def. 3.1), the same argument as the driver's
-/// rescaling. Its values near 1 keep the double-double enclosures ~2^-100 relative narrow,
-/// which values near f64::MAX (overflowing error terms) or subnormal values (no bits below
-/// 2^-1074) are not.
-fn scaled_coordinate(c: &NurbsCurve, j: usize) -> Option<(i32, NurbsCurve)> {
-    let d = c.dim();
-    let pts = c.points_flat();
-    let big = pts
-        .iter()
-        .skip(j)
-        .step_by(d)
-        .fold(0.0f64, |m, x| m.max(x.abs()));
-    let s = exponent(big);
-    if s.abs() <= COORD_WINDOW {
-        return None;
-    }
-    let w = c.weights().map(<[f64]>::to_vec);
-    let scaled: Option<Vec<f64>> = pts
-        .iter()
-        .enumerate()
-        .map(|(i, &x)| {
-            if i % d == j {
-                ldexp_exact(x, -s)
-            } else {
-                Some(x)
-            }
-        })
-        .collect();
-    let Some(scaled) = scaled else {
-        // not exactly scalable (values near f64::MAX next to subnormal ones): the weights
-        // scaled instead, if that is exact (see [`unit_weights`])
-        return (s > COORD_WINDOW)
-            .then(|| unit_weights(c))
-            .flatten()
-            .map(|cs| (0, cs));
+        return;
     };
-    let cs = NurbsCurve::from_flat(c.degree(), d, c.knots().to_vec(), scaled, w).ok()?;
-    Some((s, cs))
+    for (j, cb) in e.coords.iter_mut().enumerate() {
+        // one exponent per side (the same for both sides in most cases: one pair of curves)
+        let e_m = exponent(c.coord_scale(j));
+        let s_hi = coord_exponent(e_m, cb.hi, cb.inner_hi);
+        let s_lo = coord_exponent(e_m, cb.lo, cb.inner_lo);
+        let sides: &[(i32, &[bool])] = if s_hi == s_lo {
+            &[(s_hi, &[true, false])]
+        } else {
+            &[(s_hi, &[true]), (s_lo, &[false])]
+        };
+        for &(s, which) in sides {
+            // the curve with coordinate j scaled down, rounded down, and a copy rounded up if
+            // some value rounded; the original curve if scaling fails (not expected)
+            let dn = r.apply_coord(c, j, s, false);
+            let (s, knot_exp, cdn, rounded) = match dn {
+                Some((cs, rounded)) => (s, r.knot_exp, cs, rounded),
+                None => (0, 0, c.clone(), false),
+            };
+            let cup = rounded
+                .then(|| r.apply_coord(c, j, s, true))
+                .flatten()
+                .map(|x| x.0);
+            if rounded && cup.is_none() {
+                for &max_side in which {
+                    if max_side {
+                        cb.optimal_hi = false;
+                    } else {
+                        cb.optimal_lo = false;
+                    }
+                }
+                continue;
+            }
+            let mut ev_dn = Evals::new(&cdn);
+            let mut ev_up = cup.as_ref().map(Evals::new);
+            let sc = Scaling {
+                coord_exp: s,
+                knot_exp,
+                within: LOWER_WITHIN_ULPS_RESCALED,
+            };
+            for &max_side in which {
+                let mut cv = Curves {
+                    dn: &mut ev_dn,
+                    up: ev_up.as_mut(),
+                };
+                let ok = certify_side(&mut cv, j, cb, max_side, &sc);
+                if max_side {
+                    cb.optimal_hi = ok;
+                } else {
+                    cb.optimal_lo = ok;
+                }
+            }
+        }
+    }
 }
 
-/// A rational curve with every weight multiplied by the power of two 2^-e that brings the
-/// largest into [1/2, 1), when that is exact for every weight (`None` otherwise, or for a
-/// polynomial curve or weights already there). The rational basis functions
-/// R_i = w_i N_i / sum_l w_l N_l do not change when every weight is multiplied by the same
-/// factor (thesis def. 3.1), so the curve is the same at every u; its homogeneous control
-/// points w_i P_i are now at most |P_i|, which for coordinates near f64::MAX and weights
-/// above 1 would otherwise overflow (the double-double evaluators become ENTIRE).
-fn unit_weights(c: &NurbsCurve) -> Option<NurbsCurve> {
-    let w = c.weights()?;
-    let e = exponent(w.iter().fold(0.0f64, |m, &x| m.max(x)));
-    if e <= 0 {
-        return None;
+/// Coordinates whose largest control value lies within 2^±COORD_WINDOW are not scaled.
+const COORD_WINDOW: i32 = super::driver::COORD_WINDOW;
+/// The largest scaled control value of a coordinate is at most 2^COORD_HEADROOM: room for
+/// the weights (below 2^30 after the driver's scaling), the sums of the corner cuts and the
+/// double-double error terms, which must not overflow.
+const COORD_HEADROOM: i32 = 900;
+
+/// The exponent s of the power of two 2^-s that coordinate j is multiplied by for one side's
+/// certificate: 0 for a coordinate of moderate magnitude (largest control value 2^`e_m`
+/// within 2^±[`COORD_WINDOW`]); otherwise the bound's (or the attained value's, whichever is
+/// larger) binary exponent, so that the values near the extremum are near 1 and their
+/// double-double enclosures ~2^-100 relative narrow (which values near f64::MAX, with
+/// overflowing error terms, or subnormal values, with no bits below 2^-1074, are not), but at
+/// least e_m - [`COORD_HEADROOM`] (no overflow). Any s is sound (module docs); this one only
+/// decides what can be resolved.
+fn coord_exponent(e_m: i32, bound: f64, inner: f64) -> i32 {
+    if e_m.abs() <= COORD_WINDOW {
+        return 0;
     }
-    let ws: Option<Vec<f64>> = w.iter().map(|&x| ldexp_exact(x, -e)).collect();
-    let pts = c.points_flat().to_vec();
-    NurbsCurve::from_flat(c.degree(), c.dim(), c.knots().to_vec(), pts, Some(ws?)).ok()
+    let mag = |x: f64| if x.is_finite() { x.abs() } else { 0.0 };
+    let m = mag(bound).max(mag(inner));
+    let e_b = if m > 0.0 { exponent(m) } else { e_m };
+    e_b.max(e_m - COORD_HEADROOM)
+}
+
+/// How the evaluated curve relates to the enclosed one ([`certify_with`]): coordinate j
+/// multiplied by 2^-`coord_exp`, knots (parameters) by 2^-`knot_exp`; `within` is the
+/// lowering window in ulps ([`LOWER_WITHIN_ULPS`], [`LOWER_WITHIN_ULPS_RESCALED`]).
+struct Scaling {
+    coord_exp: i32,
+    knot_exp: i32,
+    within: usize,
+}
+
+impl Scaling {
+    const NONE: Scaling = Scaling {
+        coord_exp: 0,
+        knot_exp: 0,
+        within: LOWER_WITHIN_ULPS,
+    };
+}
+
+/// The evaluators of one coordinate's certificate: `dn` of the curve with coordinate j
+/// rounded down where it rounded, `up` rounded up (`None`: nothing rounded, `dn` is exact).
+/// C_dn <= C_j <= C_up at every u (module docs), so a value above t is shown on the curve
+/// below g = sign * C_j, and g <= t on the curve above it.
+struct Curves<'e, 'a> {
+    dn: &'e mut Evals<'a>,
+    up: Option<&'e mut Evals<'a>>,
+}
+
+impl<'a> Curves<'_, 'a> {
+    /// The curve whose g is <= the enclosed curve's g everywhere (for "g(u) > t" proofs).
+    fn below(&mut self, sign: f64) -> &mut Evals<'a> {
+        match (&mut self.up, sign > 0.0) {
+            (Some(up), false) => up,
+            _ => &mut *self.dn,
+        }
+    }
+
+    /// The curve whose g is >= the enclosed curve's g everywhere (for "g <= t" proofs).
+    fn above(&mut self, sign: f64) -> &mut Evals<'a> {
+        match (&mut self.up, sign > 0.0) {
+            (Some(up), true) => up,
+            _ => &mut *self.dn,
+        }
+    }
 }
 
 /// Lazily built evaluators of the curve (double-double with two derivative levels, exact).
@@ -503,7 +587,7 @@ pub(crate) fn quick(bound: f64, inner: f64, witness: f64, scale: f64) -> Option<
     if attained_rule(bound, inner, witness) {
         return Some(true);
     }
-    far_below(bound, inner, scale).then_some(false)
+    far_below(bound, inner, scale, LOWER_WITHIN_ULPS).then_some(false)
 }
 
 /// The first rule: an attained value equal to the bound, or a strict witness at or above
@@ -515,20 +599,30 @@ fn attained_rule(bound: f64, inner: f64, witness: f64) -> bool {
 /// Whether the attained value is more than [`LOWER_WITHIN_ULPS`] ulps of the scale
 /// (max(|bound|, `scale`)) below the bound: a loose bound, which the search stages do not try
 /// to complete.
-fn far_below(bound: f64, inner: f64, scale: f64) -> bool {
-    bound - inner > LOWER_WITHIN_ULPS as f64 * crate::num::ulp(bound.abs().max(scale))
+fn far_below(bound: f64, inner: f64, scale: f64, within: usize) -> bool {
+    bound - inner > within as f64 * crate::num::ulp(bound.abs().max(scale))
 }
 
 /// The certificate of one side (`max_side`: hi, as the maximum of g = C_j; otherwise lo, as the
 /// maximum of g = -C_j), lowering the bound where [`prove_at_most`] allows it.
 ///
-/// `ev` evaluates the curve with coordinate j multiplied by 2^-`s` (exactly: see
-/// [`scaled_coordinate`]; s = 0 for the curve itself); bounds, attained values and witnesses
-/// stay in the curve's own units. A proof that the scaled g exceeds up(t) >= t 2^-s (t 2^-s
-/// rounded up) shows g > t; a proof that the scaled g is <= dn(t') <= t' 2^-s (rounded down)
-/// shows g <= t' ([`scale_outward`]; identities for s = 0).
-fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: i32) -> bool {
+/// `cv` evaluates the curve with coordinate j multiplied by 2^-s (s = `sc.coord_exp`) and its
+/// parameters by 2^-`sc.knot_exp` (module docs, "Extreme magnitudes"; s = 0 and no
+/// reparametrisation for a curve of moderate magnitudes); bounds, attained values and
+/// witnesses stay in the curve's own units, the strategy's candidates are mapped to the
+/// scaled parameters (rounded outward; they only say where to look). A proof that the scaled
+/// g (of the curve below it, [`Curves::below`]) exceeds up(t) >= t 2^-s (t 2^-s rounded up)
+/// shows g > t; a proof that the scaled g (of the curve above it) is <= dn(t') <= t' 2^-s
+/// (rounded down) shows g <= t' ([`scale_outward`]; identities for s = 0).
+fn certify_side(
+    cv: &mut Curves,
+    j: usize,
+    cb: &mut CoordBox,
+    max_side: bool,
+    sc: &Scaling,
+) -> bool {
     let sign = if max_side { 1.0 } else { -1.0 };
+    let s = sc.coord_exp;
     let up = |x: f64| scale_outward(x, -s, true);
     let dn = |x: f64| scale_outward(x, -s, false);
     // (a scaled value seen, back in the curve's units: only to choose lowering targets)
@@ -539,7 +633,16 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         (-cb.lo, -cb.inner_lo, -cb.witness_lo)
     };
     let all: &[Extremum] = if max_side { &cb.argmax } else { &cb.argmin };
-    let cands = &all[..all.len().min(MAX_CANDIDATES)];
+    let cands: Vec<Extremum> = all[..all.len().min(MAX_CANDIDATES)]
+        .iter()
+        .map(|x| Extremum {
+            u_lo: scale_outward(x.u_lo, -sc.knot_exp, false),
+            u_hi: scale_outward(x.u_hi, -sc.knot_exp, true),
+            ..*x
+        })
+        .collect();
+    let cands = &cands[..];
+    let within = sc.within;
     let mut proved = false;
     for round in 0..=MAX_LOWERINGS {
         if !bound.is_finite() {
@@ -556,6 +659,7 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         // (1c. a clamped end's value, exactly the end control point, above t: after a
         // lowering the end value is often the new bound's witness)
         // (and the same for the values at knots of multiplicity >= p, control points too)
+        let ev = cv.below(sign);
         let (a, b) = ev.c.domain();
         let end_scaled = [a, b]
             .into_iter()
@@ -583,10 +687,10 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         let scale = back(ev.c.coord_scale(j));
         // (an exact end or knot value counts as attained here: a maximum at a knot of
         // multiplicity >= p that the strategy did not record is nearly proved as well)
-        if far_below(bound, inner.max(end_value), scale) {
+        if far_below(bound, inner.max(end_value), scale, within) {
             break;
         }
-        let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(bound.abs().max(scale));
+        let near_scale = within as f64 * crate::num::ulp(bound.abs().max(scale));
         let d = ddi_stage(ev, j, sign, up(t), cands);
         let guess = back(d.guess);
         if d.proved {
@@ -611,7 +715,7 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         let lower = round < MAX_LOWERINGS
             && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end)
             && (!d.straddle || ev.exact_possible())
-            && (target >= nth_down(bound, LOWER_WITHIN_ULPS) || bound - target <= near_scale);
+            && (target >= nth_down(bound, within) || bound - target <= near_scale);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
             if !lower {
                 return None;
@@ -628,15 +732,15 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
             }
             (exact && goal < t && prove_at_most(ev, j, sign, dn(t), cands, true)).then_some(t)
         };
-        if let Some(nb) = try_lower(ev, false) {
+        if let Some(nb) = try_lower(cv.above(sign), false) {
             bound = nb;
             continue;
         }
-        if exact_stage(ev, j, sign, up(t), &d) {
+        if exact_stage(cv.below(sign), j, sign, up(t), &d) {
             proved = true;
             break;
         }
-        match try_lower(ev, true) {
+        match try_lower(cv.above(sign), true) {
             Some(nb) => bound = nb,
             None => break,
         }

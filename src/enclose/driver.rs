@@ -123,7 +123,7 @@ pub(crate) fn ldexp_exact(x: f64, k: i32) -> Option<f64> {
 }
 
 /// x * 2^k rounded toward -inf (`up` false) or +inf (`up` true), for scaling control points
-/// down: exact unless the product is subnormal, where the nearest value is moved one step if
+/// (an overflow gives ±inf): exact unless the product is subnormal, where the nearest value is moved one step if
 /// it lies on the wrong side (the check scales back exactly: y 2^-k is normal or exact).
 fn ldexp_directed(x: f64, k: i32, up: bool) -> f64 {
     let y = ldexp(x, k);
@@ -306,6 +306,45 @@ impl Rescaling {
         NurbsCurve::from_flat(c.degree(), d, knots, pts, weights).unwrap_or_else(|_| c.clone())
     }
 
+    /// The curve the certificate of coordinate j evaluates ([`super::certify`]): knots and
+    /// weights scaled as by [`Rescaling::apply`] (exact), coordinate j multiplied by 2^-`s`,
+    /// rounded down (`up` false) or up where the product is not exact (so the curve's
+    /// coordinate j is below, or above, 2^-s C_j at every u: the argument of "Rounded
+    /// coordinates"), the other coordinates unchanged; and whether some value of coordinate
+    /// j rounded. `None` if a scaled value is not finite (or the curve not valid).
+    pub(crate) fn apply_coord(
+        &self,
+        c: &NurbsCurve,
+        j: usize,
+        s: i32,
+        up: bool,
+    ) -> Option<(NurbsCurve, bool)> {
+        let d = c.dim();
+        let mut rounded = false;
+        let pts: Vec<f64> = c
+            .points_flat()
+            .iter()
+            .enumerate()
+            .map(|(k, &x)| {
+                if k % d != j {
+                    return x;
+                }
+                rounded |= ldexp_exact(x, -s).is_none();
+                ldexp_directed(x, -s, up)
+            })
+            .collect();
+        let knots: Vec<f64> = c
+            .knots()
+            .iter()
+            .map(|&u| ldexp(u, -self.knot_exp))
+            .collect();
+        let weights = c
+            .weights()
+            .map(|w| w.iter().map(|&x| ldexp(x, -self.weight_exp)).collect());
+        let cs = NurbsCurve::from_flat(c.degree(), d, knots, pts, weights).ok()?;
+        Some((cs, rounded))
+    }
+
     /// The rescaled curve, coordinates rounded to nearest (see [`Rescaling::apply_directed`]).
     pub fn apply(&self, c: &NurbsCurve) -> NurbsCurve {
         self.apply_directed(c, None)
@@ -444,10 +483,11 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
             }
         }
     }
+    let rescaling = Rescaling::of(c);
     let mut e = if c.degree() > MAX_SEARCH_DEGREE {
         degree_fallback(s, c)
     } else {
-        match Rescaling::of(c) {
+        match &rescaling {
             None => s.enclose_prepared(c),
             Some(r) => r.enclose_with(s, c),
         }
@@ -460,7 +500,7 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
         apply_facts(cb, c.coord_range(j, 0..=n), ends, verified);
     }
     if certify {
-        super::certify::certify(c, &mut e);
+        super::certify::certify_with(c, &mut e, rescaling.as_ref());
     } else {
         for cb in &mut e.coords {
             cb.optimal_lo = false;
