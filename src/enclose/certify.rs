@@ -169,6 +169,8 @@ pub const MAX_BOXES: usize = 64;
 const BEZIER_SEARCH_SPANS: usize = 2;
 /// Subintervals of a candidate whose ends are f64 starting points of [`bezier_search`].
 const SEARCH_SAMPLES: usize = 16;
+/// Rounds of narrower samples around the best one in [`bezier_search`].
+const ZOOM_ROUNDS: usize = 4;
 /// Bézier halvings per lowering proof ([`bezier_rule`], towards clamped domain ends).
 pub const MAX_PIECES: usize = 96;
 /// Halving depth of the Bézier rule at a clamped domain end.
@@ -874,7 +876,8 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
 /// Stage 2b: double-double values of the candidates' span pieces in their Bézier form
 /// ([`HSpline::bezier_segment`], NURBS Book A5.6; thesis sec. 4.2), at a local parameter s in
 /// [0, 1] chosen by f64 Newton steps on g(s) from the best of [`SEARCH_SAMPLES`] + 1 f64
-/// samples over the candidate (only to choose s; g = A / W with A, W the Bernstein polynomials
+/// samples over the candidate, refined by [`ZOOM_ROUNDS`] rounds of narrower samples around
+/// the best one (only to choose s; g = A / W with A, W the Bernstein polynomials
 /// of the coordinate and weight rows, the coordinate row scaled by a power of two,
 /// g' = (A' - g W') / W, g'' = (A'' - 2 g' W' - g W'') / W from the hodographs), and at s = 0
 /// and s = 1 (the values at the span's knots). The parameter u = u_k + (u_{k+1} -
@@ -955,6 +958,23 @@ fn bezier_search(
                 if g > best {
                     (s, best) = (v, g);
                 }
+            }
+            // then SEARCH_SAMPLES + 1 points over the two sample intervals around the best,
+            // ZOOM_ROUNDS times, each round 8 times narrower (a narrow peak next to a convex
+            // stretch, e.g. near a weight much smaller than its neighbours', where Newton from
+            // the best sample stops at once)
+            let mut h = (s_hi - s_lo) / SEARCH_SAMPLES as f64;
+            for _ in 0..ZOOM_ROUNDS {
+                let c = s;
+                for i in 0..=SEARCH_SAMPLES {
+                    let f = 2.0 * i as f64 / SEARCH_SAMPLES as f64 - 1.0;
+                    let v = (c + f * h).clamp(s_lo, s_hi).clamp(0.0, 1.0);
+                    let g = value(v);
+                    if g > best {
+                        (s, best) = (v, g);
+                    }
+                }
+                h /= 8.0;
             }
             for _ in 0..2 * NEWTON_STEPS {
                 let ev = |b: &[f64]| de_casteljau_eval(b, &s);
