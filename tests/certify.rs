@@ -315,6 +315,9 @@ mod mpfr {
         let curve = |p: usize, d: usize, knots: Vec<f64>, pts: Vec<f64>, w: Vec<f64>| {
             NurbsCurve::from_flat(p, d, knots, pts, Some(w)).unwrap()
         };
+        let poly = |p: usize, knots: Vec<f64>, pts: Vec<f64>| {
+            NurbsCurve::from_flat(p, 1, knots, pts, None).unwrap()
+        };
         // (name, curve, the (coordinate, upper side) pairs not asserted)
         type Case = (&'static str, NurbsCurve, Vec<(usize, bool)>);
         let cases: Vec<Case> = vec![
@@ -448,6 +451,54 @@ mod mpfr {
                         11.820899346640902,
                         0.7558445139280819,
                         0.20406154374488011,
+                    ],
+                ),
+                vec![],
+            ),
+            (
+                // (maxima 6.833e-321 at a clamped end and 1.351e-320 at a knot of a degree-1
+                // curve, next to values near f64::MAX: no scaling resolves both, the exact
+                // control values decide)
+                "237",
+                poly(
+                    4,
+                    [vec![0.0; 5], vec![8.4e-323], vec![3.16e-322; 5]].concat(),
+                    vec![
+                        6.833e-321,
+                        -1.616913618646004e308,
+                        -4.3819129508066723e307,
+                        -6.678591187703001e307,
+                        0.6276620515017517,
+                        -1.2649907933012563e308,
+                    ],
+                ),
+                vec![],
+            ),
+            (
+                "190",
+                poly(
+                    1,
+                    vec![
+                        -1.0938839154022747e308,
+                        -9.419602553780983e307,
+                        -7.155314750492432e307,
+                        -5.491710351673211e307,
+                        -4.368719290470004e307,
+                        5e-324,
+                        3.0818649313153043e307,
+                        3.109871301680391e307,
+                        4.623878696298882e307,
+                        5.929674726105294e307,
+                    ],
+                    vec![
+                        -0.4092217439935921,
+                        1.273e-320,
+                        8.834e-321,
+                        5.296e-321,
+                        1.351e-320,
+                        -0.9940222122877356,
+                        -6.522863685535296e307,
+                        -0.86866880335569,
                     ],
                 ),
                 vec![],

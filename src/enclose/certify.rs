@@ -58,6 +58,16 @@
 //! A proof about the scaled g against t 2^-s rounded up (for "above") or a target rounded
 //! down (for "at most") is then the same proof about g ([`scale_outward`]).
 //!
+//! The exact values (a clamped end's control point, the value at a knot of multiplicity at
+//! least p, the control points of a span's strong convex hull) are always the enclosed curve's
+//! own control points, compared with the bound or target in its own units: no scaling
+//! rounds them (a subnormal maximum next to values near f64::MAX stays exact). In the Bézier
+//! rule of a lowering proof the piece's end point is such a value, its other points come
+//! from the copy above; this is a hull of the curve's own piece too, since the piece's
+//! points of the copy above are >= its own scaled points (both are the same convex
+//! combinations, of the B-spline control points or, for a rational piece, of the homogeneous
+//! ones w_i P_i with the same weights, and C_up's control values are >= 2^-s P_ij).
+//!
 //! # Choosing u (Ziv's strategy)
 //!
 //! The strategy's candidates (`argmax` / `argmin`: parameter intervals whose enclosures reach
@@ -205,7 +215,7 @@ pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescali
     }
     let Some(r) = r else {
         // moderate magnitudes (the common case): the curve itself
-        let mut ev = Evals::new(c);
+        let mut ev = Evals::new(c, c, 0);
         for (j, cb) in e.coords.iter_mut().enumerate() {
             let mut cv = Curves {
                 dn: &mut ev,
@@ -248,8 +258,8 @@ pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescali
                 }
                 continue;
             }
-            let mut ev_dn = Evals::new(&cdn);
-            let mut ev_up = cup.as_ref().map(Evals::new);
+            let mut ev_dn = Evals::new(&cdn, c, s);
+            let mut ev_up = cup.as_ref().map(|cu| Evals::new(cu, c, s));
             let sc = Scaling {
                 coord_exp: s,
                 knot_exp,
@@ -343,6 +353,11 @@ impl<'a> Curves<'_, 'a> {
 /// Lazily built evaluators of the curve (double-double with two derivative levels, exact).
 struct Evals<'a> {
     c: &'a NurbsCurve,
+    /// the enclosed curve itself, whose coordinate j is 2^s times `c`'s (exactly, or between
+    /// two copies rounded down and up): its control points are the exact values at clamped
+    /// ends and knots of multiplicity >= p, in the curve's own units
+    orig: &'a NurbsCurve,
+    s: i32,
     iv: Option<CurveEval<Interval>>,
     ddi: Option<CurveEval<Ddi>>,
     /// the homogeneous curve alone in Ddi (no derivative control points: most certificates
@@ -353,9 +368,11 @@ struct Evals<'a> {
 }
 
 impl<'a> Evals<'a> {
-    fn new(c: &'a NurbsCurve) -> Self {
+    fn new(c: &'a NurbsCurve, orig: &'a NurbsCurve, s: i32) -> Self {
         Evals {
             c,
+            orig,
+            s,
             iv: None,
             ddi: None,
             ddi0: None,
@@ -483,21 +500,30 @@ impl<'a> Evals<'a> {
     }
 
     /// C_j(u) exactly when u is a clamped end of the domain: the end control point
-    /// ([`NurbsCurve::clamped_ends`]; the last span's piece there is the curve's value).
+    /// ([`NurbsCurve::clamped_ends`]; the last span's piece there is the curve's value). In
+    /// the enclosed curve's own units (its control point, `orig`); u is a parameter of `c`
+    /// (the same knot indices, the same multiplicities).
     fn clamped_end_value(&self, j: usize, u: f64) -> Option<f64> {
         let (a, b) = self.c.domain();
         let cl = self.c.clamped_ends();
         if u == a && cl[0] {
-            Some(self.c.control_point(0)[j])
+            Some(self.orig.control_point(0)[j])
         } else if u == b && cl[1] {
-            Some(self.c.control_point(self.c.num_points() - 1)[j])
+            Some(self.orig.control_point(self.orig.num_points() - 1)[j])
         } else {
             None
         }
     }
 
+    /// A double <= v 2^-s (v in the curve's own units, e.g. an exact value of
+    /// [`Evals::knot_value`]): a lower bound of that value on the evaluated curve's scale.
+    fn scaled_below(&self, v: f64) -> f64 {
+        scale_outward(v, -self.s, false)
+    }
+
     /// The value of the piece of span k at an end u of the span, exactly, when u is a knot of
-    /// multiplicity >= p (or a clamped domain end): there a single basis function is nonzero
+    /// multiplicity >= p (or a clamped domain end), in the curve's own units (the control point
+    /// of `orig`, as [`Evals::clamped_end_value`]): there a single basis function is nonzero
     /// (NURBS Book P2.1, P2.2 applied on the span; eq. 2.5 with m >= p), so the piece's value
     /// is a control point, also for a rational curve (R_i = w_i N_i / sum w_l N_l = 1 for
     /// that i). At the span's start u_k it is P_{k-p} (the value C(u_k), as for a clamped
@@ -513,7 +539,7 @@ impl<'a> Evals<'a> {
         } else {
             return None;
         };
-        (multiplicity(kn, u) >= p).then(|| c.control_point(i)[j])
+        (multiplicity(kn, u) >= p).then(|| self.orig.control_point(i)[j])
     }
 
     /// C_j(u) exactly when u is a clamped domain end or a knot of multiplicity >= p (the
@@ -661,15 +687,15 @@ fn certify_side(
         // (1c. a clamped end's value, exactly the end control point, above t: after a
         // lowering the end value is often the new bound's witness)
         // (and the same for the values at knots of multiplicity >= p, control points too)
+        // (exact control points of the curve itself, compared in its own units)
         let ev = cv.below(sign);
         let (a, b) = ev.c.domain();
-        let end_scaled = [a, b]
+        let end_value = [a, b]
             .into_iter()
             .filter_map(|u| ev.clamped_end_value(j, u))
             .map(|x| sign * x)
             .fold(ev.max_knot_value(j, sign), f64::max);
-        let end_value = back(end_scaled);
-        if end_scaled > up(t) {
+        if end_value > t {
             proved = true;
             break;
         }
@@ -729,10 +755,11 @@ fn certify_side(
             } else {
                 t
             };
-            if prove_at_most(ev, j, sign, dn(goal), cands, exact) {
+            let r = prove_at_most(ev, j, sign, (dn(goal), goal), cands, exact);
+            if r {
                 return Some(goal);
             }
-            (exact && goal < t && prove_at_most(ev, j, sign, dn(t), cands, true)).then_some(t)
+            (exact && goal < t && prove_at_most(ev, j, sign, (dn(t), t), cands, true)).then_some(t)
         };
         if let Some(nb) = try_lower(cv.above(sign), false) {
             bound = nb;
@@ -783,8 +810,9 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
     let look = |ev: &mut Evals, u: f64, guess: &mut f64| -> Option<Ddi> {
         // at a clamped end the value is the end control point, exactly (a point set: an exact
         // tie with t is then no straddle, and the lowering proof decides it exactly)
+        // (rounded down to the evaluated curve's scale: a lower bound of the scaled value)
         let g = match ev.exact_value(j, u) {
-            Some(x) => Ddi::exact(sign * x),
+            Some(x) => Ddi::exact(ev.scaled_below(sign * x)),
             None => ev.ddi_value(j, sign, u)?,
         };
         *guess = guess.max(g.to_interval().sup());
@@ -1009,7 +1037,7 @@ fn bezier_search(
                     _ => None,
                 };
                 let g = match end {
-                    Some(x) => Ddi::exact(sign * x),
+                    Some(x) => Ddi::exact(ev.scaled_below(sign * x)),
                     None => {
                         let vd = Ddi::exact(v);
                         let num = de_casteljau_eval(&a, &vd);
@@ -1091,7 +1119,7 @@ fn prove_at_most(
     ev: &mut Evals,
     j: usize,
     sign: f64,
-    t: f64,
+    (t, t_own): (f64, f64),
     cands: &[Extremum],
     exact: bool,
 ) -> bool {
@@ -1113,15 +1141,16 @@ fn prove_at_most(
         // Strong convex hull property (NURBS Book P4.3; thesis prop. 2.1 on one span): on
         // [u_k, u_{k+1}] the piece is a convex combination of P_{k-p} .. P_k (weights > 0),
         // so g <= max of their signed coordinates there; exact f64 comparisons, no box spent.
+        // (the enclosed curve's own control points against the target in its own units)
         let local = (k - p..=k)
-            .map(|i| sign * c.control_point(i)[j])
+            .map(|i| sign * ev.orig.control_point(i)[j])
             .fold(f64::NEG_INFINITY, f64::max);
-        if local <= t {
+        if local <= t_own {
             continue;
         }
         // the span's Bézier pieces first (exact values at clamped domain ends); what they
         // leave undecided goes to the box rules
-        let Some(rest) = bezier_rule(ev, k, j, sign, t, &mut pieces) else {
+        let Some(rest) = bezier_rule(ev, k, j, sign, (t, t_own), &mut pieces) else {
             return false;
         };
         let mut stack: Vec<(f64, f64, u32)> =
@@ -1134,7 +1163,18 @@ fn prove_at_most(
             // the concavity rules only near a candidate of the strategy (where the extremum
             // is): elsewhere splitting is cheaper
             let near_cand = cands.iter().any(|x| x.u_lo <= hi && x.u_hi >= lo);
-            match box_at_most(ev, k, j, sign, t, lo, hi, near_cand, &mut exact_tries) {
+            let vd = box_at_most(
+                ev,
+                k,
+                j,
+                sign,
+                (t, t_own),
+                lo,
+                hi,
+                near_cand,
+                &mut exact_tries,
+            );
+            match vd {
                 BoxVerdict::Below => {}
                 BoxVerdict::Above | BoxVerdict::Stuck => return false,
                 BoxVerdict::Split => {
@@ -1180,23 +1220,22 @@ fn bezier_rule(
     k: usize,
     j: usize,
     sign: f64,
-    t: f64,
+    (t, t_own): (f64, f64),
     pieces: &mut usize,
 ) -> Option<Vec<(f64, f64)>> {
     let c = ev.c;
     let kn = c.knots();
     let (ua, ub) = (kn[k], kn[k + 1]);
-    let (a, b) = c.domain();
-    let cl = c.clamped_ends();
     // (and at an interior knot of multiplicity >= p, where the piece's end value is a control
-    // point too: [`Evals::knot_value`])
+    // point too: [`Evals::knot_value`]; the enclosed curve's own control points, compared
+    // with the target in its own units)
     let exact_start = ev
         .knot_value(j, k, ua)
-        .or_else(|| (ua == a && cl[0]).then(|| c.control_point(0)[j]))
+        .or_else(|| ev.clamped_end_value(j, ua))
         .map(|x| sign * x);
     let exact_end = ev
         .knot_value(j, k, ub)
-        .or_else(|| (ub == b && cl[1]).then(|| c.control_point(c.num_points() - 1)[j]))
+        .or_else(|| ev.clamped_end_value(j, ub))
         .map(|x| sign * x);
     let h = ev.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
     let seg = h.bezier_segment(k);
@@ -1223,10 +1262,10 @@ fn bezier_rule(
                 _ if i == p && s1 == 1.0 => exact_end,
                 _ => None,
             };
-            let ok = exact.map_or_else(|| x.is_at_most(t), |v| v <= t);
+            let ok = exact.map_or_else(|| x.is_at_most(t), |v| v <= t_own);
             if !ok {
                 // an end point is a curve value: above t refutes t
-                if (i == 0 || i == p) && exact.map_or_else(|| x.is_above(t), |v| v > t) {
+                if (i == 0 || i == p) && exact.map_or_else(|| x.is_above(t), |v| v > t_own) {
                     return None;
                 }
                 below = false;
@@ -1287,7 +1326,7 @@ fn box_at_most(
     k: usize,
     j: usize,
     sign: f64,
-    t: f64,
+    (t, t_own): (f64, f64),
     lo: f64,
     hi: f64,
     near_cand: bool,
@@ -1316,8 +1355,9 @@ fn box_at_most(
             .knot_value(j, k, u)
             .or_else(|| ev.clamped_end_value(j, u))
         {
-            // the end control point, exactly (`NurbsCurve::clamped_ends`)
-            return Some(sign * x <= t);
+            // the end control point, exactly (`NurbsCurve::clamped_ends`; the enclosed
+            // curve's own, against the target in its own units)
+            return Some(sign * x <= t_own);
         }
         let v = ev.ddi_in(k, j, sign, Ddi::exact(u), 0);
         if v[0].is_at_most(t) {
