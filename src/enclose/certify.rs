@@ -124,10 +124,11 @@
 //! exact stage only for the best candidate and degree <= [`EXACT_MAX_DEGREE`] (its exact
 //! Newton levels only for a value within 2^-96 of t, two exact Newton steps per level of
 //! [`ZIV_BITS`]); lowering only up to degree [`LOWER_MAX_DEGREE`], a lowering proof at most
-//! [`MAX_BOXES`] boxes, [`MAX_PIECES`] Bézier halvings and [`MAX_EXACT_TRIES`] exact
-//! concavity arguments (above [`LOWER_MAX_DEGREE`] a lowering is tried only when a clamped
-//! end's value is the largest value seen, where the Bézier rule decides cheaply); no search at all
-//! above degree [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
+//! [`MAX_BOXES`] boxes ([`MAX_BOXES_RESCALED`] for a curve the driver rescales),
+//! [`MAX_PIECES`] Bézier halvings and [`MAX_EXACT_TRIES`] exact concavity arguments (above
+//! [`LOWER_MAX_DEGREE`] a lowering is tried only when a clamped end's value is the largest
+//! value seen, where the Bézier rule decides cheaply); no search at all above degree
+//! [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
@@ -175,6 +176,9 @@ pub const LOWER_WITHIN_ULPS: usize = 8;
 pub const LOWER_WITHIN_ULPS_RESCALED: usize = 32;
 /// Parameter boxes per lowering proof (branch and bound over the whole domain).
 pub const MAX_BOXES: usize = 64;
+/// The same for a curve the driver rescaled (extreme weight ratios and spans next to each
+/// other whose box enclosures converge slowly; the cost stays with such curves).
+pub const MAX_BOXES_RESCALED: usize = 256;
 /// Spans searched in their Bézier form per side ([`bezier_search`]).
 const BEZIER_SEARCH_SPANS: usize = 2;
 /// Subintervals of a candidate whose ends are f64 starting points of [`bezier_search`].
@@ -264,6 +268,7 @@ pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescali
                 coord_exp: s,
                 knot_exp,
                 within: LOWER_WITHIN_ULPS_RESCALED,
+                boxes: MAX_BOXES_RESCALED,
             };
             for &max_side in which {
                 let mut cv = Curves {
@@ -308,11 +313,13 @@ fn coord_exponent(e_m: i32, bound: f64, inner: f64) -> i32 {
 
 /// How the evaluated curve relates to the enclosed one ([`certify_with`]): coordinate j
 /// multiplied by 2^-`coord_exp`, knots (parameters) by 2^-`knot_exp`; `within` is the
-/// lowering window in ulps ([`LOWER_WITHIN_ULPS`], [`LOWER_WITHIN_ULPS_RESCALED`]).
+/// lowering window in ulps ([`LOWER_WITHIN_ULPS`], [`LOWER_WITHIN_ULPS_RESCALED`]), `boxes`
+/// the box budget of a lowering proof ([`MAX_BOXES`], [`MAX_BOXES_RESCALED`]).
 struct Scaling {
     coord_exp: i32,
     knot_exp: i32,
     within: usize,
+    boxes: usize,
 }
 
 impl Scaling {
@@ -320,6 +327,7 @@ impl Scaling {
         coord_exp: 0,
         knot_exp: 0,
         within: LOWER_WITHIN_ULPS,
+        boxes: MAX_BOXES,
     };
 }
 
@@ -755,11 +763,11 @@ fn certify_side(
             } else {
                 t
             };
-            let r = prove_at_most(ev, j, sign, (dn(goal), goal), cands, exact);
-            if r {
+            if prove_at_most(ev, j, sign, (dn(goal), goal), cands, exact, sc.boxes) {
                 return Some(goal);
             }
-            (exact && goal < t && prove_at_most(ev, j, sign, (dn(t), t), cands, true)).then_some(t)
+            (exact && goal < t && prove_at_most(ev, j, sign, (dn(t), t), cands, true, sc.boxes))
+                .then_some(t)
         };
         if let Some(nb) = try_lower(cv.above(sign), false) {
             bound = nb;
@@ -1113,7 +1121,7 @@ fn exact_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, d: &DdiOutcome) -> b
 
 /// Whether g <= t on the whole domain, proved by branch and bound over every span (the
 /// lowering branch of the Ziv loop; see the module docs for the rules). At most
-/// [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; `false` when they
+/// `max_boxes` boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; `false` when they
 /// are spent or a value above t is met.
 fn prove_at_most(
     ev: &mut Evals,
@@ -1122,6 +1130,7 @@ fn prove_at_most(
     (t, t_own): (f64, f64),
     cands: &[Extremum],
     exact: bool,
+    max_boxes: usize,
 ) -> bool {
     let c = ev.c;
     if c.degree() > SEARCH_MAX_DEGREE {
@@ -1157,13 +1166,13 @@ fn prove_at_most(
             rest.into_iter().map(|(lo, hi)| (lo, hi, 0)).collect();
         while let Some((lo, hi, depth)) = stack.pop() {
             boxes += 1;
-            if boxes > MAX_BOXES {
+            if boxes > max_boxes {
                 return false;
             }
             // the concavity rules only near a candidate of the strategy (where the extremum
             // is): elsewhere splitting is cheaper
             let near_cand = cands.iter().any(|x| x.u_lo <= hi && x.u_hi >= lo);
-            let vd = box_at_most(
+            match box_at_most(
                 ev,
                 k,
                 j,
@@ -1173,8 +1182,7 @@ fn prove_at_most(
                 hi,
                 near_cand,
                 &mut exact_tries,
-            );
-            match vd {
+            ) {
                 BoxVerdict::Below => {}
                 BoxVerdict::Above | BoxVerdict::Stuck => return false,
                 BoxVerdict::Split => {
