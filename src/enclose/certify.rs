@@ -28,18 +28,45 @@
 //!    derivative kernels run on big rationals, no rounding) at an f64 or dyadic parameter u is
 //!    > t (compared exactly).
 //!
-//! A coordinate of extreme magnitude (control values beyond 2^±80: near f64::MAX, where
-//! double-double error terms overflow, or subnormal, where no bits lie below 2^-1074) is
-//! evaluated on a copy of the curve with that coordinate multiplied by an exact power of two
-//! 2^-s (`scaled_coordinate`); a proof about the scaled g against t 2^-s rounded up (for
-//! "above") or a target rounded down (for "at most") is the same proof about g. Where no
-//! power of two scales the coordinate exactly, a rational curve is evaluated with its weights
-//! scaled to at most 1 instead (`unit_weights`: the same curve, homogeneous points w P without
-//! overflow).
-//!
 //! The lower bound is the same statement for -C_j. Nothing else sets a flag, so a wrong `true`
 //! would need a wrong outer bound, a wrong inner bound or a wrong enclosure / exact value, all
 //! of which are the crate's soundness guarantees already.
+//!
+//! # Extreme magnitudes
+//!
+//! A curve the driver rescales (`Rescaling`: coordinates beyond 2^±80, weights beyond 2^±30,
+//! knots far from a domain of length ~1) is certified on rescaled copies, built per coordinate
+//! j and side (`Rescaling::apply_coord`):
+//!
+//! * the knots multiplied by the driver's exact power of two 2^-k: an exact reparametrisation
+//!   with the same image (the driver's module docs), so the same extrema; the strategy's
+//!   candidates are mapped to the new parameters, rounded outward (they only say where to
+//!   look). Parameters that are a few subnormals apart (a domain [0, 2^-1068]) become
+//!   parameters of ~1: f64 points and boxes between the knots, Newton steps that converge;
+//! * the weights multiplied by the driver's exact power of two: the same curve;
+//! * coordinate j multiplied by 2^-s, s chosen so that the values near the bound are near 1
+//!   (`coord_exponent`: double-double enclosures ~2^-100 relative narrow, which values near
+//!   f64::MAX, with overflowing error terms, or subnormal values, with no bits below 2^-1074,
+//!   are not). C_j = sum_i R_i P_ij with rational basis functions R_i >= 0, sum R_i = 1, that
+//!   do not depend on the coordinates (thesis def. 3.1), so exact scaled control values give
+//!   exactly 2^-s C_j. Where a scaled control value is not exact (it fell into the subnormal
+//!   range), it is rounded down in one copy and up in another: C_dn <= 2^-s C_j <= C_up at
+//!   every u (a convex combination of values each moved down, or up). A value above a target
+//!   is then proved on the copy below g = ±C_j (C_dn for the maximum, C_up for the minimum),
+//!   g <= t on the copy above it ([`Curves`]); with exact values both copies are one curve.
+//!
+//! A proof about the scaled g against t 2^-s rounded up (for "above") or a target rounded
+//! down (for "at most") is then the same proof about g ([`scale_outward`]).
+//!
+//! The exact values (a clamped end's control point, the value at a knot of multiplicity at
+//! least p, the control points of a span's strong convex hull) are always the enclosed curve's
+//! own control points, compared with the bound or target in its own units: no scaling
+//! rounds them (a subnormal maximum next to values near f64::MAX stays exact). In the Bézier
+//! rule of a lowering proof the piece's end point is such a value, its other points come
+//! from the copy above; this is a hull of the curve's own piece too, since the piece's
+//! points of the copy above are >= its own scaled points (both are the same convex
+//! combinations, of the B-spline control points or, for a rational piece, of the homogeneous
+//! ones w_i P_i with the same weights, and C_up's control values are >= 2^-s P_ij).
 //!
 //! # Choosing u (Ziv's strategy)
 //!
@@ -97,14 +124,15 @@
 //! exact stage only for the best candidate and degree <= [`EXACT_MAX_DEGREE`] (its exact
 //! Newton levels only for a value within 2^-96 of t, two exact Newton steps per level of
 //! [`ZIV_BITS`]); lowering only up to degree [`LOWER_MAX_DEGREE`], a lowering proof at most
-//! [`MAX_BOXES`] boxes, [`MAX_PIECES`] Bézier halvings and [`MAX_EXACT_TRIES`] exact
-//! concavity arguments (above [`LOWER_MAX_DEGREE`] a lowering is tried only when a clamped
-//! end's value is the largest value seen, where the Bézier rule decides cheaply); no search at all
-//! above degree [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
+//! [`MAX_BOXES`] boxes ([`MAX_BOXES_RESCALED`] for a curve the driver rescales),
+//! [`MAX_PIECES`] Bézier halvings and [`MAX_EXACT_TRIES`] exact concavity arguments (above
+//! [`LOWER_MAX_DEGREE`] a lowering is tried only when a clamped end's value is the largest
+//! value seen, where the Bézier rule decides cheaply); no search at all above degree
+//! [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
-use super::driver::{exponent, ldexp_exact};
+use super::driver::{exponent, Rescaling};
 use super::{scale_outward, CandidateKind, CoordBox, Enclosure, Extremum};
 use crate::num::{iv, Ddi, Exact, Scalar};
 use crate::spline::bezier::{de_casteljau_eval, de_casteljau_split, hodograph};
@@ -142,12 +170,21 @@ pub const MAX_LOWERINGS: usize = 2;
 /// of the bound, or within this many ulps of the coordinate scale (a strategy's tolerance is
 /// relative to the scale, so near zero its bound can be many doubles of the value away).
 pub const LOWER_WITHIN_ULPS: usize = 8;
+/// The same for a curve the driver rescaled (extreme magnitudes): the strategies then work on
+/// a rescaled copy, or span by span on Bézier segments whose control points are enclosures,
+/// and their attained values lie up to ~20 ulps below their bounds (`range_limits`).
+pub const LOWER_WITHIN_ULPS_RESCALED: usize = 32;
 /// Parameter boxes per lowering proof (branch and bound over the whole domain).
 pub const MAX_BOXES: usize = 64;
+/// The same for a curve the driver rescaled (extreme weight ratios and spans next to each
+/// other whose box enclosures converge slowly; the cost stays with such curves).
+pub const MAX_BOXES_RESCALED: usize = 256;
 /// Spans searched in their Bézier form per side ([`bezier_search`]).
 const BEZIER_SEARCH_SPANS: usize = 2;
 /// Subintervals of a candidate whose ends are f64 starting points of [`bezier_search`].
 const SEARCH_SAMPLES: usize = 16;
+/// Rounds of narrower samples around the best one in [`bezier_search`].
+const ZOOM_ROUNDS: usize = 4;
 /// Bézier halvings per lowering proof ([`bezier_rule`], towards clamped domain ends).
 pub const MAX_PIECES: usize = 96;
 /// Halving depth of the Bézier rule at a clamped domain end.
@@ -166,97 +203,169 @@ const EXACT_CANDIDATES: usize = 1;
 /// docs), lowering a bound where a proof shows that a smaller double is a bound too. A
 /// heuristic result (`verified == false`) gets `false` everywhere and is left unchanged.
 pub fn certify(c: &NurbsCurve, e: &mut Enclosure) {
+    certify_with(c, e, Rescaling::of(c).as_ref());
+}
+
+/// [`certify`] with the driver's rescaling of `c` (`Rescaling::of(c)`, computed once by the
+/// driver): the proofs run on the rescaled curve(s) (module docs, "Extreme magnitudes").
+pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescaling>) {
     let verified = e.verified;
-    let mut ev = Evals::new(c);
-    for (j, cb) in e.coords.iter_mut().enumerate() {
-        if !verified {
+    if !verified {
+        for cb in &mut e.coords {
             cb.optimal_lo = false;
             cb.optimal_hi = false;
-            continue;
         }
-        match scaled_coordinate(c, j) {
-            Some((s, cs)) => {
-                let mut evs = Evals::new(&cs);
-                cb.optimal_hi = certify_side(&mut evs, j, cb, true, s);
-                cb.optimal_lo = certify_side(&mut evs, j, cb, false, s);
-            }
-            None => {
-                cb.optimal_hi = certify_side(&mut ev, j, cb, true, 0);
-                cb.optimal_lo = certify_side(&mut ev, j, cb, false, 0);
-            }
+        return;
+    }
+    let Some(r) = r else {
+        // moderate magnitudes (the common case): the curve itself
+        let mut ev = Evals::new(c, c, 0);
+        for (j, cb) in e.coords.iter_mut().enumerate() {
+            let mut cv = Curves {
+                dn: &mut ev,
+                up: None,
+            };
+            cb.optimal_hi = certify_side(&mut cv, j, cb, true, &Scaling::NONE);
+            cb.optimal_lo = certify_side(&mut cv, j, cb, false, &Scaling::NONE);
         }
-    }
-}
-
-/// Coordinates whose largest control value lies outside 2^±COORD_WINDOW are certified on a
-/// scaled copy ([`scaled_coordinate`]).
-const COORD_WINDOW: i32 = 80;
-
-/// The curve with coordinate j multiplied by 2^-s, s the binary exponent of its largest
-/// control value, when that lies outside 2^±[`COORD_WINDOW`] and every control value of the
-/// coordinate scales exactly (`None` otherwise). Then the scaled curve's coordinate j is
-/// exactly 2^-s C_j at every u: C_j = sum_i R_i P_ij with rational basis functions R_i that do
-/// not depend on the coordinates (thesis def. 3.1), the same argument as the driver's
-/// rescaling. Its values near 1 keep the double-double enclosures ~2^-100 relative narrow,
-/// which values near f64::MAX (overflowing error terms) or subnormal values (no bits below
-/// 2^-1074) are not.
-fn scaled_coordinate(c: &NurbsCurve, j: usize) -> Option<(i32, NurbsCurve)> {
-    let d = c.dim();
-    let pts = c.points_flat();
-    let big = pts
-        .iter()
-        .skip(j)
-        .step_by(d)
-        .fold(0.0f64, |m, x| m.max(x.abs()));
-    let s = exponent(big);
-    if s.abs() <= COORD_WINDOW {
-        return None;
-    }
-    let w = c.weights().map(<[f64]>::to_vec);
-    let scaled: Option<Vec<f64>> = pts
-        .iter()
-        .enumerate()
-        .map(|(i, &x)| {
-            if i % d == j {
-                ldexp_exact(x, -s)
-            } else {
-                Some(x)
-            }
-        })
-        .collect();
-    let Some(scaled) = scaled else {
-        // not exactly scalable (values near f64::MAX next to subnormal ones): the weights
-        // scaled instead, if that is exact (see [`unit_weights`])
-        return (s > COORD_WINDOW)
-            .then(|| unit_weights(c))
-            .flatten()
-            .map(|cs| (0, cs));
+        return;
     };
-    let cs = NurbsCurve::from_flat(c.degree(), d, c.knots().to_vec(), scaled, w).ok()?;
-    Some((s, cs))
+    for (j, cb) in e.coords.iter_mut().enumerate() {
+        // one exponent per side (the same for both sides in most cases: one pair of curves)
+        let e_m = exponent(c.coord_scale(j));
+        let s_hi = coord_exponent(e_m, cb.hi, cb.inner_hi);
+        let s_lo = coord_exponent(e_m, cb.lo, cb.inner_lo);
+        let sides: &[(i32, &[bool])] = if s_hi == s_lo {
+            &[(s_hi, &[true, false])]
+        } else {
+            &[(s_hi, &[true]), (s_lo, &[false])]
+        };
+        for &(s, which) in sides {
+            // the curve with coordinate j scaled down, rounded down, and a copy rounded up if
+            // some value rounded; the original curve if scaling fails (not expected)
+            let dn = r.apply_coord(c, j, s, false);
+            let (s, knot_exp, cdn, rounded) = match dn {
+                Some((cs, rounded)) => (s, r.knot_exp, cs, rounded),
+                None => (0, 0, c.clone(), false),
+            };
+            let cup = rounded
+                .then(|| r.apply_coord(c, j, s, true))
+                .flatten()
+                .map(|x| x.0);
+            if rounded && cup.is_none() {
+                for &max_side in which {
+                    if max_side {
+                        cb.optimal_hi = false;
+                    } else {
+                        cb.optimal_lo = false;
+                    }
+                }
+                continue;
+            }
+            let mut ev_dn = Evals::new(&cdn, c, s);
+            let mut ev_up = cup.as_ref().map(|cu| Evals::new(cu, c, s));
+            let sc = Scaling {
+                coord_exp: s,
+                knot_exp,
+                within: LOWER_WITHIN_ULPS_RESCALED,
+                boxes: MAX_BOXES_RESCALED,
+            };
+            for &max_side in which {
+                let mut cv = Curves {
+                    dn: &mut ev_dn,
+                    up: ev_up.as_mut(),
+                };
+                let ok = certify_side(&mut cv, j, cb, max_side, &sc);
+                if max_side {
+                    cb.optimal_hi = ok;
+                } else {
+                    cb.optimal_lo = ok;
+                }
+            }
+        }
+    }
 }
 
-/// A rational curve with every weight multiplied by the power of two 2^-e that brings the
-/// largest into [1/2, 1), when that is exact for every weight (`None` otherwise, or for a
-/// polynomial curve or weights already there). The rational basis functions
-/// R_i = w_i N_i / sum_l w_l N_l do not change when every weight is multiplied by the same
-/// factor (thesis def. 3.1), so the curve is the same at every u; its homogeneous control
-/// points w_i P_i are now at most |P_i|, which for coordinates near f64::MAX and weights
-/// above 1 would otherwise overflow (the double-double evaluators become ENTIRE).
-fn unit_weights(c: &NurbsCurve) -> Option<NurbsCurve> {
-    let w = c.weights()?;
-    let e = exponent(w.iter().fold(0.0f64, |m, &x| m.max(x)));
-    if e <= 0 {
-        return None;
+/// Coordinates whose largest control value lies within 2^±COORD_WINDOW are not scaled.
+const COORD_WINDOW: i32 = super::driver::COORD_WINDOW;
+/// The largest scaled control value of a coordinate is at most 2^COORD_HEADROOM: room for
+/// the weights (below 2^30 after the driver's scaling), the sums of the corner cuts and the
+/// double-double error terms, which must not overflow.
+const COORD_HEADROOM: i32 = 900;
+
+/// The exponent s of the power of two 2^-s that coordinate j is multiplied by for one side's
+/// certificate: 0 for a coordinate of moderate magnitude (largest control value 2^`e_m`
+/// within 2^±[`COORD_WINDOW`]); otherwise the bound's (or the attained value's, whichever is
+/// larger) binary exponent, so that the values near the extremum are near 1 and their
+/// double-double enclosures ~2^-100 relative narrow (which values near f64::MAX, with
+/// overflowing error terms, or subnormal values, with no bits below 2^-1074, are not), but at
+/// least e_m - [`COORD_HEADROOM`] (no overflow). Any s is sound (module docs); this one only
+/// decides what can be resolved.
+fn coord_exponent(e_m: i32, bound: f64, inner: f64) -> i32 {
+    if e_m.abs() <= COORD_WINDOW {
+        return 0;
     }
-    let ws: Option<Vec<f64>> = w.iter().map(|&x| ldexp_exact(x, -e)).collect();
-    let pts = c.points_flat().to_vec();
-    NurbsCurve::from_flat(c.degree(), c.dim(), c.knots().to_vec(), pts, Some(ws?)).ok()
+    let mag = |x: f64| if x.is_finite() { x.abs() } else { 0.0 };
+    let m = mag(bound).max(mag(inner));
+    let e_b = if m > 0.0 { exponent(m) } else { e_m };
+    e_b.max(e_m - COORD_HEADROOM)
+}
+
+/// How the evaluated curve relates to the enclosed one ([`certify_with`]): coordinate j
+/// multiplied by 2^-`coord_exp`, knots (parameters) by 2^-`knot_exp`; `within` is the
+/// lowering window in ulps ([`LOWER_WITHIN_ULPS`], [`LOWER_WITHIN_ULPS_RESCALED`]), `boxes`
+/// the box budget of a lowering proof ([`MAX_BOXES`], [`MAX_BOXES_RESCALED`]).
+struct Scaling {
+    coord_exp: i32,
+    knot_exp: i32,
+    within: usize,
+    boxes: usize,
+}
+
+impl Scaling {
+    const NONE: Scaling = Scaling {
+        coord_exp: 0,
+        knot_exp: 0,
+        within: LOWER_WITHIN_ULPS,
+        boxes: MAX_BOXES,
+    };
+}
+
+/// The evaluators of one coordinate's certificate: `dn` of the curve with coordinate j
+/// rounded down where it rounded, `up` rounded up (`None`: nothing rounded, `dn` is exact).
+/// C_dn <= C_j <= C_up at every u (module docs), so a value above t is shown on the curve
+/// below g = sign * C_j, and g <= t on the curve above it.
+struct Curves<'e, 'a> {
+    dn: &'e mut Evals<'a>,
+    up: Option<&'e mut Evals<'a>>,
+}
+
+impl<'a> Curves<'_, 'a> {
+    /// The curve whose g is <= the enclosed curve's g everywhere (for "g(u) > t" proofs).
+    fn below(&mut self, sign: f64) -> &mut Evals<'a> {
+        match (&mut self.up, sign > 0.0) {
+            (Some(up), false) => up,
+            _ => &mut *self.dn,
+        }
+    }
+
+    /// The curve whose g is >= the enclosed curve's g everywhere (for "g <= t" proofs).
+    fn above(&mut self, sign: f64) -> &mut Evals<'a> {
+        match (&mut self.up, sign > 0.0) {
+            (Some(up), true) => up,
+            _ => &mut *self.dn,
+        }
+    }
 }
 
 /// Lazily built evaluators of the curve (double-double with two derivative levels, exact).
 struct Evals<'a> {
     c: &'a NurbsCurve,
+    /// the enclosed curve itself, whose coordinate j is 2^s times `c`'s (exactly, or between
+    /// two copies rounded down and up): its control points are the exact values at clamped
+    /// ends and knots of multiplicity >= p, in the curve's own units
+    orig: &'a NurbsCurve,
+    s: i32,
     iv: Option<CurveEval<Interval>>,
     ddi: Option<CurveEval<Ddi>>,
     /// the homogeneous curve alone in Ddi (no derivative control points: most certificates
@@ -267,9 +376,11 @@ struct Evals<'a> {
 }
 
 impl<'a> Evals<'a> {
-    fn new(c: &'a NurbsCurve) -> Self {
+    fn new(c: &'a NurbsCurve, orig: &'a NurbsCurve, s: i32) -> Self {
         Evals {
             c,
+            orig,
+            s,
             iv: None,
             ddi: None,
             ddi0: None,
@@ -397,21 +508,30 @@ impl<'a> Evals<'a> {
     }
 
     /// C_j(u) exactly when u is a clamped end of the domain: the end control point
-    /// ([`NurbsCurve::clamped_ends`]; the last span's piece there is the curve's value).
+    /// ([`NurbsCurve::clamped_ends`]; the last span's piece there is the curve's value). In
+    /// the enclosed curve's own units (its control point, `orig`); u is a parameter of `c`
+    /// (the same knot indices, the same multiplicities).
     fn clamped_end_value(&self, j: usize, u: f64) -> Option<f64> {
         let (a, b) = self.c.domain();
         let cl = self.c.clamped_ends();
         if u == a && cl[0] {
-            Some(self.c.control_point(0)[j])
+            Some(self.orig.control_point(0)[j])
         } else if u == b && cl[1] {
-            Some(self.c.control_point(self.c.num_points() - 1)[j])
+            Some(self.orig.control_point(self.orig.num_points() - 1)[j])
         } else {
             None
         }
     }
 
+    /// A double <= v 2^-s (v in the curve's own units, e.g. an exact value of
+    /// [`Evals::knot_value`]): a lower bound of that value on the evaluated curve's scale.
+    fn scaled_below(&self, v: f64) -> f64 {
+        scale_outward(v, -self.s, false)
+    }
+
     /// The value of the piece of span k at an end u of the span, exactly, when u is a knot of
-    /// multiplicity >= p (or a clamped domain end): there a single basis function is nonzero
+    /// multiplicity >= p (or a clamped domain end), in the curve's own units (the control point
+    /// of `orig`, as [`Evals::clamped_end_value`]): there a single basis function is nonzero
     /// (NURBS Book P2.1, P2.2 applied on the span; eq. 2.5 with m >= p), so the piece's value
     /// is a control point, also for a rational curve (R_i = w_i N_i / sum w_l N_l = 1 for
     /// that i). At the span's start u_k it is P_{k-p} (the value C(u_k), as for a clamped
@@ -427,7 +547,7 @@ impl<'a> Evals<'a> {
         } else {
             return None;
         };
-        (multiplicity(kn, u) >= p).then(|| c.control_point(i)[j])
+        (multiplicity(kn, u) >= p).then(|| self.orig.control_point(i)[j])
     }
 
     /// C_j(u) exactly when u is a clamped domain end or a knot of multiplicity >= p (the
@@ -503,7 +623,7 @@ pub(crate) fn quick(bound: f64, inner: f64, witness: f64, scale: f64) -> Option<
     if attained_rule(bound, inner, witness) {
         return Some(true);
     }
-    far_below(bound, inner, scale).then_some(false)
+    far_below(bound, inner, scale, LOWER_WITHIN_ULPS).then_some(false)
 }
 
 /// The first rule: an attained value equal to the bound, or a strict witness at or above
@@ -515,20 +635,30 @@ fn attained_rule(bound: f64, inner: f64, witness: f64) -> bool {
 /// Whether the attained value is more than [`LOWER_WITHIN_ULPS`] ulps of the scale
 /// (max(|bound|, `scale`)) below the bound: a loose bound, which the search stages do not try
 /// to complete.
-fn far_below(bound: f64, inner: f64, scale: f64) -> bool {
-    bound - inner > LOWER_WITHIN_ULPS as f64 * crate::num::ulp(bound.abs().max(scale))
+fn far_below(bound: f64, inner: f64, scale: f64, within: usize) -> bool {
+    bound - inner > within as f64 * crate::num::ulp(bound.abs().max(scale))
 }
 
 /// The certificate of one side (`max_side`: hi, as the maximum of g = C_j; otherwise lo, as the
 /// maximum of g = -C_j), lowering the bound where [`prove_at_most`] allows it.
 ///
-/// `ev` evaluates the curve with coordinate j multiplied by 2^-`s` (exactly: see
-/// [`scaled_coordinate`]; s = 0 for the curve itself); bounds, attained values and witnesses
-/// stay in the curve's own units. A proof that the scaled g exceeds up(t) >= t 2^-s (t 2^-s
-/// rounded up) shows g > t; a proof that the scaled g is <= dn(t') <= t' 2^-s (rounded down)
-/// shows g <= t' ([`scale_outward`]; identities for s = 0).
-fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: i32) -> bool {
+/// `cv` evaluates the curve with coordinate j multiplied by 2^-s (s = `sc.coord_exp`) and its
+/// parameters by 2^-`sc.knot_exp` (module docs, "Extreme magnitudes"; s = 0 and no
+/// reparametrisation for a curve of moderate magnitudes); bounds, attained values and
+/// witnesses stay in the curve's own units, the strategy's candidates are mapped to the
+/// scaled parameters (rounded outward; they only say where to look). A proof that the scaled
+/// g (of the curve below it, [`Curves::below`]) exceeds up(t) >= t 2^-s (t 2^-s rounded up)
+/// shows g > t; a proof that the scaled g (of the curve above it) is <= dn(t') <= t' 2^-s
+/// (rounded down) shows g <= t' ([`scale_outward`]; identities for s = 0).
+fn certify_side(
+    cv: &mut Curves,
+    j: usize,
+    cb: &mut CoordBox,
+    max_side: bool,
+    sc: &Scaling,
+) -> bool {
     let sign = if max_side { 1.0 } else { -1.0 };
+    let s = sc.coord_exp;
     let up = |x: f64| scale_outward(x, -s, true);
     let dn = |x: f64| scale_outward(x, -s, false);
     // (a scaled value seen, back in the curve's units: only to choose lowering targets)
@@ -539,7 +669,16 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         (-cb.lo, -cb.inner_lo, -cb.witness_lo)
     };
     let all: &[Extremum] = if max_side { &cb.argmax } else { &cb.argmin };
-    let cands = &all[..all.len().min(MAX_CANDIDATES)];
+    let cands: Vec<Extremum> = all[..all.len().min(MAX_CANDIDATES)]
+        .iter()
+        .map(|x| Extremum {
+            u_lo: scale_outward(x.u_lo, -sc.knot_exp, false),
+            u_hi: scale_outward(x.u_hi, -sc.knot_exp, true),
+            ..*x
+        })
+        .collect();
+    let cands = &cands[..];
+    let within = sc.within;
     let mut proved = false;
     for round in 0..=MAX_LOWERINGS {
         if !bound.is_finite() {
@@ -556,14 +695,15 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         // (1c. a clamped end's value, exactly the end control point, above t: after a
         // lowering the end value is often the new bound's witness)
         // (and the same for the values at knots of multiplicity >= p, control points too)
+        // (exact control points of the curve itself, compared in its own units)
+        let ev = cv.below(sign);
         let (a, b) = ev.c.domain();
-        let end_scaled = [a, b]
+        let end_value = [a, b]
             .into_iter()
             .filter_map(|u| ev.clamped_end_value(j, u))
             .map(|x| sign * x)
             .fold(ev.max_knot_value(j, sign), f64::max);
-        let end_value = back(end_scaled);
-        if end_scaled > up(t) {
+        if end_value > t {
             proved = true;
             break;
         }
@@ -583,10 +723,10 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         let scale = back(ev.c.coord_scale(j));
         // (an exact end or knot value counts as attained here: a maximum at a knot of
         // multiplicity >= p that the strategy did not record is nearly proved as well)
-        if far_below(bound, inner.max(end_value), scale) {
+        if far_below(bound, inner.max(end_value), scale, within) {
             break;
         }
-        let near_scale = LOWER_WITHIN_ULPS as f64 * crate::num::ulp(bound.abs().max(scale));
+        let near_scale = within as f64 * crate::num::ulp(bound.abs().max(scale));
         let d = ddi_stage(ev, j, sign, up(t), cands);
         let guess = back(d.guess);
         if d.proved {
@@ -611,7 +751,7 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
         let lower = round < MAX_LOWERINGS
             && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end)
             && (!d.straddle || ev.exact_possible())
-            && (target >= nth_down(bound, LOWER_WITHIN_ULPS) || bound - target <= near_scale);
+            && (target >= nth_down(bound, within) || bound - target <= near_scale);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
             if !lower {
                 return None;
@@ -623,20 +763,21 @@ fn certify_side(ev: &mut Evals, j: usize, cb: &mut CoordBox, max_side: bool, s: 
             } else {
                 t
             };
-            if prove_at_most(ev, j, sign, dn(goal), cands, exact) {
+            if prove_at_most(ev, j, sign, (dn(goal), goal), cands, exact, sc.boxes) {
                 return Some(goal);
             }
-            (exact && goal < t && prove_at_most(ev, j, sign, dn(t), cands, true)).then_some(t)
+            (exact && goal < t && prove_at_most(ev, j, sign, (dn(t), t), cands, true, sc.boxes))
+                .then_some(t)
         };
-        if let Some(nb) = try_lower(ev, false) {
+        if let Some(nb) = try_lower(cv.above(sign), false) {
             bound = nb;
             continue;
         }
-        if exact_stage(ev, j, sign, up(t), &d) {
+        if exact_stage(cv.below(sign), j, sign, up(t), &d) {
             proved = true;
             break;
         }
-        match try_lower(ev, true) {
+        match try_lower(cv.above(sign), true) {
             Some(nb) => bound = nb,
             None => break,
         }
@@ -677,8 +818,9 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
     let look = |ev: &mut Evals, u: f64, guess: &mut f64| -> Option<Ddi> {
         // at a clamped end the value is the end control point, exactly (a point set: an exact
         // tie with t is then no straddle, and the lowering proof decides it exactly)
+        // (rounded down to the evaluated curve's scale: a lower bound of the scaled value)
         let g = match ev.exact_value(j, u) {
-            Some(x) => Ddi::exact(sign * x),
+            Some(x) => Ddi::exact(ev.scaled_below(sign * x)),
             None => ev.ddi_value(j, sign, u)?,
         };
         *guess = guess.max(g.to_interval().sup());
@@ -770,7 +912,8 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
 /// Stage 2b: double-double values of the candidates' span pieces in their Bézier form
 /// ([`HSpline::bezier_segment`], NURBS Book A5.6; thesis sec. 4.2), at a local parameter s in
 /// [0, 1] chosen by f64 Newton steps on g(s) from the best of [`SEARCH_SAMPLES`] + 1 f64
-/// samples over the candidate (only to choose s; g = A / W with A, W the Bernstein polynomials
+/// samples over the candidate, refined by [`ZOOM_ROUNDS`] rounds of narrower samples around
+/// the best one (only to choose s; g = A / W with A, W the Bernstein polynomials
 /// of the coordinate and weight rows, the coordinate row scaled by a power of two,
 /// g' = (A' - g W') / W, g'' = (A'' - 2 g' W' - g W'') / W from the hodographs), and at s = 0
 /// and s = 1 (the values at the span's knots). The parameter u = u_k + (u_{k+1} -
@@ -852,6 +995,23 @@ fn bezier_search(
                     (s, best) = (v, g);
                 }
             }
+            // then SEARCH_SAMPLES + 1 points over the two sample intervals around the best,
+            // ZOOM_ROUNDS times, each round 8 times narrower (a narrow peak next to a convex
+            // stretch, e.g. near a weight much smaller than its neighbours', where Newton from
+            // the best sample stops at once)
+            let mut h = (s_hi - s_lo) / SEARCH_SAMPLES as f64;
+            for _ in 0..ZOOM_ROUNDS {
+                let c = s;
+                for i in 0..=SEARCH_SAMPLES {
+                    let f = 2.0 * i as f64 / SEARCH_SAMPLES as f64 - 1.0;
+                    let v = (c + f * h).clamp(s_lo, s_hi).clamp(0.0, 1.0);
+                    let g = value(v);
+                    if g > best {
+                        (s, best) = (v, g);
+                    }
+                }
+                h /= 8.0;
+            }
             for _ in 0..2 * NEWTON_STEPS {
                 let ev = |b: &[f64]| de_casteljau_eval(b, &s);
                 let (wv, w1v, w2v) = (ev(&wf), ev(&w1), ev(&w2));
@@ -885,7 +1045,7 @@ fn bezier_search(
                     _ => None,
                 };
                 let g = match end {
-                    Some(x) => Ddi::exact(sign * x),
+                    Some(x) => Ddi::exact(ev.scaled_below(sign * x)),
                     None => {
                         let vd = Ddi::exact(v);
                         let num = de_casteljau_eval(&a, &vd);
@@ -961,15 +1121,16 @@ fn exact_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, d: &DdiOutcome) -> b
 
 /// Whether g <= t on the whole domain, proved by branch and bound over every span (the
 /// lowering branch of the Ziv loop; see the module docs for the rules). At most
-/// [`MAX_BOXES`] boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; `false` when they
+/// `max_boxes` boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; `false` when they
 /// are spent or a value above t is met.
 fn prove_at_most(
     ev: &mut Evals,
     j: usize,
     sign: f64,
-    t: f64,
+    (t, t_own): (f64, f64),
     cands: &[Extremum],
     exact: bool,
+    max_boxes: usize,
 ) -> bool {
     let c = ev.c;
     if c.degree() > SEARCH_MAX_DEGREE {
@@ -989,28 +1150,39 @@ fn prove_at_most(
         // Strong convex hull property (NURBS Book P4.3; thesis prop. 2.1 on one span): on
         // [u_k, u_{k+1}] the piece is a convex combination of P_{k-p} .. P_k (weights > 0),
         // so g <= max of their signed coordinates there; exact f64 comparisons, no box spent.
+        // (the enclosed curve's own control points against the target in its own units)
         let local = (k - p..=k)
-            .map(|i| sign * c.control_point(i)[j])
+            .map(|i| sign * ev.orig.control_point(i)[j])
             .fold(f64::NEG_INFINITY, f64::max);
-        if local <= t {
+        if local <= t_own {
             continue;
         }
         // the span's Bézier pieces first (exact values at clamped domain ends); what they
         // leave undecided goes to the box rules
-        let Some(rest) = bezier_rule(ev, k, j, sign, t, &mut pieces) else {
+        let Some(rest) = bezier_rule(ev, k, j, sign, (t, t_own), &mut pieces) else {
             return false;
         };
         let mut stack: Vec<(f64, f64, u32)> =
             rest.into_iter().map(|(lo, hi)| (lo, hi, 0)).collect();
         while let Some((lo, hi, depth)) = stack.pop() {
             boxes += 1;
-            if boxes > MAX_BOXES {
+            if boxes > max_boxes {
                 return false;
             }
             // the concavity rules only near a candidate of the strategy (where the extremum
             // is): elsewhere splitting is cheaper
             let near_cand = cands.iter().any(|x| x.u_lo <= hi && x.u_hi >= lo);
-            match box_at_most(ev, k, j, sign, t, lo, hi, near_cand, &mut exact_tries) {
+            match box_at_most(
+                ev,
+                k,
+                j,
+                sign,
+                (t, t_own),
+                lo,
+                hi,
+                near_cand,
+                &mut exact_tries,
+            ) {
                 BoxVerdict::Below => {}
                 BoxVerdict::Above | BoxVerdict::Stuck => return false,
                 BoxVerdict::Split => {
@@ -1056,23 +1228,22 @@ fn bezier_rule(
     k: usize,
     j: usize,
     sign: f64,
-    t: f64,
+    (t, t_own): (f64, f64),
     pieces: &mut usize,
 ) -> Option<Vec<(f64, f64)>> {
     let c = ev.c;
     let kn = c.knots();
     let (ua, ub) = (kn[k], kn[k + 1]);
-    let (a, b) = c.domain();
-    let cl = c.clamped_ends();
     // (and at an interior knot of multiplicity >= p, where the piece's end value is a control
-    // point too: [`Evals::knot_value`])
+    // point too: [`Evals::knot_value`]; the enclosed curve's own control points, compared
+    // with the target in its own units)
     let exact_start = ev
         .knot_value(j, k, ua)
-        .or_else(|| (ua == a && cl[0]).then(|| c.control_point(0)[j]))
+        .or_else(|| ev.clamped_end_value(j, ua))
         .map(|x| sign * x);
     let exact_end = ev
         .knot_value(j, k, ub)
-        .or_else(|| (ub == b && cl[1]).then(|| c.control_point(c.num_points() - 1)[j]))
+        .or_else(|| ev.clamped_end_value(j, ub))
         .map(|x| sign * x);
     let h = ev.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
     let seg = h.bezier_segment(k);
@@ -1099,10 +1270,10 @@ fn bezier_rule(
                 _ if i == p && s1 == 1.0 => exact_end,
                 _ => None,
             };
-            let ok = exact.map_or_else(|| x.is_at_most(t), |v| v <= t);
+            let ok = exact.map_or_else(|| x.is_at_most(t), |v| v <= t_own);
             if !ok {
                 // an end point is a curve value: above t refutes t
-                if (i == 0 || i == p) && exact.map_or_else(|| x.is_above(t), |v| v > t) {
+                if (i == 0 || i == p) && exact.map_or_else(|| x.is_above(t), |v| v > t_own) {
                     return None;
                 }
                 below = false;
@@ -1163,7 +1334,7 @@ fn box_at_most(
     k: usize,
     j: usize,
     sign: f64,
-    t: f64,
+    (t, t_own): (f64, f64),
     lo: f64,
     hi: f64,
     near_cand: bool,
@@ -1192,8 +1363,9 @@ fn box_at_most(
             .knot_value(j, k, u)
             .or_else(|| ev.clamped_end_value(j, u))
         {
-            // the end control point, exactly (`NurbsCurve::clamped_ends`)
-            return Some(sign * x <= t);
+            // the end control point, exactly (`NurbsCurve::clamped_ends`; the enclosed
+            // curve's own, against the target in its own units)
+            return Some(sign * x <= t_own);
         }
         let v = ev.ddi_in(k, j, sign, Ddi::exact(u), 0);
         if v[0].is_at_most(t) {

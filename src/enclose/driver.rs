@@ -123,7 +123,7 @@ pub(crate) fn ldexp_exact(x: f64, k: i32) -> Option<f64> {
 }
 
 /// x * 2^k rounded toward -inf (`up` false) or +inf (`up` true), for scaling control points
-/// down: exact unless the product is subnormal, where the nearest value is moved one step if
+/// (an overflow gives ±inf): exact unless the product is subnormal, where the nearest value is moved one step if
 /// it lies on the wrong side (the check scales back exactly: y 2^-k is normal or exact).
 fn ldexp_directed(x: f64, k: i32, up: bool) -> f64 {
     let y = ldexp(x, k);
@@ -192,9 +192,11 @@ pub(crate) fn knot_scaling(c: &NurbsCurve) -> (i32, bool) {
     // b/2 - a/2 cannot overflow; halving may round only for subnormals (irrelevant here:
     // the exponent is only a choice, exactness is checked on the knots themselves)
     let want = exponent(0.5 * b - 0.5 * a) + 1;
-    // (knots are non-decreasing, so the largest |u| is at an end; `exponent` is monotone in
-    // |u|: one look instead of a pass)
-    let max_e = exponent(kn[0]).max(exponent(kn[kn.len() - 1]));
+    // (knots are non-decreasing, so the largest |u| is at an end: one look instead of a
+    // pass; `exponent` is monotone in |u| > 0, and the larger end is non-zero for a non-empty
+    // domain: the exponent of max(|u_0|, |u_m|), not the larger of the two exponents, since
+    // `exponent(0)` is 0, which for a domain [0, 2^-1068] would claim knots near 1)
+    let max_e = exponent(kn[0].abs().max(kn[kn.len() - 1].abs()));
     if want.abs() <= KNOT_WINDOW && max_e <= KNOT_MAX_EXP {
         return (0, true);
     }
@@ -302,6 +304,45 @@ impl Rescaling {
         // with the same multiplicities (exact), weights stay > 0, coordinates finite (the
         // largest maps to [0.5, 1)). Should it ever fail, the original curve is used.
         NurbsCurve::from_flat(c.degree(), d, knots, pts, weights).unwrap_or_else(|_| c.clone())
+    }
+
+    /// The curve the certificate of coordinate j evaluates ([`super::certify`]): knots and
+    /// weights scaled as by [`Rescaling::apply`] (exact), coordinate j multiplied by 2^-`s`,
+    /// rounded down (`up` false) or up where the product is not exact (so the curve's
+    /// coordinate j is below, or above, 2^-s C_j at every u: the argument of "Rounded
+    /// coordinates"), the other coordinates unchanged; and whether some value of coordinate
+    /// j rounded. `None` if a scaled value is not finite (or the curve not valid).
+    pub(crate) fn apply_coord(
+        &self,
+        c: &NurbsCurve,
+        j: usize,
+        s: i32,
+        up: bool,
+    ) -> Option<(NurbsCurve, bool)> {
+        let d = c.dim();
+        let mut rounded = false;
+        let pts: Vec<f64> = c
+            .points_flat()
+            .iter()
+            .enumerate()
+            .map(|(k, &x)| {
+                if k % d != j {
+                    return x;
+                }
+                rounded |= ldexp_exact(x, -s).is_none();
+                ldexp_directed(x, -s, up)
+            })
+            .collect();
+        let knots: Vec<f64> = c
+            .knots()
+            .iter()
+            .map(|&u| ldexp(u, -self.knot_exp))
+            .collect();
+        let weights = c
+            .weights()
+            .map(|w| w.iter().map(|&x| ldexp(x, -self.weight_exp)).collect());
+        let cs = NurbsCurve::from_flat(c.degree(), d, knots, pts, weights).ok()?;
+        Some((cs, rounded))
     }
 
     /// The rescaled curve, coordinates rounded to nearest (see [`Rescaling::apply_directed`]).
@@ -442,10 +483,11 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
             }
         }
     }
+    let rescaling = Rescaling::of(c);
     let mut e = if c.degree() > MAX_SEARCH_DEGREE {
         degree_fallback(s, c)
     } else {
-        match Rescaling::of(c) {
+        match &rescaling {
             None => s.enclose_prepared(c),
             Some(r) => r.enclose_with(s, c),
         }
@@ -458,7 +500,7 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
         apply_facts(cb, c.coord_range(j, 0..=n), ends, verified);
     }
     if certify {
-        super::certify::certify(c, &mut e);
+        super::certify::certify_with(c, &mut e, rescaling.as_ref());
     } else {
         for cb in &mut e.coords {
             cb.optimal_lo = false;
@@ -496,6 +538,26 @@ mod tests {
         assert_eq!(scale_outward(-1.5, 1024, true), -f64::MAX);
         assert_eq!(ldexp_exact(f64::from_bits(3), -1), None);
         assert_eq!(ldexp_exact(f64::from_bits(2), -1), Some(f64::from_bits(1)));
+    }
+
+    #[test]
+    fn a_subnormal_domain_from_zero_is_scaled_to_a_moderate_one() {
+        // knots [0, 2^-1068]: a zero knot must not count as a knot of magnitude ~1 (which
+        // limited the scaling to 2^1019, a domain of 2^-49, enclosed span by span)
+        let d = f64::from_bits(64);
+        let c = NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, d, d, d],
+            vec![vec![1.0], vec![2.0], vec![0.5]],
+            None,
+        )
+        .unwrap();
+        let (s, moderate) = knot_scaling(&c);
+        assert!(moderate);
+        let b = ldexp_exact(d, -s).unwrap();
+        assert!((0.5..1.0).contains(&b), "domain length {b:e}");
+        let r = Rescaling::of(&c).unwrap();
+        assert!(r.knots_moderate && r.knot_exp == s);
     }
 
     #[test]

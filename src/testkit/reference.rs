@@ -16,8 +16,8 @@
 //!    no root; V = 1 with non-zero end coefficients: exactly one simple root, refined by
 //!    safeguarded Newton in MPFR to full precision; otherwise split at 1/2 (de Casteljau).
 //!    A zero value at a split point is itself a candidate. Boxes narrower than 2^-120 of the
-//!    segment that still show sign changes (multiple roots, clusters, rounding noise) give
-//!    their midpoint as a candidate.
+//!    segment (2^-(120 + r/2) with r the curve's [`range_bits`]) that still show sign changes
+//!    (multiple roots, clusters, rounding noise) give their midpoint as a candidate.
 //! 4. C_j at all candidates and at both segment ends; min / max over all segments.
 //!
 //! Why nothing is missed: an interior extremum of C_j on a segment is a point where N changes
@@ -39,8 +39,15 @@ use crate::spline::curve::NurbsCurve;
 use rug::Float;
 use std::cmp::Ordering;
 
-/// Subdivision depth limit (boxes of width 2^-MAX_DEPTH of the segment).
+/// Subdivision depth limit (boxes of width 2^-MAX_DEPTH of the segment), raised by half the
+/// curve's [`range_bits`] (the value error at a box midpoint between two close roots is
+/// ~|C''| width^2, which must stay below the resolution).
 const MAX_DEPTH: u32 = 120;
+
+/// Bits of resolution below the precision of a reference value: an extremum computed at
+/// p bits resolves distances down to 2^-(p - RES_MARGIN) of max(scale, |exact|)
+/// ([`ulps_outside`]; 2^-160 at [`MPFR_PREC`]).
+const RES_MARGIN: u32 = 96;
 
 /// Exact extrema of every coordinate (to ~256 bits) and where they are attained.
 #[derive(Debug, Clone)]
@@ -206,7 +213,7 @@ fn refine_root(c: &[Float]) -> Float {
 }
 
 /// Candidate parameters (local t in (0, 1)) where N may change sign.
-fn critical_points(n: &[Float]) -> Vec<Float> {
+fn critical_points(n: &[Float], max_depth: u32) -> Vec<Float> {
     let mut out = Vec::new();
     if n.iter().all(|x| x.is_zero()) {
         return out; // constant coordinate on this segment
@@ -225,7 +232,7 @@ fn critical_points(n: &[Float]) -> Vec<Float> {
             out.push(lo + s * width);
             continue;
         }
-        if depth >= MAX_DEPTH {
+        if depth >= max_depth {
             out.push(lo + width / 2u32);
             continue;
         }
@@ -268,10 +275,43 @@ pub fn working_prec(curve: &NurbsCurve) -> u32 {
         (mx.log2() - mn.log2()).max(0.0)
     });
     let p_bits = (curve.degree() as f64 + 1.0).log2();
-    let prec = MPFR_PREC + (2.0 * ratio_bits + p_bits).ceil() as u32 + 16;
+    let range = (0..curve.dim())
+        .map(|j| range_bits(curve, j))
+        .max()
+        .unwrap_or(0);
+    let prec = MPFR_PREC + range + (2.0 * ratio_bits + p_bits).ceil() as u32 + 16;
     // Knots spread over the f64 range (near ±f64::MAX next to subnormals): enough bits that
     // every knot difference is exact (up to ~2,100 bits; the range itself is 2,098 bits).
     prec.max(knot_bits(curve.knots()).saturating_add(64))
+}
+
+/// Bits between the magnitude of coordinate j (its largest |control value|) and its smallest
+/// non-zero |control value| (0 for a coordinate without non-zero values).
+///
+/// Why the reference needs them: its absolute error is ~2^-240 of the coordinate's scale at
+/// [`MPFR_PREC`] bits (see [`working_prec`]), which cannot tell an extremum of size 2^-1000
+/// of the scale (a subnormal end control point next to values near 1, or an end value 0.13
+/// next to values near f64::MAX) from 0. With these bits added to the working precision the
+/// error is ~2^-240 of the smallest non-zero control value instead, and the extrema are
+/// stored at [`MPFR_PREC`] + r bits, which ties the resolution of [`ulps_outside`]
+/// (2^-(p - 96) of max(scale, |exact|) for a value of precision p) to the precision actually
+/// used: the same 80-bit margin below the error as at the plain 256 bits.
+pub fn range_bits(curve: &NurbsCurve, j: usize) -> u32 {
+    let d = curve.dim();
+    let (mx, mn) = curve
+        .points_flat()
+        .iter()
+        .skip(j)
+        .step_by(d)
+        .filter(|x| **x != 0.0)
+        .fold((0.0f64, f64::INFINITY), |(a, b), x| {
+            (a.max(x.abs()), b.min(x.abs()))
+        });
+    if mx == 0.0 {
+        return 0;
+    }
+    let e = crate::enclose::driver::exponent;
+    (e(mx) - e(mn)).max(0) as u32
 }
 
 /// Bits from the largest knot magnitude down to the lowest set bit of any knot: a difference
@@ -295,6 +335,8 @@ pub fn reference_box(curve: &NurbsCurve) -> ReferenceBox {
 
 fn reference_box_at_prec(curve: &NurbsCurve) -> ReferenceBox {
     let d = curve.dim();
+    let range: Vec<u32> = (0..d).map(|j| range_bits(curve, j)).collect();
+    let max_depth = MAX_DEPTH + range.iter().max().copied().unwrap_or(0) / 2;
     let segs = HSpline::<Float>::from_curve(curve).decompose();
     let mut lo: Vec<Option<(Float, f64)>> = vec![None; d];
     let mut hi: Vec<Option<(Float, f64)>> = vec![None; d];
@@ -313,7 +355,7 @@ fn reference_box_at_prec(curve: &NurbsCurve) -> ReferenceBox {
             let cands = if (k - p..=k).all(|i| curve.control_point(i)[j] == c0) {
                 vec![(fl(c0), seg.a)]
             } else {
-                segment_candidates(seg, j, w.as_deref(), &fa, &len)
+                segment_candidates(seg, j, w.as_deref(), &fa, &len, max_depth)
             };
             for (v, u) in cands {
                 if lo[j].as_ref().is_none_or(|(m, _)| v < *m) {
@@ -333,6 +375,15 @@ fn reference_box_at_prec(curve: &NurbsCurve) -> ReferenceBox {
     };
     let (lo, argmin) = unzip(lo);
     let (hi, argmax) = unzip(hi);
+    // each extremum at MPFR_PREC + range_bits(j) bits: the precision it is resolved to
+    // (see [`range_bits`]; rounding relative to |exact|, far below the resolution)
+    let at = |v: Vec<Float>| -> Vec<Float> {
+        v.into_iter()
+            .zip(&range)
+            .map(|(x, r)| Float::with_val(MPFR_PREC + r, x))
+            .collect()
+    };
+    let (lo, hi) = (at(lo), at(hi));
     ReferenceBox {
         lo,
         hi,
@@ -349,6 +400,7 @@ fn segment_candidates(
     w: Option<&[Float]>,
     fa: &Float,
     len: &Float,
+    max_depth: u32,
 ) -> Vec<(Float, f64)> {
     let a = row(seg, j);
     let num = match &w {
@@ -359,7 +411,7 @@ fn segment_candidates(
             p1.into_iter().zip(p2).map(|(x, y)| x - y).collect()
         }
     };
-    let mut ts = critical_points(&num);
+    let mut ts = critical_points(&num, max_depth);
     ts.push(fl(0.0));
     ts.push(fl(1.0));
     ts.into_iter()
@@ -385,7 +437,9 @@ fn segment_candidates(
 /// so that a positive value means the bound is on the safe side (hi >= exact for an upper
 /// bound, lo <= exact for a lower bound) and a negative value is a containment miss.
 /// A NaN bound counts as a miss (-inf); an infinite bound on the safe side gives +inf.
-/// Distances below the reference's resolution (2^-160 of max(scale, |exact|)) give 0.
+/// Distances below the reference's resolution give 0: 2^-(p - 96) of max(scale, |exact|) for
+/// an `exact` of precision p (at least [`MPFR_PREC`]), i.e. 2^-160 at 256 bits; a reference
+/// extremum is stored at the precision it is resolved to ([`range_bits`]).
 pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f64 {
     if bound.is_nan() {
         return f64::NEG_INFINITY;
@@ -397,11 +451,13 @@ pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f6
         exact.clone() - b
     };
     // The reference itself is accurate to ~2^-240 of the scale (MPFR rounding in the
-    // decomposition, times the conditioning of the weights): distances below 2^-160 of
+    // decomposition, times the conditioning of the weights; ~2^-240 of the smallest non-zero
+    // control value with the range bits): distances below 2^-160 (2^-(160 + r)) of
     // max(scale, |exact|) are not resolvable and count as 0 (an f64 bound equal to an exact
     // f64 extremum, e.g. a control point interpolated at a knot, is then not a false miss).
+    let res_bits = exact.prec().max(MPFR_PREC) - RES_MARGIN;
     let res = fl(scale.abs()).max(&exact.clone().abs())
-        * Float::with_val(mpfr_prec(), Float::i_exp(1, -160));
+        * Float::with_val(mpfr_prec(), Float::i_exp(1, -(res_bits as i32)));
     if diff.clone().abs() <= res {
         return 0.0;
     }
@@ -410,7 +466,8 @@ pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f6
 
 /// The optimal f64 bound of an exact extremum: RU(max) for an upper bound (`is_upper`),
 /// RD(min) for a lower one, where an exact value within the reference's resolution (2^-160
-/// of max(scale, |exact|), see [`ulps_outside`]) of a double counts as that double.
+/// of max(scale, |exact|) at 256 bits, see [`ulps_outside`]) of a double counts as that
+/// double.
 pub fn optimal_bound(exact: &Float, scale: f64, is_upper: bool) -> f64 {
     let near = exact.to_f64();
     if near.is_finite() && ulps_outside(near, exact, scale, is_upper) == 0.0 {
@@ -543,6 +600,43 @@ mod tests {
             .abs()
             .max(&(coarse.lo[0].clone() - &fine.lo[0]).abs());
         assert!(err > tol, "256 bits sufficed: error {err}");
+    }
+
+    /// An end value -0.134 next to control values near f64::MAX (a `range_limits` curve): at
+    /// 256 bits the reference's error (~2^-240 of the scale, ~10^236) made the maximum 0; with
+    /// the range bits it is the end control point, the bound the strategies attain and certify.
+    #[test]
+    fn small_extremum_next_to_huge_values_is_resolved() {
+        let d = 3.16e-322;
+        let end = -0.13393025945846482;
+        let c = NurbsCurve::new(
+            4,
+            vec![0.0, 0.0, 0.0, 0.0, 0.0, d, d, d, d, d],
+            [
+                -8.170322022885438e307,
+                4.70597387063624e307,
+                -0.2674469075016246,
+                -1.1605997585808802e308,
+                end,
+            ]
+            .iter()
+            .map(|&x| vec![x])
+            .collect(),
+            None,
+        )
+        .unwrap();
+        assert!(range_bits(&c, 0) > 1000);
+        let r = reference_box(&c);
+        let scale = c.coord_scale(0);
+        assert_eq!(r.hi[0], end);
+        assert_eq!(optimal_bound(&r.hi[0], scale, true), end);
+        assert_eq!(ulps_outside(end, &r.hi[0], scale, true), 0.0);
+        // a bound one double above is now resolved as above the maximum (at 256 bits it was
+        // within the resolution of 2^-160 of the scale)
+        assert!(ulps_outside(end.next_up(), &r.hi[0], scale, true) > 0.0);
+        // and the plain working precision really was not enough (so this test can fail)
+        let coarse = with_mpfr_prec(MPFR_PREC, || reference_box_at_prec(&c));
+        assert_ne!(coarse.hi[0], end);
     }
 
     #[test]
