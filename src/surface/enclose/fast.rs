@@ -531,6 +531,81 @@ impl Lines {
     }
 }
 
+/// The split of [`Lines::split`] for a grid of R x C coefficients (index r C + c) with both
+/// sizes constants (the bicubic patch and its boundary curves): the same arithmetic
+/// b_i + t (b_{i+1} - b_i) on the same values, so the same results, but on whole rows
+/// (`dir` 0) or columns (`dir` 1) at a time, which the compiler unrolls and vectorises; the
+/// maxima are the same maxima, taken per lane first.
+#[inline(always)]
+fn split_grid<const R: usize, const C: usize, const N: usize>(
+    src: &[f64; N],
+    dir: usize,
+    t: f64,
+    lo: &mut [f64; N],
+    hi: &mut [f64; N],
+) -> [f64; 3] {
+    /// de Casteljau on D vectors of L lanes: `b[i]` is line i along the split direction;
+    /// `put(level, lo_vector, hi_vector)` stores level k of both halves (lo: index k, hi:
+    /// index D - 1 - k); returns the lane maxima of |b|, of lo and of hi.
+    #[inline(always)]
+    fn run<const D: usize, const L: usize>(
+        mut b: [[f64; L]; D],
+        t: f64,
+        mut put: impl FnMut(usize, &[f64; L], &[f64; L]),
+    ) -> [[f64; L]; 3] {
+        let mut m = [[0.0f64; L]; 3];
+        m[1] = [f64::NEG_INFINITY; L];
+        m[2] = [f64::NEG_INFINITY; L];
+        for row in &b {
+            for (x, y) in m[0].iter_mut().zip(row) {
+                raise(x, y.abs());
+            }
+        }
+        for lev in 0..D {
+            if lev > 0 {
+                for i in 0..D - lev {
+                    let nx = b[i + 1];
+                    for (x, y) in b[i].iter_mut().zip(nx) {
+                        *x += t * (y - *x);
+                    }
+                }
+            }
+            let (l, h) = (b[0], b[D - 1 - lev]);
+            for k in 0..L {
+                raise(&mut m[1][k], l[k]);
+                raise(&mut m[2][k], h[k]);
+            }
+            put(lev, &l, &h);
+        }
+        m
+    }
+    /// The lane maxima of [`run`] reduced to `[m, ml, mh]`.
+    fn reduce<const L: usize>(m: [[f64; L]; 3]) -> [f64; 3] {
+        let mut out = [0.0, f64::NEG_INFINITY, f64::NEG_INFINITY];
+        for (o, lanes) in out.iter_mut().zip(m) {
+            for x in lanes {
+                raise(o, x);
+            }
+        }
+        out
+    }
+    if dir == 0 {
+        let b: [[f64; C]; R] = std::array::from_fn(|r| std::array::from_fn(|c| src[r * C + c]));
+        reduce(run::<R, C>(b, t, |k, l, h| {
+            lo[k * C..(k + 1) * C].copy_from_slice(l);
+            hi[(R - 1 - k) * C..(R - k) * C].copy_from_slice(h);
+        }))
+    } else {
+        let b: [[f64; R]; C] = std::array::from_fn(|c| std::array::from_fn(|r| src[r * C + c]));
+        reduce(run::<C, R>(b, t, |k, l, h| {
+            for r in 0..R {
+                lo[r * C + k] = l[r];
+                hi[r * C + C - 1 - k] = h[r];
+            }
+        }))
+    }
+}
+
 /// m = max(m, x) for a running maximum m that is not NaN, skipping a NaN x (as `f64::max`
 /// does) by a comparison: one max instruction, where `f64::max` is a NaN-checking sequence
 /// (the maxima of the proof's inner loops).
@@ -733,12 +808,15 @@ impl<const N: usize> Piece<N> {
                 lstride,
                 t,
             };
-            match n {
-                0 => g.split::<1, N>(src, lo, hi),
-                1 => g.split::<2, N>(src, lo, hi),
-                2 => g.split::<3, N>(src, lo, hi),
-                3 => g.split::<4, N>(src, lo, hi),
-                4 => g.split::<5, N>(src, lo, hi),
+            match (self.n, n) {
+                ([3, 3], _) => split_grid::<4, 4, N>(src, dir, t, lo, hi),
+                ([3, 0], _) => split_grid::<4, 1, N>(src, dir, t, lo, hi),
+                ([0, 3], _) => split_grid::<1, 4, N>(src, dir, t, lo, hi),
+                (_, 0) => g.split::<1, N>(src, lo, hi),
+                (_, 1) => g.split::<2, N>(src, lo, hi),
+                (_, 2) => g.split::<3, N>(src, lo, hi),
+                (_, 3) => g.split::<4, N>(src, lo, hi),
+                (_, 4) => g.split::<5, N>(src, lo, hi),
                 _ => g.split::<{ MAX_DEGREE + 1 }, N>(src, lo, hi),
             }
         };
@@ -837,17 +915,27 @@ impl<const N: usize> Piece<N> {
     /// give lambda_min >= min(a0 - b0 r, c0 - b0 / r) for any r > 0 (r = sqrt(a0 / c0) makes
     /// both equal when a0 c0 > b0^2). All in interval arithmetic.
     fn concavity(&self, f: &[f64; N], e: f64) -> Option<f64> {
+        self.concavity_from(f, e, self.second_maxima(f))
+    }
+
+    /// [`Piece::second_max`] along both directions (`None` for a fixed one).
+    fn second_maxima(&self, f: &[f64; N]) -> [Option<f64>; 2] {
+        [0, 1].map(|d| (self.n[d] > 0).then(|| self.second_max(f, d)).flatten())
+    }
+
+    /// [`Piece::concavity`] from the [`Piece::second_maxima`] `s` of f.
+    fn concavity_from(&self, f: &[f64; N], e: f64, s: [Option<f64>; 2]) -> Option<f64> {
         let [n0, n1] = self.n;
         let at = |r: usize, c: usize| f[r * (n1 + 1) + c];
         // (the signs first: most pieces fail there, before any error bound; then one error
         // bound for all second differences)
         let m0 = match n0 {
             0 => None,
-            _ => Some(self.second_max(f, 0)?),
+            _ => Some(s[0]?),
         };
         let m1 = match n1 {
             0 => None,
-            _ => Some(self.second_max(f, 1)?),
+            _ => Some(s[1]?),
         };
         let err = self.second_error(f, e);
         if !err.is_finite() {
@@ -1516,11 +1604,14 @@ impl<const N: usize> Prover<'_, N> {
                 }
             }
         }
-        if let Some(mu) = pc.concavity(f, e) {
+        // (the second differences once: a ridge along d needs them all < 0 along d, as
+        // [`Piece::curvature`] checks, so without such a direction it is not tried)
+        let sm = pc.second_maxima(f);
+        if let Some(mu) = pc.concavity_from(f, e, sm) {
             if self.concave(pc, root, slot, (mu, ub_f), g) {
                 return Some(true);
             }
-        } else if self.ridge(pc, root, (f, e, ub_f), g) {
+        } else if sm.iter().any(Option::is_some) && self.ridge(pc, root, (f, e, ub_f), g, sm) {
             return Some(true);
         } else if pc.depth >= 2 && self.searches > 0 && pc.max_coef() > self.ub {
             // a maximum the first candidates missed: Newton from this piece's centre
@@ -1712,19 +1803,21 @@ impl<const N: usize> Prover<'_, N> {
     /// the middle of the o range (any c_d in the range is valid); its value is attained and
     /// raises `ub` when it provably beats it. (`f`, `e` are the piece's coefficients of
     /// F = A - ub0 w; after a raise of ub the curvature is computed again,
-    /// [`Prover::mu_after_raise`].)
+    /// [`Prover::mu_after_raise`]; `sm` their [`Piece::second_maxima`]: a direction d
+    /// without them has a second difference >= 0 along d, where the curvature fails.)
     fn ridge(
         &mut self,
         pc: &Piece<N>,
         root: &Piece<N>,
         (f, e, ub0): (&[f64; N], f64, f64),
         g: &DdGrid<N>,
+        sm: [Option<f64>; 2],
     ) -> bool {
         if pc.n[0] == 0 || pc.n[1] == 0 || root.n != pc.full {
             return false;
         }
         for d in 0..2 {
-            if !flat_across(pc, f, d) {
+            if sm[d].is_none() || !flat_across(pc, f, d) {
                 continue;
             }
             let Some(mu) = pc.curvature(f, e, d) else {
@@ -2009,5 +2102,68 @@ mod tests {
         eprintln!("fast exits / proofs / fallbacks: {tally:?}");
         // nearly every side is proven (the ridge and a few rational sides fall back)
         assert!(tally[1] > 50 * tally[2], "{tally:?}");
+    }
+
+    /// [`split_grid`] (the constant-size split) writes the same halves and maxima, bit for
+    /// bit, as [`Lines::split`] (the general one), on random and special values (signed
+    /// zeros, subnormals, infinities, NaN: the maxima skip a NaN alike).
+    #[test]
+    fn grid_split_matches_the_general_split() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let special = [
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            1e300,
+            -1e-310,
+        ];
+        // (any NaN for a NaN: the payload depends on the operand order, which the compiler
+        // may swap in a commutative operation; no proof reads a NaN coefficient)
+        let same = |x: &[f64], y: &[f64]| {
+            x.iter()
+                .zip(y)
+                .all(|(a, b)| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()))
+        };
+        for case in 0..3000 {
+            let mut src = [0.0f64; 16];
+            for x in src.iter_mut() {
+                *x = if case % 7 == 0 && rng.random_bool(0.2) {
+                    special[rng.random_range(0..special.len())]
+                } else {
+                    rng.random_range(-1.0..1.0) * 10f64.powi(rng.random_range(-3..4))
+                };
+            }
+            let t = if case % 3 == 0 {
+                0.5
+            } else {
+                rng.random_range(0.0..1.0)
+            };
+            // (degrees [3, 3] along both directions, and the boundary curves [3, 0], [0, 3])
+            for (n, dir) in [([3, 3], 0), ([3, 3], 1), ([3, 0], 0), ([0, 3], 1)] {
+                let (stride, lines, lstride) = if dir == 0 {
+                    (n[1] + 1, n[1] + 1, 1)
+                } else {
+                    (1, n[0] + 1, n[1] + 1)
+                };
+                let g = Lines {
+                    lines,
+                    stride,
+                    lstride,
+                    t,
+                };
+                let (mut l1, mut h1, mut l2, mut h2) = ([9.0; 16], [9.0; 16], [9.0; 16], [9.0; 16]);
+                let m1 = g.split::<4, 16>(&src, &mut l1, &mut h1);
+                let m2 = match n {
+                    [3, 3] => split_grid::<4, 4, 16>(&src, dir, t, &mut l2, &mut h2),
+                    [3, 0] => split_grid::<4, 1, 16>(&src, dir, t, &mut l2, &mut h2),
+                    _ => split_grid::<1, 4, 16>(&src, dir, t, &mut l2, &mut h2),
+                };
+                assert!(same(&m1, &m2), "{n:?} {dir}: {m1:?} {m2:?}");
+                assert!(same(&l1, &l2) && same(&h1, &h2), "{n:?} {dir} {src:?}");
+            }
+        }
     }
 }
