@@ -312,7 +312,7 @@ impl FastSurface {
                 let root = &roots[k];
                 for (e, c) in cs.iter_mut().enumerate().take(4) {
                     if root.edge_max(e) > hi {
-                        *c = newton(&root.edge(e), self.rational);
+                        *c = edge_candidate(root, e, self.rational);
                         st.newton_iterations += 1;
                     }
                 }
@@ -1102,6 +1102,9 @@ fn bern2_fixed<S: Scalar + Copy, const D1: usize, const ORDER: usize>(
 /// not computed (0). The v direction first on every row, then u on the results; a boundary
 /// curve (a degree 0) is one curve evaluation, the derivatives across it 0.
 fn eval2<S: Scalar + Copy, const ORDER: usize>(c: &[S], n: [usize; 2], t: [f64; 2]) -> [S; 6] {
+    if n == [3, 3] {
+        return eval2_grid::<S, 4, 4, ORDER>(c, t);
+    }
     let z = S::zero();
     let (tu, tv) = (S::from_f64(t[0]), S::from_f64(t[1]));
     if n[0] == 0 || n[1] == 0 {
@@ -1142,6 +1145,42 @@ fn eval2<S: Scalar + Copy, const ORDER: usize>(c: &[S], n: [usize; 2], t: [f64; 
     [f, fu, fv, fuu, fuv, fvv]
 }
 
+/// [`eval2`] on a grid of R x C coefficients (degrees R - 1, C - 1 >= 1) with both sizes
+/// constants (the bicubic patch): the same steps on the same values ([`bern2_fixed`] per
+/// row, then on the columns of the results), so the same results, without the run-time
+/// lengths.
+#[inline(always)]
+fn eval2_grid<S: Scalar + Copy, const R: usize, const C: usize, const ORDER: usize>(
+    c: &[S],
+    t: [f64; 2],
+) -> [S; 6] {
+    let z = S::zero();
+    let (tu, tv) = (S::from_f64(t[0]), S::from_f64(t[1]));
+    let mut g = [[z; R]; 3];
+    for r in 0..R {
+        let mut row: [S; C] = std::array::from_fn(|k| c[r * C + k]);
+        let [v, dv, dvv] = bern2_fixed::<S, C, ORDER>(&mut row, tv);
+        g[0][r] = v;
+        g[1][r] = dv;
+        g[2][r] = dvv;
+    }
+    let [f, fu, fuu] = bern2_fixed::<S, R, ORDER>(&mut g[0], tu);
+    let (fv, fuv) = match ORDER {
+        0 => (z, z),
+        1 => (bern2_fixed::<S, R, 0>(&mut g[1], tu)[0], z),
+        _ => {
+            let [fv, fuv, _] = bern2_fixed::<S, R, 1>(&mut g[1], tu);
+            (fv, fuv)
+        }
+    };
+    let fvv = if ORDER >= 2 {
+        bern2_fixed::<S, R, 0>(&mut g[2], tu)[0]
+    } else {
+        z
+    };
+    [f, fu, fv, fuu, fuv, fvv]
+}
+
 /// S = A / w and its derivatives up to order 2 from those of A and w (NURBS Book A4.4 in two
 /// variables): S_u = (A_u - S w_u) / w, S_uu = (A_uu - 2 S_u w_u - S w_uu) / w,
 /// S_uv = (A_uv - S_u w_v - S_v w_u - S w_uv) / w.
@@ -1154,6 +1193,34 @@ fn quotient<S: Scalar + Copy>(a: [S; 6], w: [S; 6]) -> [S; 6] {
     let suv = (a[4] - su * w[2] - sv * w[1] - s * w[4]) / w[0];
     let svv = (a[5] - two * sv * w[2] - s * w[5]) / w[0];
     [s, su, sv, suu, suv, svv]
+}
+
+/// The candidate of boundary curve e of the root piece (0: u = 0, 1: u = 1, 2: v = 0,
+/// 3: v = 1): a polynomial cubic curve's local maximum in closed form, else [`newton`] on
+/// the curve's piece. With d_i = b_{i+1} - b_i the derivative of x(s) = sum b_i B_i^3(s) is
+/// 3 (d_0 (1 - s)^2 + 2 d_1 s (1 - s) + d_2 s^2) = 3 q(s), q(s) = d_0 + 2 (d_1 - d_0) s +
+/// (d_0 - 2 d_1 + d_2) s^2 (Farin, *Curves and Surfaces for CAGD*, derivatives of a Bézier
+/// curve); a cubic has at most one local maximum, the root of q where q' < 0 (x'' = 3 q'),
+/// the point [`newton`] converges to when it converges. Its f64 roots come from the
+/// cancellation-free quadratic formula of the curve side. (An estimate only, as Newton's:
+/// soundness never depends on it.)
+fn edge_candidate<const N: usize>(root: &Piece<N>, e: usize, rational: bool) -> Option<Cand> {
+    let len = if e < 2 { root.n[1] + 1 } else { root.n[0] + 1 };
+    if rational || len != 4 {
+        return newton(&root.edge(e), rational);
+    }
+    let mut b: [f64; 4] = std::array::from_fn(|k| root.a[edge_index(e, root.n, k)]);
+    let d = [b[1] - b[0], b[2] - b[1], b[3] - b[2]];
+    let (c0, c1, c2) = (d[0], 2.0 * (d[1] - d[0]), d[0] - 2.0 * d[1] + d[2]);
+    let (r, nr) = crate::enclose::root_estimates(c0, c1, c2);
+    let s = r[..nr]
+        .iter()
+        .copied()
+        .find(|&s| (0.0..=1.0).contains(&s) && 2.0 * c2 * s + c1 < 0.0)?;
+    let at = if e % 2 == 0 { 0.0 } else { 1.0 };
+    let t = if e < 2 { [at, s] } else { [s, at] };
+    let est = bern2::<f64, 0>(&mut b, s)[0];
+    est.is_finite().then_some(Cand { t, est, dd: None })
 }
 
 /// f64 Newton iterations for a local maximum of sign * S_j on the piece `pc` (the root patch
@@ -1579,14 +1646,22 @@ impl<const N: usize> Prover<'_, N> {
         if pc.excluded(f, e, self.ub) {
             return Some(true);
         }
+        // monotone towards the sides of the patch the piece touches (the ranges are exact
+        // at the patch sides)
+        let mut mono = [[false; 2]; 2];
+        for d in (0..2).filter(|&d| free[d]) {
+            mono[d][0] = pc.t[d].0 == 0.0 && pc.monotone(f, e, d, true);
+            mono[d][1] = pc.t[d].1 == 1.0 && pc.monotone(f, e, d, false);
+        }
+        // Monotone along both directions, towards sides s_u and s_v: for x in the piece,
+        // F(x) <= F(x on s_u) <= F(the corner of s_u and s_v), a patch corner, <= ub (a
+        // candidate): no boundary curve to prove.
+        if mono[0].contains(&true) && mono[1].contains(&true) {
+            return Some(true);
+        }
         for d in (0..2).filter(|&d| free[d]) {
             for (end, down) in [(0usize, true), (1, false)] {
-                let touches = if end == 0 {
-                    pc.t[d].0 == 0.0
-                } else {
-                    pc.t[d].1 == 1.0
-                };
-                if touches && pc.monotone(f, e, d, down) {
+                if mono[d][end] {
                     // a boundary curve's sides are patch corners (<= ub: candidates)
                     let ub0 = self.ub;
                     let mut done = slot < 4 || self.edge(root, 2 * d + end, g);
@@ -2102,6 +2177,96 @@ mod tests {
         eprintln!("fast exits / proofs / fallbacks: {tally:?}");
         // nearly every side is proven (the ridge and a few rational sides fall back)
         assert!(tally[1] > 50 * tally[2], "{tally:?}");
+    }
+
+    /// Bicubic patches whose extremes sit at a corner (with a larger interior coefficient,
+    /// so that the vertex test fails and the corner rule of [`Prover::settle`] proves the
+    /// side), on an edge (the closed-form candidates of [`edge_candidate`]) or inside, with
+    /// random perturbations: every proven side against exact rational values of the patch
+    /// on a grid ([`crate::num::Exact`], the same Bernstein evaluation in exact arithmetic)
+    /// and against [`check`] (dense verified samples, the general search); a maximum at a
+    /// corner is proven exactly (bound = attained value = the corner's coefficient).
+    #[test]
+    fn corner_edge_and_interior_extrema_against_exact_values() {
+        use crate::num::Exact;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let mut tally = [0u64; 3];
+        let mut corner_proofs = 0;
+        for case in 0..96 {
+            let kind = case % 4;
+            let noise = if case % 8 < 4 { 0.0 } else { 0.02 };
+            let mut z = [[0.0f64; 4]; 4];
+            for (r, row) in z.iter_mut().enumerate() {
+                for (c, x) in row.iter_mut().enumerate() {
+                    let (u, v) = (r as f64 / 3.0, c as f64 / 3.0);
+                    *x = match kind {
+                        // falling away from the corner (0, 0), a bump of the coefficients at
+                        // (1, 1) above it
+                        0 => 1.0 - 0.25 * (u + v) + if (r, c) == (1, 1) { 0.4 } else { 0.0 },
+                        // a ridge-free hump across the edge u = 0, largest at v ~ 0.6
+                        1 => 1.0 - 0.5 * u - 2.0 * (v - 0.6) * (v - 0.6),
+                        // an interior maximum
+                        2 => 1.0 - 2.0 * (u - 0.4) * (u - 0.4) - 2.0 * (v - 0.55) * (v - 0.55),
+                        // random
+                        _ => rng.random_range(-1.0..1.0),
+                    } + noise * rng.random_range(-1.0..1.0);
+                }
+            }
+            let net: Vec<Vec<Vec<f64>>> = (0..4)
+                .map(|r| {
+                    (0..4)
+                        .map(|c| vec![r as f64 / 3.0, c as f64 / 3.0, z[r][c]])
+                        .collect()
+                })
+                .collect();
+            let s = crate::surface::gen::bezier_patch(3, 3, net, None);
+            check(&s, &mut tally);
+            let f = FastSurface::new(&s).expect("a bicubic patch");
+            let coefs: Vec<Exact> = z.iter().flatten().map(|&x| Exact::of(x)).collect();
+            for sign in [1.0, -1.0] {
+                let mut st = Stats::default();
+                let Some((ub, at)) = f.side(2, sign, &mut st) else {
+                    continue;
+                };
+                let n = 32;
+                for i in 0..=n {
+                    for k in 0..=n {
+                        let t = [i as f64 / n as f64, k as f64 / n as f64];
+                        // sum_rc B_r(u) B_c(v) z_rc, B_i = binom(3, i) t^i (1 - t)^(3 - i)
+                        let basis = |t: f64| -> Vec<Exact> {
+                            let (a, b) = (Exact::of(t), Exact::of(1.0) - Exact::of(t));
+                            let pw = |x: &Exact, k: usize| {
+                                (0..k).fold(Exact::of(1.0), |p, _| p * x.clone())
+                            };
+                            (0..4)
+                                .map(|i| {
+                                    Exact::of([1.0, 3.0, 3.0, 1.0][i]) * pw(&a, i) * pw(&b, 3 - i)
+                                })
+                                .collect()
+                        };
+                        let (bu, bv) = (basis(t[0]), basis(t[1]));
+                        let x = (0..16).fold(Exact::of(0.0), |acc, i| {
+                            acc + bu[i / 4].clone() * bv[i % 4].clone() * coefs[i].clone()
+                        });
+                        let x = if sign > 0.0 { x } else { -x };
+                        assert_ne!(
+                            x.cmp_f64(ub),
+                            Some(std::cmp::Ordering::Greater),
+                            "case {case} sign {sign} at {t:?}: above {ub}"
+                        );
+                    }
+                }
+                if kind == 0 && sign > 0.0 && noise == 0.0 {
+                    assert_eq!((ub, at), (1.0, 1.0), "case {case}");
+                    corner_proofs += st.fast_proofs;
+                }
+            }
+        }
+        assert!(
+            corner_proofs > 0 && tally[1] > 50 * tally[2].max(1),
+            "{tally:?}"
+        );
     }
 
     /// [`split_grid`] (the constant-size split) writes the same halves and maxima, bit for
