@@ -41,6 +41,21 @@ impl<S: Scalar> Net<S> {
     /// The homogeneous net of a surface, P_ij w_ij and w_ij (thesis eq. 3.7 per point; for
     /// intervals the products are outward rounded, so the net encloses the exact one).
     pub fn of(s: &NurbsSurface) -> Self {
+        Net {
+            p: s.degree_u(),
+            q: s.degree_v(),
+            ku: s.knots_u().to_vec(),
+            kv: s.knots_v().to_vec(),
+            rows: s.rows(),
+            cols: s.cols(),
+            h: s.dim() + s.is_rational() as usize,
+            pts: Self::points(s),
+        }
+    }
+
+    /// The homogeneous points of [`Net::of`] alone (row-major, `dim + rational` values each),
+    /// without copies of the knot vectors.
+    pub fn points(s: &NurbsSurface) -> Vec<S> {
         let rational = s.is_rational();
         let h = s.dim() + rational as usize;
         let mut pts = Vec::with_capacity(s.rows() * s.cols() * h);
@@ -59,16 +74,7 @@ impl<S: Scalar> Net<S> {
                 }
             }
         }
-        Net {
-            p: s.degree_u(),
-            q: s.degree_v(),
-            ku: s.knots_u().to_vec(),
-            kv: s.knots_v().to_vec(),
-            rows: s.rows(),
-            cols: s.cols(),
-            h,
-            pts,
-        }
+        pts
     }
 
     /// The net as a curve in u whose control points are the rows (`cols * h` values each).

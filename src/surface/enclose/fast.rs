@@ -126,7 +126,7 @@ impl FastSurface {
         let patches = if single_segment(ku, p, s.rows() - 1) && single_segment(kv, q, s.cols() - 1)
         {
             // the net is the Bézier patch: (w P, w) with exact double-word products
-            vec![crate::surface::eval::Net::<Ddi>::of(s).pts]
+            vec![crate::surface::eval::Net::<Ddi>::points(s)]
         } else {
             let h = s.dim() + s.is_rational() as usize;
             for pa in s.bezier_patches::<Interval>() {
@@ -884,23 +884,13 @@ impl<const N: usize> Piece<N> {
     /// difference d of neighbouring coefficients along `dir` has that sign (the exact one
     /// within 2 e + U1 |d| of the computed one); the Bernstein coefficients of F_t are n d.
     fn monotone(&self, f: &[f64; N], e: f64, dir: usize, down: bool) -> bool {
-        let [n0, n1] = self.n;
-        let step = if dir == 0 { n1 + 1 } else { 1 };
-        for r in 0..=n0 {
-            for c in 0..=n1 {
-                if (dir == 0 && r == n0) || (dir == 1 && c == n1) {
-                    continue;
-                }
-                let i = r * (n1 + 1) + c;
-                let d = f[i + step] - f[i];
-                let m = up(2.0 * e + U1 * d.abs());
-                let ok = if down { d + m <= 0.0 } else { d - m >= 0.0 };
-                if !ok {
-                    return false;
-                }
-            }
+        // (constant sizes for the bicubic patch and its boundary curves: the loops unroll)
+        match self.n {
+            [3, 3] => monotone_in(f, e, dir, down, [3, 3]),
+            [3, 0] => monotone_in(f, e, dir, down, [3, 0]),
+            [0, 3] => monotone_in(f, e, dir, down, [0, 3]),
+            n => monotone_in(f, e, dir, down, n),
         }
-        true
     }
 
     /// mu > 0 with -H(x) >= mu I for every x in the piece (H the Hessian of F in the piece's
@@ -1007,26 +997,16 @@ impl<const N: usize> Piece<N> {
     /// degree below 2, and as soon as one difference is not < 0 (or NaN): then
     /// (d + err) k >= 0 for every err >= 0 and [`Piece::curvature_within`] would fail.
     fn second_max(&self, f: &[f64; N], dir: usize) -> Option<f64> {
-        let [n0, n1] = self.n;
         if self.n[dir] < 2 {
             return None;
         }
-        let step = if dir == 0 { n1 + 1 } else { 1 };
-        let mut mx = f64::NEG_INFINITY;
-        for r in 0..=n0 {
-            for c in 0..=n1 {
-                if (dir == 0 && r + 2 > n0) || (dir == 1 && c + 2 > n1) {
-                    continue;
-                }
-                let i = r * (n1 + 1) + c;
-                let d = (f[i + 2 * step] - f[i + step]) - (f[i + step] - f[i]);
-                if d >= 0.0 || d.is_nan() {
-                    return None;
-                }
-                raise(&mut mx, d);
-            }
+        // (constant sizes as in [`Piece::monotone`])
+        match self.n {
+            [3, 3] => second_max_in(f, dir, [3, 3]),
+            [3, 0] => second_max_in(f, dir, [3, 0]),
+            [0, 3] => second_max_in(f, dir, [0, 3]),
+            n => second_max_in(f, dir, n),
         }
-        Some(mx)
     }
 
     /// [`Piece::curvature`] from the largest second difference `mx` along `dir`
@@ -1037,6 +1017,56 @@ impl<const N: usize> Piece<N> {
         let h = ((iv::point(mx) + iv::point(err)) * iv::point((nd * (nd - 1)) as f64)).sup();
         (h < 0.0).then_some(-h)
     }
+}
+
+/// [`Piece::monotone`] on a grid of degrees n (inlined, so that constant degrees unroll).
+#[inline(always)]
+fn monotone_in<const N: usize>(
+    f: &[f64; N],
+    e: f64,
+    dir: usize,
+    down: bool,
+    n: [usize; 2],
+) -> bool {
+    let [n0, n1] = n;
+    let step = if dir == 0 { n1 + 1 } else { 1 };
+    for r in 0..=n0 {
+        for c in 0..=n1 {
+            if (dir == 0 && r == n0) || (dir == 1 && c == n1) {
+                continue;
+            }
+            let i = r * (n1 + 1) + c;
+            let d = f[i + step] - f[i];
+            let m = up(2.0 * e + U1 * d.abs());
+            let ok = if down { d + m <= 0.0 } else { d - m >= 0.0 };
+            if !ok {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// [`Piece::second_max`] on a grid of degrees n, n[dir] >= 2 (inlined, as [`monotone_in`]).
+#[inline(always)]
+fn second_max_in<const N: usize>(f: &[f64; N], dir: usize, n: [usize; 2]) -> Option<f64> {
+    let [n0, n1] = n;
+    let step = if dir == 0 { n1 + 1 } else { 1 };
+    let mut mx = f64::NEG_INFINITY;
+    for r in 0..=n0 {
+        for c in 0..=n1 {
+            if (dir == 0 && r + 2 > n0) || (dir == 1 && c + 2 > n1) {
+                continue;
+            }
+            let i = r * (n1 + 1) + c;
+            let d = (f[i + 2 * step] - f[i + step]) - (f[i + step] - f[i]);
+            if d >= 0.0 || d.is_nan() {
+                return None;
+            }
+            raise(&mut mx, d);
+        }
+    }
+    Some(mx)
 }
 
 /// Value and partial derivatives of one Bernstein polynomial at t (de Casteljau; NURBS Book
@@ -1708,9 +1738,36 @@ impl<const N: usize> Prover<'_, N> {
         if let Some(ok) = self.edges[e] {
             return ok;
         }
-        let ok = self.prove(&root.edge(e), e, &g.edge(e, root.n));
+        let ok = self.edge_segment(root, e, g) || self.prove(&root.edge(e), e, &g.edge(e, root.n));
         self.edges[e] = Some(ok);
         ok
+    }
+
+    /// F <= 0 on boundary curve e of a polynomial patch of degree 2 or 3 along it, by the
+    /// curve side's root-isolating proof ([`crate::enclose::raw_sides`]: proven signs of the
+    /// derivative at test points around its f64 roots, a Taylor bound over each bracket, all
+    /// on the curve's `Ddi` coefficients, the patch grid's boundary row): its proven maximum
+    /// of sign * S_j is <= ub, so F = sign * S_j - ub <= 0 there. Its attained value is one of
+    /// the surface (continuous: no jump knot, see [`FastSurface::new`]). `false` where that
+    /// proof does not apply or does not reach `ub`; then the general procedure runs.
+    fn edge_segment(&mut self, root: &Piece<N>, e: usize, g: &DdGrid<N>) -> bool {
+        let len = if e < 2 { root.n[1] + 1 } else { root.n[0] + 1 };
+        if self.rational || !(3..=4).contains(&len) {
+            return false;
+        }
+        let c: [Ddi; 4] = std::array::from_fn(|k| g.a[edge_index(e, root.n, k.min(len - 1))]);
+        let seg = crate::enclose::Segment {
+            c: &c[..len],
+            a: 0.0,
+            b: 1.0,
+            end_kinds: [crate::enclose::CandidateKind::EndPoint; 2],
+            right_attained: true,
+        };
+        let Some([mx, _]) = crate::enclose::raw_sides(&seg, [true, false]) else {
+            return false;
+        };
+        self.lo = self.lo.max(mx.attained);
+        mx.upper <= self.ub
     }
 
     /// F <= 0 on a piece P where -H >= mu I (mu in the piece's own parameters): for any c in
