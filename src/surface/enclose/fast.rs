@@ -59,7 +59,7 @@
 
 use crate::enclose::Stats;
 use crate::num::ddi::{up, Ddi, U1};
-use crate::num::{iv, Scalar};
+use crate::num::{iv, Mr, Scalar};
 use crate::surface::model::NurbsSurface;
 use inari::Interval;
 use smallvec::SmallVec;
@@ -1405,18 +1405,45 @@ fn interval_jets<const N: usize>(
     t: [f64; 2],
     rational: bool,
 ) -> [[Interval; 3]; 2] {
+    point_jets(g, n, t, rational, |x| x.to_interval())
+}
+
+/// [`interval_jets`] in midpoint-radius arithmetic ([`Mr`], rigorous, a few ulps wider than
+/// inari's intervals and never exact, but without inari's change of the rounding mode per
+/// operation): for points where a few ulps do not matter.
+fn mr_jets<const N: usize>(
+    g: &DdGrid<N>,
+    n: [usize; 2],
+    t: [f64; 2],
+    rational: bool,
+) -> [[Interval; 3]; 2] {
+    point_jets(g, n, t, rational, |x| {
+        let i = x.to_interval();
+        Mr::from_bounds(i.inf(), i.sup())
+    })
+}
+
+/// The enclosures of [`interval_jets`] computed in the verified number type S on the
+/// coefficients `of(c)` (enclosures of the grid's `Ddi` coefficients c).
+fn point_jets<S: Scalar + Copy, const N: usize>(
+    g: &DdGrid<N>,
+    n: [usize; 2],
+    t: [f64; 2],
+    rational: bool,
+    of: impl Fn(&Ddi) -> S,
+) -> [[Interval; 3]; 2] {
     let cnt = (n[0] + 1) * (n[1] + 1);
-    let first = |x: [Interval; 6]| [x[0], x[1], x[2]];
+    let first = |x: [S; 6]| [0, 1, 2].map(|k| x[k].to_interval());
     let hull = |x: &[Ddi; N]| {
-        let mut h = [Interval::EMPTY; N];
+        let mut h = [S::zero(); N];
         for i in 0..cnt {
-            h[i] = x[i].to_interval();
+            h[i] = of(&x[i]);
         }
         h
     };
-    let a = first(eval2::<Interval, 1>(&hull(&g.a)[..cnt], n, t));
+    let a = first(eval2::<S, 1>(&hull(&g.a)[..cnt], n, t));
     let w = if rational {
-        first(eval2::<Interval, 1>(&hull(&g.w)[..cnt], n, t))
+        first(eval2::<S, 1>(&hull(&g.w)[..cnt], n, t))
     } else {
         [iv::point(1.0), iv::point(0.0), iv::point(0.0)]
     };
@@ -1841,14 +1868,22 @@ impl<const N: usize> Prover<'_, N> {
                 // arithmetic at c is tight enough and costs a fraction of `Ddi`; the same
                 // bound, from enclosures of F(c) and grad F(c) as below.
                 if clear {
-                    let [ai, wi] = interval_jets(g, pn, c, self.rational);
-                    let val = ai[0] / wi[0];
+                    let [ai, wi] = mr_jets(g, pn, c, self.rational);
+                    let ub = iv::point(self.ub);
+                    // (w = 1, w_u = w_v = 0 for a polynomial patch: the same enclosures
+                    // without the interval operations that would give them exactly)
+                    let (val, fc, gr) = if self.rational {
+                        (
+                            ai[0] / wi[0],
+                            ai[0] - ub * wi[0],
+                            [1, 2].map(|k| ai[k] - ub * wi[k]),
+                        )
+                    } else {
+                        (ai[0], ai[0] - ub, [ai[1], ai[2]])
+                    };
                     if !val.is_empty() {
                         self.lo = self.lo.max(val.inf());
                     }
-                    let ub = iv::point(self.ub);
-                    let fc = ai[0] - ub * wi[0];
-                    let gr = [1, 2].map(|k| ai[k] - ub * wi[k]);
                     if self
                         .mu_after_raise(pc, mu, ub0, None)
                         .is_some_and(|mu| self.bound(pc, c, mu, wd, fc, gr, free))
