@@ -1391,40 +1391,23 @@ fn snapped<const N: usize>(
     let snap =
         |k: usize| ((c[k] * 1_073_741_824.0).round() / 1_073_741_824.0).clamp(pc.t[k].0, pc.t[k].1);
     let cs = [snap(0), snap(1)];
-    let [a, w] = interval_jets(g, n, cs, pc.rational);
+    let [a, w] = point_jets(g, n, cs, pc.rational, Ddi::to_interval);
     let val = a[0] / w[0];
     (val.inf() == val.sup() && val.sup().is_finite()).then_some((cs, [a, w]))
 }
 
-/// The interval (inari) enclosures of sign * A_j and w and their first derivatives at t, as
-/// [`tight_derivs`] but in f64 interval arithmetic on the hulls of the grid's `Ddi`
-/// coefficients: exact on dyadic data at a short dyadic t, else a few ulps wide.
-fn interval_jets<const N: usize>(
-    g: &DdGrid<N>,
-    n: [usize; 2],
-    t: [f64; 2],
-    rational: bool,
-) -> [[Interval; 3]; 2] {
-    point_jets(g, n, t, rational, |x| x.to_interval())
+/// A `Ddi` coefficient as a midpoint-radius enclosure ([`Mr`]: rigorous, a few ulps wider
+/// than inari's intervals and never exact, but without inari's change of the rounding mode
+/// per operation), for [`point_jets`] where a few ulps do not matter.
+fn mr_of(x: &Ddi) -> Mr {
+    let i = x.to_interval();
+    Mr::from_bounds(i.inf(), i.sup())
 }
 
-/// [`interval_jets`] in midpoint-radius arithmetic ([`Mr`], rigorous, a few ulps wider than
-/// inari's intervals and never exact, but without inari's change of the rounding mode per
-/// operation): for points where a few ulps do not matter.
-fn mr_jets<const N: usize>(
-    g: &DdGrid<N>,
-    n: [usize; 2],
-    t: [f64; 2],
-    rational: bool,
-) -> [[Interval; 3]; 2] {
-    point_jets(g, n, t, rational, |x| {
-        let i = x.to_interval();
-        Mr::from_bounds(i.inf(), i.sup())
-    })
-}
-
-/// The enclosures of [`interval_jets`] computed in the verified number type S on the
-/// coefficients `of(c)` (enclosures of the grid's `Ddi` coefficients c).
+/// The enclosures of sign * A_j and w and their first derivatives at t, as [`tight_derivs`]
+/// but in the verified number type S on the coefficients `of(c)` (enclosures of the grid's
+/// `Ddi` coefficients c). With inari intervals on their hulls (`of` = `to_interval`): exact
+/// on dyadic data at a short dyadic t, else a few ulps wide.
 fn point_jets<S: Scalar + Copy, const N: usize>(
     g: &DdGrid<N>,
     n: [usize; 2],
@@ -1864,11 +1847,11 @@ impl<const N: usize> Prover<'_, N> {
         let [a, w] = match seed.and_then(|s| s.dd.filter(|_| s.t == c)) {
             Some(dd) => dd,
             None => {
-                // Where the bound clearly holds (a piece beside the maximum), interval
-                // arithmetic at c is tight enough and costs a fraction of `Ddi`; the same
-                // bound, from enclosures of F(c) and grad F(c) as below.
+                // Where the bound clearly holds (a piece beside the maximum), midpoint-radius
+                // interval arithmetic at c is tight enough and costs a fraction of `Ddi`; the
+                // same bound, from enclosures of F(c) and grad F(c) as below.
                 if clear {
-                    let [ai, wi] = mr_jets(g, pn, c, self.rational);
+                    let [ai, wi] = point_jets(g, pn, c, self.rational, mr_of);
                     let ub = iv::point(self.ub);
                     // (w = 1, w_u = w_v = 0 for a polynomial patch: the same enclosures
                     // without the interval operations that would give them exactly)
