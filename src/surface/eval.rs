@@ -57,6 +57,10 @@ impl<S: Scalar> Net<S> {
     /// without copies of the knot vectors.
     pub fn points(s: &NurbsSurface) -> Vec<S> {
         let rational = s.is_rational();
+        if !rational {
+            // (the stored coordinates as they are, in their order)
+            return s.points_flat().iter().map(|&x| S::from_f64(x)).collect();
+        }
         let h = s.dim() + rational as usize;
         let mut pts = Vec::with_capacity(s.rows() * s.cols() * h);
         for i in 0..s.rows() {

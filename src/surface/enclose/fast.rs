@@ -331,29 +331,29 @@ impl FastSurface {
             for (slot, c) in cs.iter_mut().enumerate() {
                 let Some(c) = c else { continue };
                 if c.est >= best - near {
-                    let dd = if slot < 4 {
-                        {
-                            let mut m = n;
-                            m[slot / 2] = 0;
-                            tight_derivs(&grids[k].edge(slot, n), m, c.t, self.rational)
-                        }
-                    } else {
-                        tight_derivs(&grids[k], n, c.t, self.rational)
-                    };
+                    // (the boundary curve's grid for an edge candidate; pieces and grids are
+                    // copied only where they are needed)
+                    let ge = (slot < 4).then(|| grids[k].edge(slot, n));
+                    let g = ge.as_ref().unwrap_or(&grids[k]);
+                    let mut m = n;
+                    if slot < 4 {
+                        m[slot / 2] = 0;
+                    }
+                    let dd = tight_derivs(g, m, c.t, self.rational);
                     let val = value_of(&dd, self.rational);
                     c.dd = Some(dd);
-                    let root = if slot < 4 {
-                        roots[k].edge(slot)
+                    let scale = if slot < 4 {
+                        roots[k].edge_max_abs(slot)
                     } else {
-                        roots[k]
+                        roots[k].max_abs()
                     };
-                    let ge = if slot < 4 {
-                        grids[k].edge(slot, n)
-                    } else {
-                        grids[k]
-                    };
-                    let exact = if near_float(&dd, self.rational, root.max_abs()) {
-                        snapped(&ge, root.n, c.t, &root)
+                    let exact = if near_float(&dd, self.rational, scale) {
+                        if slot < 4 {
+                            let root = roots[k].edge(slot);
+                            snapped(g, root.n, c.t, &root)
+                        } else {
+                            snapped(g, n, c.t, &roots[k])
+                        }
                     } else {
                         None
                     };
@@ -735,13 +735,21 @@ impl<const N: usize> Piece<N> {
     /// The largest coefficient ratio of boundary curve e (the `max_coef` of
     /// [`Piece::edge`], without building the curve's piece).
     fn edge_max(&self, e: usize) -> f64 {
+        self.edge_ratios(e).fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// The `max_abs` of [`Piece::edge`], without building the curve's piece.
+    fn edge_max_abs(&self, e: usize) -> f64 {
+        self.edge_ratios(e).map(f64::abs).fold(0.0, f64::max)
+    }
+
+    /// The coefficient ratios of boundary curve e, in order.
+    fn edge_ratios(&self, e: usize) -> impl Iterator<Item = f64> + '_ {
         let len = if e < 2 { self.n[1] + 1 } else { self.n[0] + 1 };
-        (0..len)
-            .map(|k| {
-                let i = edge_index(e, self.n, k);
-                self.a[i] / self.w[i]
-            })
-            .fold(f64::NEG_INFINITY, f64::max)
+        (0..len).map(move |k| {
+            let i = edge_index(e, self.n, k);
+            self.a[i] / self.w[i]
+        })
     }
 
     fn max_coef(&self) -> f64 {
@@ -1594,8 +1602,10 @@ impl<const N: usize> Prover<'_, N> {
         let free = [root.n[0] > 0, root.n[1] > 0];
         let mut pool: SmallVec<[Piece<N>; 12]> = SmallVec::new();
         pool.push(*root);
-        let mut open: SmallVec<[usize; 16]> = SmallVec::new();
-        open.push(0);
+        // (the open pieces' priorities kept beside their slots: the choice below reads no
+        // piece)
+        let mut open: SmallVec<[(f64, usize); 16]> = SmallVec::new();
+        open.push((root.prio, 0));
         let mut spare: SmallVec<[usize; 16]> = SmallVec::new();
         // a free slot (a new one holds the root's fields and blank coefficients, weights 1
         // as every polynomial piece has them, until a split writes it: no copy of the
@@ -1613,9 +1623,8 @@ impl<const N: usize> Prover<'_, N> {
         // best first (the largest coefficient): the pieces around the maximum are refined
         // first, so `ub` reaches it before the others are judged against it
         while let Some(k) = {
-            let best =
-                (0..open.len()).max_by(|&x, &y| pool[open[x]].prio.total_cmp(&pool[open[y]].prio));
-            best.map(|i| open.swap_remove(i))
+            let best = (0..open.len()).max_by(|&x, &y| open[x].0.total_cmp(&open[y].0));
+            best.map(|i| open.swap_remove(i).1)
         } {
             if *self.budget == 0 {
                 return false;
@@ -1662,7 +1671,7 @@ impl<const N: usize> Prover<'_, N> {
             };
             for i in kids {
                 pool[i].depth = depth + 1;
-                open.push(i);
+                open.push((pool[i].prio, i));
             }
         }
         true
