@@ -277,7 +277,7 @@ impl FastSurface {
             // (the corners as above; the other coefficients need no exact-corner lookup)
             let m = (0..(self.p + 1) * (self.q + 1))
                 .filter(|i| !corners.contains(i))
-                .map(|i| g.ratio(i, self.rational).sup())
+                .map(|i| g.ratio_sup(i, self.rational))
                 .fold(corner_max, |m, x| {
                     if x.is_nan() {
                         f64::INFINITY
@@ -427,6 +427,16 @@ impl<const N: usize> DdGrid<N> {
             g.w[k] = self.w[i];
         }
         g
+    }
+
+    /// The upper end of [`DdGrid::ratio`]: a polynomial patch's exact finite coefficient
+    /// (a single f64 h) without building the interval (its `sup` is h, or +0 for h = -0).
+    fn ratio_sup(&self, i: usize, rational: bool) -> f64 {
+        let a = self.a[i];
+        if !rational && a.lo() == 0.0 && a.rad() == 0.0 && a.hi().is_finite() {
+            return a.hi() + 0.0;
+        }
+        self.ratio(i, rational).sup()
     }
 
     /// The coefficient ratio a_i / w_i, enclosed (a value of the surface at a patch corner).
@@ -651,19 +661,21 @@ impl<const N: usize> Piece<N> {
             full: n,
             prio: 0.0,
         };
+        // (the maxima in locals: a chain through the piece's fields in memory was slow)
+        let (mut ea, mut ew) = (0.0f64, 0.0f64);
         for i in 0..cnt {
             let (x, e) = f64_of(g.a[i]);
             pc.a[i] = x;
-            pc.ea = pc.ea.max(e);
+            ea = ea.max(e);
             if rational {
                 let (x, e) = f64_of(g.w[i]);
                 pc.w[i] = x;
-                pc.ew = pc.ew.max(e);
+                ew = ew.max(e);
             }
         }
         // (a sum of two nonnegative f64 rounded up: Lemma B of `num::ddi`)
-        pc.ea = up(pc.ea);
-        pc.ew = up(pc.ew);
+        pc.ea = up(ea);
+        pc.ew = up(ew);
         pc.prio = pc.max_coef();
         (pc.a[..cnt].iter().all(|x| x.is_finite()) && pc.w[..cnt].iter().all(|x| x.is_finite()))
             .then_some(pc)
