@@ -123,8 +123,8 @@ impl FastSurface {
             return None;
         }
         let mut corner_iv = Vec::new();
-        let patches = if single_segment(ku, p, s.rows() - 1) && single_segment(kv, q, s.cols() - 1)
-        {
+        let single = single_segment(ku, p, s.rows() - 1) && single_segment(kv, q, s.cols() - 1);
+        let patches = if single {
             // the net is the Bézier patch: (w P, w) with exact double-word products
             vec![crate::surface::eval::Net::<Ddi>::points(s)]
         } else {
@@ -153,7 +153,14 @@ impl FastSurface {
         let (mut exact, mut exact_pts) = (SmallVec::new(), SmallVec::new());
         for (u, ul, at_u) in [(a, false, 0), (b, true, 1)] {
             for (v, vl, at_v) in [(c, false, 0), (d, true, 1)] {
-                if let (Some(r), Some(k)) = (s.exact_row_at(u, ul), s.exact_column_at(v, vl)) {
+                // (a single clamped segment per direction: the domain corners are the net's
+                // corner points, rows 0 and p, columns 0 and q, as the general look-up finds)
+                let rk = if single {
+                    (Some(at_u * p), Some(at_v * q))
+                } else {
+                    (s.exact_row_at(u, ul), s.exact_column_at(v, vl))
+                };
+                if let (Some(r), Some(k)) = rk {
                     let patch =
                         if at_u == 0 { 0 } else { np - nv } + if at_v == 0 { 0 } else { nv - 1 };
                     let i = (at_u * p) * (q + 1) + at_v * q;
