@@ -1,7 +1,8 @@
 //! The surface harness binary: runs [`surface_sweep::run`] (see there), writes
 //! `results/surfaces.md` and `results/surface_figure.svg`, exits non-zero on a containment miss.
 //!
-//! `cargo run --release --bin surfaces` (`-- --quick` for a smaller sweep).
+//! `cargo run --release --bin surfaces` (`-- --quick` for a smaller sweep; `-- --bicubic` for
+//! the bicubic timing table alone, printed, no file written).
 
 #[allow(dead_code)] // the curve plots are used by reproduce
 mod plots;
@@ -9,6 +10,12 @@ mod surface_sweep;
 
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
+    if std::env::args().any(|a| a == "--bicubic") {
+        let mut md = String::new();
+        surface_sweep::bicubic_table(quick, &mut md);
+        print!("{md}");
+        return;
+    }
     let misses = surface_sweep::run(quick, std::path::Path::new("results"));
     if misses > 0 {
         eprintln!("containment misses: {misses}");

@@ -29,6 +29,7 @@ pub mod lane;
 mod result;
 mod segments;
 
+pub(crate) use bezier::single::{raw_sides, root_estimates, Segment};
 pub use bezier::BezierSubdivision;
 pub use driver::{degree_fallback, drive, drive_with, scale_outward, Rescaling, MAX_SEARCH_DEGREE};
 pub use hull::ControlHull;

@@ -41,7 +41,26 @@ impl<S: Scalar> Net<S> {
     /// The homogeneous net of a surface, P_ij w_ij and w_ij (thesis eq. 3.7 per point; for
     /// intervals the products are outward rounded, so the net encloses the exact one).
     pub fn of(s: &NurbsSurface) -> Self {
+        Net {
+            p: s.degree_u(),
+            q: s.degree_v(),
+            ku: s.knots_u().to_vec(),
+            kv: s.knots_v().to_vec(),
+            rows: s.rows(),
+            cols: s.cols(),
+            h: s.dim() + s.is_rational() as usize,
+            pts: Self::points(s),
+        }
+    }
+
+    /// The homogeneous points of [`Net::of`] alone (row-major, `dim + rational` values each),
+    /// without copies of the knot vectors.
+    pub fn points(s: &NurbsSurface) -> Vec<S> {
         let rational = s.is_rational();
+        if !rational {
+            // (the stored coordinates as they are, in their order)
+            return s.points_flat().iter().map(|&x| S::from_f64(x)).collect();
+        }
         let h = s.dim() + rational as usize;
         let mut pts = Vec::with_capacity(s.rows() * s.cols() * h);
         for i in 0..s.rows() {
@@ -59,16 +78,7 @@ impl<S: Scalar> Net<S> {
                 }
             }
         }
-        Net {
-            p: s.degree_u(),
-            q: s.degree_v(),
-            ku: s.knots_u().to_vec(),
-            kv: s.knots_v().to_vec(),
-            rows: s.rows(),
-            cols: s.cols(),
-            h,
-            pts,
-        }
+        pts
     }
 
     /// The net as a curve in u whose control points are the rows (`cols * h` values each).

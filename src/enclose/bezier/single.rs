@@ -258,7 +258,7 @@ impl Coeffs<'_> {
 }
 
 /// f64 estimates of the real roots of b_0 + b_1 t + b_2 t^2 (at most two, unordered).
-fn root_estimates(b0: f64, b1: f64, b2: f64) -> ([f64; 2], usize) {
+pub(crate) fn root_estimates(b0: f64, b1: f64, b2: f64) -> ([f64; 2], usize) {
     let mut r = [0.0; 2];
     let mut n = 0;
     let mut push = |x: f64| {

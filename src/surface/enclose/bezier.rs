@@ -230,7 +230,6 @@ impl SurfaceEncloser for BezierPatches {
         let rational = s.is_rational();
         let mut coords: Vec<_> = (0..s.dim())
             .map(|j| {
-                let scale = s.coord_scale(j);
                 let mut st = Stats::default();
                 // per side: (outer, attained, termination) of sign * S_j's maximum
                 let mut sides = [None, None];
@@ -252,6 +251,7 @@ impl SurfaceEncloser for BezierPatches {
                     let budget = super::scaled_budget(self.max_work, s);
                     // (the search minimises sign * S_j: its results are minus the maximum
                     // of -sign * S_j)
+                    let scale = s.coord_scale(j);
                     let (lo, ilo, st2, t) = self.search(budget, &pj, 0, rational, sign, scale);
                     st.add(&st2);
                     sides[k] = Some((-lo, -ilo, t));

@@ -59,7 +59,7 @@
 
 use crate::enclose::Stats;
 use crate::num::ddi::{up, Ddi, U1};
-use crate::num::{iv, Scalar};
+use crate::num::{iv, Mr, Scalar};
 use crate::surface::model::NurbsSurface;
 use inari::Interval;
 use smallvec::SmallVec;
@@ -123,10 +123,10 @@ impl FastSurface {
             return None;
         }
         let mut corner_iv = Vec::new();
-        let patches = if single_segment(ku, p, s.rows() - 1) && single_segment(kv, q, s.cols() - 1)
-        {
+        let single = single_segment(ku, p, s.rows() - 1) && single_segment(kv, q, s.cols() - 1);
+        let patches = if single {
             // the net is the Bézier patch: (w P, w) with exact double-word products
-            vec![crate::surface::eval::Net::<Ddi>::of(s).pts]
+            vec![crate::surface::eval::Net::<Ddi>::points(s)]
         } else {
             let h = s.dim() + s.is_rational() as usize;
             for pa in s.bezier_patches::<Interval>() {
@@ -153,7 +153,14 @@ impl FastSurface {
         let (mut exact, mut exact_pts) = (SmallVec::new(), SmallVec::new());
         for (u, ul, at_u) in [(a, false, 0), (b, true, 1)] {
             for (v, vl, at_v) in [(c, false, 0), (d, true, 1)] {
-                if let (Some(r), Some(k)) = (s.exact_row_at(u, ul), s.exact_column_at(v, vl)) {
+                // (a single clamped segment per direction: the domain corners are the net's
+                // corner points, rows 0 and p, columns 0 and q, as the general look-up finds)
+                let rk = if single {
+                    (Some(at_u * p), Some(at_v * q))
+                } else {
+                    (s.exact_row_at(u, ul), s.exact_column_at(v, vl))
+                };
+                if let (Some(r), Some(k)) = rk {
                     let patch =
                         if at_u == 0 { 0 } else { np - nv } + if at_v == 0 { 0 } else { nv - 1 };
                     let i = (at_u * p) * (q + 1) + at_v * q;
@@ -277,7 +284,7 @@ impl FastSurface {
             // (the corners as above; the other coefficients need no exact-corner lookup)
             let m = (0..(self.p + 1) * (self.q + 1))
                 .filter(|i| !corners.contains(i))
-                .map(|i| g.ratio(i, self.rational).sup())
+                .map(|i| g.ratio_sup(i, self.rational))
                 .fold(corner_max, |m, x| {
                     if x.is_nan() {
                         f64::INFINITY
@@ -312,7 +319,7 @@ impl FastSurface {
                 let root = &roots[k];
                 for (e, c) in cs.iter_mut().enumerate().take(4) {
                     if root.edge_max(e) > hi {
-                        *c = newton(&root.edge(e), self.rational);
+                        *c = edge_candidate(root, e, self.rational);
                         st.newton_iterations += 1;
                     }
                 }
@@ -331,29 +338,29 @@ impl FastSurface {
             for (slot, c) in cs.iter_mut().enumerate() {
                 let Some(c) = c else { continue };
                 if c.est >= best - near {
-                    let dd = if slot < 4 {
-                        {
-                            let mut m = n;
-                            m[slot / 2] = 0;
-                            tight_derivs(&grids[k].edge(slot, n), m, c.t, self.rational)
-                        }
-                    } else {
-                        tight_derivs(&grids[k], n, c.t, self.rational)
-                    };
+                    // (the boundary curve's grid for an edge candidate; pieces and grids are
+                    // copied only where they are needed)
+                    let ge = (slot < 4).then(|| grids[k].edge(slot, n));
+                    let g = ge.as_ref().unwrap_or(&grids[k]);
+                    let mut m = n;
+                    if slot < 4 {
+                        m[slot / 2] = 0;
+                    }
+                    let dd = tight_derivs(g, m, c.t, self.rational);
                     let val = value_of(&dd, self.rational);
                     c.dd = Some(dd);
-                    let root = if slot < 4 {
-                        roots[k].edge(slot)
+                    let scale = if slot < 4 {
+                        roots[k].edge_max_abs(slot)
                     } else {
-                        roots[k]
+                        roots[k].max_abs()
                     };
-                    let ge = if slot < 4 {
-                        grids[k].edge(slot, n)
-                    } else {
-                        grids[k]
-                    };
-                    let exact = if near_float(&dd, self.rational, root.max_abs()) {
-                        snapped(&ge, root.n, c.t, &root)
+                    let exact = if near_float(&dd, self.rational, scale) {
+                        if slot < 4 {
+                            let root = roots[k].edge(slot);
+                            snapped(g, root.n, c.t, &root)
+                        } else {
+                            snapped(g, n, c.t, &roots[k])
+                        }
                     } else {
                         None
                     };
@@ -427,6 +434,16 @@ impl<const N: usize> DdGrid<N> {
             g.w[k] = self.w[i];
         }
         g
+    }
+
+    /// The upper end of [`DdGrid::ratio`]: a polynomial patch's exact finite coefficient
+    /// (a single f64 h) without building the interval (its `sup` is h, or +0 for h = -0).
+    fn ratio_sup(&self, i: usize, rational: bool) -> f64 {
+        let a = self.a[i];
+        if !rational && a.lo() == 0.0 && a.rad() == 0.0 && a.hi().is_finite() {
+            return a.hi() + 0.0;
+        }
+        self.ratio(i, rational).sup()
     }
 
     /// The coefficient ratio a_i / w_i, enclosed (a value of the surface at a patch corner).
@@ -531,6 +548,81 @@ impl Lines {
     }
 }
 
+/// The split of [`Lines::split`] for a grid of R x C coefficients (index r C + c) with both
+/// sizes constants (the bicubic patch and its boundary curves): the same arithmetic
+/// b_i + t (b_{i+1} - b_i) on the same values, so the same results, but on whole rows
+/// (`dir` 0) or columns (`dir` 1) at a time, which the compiler unrolls and vectorises; the
+/// maxima are the same maxima, taken per lane first.
+#[inline(always)]
+fn split_grid<const R: usize, const C: usize, const N: usize>(
+    src: &[f64; N],
+    dir: usize,
+    t: f64,
+    lo: &mut [f64; N],
+    hi: &mut [f64; N],
+) -> [f64; 3] {
+    /// de Casteljau on D vectors of L lanes: `b[i]` is line i along the split direction;
+    /// `put(level, lo_vector, hi_vector)` stores level k of both halves (lo: index k, hi:
+    /// index D - 1 - k); returns the lane maxima of |b|, of lo and of hi.
+    #[inline(always)]
+    fn run<const D: usize, const L: usize>(
+        mut b: [[f64; L]; D],
+        t: f64,
+        mut put: impl FnMut(usize, &[f64; L], &[f64; L]),
+    ) -> [[f64; L]; 3] {
+        let mut m = [[0.0f64; L]; 3];
+        m[1] = [f64::NEG_INFINITY; L];
+        m[2] = [f64::NEG_INFINITY; L];
+        for row in &b {
+            for (x, y) in m[0].iter_mut().zip(row) {
+                raise(x, y.abs());
+            }
+        }
+        for lev in 0..D {
+            if lev > 0 {
+                for i in 0..D - lev {
+                    let nx = b[i + 1];
+                    for (x, y) in b[i].iter_mut().zip(nx) {
+                        *x += t * (y - *x);
+                    }
+                }
+            }
+            let (l, h) = (b[0], b[D - 1 - lev]);
+            for k in 0..L {
+                raise(&mut m[1][k], l[k]);
+                raise(&mut m[2][k], h[k]);
+            }
+            put(lev, &l, &h);
+        }
+        m
+    }
+    /// The lane maxima of [`run`] reduced to `[m, ml, mh]`.
+    fn reduce<const L: usize>(m: [[f64; L]; 3]) -> [f64; 3] {
+        let mut out = [0.0, f64::NEG_INFINITY, f64::NEG_INFINITY];
+        for (o, lanes) in out.iter_mut().zip(m) {
+            for x in lanes {
+                raise(o, x);
+            }
+        }
+        out
+    }
+    if dir == 0 {
+        let b: [[f64; C]; R] = std::array::from_fn(|r| std::array::from_fn(|c| src[r * C + c]));
+        reduce(run::<R, C>(b, t, |k, l, h| {
+            lo[k * C..(k + 1) * C].copy_from_slice(l);
+            hi[(R - 1 - k) * C..(R - k) * C].copy_from_slice(h);
+        }))
+    } else {
+        let b: [[f64; R]; C] = std::array::from_fn(|c| std::array::from_fn(|r| src[r * C + c]));
+        reduce(run::<C, R>(b, t, |k, l, h| {
+            for r in 0..R {
+                lo[r * C + k] = l[r];
+                hi[r * C + C - 1 - k] = h[r];
+            }
+        }))
+    }
+}
+
 /// m = max(m, x) for a running maximum m that is not NaN, skipping a NaN x (as `f64::max`
 /// does) by a comparison: one max instruction, where `f64::max` is a NaN-checking sequence
 /// (the maxima of the proof's inner loops).
@@ -576,19 +668,21 @@ impl<const N: usize> Piece<N> {
             full: n,
             prio: 0.0,
         };
+        // (the maxima in locals: a chain through the piece's fields in memory was slow)
+        let (mut ea, mut ew) = (0.0f64, 0.0f64);
         for i in 0..cnt {
             let (x, e) = f64_of(g.a[i]);
             pc.a[i] = x;
-            pc.ea = pc.ea.max(e);
+            ea = ea.max(e);
             if rational {
                 let (x, e) = f64_of(g.w[i]);
                 pc.w[i] = x;
-                pc.ew = pc.ew.max(e);
+                ew = ew.max(e);
             }
         }
         // (a sum of two nonnegative f64 rounded up: Lemma B of `num::ddi`)
-        pc.ea = up(pc.ea);
-        pc.ew = up(pc.ew);
+        pc.ea = up(ea);
+        pc.ew = up(ew);
         pc.prio = pc.max_coef();
         (pc.a[..cnt].iter().all(|x| x.is_finite()) && pc.w[..cnt].iter().all(|x| x.is_finite()))
             .then_some(pc)
@@ -660,13 +754,21 @@ impl<const N: usize> Piece<N> {
     /// The largest coefficient ratio of boundary curve e (the `max_coef` of
     /// [`Piece::edge`], without building the curve's piece).
     fn edge_max(&self, e: usize) -> f64 {
+        self.edge_ratios(e).fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// The `max_abs` of [`Piece::edge`], without building the curve's piece.
+    fn edge_max_abs(&self, e: usize) -> f64 {
+        self.edge_ratios(e).map(f64::abs).fold(0.0, f64::max)
+    }
+
+    /// The coefficient ratios of boundary curve e, in order.
+    fn edge_ratios(&self, e: usize) -> impl Iterator<Item = f64> + '_ {
         let len = if e < 2 { self.n[1] + 1 } else { self.n[0] + 1 };
-        (0..len)
-            .map(|k| {
-                let i = edge_index(e, self.n, k);
-                self.a[i] / self.w[i]
-            })
-            .fold(f64::NEG_INFINITY, f64::max)
+        (0..len).map(move |k| {
+            let i = edge_index(e, self.n, k);
+            self.a[i] / self.w[i]
+        })
     }
 
     fn max_coef(&self) -> f64 {
@@ -733,12 +835,15 @@ impl<const N: usize> Piece<N> {
                 lstride,
                 t,
             };
-            match n {
-                0 => g.split::<1, N>(src, lo, hi),
-                1 => g.split::<2, N>(src, lo, hi),
-                2 => g.split::<3, N>(src, lo, hi),
-                3 => g.split::<4, N>(src, lo, hi),
-                4 => g.split::<5, N>(src, lo, hi),
+            match (self.n, n) {
+                ([3, 3], _) => split_grid::<4, 4, N>(src, dir, t, lo, hi),
+                ([3, 0], _) => split_grid::<4, 1, N>(src, dir, t, lo, hi),
+                ([0, 3], _) => split_grid::<1, 4, N>(src, dir, t, lo, hi),
+                (_, 0) => g.split::<1, N>(src, lo, hi),
+                (_, 1) => g.split::<2, N>(src, lo, hi),
+                (_, 2) => g.split::<3, N>(src, lo, hi),
+                (_, 3) => g.split::<4, N>(src, lo, hi),
+                (_, 4) => g.split::<5, N>(src, lo, hi),
                 _ => g.split::<{ MAX_DEGREE + 1 }, N>(src, lo, hi),
             }
         };
@@ -806,23 +911,13 @@ impl<const N: usize> Piece<N> {
     /// difference d of neighbouring coefficients along `dir` has that sign (the exact one
     /// within 2 e + U1 |d| of the computed one); the Bernstein coefficients of F_t are n d.
     fn monotone(&self, f: &[f64; N], e: f64, dir: usize, down: bool) -> bool {
-        let [n0, n1] = self.n;
-        let step = if dir == 0 { n1 + 1 } else { 1 };
-        for r in 0..=n0 {
-            for c in 0..=n1 {
-                if (dir == 0 && r == n0) || (dir == 1 && c == n1) {
-                    continue;
-                }
-                let i = r * (n1 + 1) + c;
-                let d = f[i + step] - f[i];
-                let m = up(2.0 * e + U1 * d.abs());
-                let ok = if down { d + m <= 0.0 } else { d - m >= 0.0 };
-                if !ok {
-                    return false;
-                }
-            }
+        // (constant sizes for the bicubic patch and its boundary curves: the loops unroll)
+        match self.n {
+            [3, 3] => monotone_in(f, e, dir, down, [3, 3]),
+            [3, 0] => monotone_in(f, e, dir, down, [3, 0]),
+            [0, 3] => monotone_in(f, e, dir, down, [0, 3]),
+            n => monotone_in(f, e, dir, down, n),
         }
-        true
     }
 
     /// mu > 0 with -H(x) >= mu I for every x in the piece (H the Hessian of F in the piece's
@@ -837,17 +932,27 @@ impl<const N: usize> Piece<N> {
     /// give lambda_min >= min(a0 - b0 r, c0 - b0 / r) for any r > 0 (r = sqrt(a0 / c0) makes
     /// both equal when a0 c0 > b0^2). All in interval arithmetic.
     fn concavity(&self, f: &[f64; N], e: f64) -> Option<f64> {
+        self.concavity_from(f, e, self.second_maxima(f))
+    }
+
+    /// [`Piece::second_max`] along both directions (`None` for a fixed one).
+    fn second_maxima(&self, f: &[f64; N]) -> [Option<f64>; 2] {
+        [0, 1].map(|d| (self.n[d] > 0).then(|| self.second_max(f, d)).flatten())
+    }
+
+    /// [`Piece::concavity`] from the [`Piece::second_maxima`] `s` of f.
+    fn concavity_from(&self, f: &[f64; N], e: f64, s: [Option<f64>; 2]) -> Option<f64> {
         let [n0, n1] = self.n;
         let at = |r: usize, c: usize| f[r * (n1 + 1) + c];
         // (the signs first: most pieces fail there, before any error bound; then one error
         // bound for all second differences)
         let m0 = match n0 {
             0 => None,
-            _ => Some(self.second_max(f, 0)?),
+            _ => Some(s[0]?),
         };
         let m1 = match n1 {
             0 => None,
-            _ => Some(self.second_max(f, 1)?),
+            _ => Some(s[1]?),
         };
         let err = self.second_error(f, e);
         if !err.is_finite() {
@@ -919,26 +1024,16 @@ impl<const N: usize> Piece<N> {
     /// degree below 2, and as soon as one difference is not < 0 (or NaN): then
     /// (d + err) k >= 0 for every err >= 0 and [`Piece::curvature_within`] would fail.
     fn second_max(&self, f: &[f64; N], dir: usize) -> Option<f64> {
-        let [n0, n1] = self.n;
         if self.n[dir] < 2 {
             return None;
         }
-        let step = if dir == 0 { n1 + 1 } else { 1 };
-        let mut mx = f64::NEG_INFINITY;
-        for r in 0..=n0 {
-            for c in 0..=n1 {
-                if (dir == 0 && r + 2 > n0) || (dir == 1 && c + 2 > n1) {
-                    continue;
-                }
-                let i = r * (n1 + 1) + c;
-                let d = (f[i + 2 * step] - f[i + step]) - (f[i + step] - f[i]);
-                if d >= 0.0 || d.is_nan() {
-                    return None;
-                }
-                raise(&mut mx, d);
-            }
+        // (constant sizes as in [`Piece::monotone`])
+        match self.n {
+            [3, 3] => second_max_in(f, dir, [3, 3]),
+            [3, 0] => second_max_in(f, dir, [3, 0]),
+            [0, 3] => second_max_in(f, dir, [0, 3]),
+            n => second_max_in(f, dir, n),
         }
-        Some(mx)
     }
 
     /// [`Piece::curvature`] from the largest second difference `mx` along `dir`
@@ -949,6 +1044,56 @@ impl<const N: usize> Piece<N> {
         let h = ((iv::point(mx) + iv::point(err)) * iv::point((nd * (nd - 1)) as f64)).sup();
         (h < 0.0).then_some(-h)
     }
+}
+
+/// [`Piece::monotone`] on a grid of degrees n (inlined, so that constant degrees unroll).
+#[inline(always)]
+fn monotone_in<const N: usize>(
+    f: &[f64; N],
+    e: f64,
+    dir: usize,
+    down: bool,
+    n: [usize; 2],
+) -> bool {
+    let [n0, n1] = n;
+    let step = if dir == 0 { n1 + 1 } else { 1 };
+    for r in 0..=n0 {
+        for c in 0..=n1 {
+            if (dir == 0 && r == n0) || (dir == 1 && c == n1) {
+                continue;
+            }
+            let i = r * (n1 + 1) + c;
+            let d = f[i + step] - f[i];
+            let m = up(2.0 * e + U1 * d.abs());
+            let ok = if down { d + m <= 0.0 } else { d - m >= 0.0 };
+            if !ok {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// [`Piece::second_max`] on a grid of degrees n, n[dir] >= 2 (inlined, as [`monotone_in`]).
+#[inline(always)]
+fn second_max_in<const N: usize>(f: &[f64; N], dir: usize, n: [usize; 2]) -> Option<f64> {
+    let [n0, n1] = n;
+    let step = if dir == 0 { n1 + 1 } else { 1 };
+    let mut mx = f64::NEG_INFINITY;
+    for r in 0..=n0 {
+        for c in 0..=n1 {
+            if (dir == 0 && r + 2 > n0) || (dir == 1 && c + 2 > n1) {
+                continue;
+            }
+            let i = r * (n1 + 1) + c;
+            let d = (f[i + 2 * step] - f[i + step]) - (f[i + step] - f[i]);
+            if d >= 0.0 || d.is_nan() {
+                return None;
+            }
+            raise(&mut mx, d);
+        }
+    }
+    Some(mx)
 }
 
 /// Value and partial derivatives of one Bernstein polynomial at t (de Casteljau; NURBS Book
@@ -1014,6 +1159,9 @@ fn bern2_fixed<S: Scalar + Copy, const D1: usize, const ORDER: usize>(
 /// not computed (0). The v direction first on every row, then u on the results; a boundary
 /// curve (a degree 0) is one curve evaluation, the derivatives across it 0.
 fn eval2<S: Scalar + Copy, const ORDER: usize>(c: &[S], n: [usize; 2], t: [f64; 2]) -> [S; 6] {
+    if n == [3, 3] {
+        return eval2_grid::<S, 4, 4, ORDER>(c, t);
+    }
     let z = S::zero();
     let (tu, tv) = (S::from_f64(t[0]), S::from_f64(t[1]));
     if n[0] == 0 || n[1] == 0 {
@@ -1054,6 +1202,42 @@ fn eval2<S: Scalar + Copy, const ORDER: usize>(c: &[S], n: [usize; 2], t: [f64; 
     [f, fu, fv, fuu, fuv, fvv]
 }
 
+/// [`eval2`] on a grid of R x C coefficients (degrees R - 1, C - 1 >= 1) with both sizes
+/// constants (the bicubic patch): the same steps on the same values ([`bern2_fixed`] per
+/// row, then on the columns of the results), so the same results, without the run-time
+/// lengths.
+#[inline(always)]
+fn eval2_grid<S: Scalar + Copy, const R: usize, const C: usize, const ORDER: usize>(
+    c: &[S],
+    t: [f64; 2],
+) -> [S; 6] {
+    let z = S::zero();
+    let (tu, tv) = (S::from_f64(t[0]), S::from_f64(t[1]));
+    let mut g = [[z; R]; 3];
+    for r in 0..R {
+        let mut row: [S; C] = std::array::from_fn(|k| c[r * C + k]);
+        let [v, dv, dvv] = bern2_fixed::<S, C, ORDER>(&mut row, tv);
+        g[0][r] = v;
+        g[1][r] = dv;
+        g[2][r] = dvv;
+    }
+    let [f, fu, fuu] = bern2_fixed::<S, R, ORDER>(&mut g[0], tu);
+    let (fv, fuv) = match ORDER {
+        0 => (z, z),
+        1 => (bern2_fixed::<S, R, 0>(&mut g[1], tu)[0], z),
+        _ => {
+            let [fv, fuv, _] = bern2_fixed::<S, R, 1>(&mut g[1], tu);
+            (fv, fuv)
+        }
+    };
+    let fvv = if ORDER >= 2 {
+        bern2_fixed::<S, R, 0>(&mut g[2], tu)[0]
+    } else {
+        z
+    };
+    [f, fu, fv, fuu, fuv, fvv]
+}
+
 /// S = A / w and its derivatives up to order 2 from those of A and w (NURBS Book A4.4 in two
 /// variables): S_u = (A_u - S w_u) / w, S_uu = (A_uu - 2 S_u w_u - S w_uu) / w,
 /// S_uv = (A_uv - S_u w_v - S_v w_u - S w_uv) / w.
@@ -1066,6 +1250,34 @@ fn quotient<S: Scalar + Copy>(a: [S; 6], w: [S; 6]) -> [S; 6] {
     let suv = (a[4] - su * w[2] - sv * w[1] - s * w[4]) / w[0];
     let svv = (a[5] - two * sv * w[2] - s * w[5]) / w[0];
     [s, su, sv, suu, suv, svv]
+}
+
+/// The candidate of boundary curve e of the root piece (0: u = 0, 1: u = 1, 2: v = 0,
+/// 3: v = 1): a polynomial cubic curve's local maximum in closed form, else [`newton`] on
+/// the curve's piece. With d_i = b_{i+1} - b_i the derivative of x(s) = sum b_i B_i^3(s) is
+/// 3 (d_0 (1 - s)^2 + 2 d_1 s (1 - s) + d_2 s^2) = 3 q(s), q(s) = d_0 + 2 (d_1 - d_0) s +
+/// (d_0 - 2 d_1 + d_2) s^2 (Farin, *Curves and Surfaces for CAGD*, derivatives of a Bézier
+/// curve); a cubic has at most one local maximum, the root of q where q' < 0 (x'' = 3 q'),
+/// the point [`newton`] converges to when it converges. Its f64 roots come from the
+/// cancellation-free quadratic formula of the curve side. (An estimate only, as Newton's:
+/// soundness never depends on it.)
+fn edge_candidate<const N: usize>(root: &Piece<N>, e: usize, rational: bool) -> Option<Cand> {
+    let len = if e < 2 { root.n[1] + 1 } else { root.n[0] + 1 };
+    if rational || len != 4 {
+        return newton(&root.edge(e), rational);
+    }
+    let mut b: [f64; 4] = std::array::from_fn(|k| root.a[edge_index(e, root.n, k)]);
+    let d = [b[1] - b[0], b[2] - b[1], b[3] - b[2]];
+    let (c0, c1, c2) = (d[0], 2.0 * (d[1] - d[0]), d[0] - 2.0 * d[1] + d[2]);
+    let (r, nr) = crate::enclose::root_estimates(c0, c1, c2);
+    let s = r[..nr]
+        .iter()
+        .copied()
+        .find(|&s| (0.0..=1.0).contains(&s) && 2.0 * c2 * s + c1 < 0.0)?;
+    let at = if e % 2 == 0 { 0.0 } else { 1.0 };
+    let t = if e < 2 { [at, s] } else { [s, at] };
+    let est = bern2::<f64, 0>(&mut b, s)[0];
+    est.is_finite().then_some(Cand { t, est, dd: None })
 }
 
 /// f64 Newton iterations for a local maximum of sign * S_j on the piece `pc` (the root patch
@@ -1206,32 +1418,42 @@ fn snapped<const N: usize>(
     let snap =
         |k: usize| ((c[k] * 1_073_741_824.0).round() / 1_073_741_824.0).clamp(pc.t[k].0, pc.t[k].1);
     let cs = [snap(0), snap(1)];
-    let [a, w] = interval_jets(g, n, cs, pc.rational);
+    let [a, w] = point_jets(g, n, cs, pc.rational, Ddi::to_interval);
     let val = a[0] / w[0];
     (val.inf() == val.sup() && val.sup().is_finite()).then_some((cs, [a, w]))
 }
 
-/// The interval (inari) enclosures of sign * A_j and w and their first derivatives at t, as
-/// [`tight_derivs`] but in f64 interval arithmetic on the hulls of the grid's `Ddi`
-/// coefficients: exact on dyadic data at a short dyadic t, else a few ulps wide.
-fn interval_jets<const N: usize>(
+/// A `Ddi` coefficient as a midpoint-radius enclosure ([`Mr`]: rigorous, a few ulps wider
+/// than inari's intervals and never exact, but without inari's change of the rounding mode
+/// per operation), for [`point_jets`] where a few ulps do not matter.
+fn mr_of(x: &Ddi) -> Mr {
+    let i = x.to_interval();
+    Mr::from_bounds(i.inf(), i.sup())
+}
+
+/// The enclosures of sign * A_j and w and their first derivatives at t, as [`tight_derivs`]
+/// but in the verified number type S on the coefficients `of(c)` (enclosures of the grid's
+/// `Ddi` coefficients c). With inari intervals on their hulls (`of` = `to_interval`): exact
+/// on dyadic data at a short dyadic t, else a few ulps wide.
+fn point_jets<S: Scalar + Copy, const N: usize>(
     g: &DdGrid<N>,
     n: [usize; 2],
     t: [f64; 2],
     rational: bool,
+    of: impl Fn(&Ddi) -> S,
 ) -> [[Interval; 3]; 2] {
     let cnt = (n[0] + 1) * (n[1] + 1);
-    let first = |x: [Interval; 6]| [x[0], x[1], x[2]];
+    let first = |x: [S; 6]| [0, 1, 2].map(|k| x[k].to_interval());
     let hull = |x: &[Ddi; N]| {
-        let mut h = [Interval::EMPTY; N];
+        let mut h = [S::zero(); N];
         for i in 0..cnt {
-            h[i] = x[i].to_interval();
+            h[i] = of(&x[i]);
         }
         h
     };
-    let a = first(eval2::<Interval, 1>(&hull(&g.a)[..cnt], n, t));
+    let a = first(eval2::<S, 1>(&hull(&g.a)[..cnt], n, t));
     let w = if rational {
-        first(eval2::<Interval, 1>(&hull(&g.w)[..cnt], n, t))
+        first(eval2::<S, 1>(&hull(&g.w)[..cnt], n, t))
     } else {
         [iv::point(1.0), iv::point(0.0), iv::point(0.0)]
     };
@@ -1399,8 +1621,10 @@ impl<const N: usize> Prover<'_, N> {
         let free = [root.n[0] > 0, root.n[1] > 0];
         let mut pool: SmallVec<[Piece<N>; 12]> = SmallVec::new();
         pool.push(*root);
-        let mut open: SmallVec<[usize; 16]> = SmallVec::new();
-        open.push(0);
+        // (the open pieces' priorities kept beside their slots: the choice below reads no
+        // piece)
+        let mut open: SmallVec<[(f64, usize); 16]> = SmallVec::new();
+        open.push((root.prio, 0));
         let mut spare: SmallVec<[usize; 16]> = SmallVec::new();
         // a free slot (a new one holds the root's fields and blank coefficients, weights 1
         // as every polynomial piece has them, until a split writes it: no copy of the
@@ -1418,9 +1642,8 @@ impl<const N: usize> Prover<'_, N> {
         // best first (the largest coefficient): the pieces around the maximum are refined
         // first, so `ub` reaches it before the others are judged against it
         while let Some(k) = {
-            let best =
-                (0..open.len()).max_by(|&x, &y| pool[open[x]].prio.total_cmp(&pool[open[y]].prio));
-            best.map(|i| open.swap_remove(i))
+            let best = (0..open.len()).max_by(|&x, &y| open[x].0.total_cmp(&open[y].0));
+            best.map(|i| open.swap_remove(i).1)
         } {
             if *self.budget == 0 {
                 return false;
@@ -1467,7 +1690,7 @@ impl<const N: usize> Prover<'_, N> {
             };
             for i in kids {
                 pool[i].depth = depth + 1;
-                open.push(i);
+                open.push((pool[i].prio, i));
             }
         }
         true
@@ -1491,14 +1714,22 @@ impl<const N: usize> Prover<'_, N> {
         if pc.excluded(f, e, self.ub) {
             return Some(true);
         }
+        // monotone towards the sides of the patch the piece touches (the ranges are exact
+        // at the patch sides)
+        let mut mono = [[false; 2]; 2];
+        for d in (0..2).filter(|&d| free[d]) {
+            mono[d][0] = pc.t[d].0 == 0.0 && pc.monotone(f, e, d, true);
+            mono[d][1] = pc.t[d].1 == 1.0 && pc.monotone(f, e, d, false);
+        }
+        // Monotone along both directions, towards sides s_u and s_v: for x in the piece,
+        // F(x) <= F(x on s_u) <= F(the corner of s_u and s_v), a patch corner, <= ub (a
+        // candidate): no boundary curve to prove.
+        if mono[0].contains(&true) && mono[1].contains(&true) {
+            return Some(true);
+        }
         for d in (0..2).filter(|&d| free[d]) {
             for (end, down) in [(0usize, true), (1, false)] {
-                let touches = if end == 0 {
-                    pc.t[d].0 == 0.0
-                } else {
-                    pc.t[d].1 == 1.0
-                };
-                if touches && pc.monotone(f, e, d, down) {
+                if mono[d][end] {
                     // a boundary curve's sides are patch corners (<= ub: candidates)
                     let ub0 = self.ub;
                     let mut done = slot < 4 || self.edge(root, 2 * d + end, g);
@@ -1516,11 +1747,14 @@ impl<const N: usize> Prover<'_, N> {
                 }
             }
         }
-        if let Some(mu) = pc.concavity(f, e) {
+        // (the second differences once: a ridge along d needs them all < 0 along d, as
+        // [`Piece::curvature`] checks, so without such a direction it is not tried)
+        let sm = pc.second_maxima(f);
+        if let Some(mu) = pc.concavity_from(f, e, sm) {
             if self.concave(pc, root, slot, (mu, ub_f), g) {
                 return Some(true);
             }
-        } else if self.ridge(pc, root, (f, e, ub_f), g) {
+        } else if sm.iter().any(Option::is_some) && self.ridge(pc, root, (f, e, ub_f), g, sm) {
             return Some(true);
         } else if pc.depth >= 2 && self.searches > 0 && pc.max_coef() > self.ub {
             // a maximum the first candidates missed: Newton from this piece's centre
@@ -1542,9 +1776,36 @@ impl<const N: usize> Prover<'_, N> {
         if let Some(ok) = self.edges[e] {
             return ok;
         }
-        let ok = self.prove(&root.edge(e), e, &g.edge(e, root.n));
+        let ok = self.edge_segment(root, e, g) || self.prove(&root.edge(e), e, &g.edge(e, root.n));
         self.edges[e] = Some(ok);
         ok
+    }
+
+    /// F <= 0 on boundary curve e of a polynomial patch of degree 2 or 3 along it, by the
+    /// curve side's root-isolating proof ([`crate::enclose::raw_sides`]: proven signs of the
+    /// derivative at test points around its f64 roots, a Taylor bound over each bracket, all
+    /// on the curve's `Ddi` coefficients, the patch grid's boundary row): its proven maximum
+    /// of sign * S_j is <= ub, so F = sign * S_j - ub <= 0 there. Its attained value is one of
+    /// the surface (continuous: no jump knot, see [`FastSurface::new`]). `false` where that
+    /// proof does not apply or does not reach `ub`; then the general procedure runs.
+    fn edge_segment(&mut self, root: &Piece<N>, e: usize, g: &DdGrid<N>) -> bool {
+        let len = if e < 2 { root.n[1] + 1 } else { root.n[0] + 1 };
+        if self.rational || !(3..=4).contains(&len) {
+            return false;
+        }
+        let c: [Ddi; 4] = std::array::from_fn(|k| g.a[edge_index(e, root.n, k.min(len - 1))]);
+        let seg = crate::enclose::Segment {
+            c: &c[..len],
+            a: 0.0,
+            b: 1.0,
+            end_kinds: [crate::enclose::CandidateKind::EndPoint; 2],
+            right_attained: true,
+        };
+        let Some([mx, _]) = crate::enclose::raw_sides(&seg, [true, false]) else {
+            return false;
+        };
+        self.lo = self.lo.max(mx.attained);
+        mx.upper <= self.ub
     }
 
     /// F <= 0 on a piece P where -H >= mu I (mu in the piece's own parameters): for any c in
@@ -1614,18 +1875,26 @@ impl<const N: usize> Prover<'_, N> {
         let [a, w] = match seed.and_then(|s| s.dd.filter(|_| s.t == c)) {
             Some(dd) => dd,
             None => {
-                // Where the bound clearly holds (a piece beside the maximum), interval
-                // arithmetic at c is tight enough and costs a fraction of `Ddi`; the same
-                // bound, from enclosures of F(c) and grad F(c) as below.
+                // Where the bound clearly holds (a piece beside the maximum), midpoint-radius
+                // interval arithmetic at c is tight enough and costs a fraction of `Ddi`; the
+                // same bound, from enclosures of F(c) and grad F(c) as below.
                 if clear {
-                    let [ai, wi] = interval_jets(g, pn, c, self.rational);
-                    let val = ai[0] / wi[0];
+                    let [ai, wi] = point_jets(g, pn, c, self.rational, mr_of);
+                    let ub = iv::point(self.ub);
+                    // (w = 1, w_u = w_v = 0 for a polynomial patch: the same enclosures
+                    // without the interval operations that would give them exactly)
+                    let (val, fc, gr) = if self.rational {
+                        (
+                            ai[0] / wi[0],
+                            ai[0] - ub * wi[0],
+                            [1, 2].map(|k| ai[k] - ub * wi[k]),
+                        )
+                    } else {
+                        (ai[0], ai[0] - ub, [ai[1], ai[2]])
+                    };
                     if !val.is_empty() {
                         self.lo = self.lo.max(val.inf());
                     }
-                    let ub = iv::point(self.ub);
-                    let fc = ai[0] - ub * wi[0];
-                    let gr = [1, 2].map(|k| ai[k] - ub * wi[k]);
                     if self
                         .mu_after_raise(pc, mu, ub0, None)
                         .is_some_and(|mu| self.bound(pc, c, mu, wd, fc, gr, free))
@@ -1712,19 +1981,21 @@ impl<const N: usize> Prover<'_, N> {
     /// the middle of the o range (any c_d in the range is valid); its value is attained and
     /// raises `ub` when it provably beats it. (`f`, `e` are the piece's coefficients of
     /// F = A - ub0 w; after a raise of ub the curvature is computed again,
-    /// [`Prover::mu_after_raise`].)
+    /// [`Prover::mu_after_raise`]; `sm` their [`Piece::second_maxima`]: a direction d
+    /// without them has a second difference >= 0 along d, where the curvature fails.)
     fn ridge(
         &mut self,
         pc: &Piece<N>,
         root: &Piece<N>,
         (f, e, ub0): (&[f64; N], f64, f64),
         g: &DdGrid<N>,
+        sm: [Option<f64>; 2],
     ) -> bool {
         if pc.n[0] == 0 || pc.n[1] == 0 || root.n != pc.full {
             return false;
         }
         for d in 0..2 {
-            if !flat_across(pc, f, d) {
+            if sm[d].is_none() || !flat_across(pc, f, d) {
                 continue;
             }
             let Some(mu) = pc.curvature(f, e, d) else {
@@ -2009,5 +2280,158 @@ mod tests {
         eprintln!("fast exits / proofs / fallbacks: {tally:?}");
         // nearly every side is proven (the ridge and a few rational sides fall back)
         assert!(tally[1] > 50 * tally[2], "{tally:?}");
+    }
+
+    /// Bicubic patches whose extremes sit at a corner (with a larger interior coefficient,
+    /// so that the vertex test fails and the corner rule of [`Prover::settle`] proves the
+    /// side), on an edge (the closed-form candidates of [`edge_candidate`]) or inside, with
+    /// random perturbations: every proven side against exact rational values of the patch
+    /// on a grid ([`crate::num::Exact`], the same Bernstein evaluation in exact arithmetic)
+    /// and against [`check`] (dense verified samples, the general search); a maximum at a
+    /// corner is proven exactly (bound = attained value = the corner's coefficient).
+    #[test]
+    fn corner_edge_and_interior_extrema_against_exact_values() {
+        use crate::num::Exact;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let mut tally = [0u64; 3];
+        let mut corner_proofs = 0;
+        for case in 0..96 {
+            let kind = case % 4;
+            let noise = if case % 8 < 4 { 0.0 } else { 0.02 };
+            let mut z = [[0.0f64; 4]; 4];
+            for (r, row) in z.iter_mut().enumerate() {
+                for (c, x) in row.iter_mut().enumerate() {
+                    let (u, v) = (r as f64 / 3.0, c as f64 / 3.0);
+                    *x = match kind {
+                        // falling away from the corner (0, 0), a bump of the coefficients at
+                        // (1, 1) above it
+                        0 => 1.0 - 0.25 * (u + v) + if (r, c) == (1, 1) { 0.4 } else { 0.0 },
+                        // a ridge-free hump across the edge u = 0, largest at v ~ 0.6
+                        1 => 1.0 - 0.5 * u - 2.0 * (v - 0.6) * (v - 0.6),
+                        // an interior maximum
+                        2 => 1.0 - 2.0 * (u - 0.4) * (u - 0.4) - 2.0 * (v - 0.55) * (v - 0.55),
+                        // random
+                        _ => rng.random_range(-1.0..1.0),
+                    } + noise * rng.random_range(-1.0..1.0);
+                }
+            }
+            let net: Vec<Vec<Vec<f64>>> = (0..4)
+                .map(|r| {
+                    (0..4)
+                        .map(|c| vec![r as f64 / 3.0, c as f64 / 3.0, z[r][c]])
+                        .collect()
+                })
+                .collect();
+            let s = crate::surface::gen::bezier_patch(3, 3, net, None);
+            check(&s, &mut tally);
+            let f = FastSurface::new(&s).expect("a bicubic patch");
+            let coefs: Vec<Exact> = z.iter().flatten().map(|&x| Exact::of(x)).collect();
+            for sign in [1.0, -1.0] {
+                let mut st = Stats::default();
+                let Some((ub, at)) = f.side(2, sign, &mut st) else {
+                    continue;
+                };
+                let n = 32;
+                for i in 0..=n {
+                    for k in 0..=n {
+                        let t = [i as f64 / n as f64, k as f64 / n as f64];
+                        // sum_rc B_r(u) B_c(v) z_rc, B_i = binom(3, i) t^i (1 - t)^(3 - i)
+                        let basis = |t: f64| -> Vec<Exact> {
+                            let (a, b) = (Exact::of(t), Exact::of(1.0) - Exact::of(t));
+                            let pw = |x: &Exact, k: usize| {
+                                (0..k).fold(Exact::of(1.0), |p, _| p * x.clone())
+                            };
+                            (0..4)
+                                .map(|i| {
+                                    Exact::of([1.0, 3.0, 3.0, 1.0][i]) * pw(&a, i) * pw(&b, 3 - i)
+                                })
+                                .collect()
+                        };
+                        let (bu, bv) = (basis(t[0]), basis(t[1]));
+                        let x = (0..16).fold(Exact::of(0.0), |acc, i| {
+                            acc + bu[i / 4].clone() * bv[i % 4].clone() * coefs[i].clone()
+                        });
+                        let x = if sign > 0.0 { x } else { -x };
+                        assert_ne!(
+                            x.cmp_f64(ub),
+                            Some(std::cmp::Ordering::Greater),
+                            "case {case} sign {sign} at {t:?}: above {ub}"
+                        );
+                    }
+                }
+                if kind == 0 && sign > 0.0 && noise == 0.0 {
+                    assert_eq!((ub, at), (1.0, 1.0), "case {case}");
+                    corner_proofs += st.fast_proofs;
+                }
+            }
+        }
+        assert!(
+            corner_proofs > 0 && tally[1] > 50 * tally[2].max(1),
+            "{tally:?}"
+        );
+    }
+
+    /// [`split_grid`] (the constant-size split) writes the same halves and maxima, bit for
+    /// bit, as [`Lines::split`] (the general one), on random and special values (signed
+    /// zeros, subnormals, infinities, NaN: the maxima skip a NaN alike).
+    #[test]
+    fn grid_split_matches_the_general_split() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let special = [
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            1e300,
+            -1e-310,
+        ];
+        // (any NaN for a NaN: the payload depends on the operand order, which the compiler
+        // may swap in a commutative operation; no proof reads a NaN coefficient)
+        let same = |x: &[f64], y: &[f64]| {
+            x.iter()
+                .zip(y)
+                .all(|(a, b)| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()))
+        };
+        for case in 0..3000 {
+            let mut src = [0.0f64; 16];
+            for x in src.iter_mut() {
+                *x = if case % 7 == 0 && rng.random_bool(0.2) {
+                    special[rng.random_range(0..special.len())]
+                } else {
+                    rng.random_range(-1.0..1.0) * 10f64.powi(rng.random_range(-3..4))
+                };
+            }
+            let t = if case % 3 == 0 {
+                0.5
+            } else {
+                rng.random_range(0.0..1.0)
+            };
+            // (degrees [3, 3] along both directions, and the boundary curves [3, 0], [0, 3])
+            for (n, dir) in [([3, 3], 0), ([3, 3], 1), ([3, 0], 0), ([0, 3], 1)] {
+                let (stride, lines, lstride) = if dir == 0 {
+                    (n[1] + 1, n[1] + 1, 1)
+                } else {
+                    (1, n[0] + 1, n[1] + 1)
+                };
+                let g = Lines {
+                    lines,
+                    stride,
+                    lstride,
+                    t,
+                };
+                let (mut l1, mut h1, mut l2, mut h2) = ([9.0; 16], [9.0; 16], [9.0; 16], [9.0; 16]);
+                let m1 = g.split::<4, 16>(&src, &mut l1, &mut h1);
+                let m2 = match n {
+                    [3, 3] => split_grid::<4, 4, 16>(&src, dir, t, &mut l2, &mut h2),
+                    [3, 0] => split_grid::<4, 1, 16>(&src, dir, t, &mut l2, &mut h2),
+                    _ => split_grid::<1, 4, 16>(&src, dir, t, &mut l2, &mut h2),
+                };
+                assert!(same(&m1, &m2), "{n:?} {dir}: {m1:?} {m2:?}");
+                assert!(same(&l1, &l2) && same(&h1, &h2), "{n:?} {dir} {src:?}");
+            }
+        }
     }
 }
