@@ -1690,7 +1690,22 @@ impl<const N: usize> Prover<'_, N> {
             };
             for i in kids {
                 pool[i].depth = depth + 1;
-                open.push((pool[i].prio, i));
+                // A child that its coefficients already prove (most of them) is settled here,
+                // as `settle` would first (the same tests; `ub` only grows, so a child
+                // excluded now would be excluded when chosen later), counted as one step of
+                // the budget; the others wait in the open list.
+                let mut buf = [0.0f64; N];
+                let done = *self.budget > 0
+                    && pool[i]
+                        .f_values(self.ub, &mut buf)
+                        .is_some_and(|(f, e)| pool[i].excluded(f, e, self.ub));
+                if done {
+                    *self.budget -= 1;
+                    self.st.subdivisions += 1;
+                    spare.push(i);
+                } else {
+                    open.push((pool[i].prio, i));
+                }
             }
         }
         true
