@@ -7,8 +7,9 @@
 //!
 //! 1. **Candidates.** The patch corners (their Bernstein coefficients are the surface values
 //!    there: exact at a clamped domain corner, else the intersection of the double-double
-//!    and the interval extraction), f64 Newton iterations for the maxima of the four boundary
-//!    curves (1-D) and for an interior critical point (2-D), seeded at the largest
+//!    and the interval extraction), the maxima of the four boundary curves (a polynomial
+//!    cubic's in closed form, [`edge_candidate`]; else f64 Newton iterations, 1-D) and f64
+//!    Newton iterations for an interior critical point (2-D), seeded at the largest
 //!    coefficient. The candidates whose f64 value is within 1e-12 of the best are evaluated
 //!    in double-double intervals ([`Ddi`], ~2^-100 relative; or exactly in interval
 //!    arithmetic at a short dyadic point near them, when the value there is a float): the
@@ -27,8 +28,12 @@
 //!    * F is monotone towards a side of the patch that the piece touches (the differences of
 //!      its coefficients along that direction have one sign, so F_t has that sign on the
 //!      piece): its maximum over the piece is on that side, where F <= 0 is proven by the
-//!      same procedure on the boundary curve (1-D pieces; their own sides are patch corners,
-//!      candidates, so <= `ub`);
+//!      curve side's root-isolating proof for a polynomial boundary curve of degree 2 or 3
+//!      ([`Prover::edge_segment`]), else by the same procedure on the boundary curve (1-D
+//!      pieces; their own sides are patch corners, candidates, so <= `ub`); monotone along
+//!      both directions towards a corner of the patch, its maximum is that corner (<= `ub`),
+//!      and no boundary curve is needed. (A child of a split whose coefficients prove it is
+//!      settled at the split.)
 //!    * it is **strictly concave**: the Bernstein coefficients of the Hessian of F prove
 //!      -H(x) >= mu I (mu > 0) for every x in the piece (scaled Gershgorin bound). Then for
 //!      any c in the piece Taylor's formula with the integral remainder gives
@@ -1074,7 +1079,7 @@ fn monotone_in<const N: usize>(
     true
 }
 
-/// [`Piece::second_max`] on a grid of degrees n, n[dir] >= 2 (inlined, as [`monotone_in`]).
+/// [`Piece::second_max`] on a grid of degrees n, `n[dir] >= 2` (inlined, as [`monotone_in`]).
 #[inline(always)]
 fn second_max_in<const N: usize>(f: &[f64; N], dir: usize, n: [usize; 2]) -> Option<f64> {
     let [n0, n1] = n;
@@ -1690,7 +1695,22 @@ impl<const N: usize> Prover<'_, N> {
             };
             for i in kids {
                 pool[i].depth = depth + 1;
-                open.push((pool[i].prio, i));
+                // A child that its coefficients already prove (most of them) is settled here,
+                // as `settle` would first (the same tests; `ub` only grows, so a child
+                // excluded now would be excluded when chosen later), counted as one step of
+                // the budget; the others wait in the open list.
+                let mut buf = [0.0f64; N];
+                let done = *self.budget > 0
+                    && pool[i]
+                        .f_values(self.ub, &mut buf)
+                        .is_some_and(|(f, e)| pool[i].excluded(f, e, self.ub));
+                if done {
+                    *self.budget -= 1;
+                    self.st.subdivisions += 1;
+                    spare.push(i);
+                } else {
+                    open.push((pool[i].prio, i));
+                }
             }
         }
         true
