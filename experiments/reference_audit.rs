@@ -84,8 +84,9 @@ mod imp {
                     let dlo = ulps_outside(cb.lo, &rb.lo[j], scale, false);
                     let dhi = ulps_outside(cb.hi, &rb.hi[j], scale, true);
                     // inner bounds: values the curve reaches, so min <= inner_lo, inner_hi <= max,
-                    // up to the reference's resolution (2^-160 of the scale, see ulps_outside: a
-                    // clamped end value of 6e3 in a coordinate of scale 2e226 is below it)
+                    // up to the reference's resolution (2^-160 of the scale at 256 bits, see
+                    // ulps_outside: a clamped end value of 6e3 in a coordinate of scale 2e226
+                    // is below it)
                     let inner_ok = inner_reached(&rb, j, cb.inner_lo, cb.inner_hi, scale);
                     *t.terminations
                         .entry(format!("{:?}", cb.termination))

@@ -19,8 +19,9 @@
 //! Optimality: `optimal` is the share of bounds equal to the optimal double (RD(min) /
 //! RU(max) of the reference, `reference::optimal_bound`), `certified` the share with
 //! `optimal_lo` / `optimal_hi` true, `false cert` the certificates whose bound is not the
-//! optimal double (must be 0; a bound within the reference's resolution, 2^-160 of the scale,
-//! of the exact value is not counted: `reference::false_certificate`). `cert +%`: the mean
+//! optimal double (must be 0; a bound within the reference's resolution, 2^-160 of the scale
+//! at 256 bits, finer with `reference::range_bits`, of the exact value is not counted:
+//! `reference::false_certificate`). `cert +%`: the mean
 //! time with certification over the mean time of the same calls without it
 //! (`enclose::drive_with(s, c, false)`), minus 1, timed alternately on the same curves. The family `ties` is `testkit::ties` (extrema exactly
 //! doubles or within 2^-60 .. 2^-110 relative of one, circles, corners, unclamped ends).

@@ -554,6 +554,36 @@ mod mpfr {
                 vec![],
             ),
             (
+                // (a subnormal minimum 8.933e-321 at a clamped end of a coordinate whose other
+                // values are ~0.7: a coordinate of moderate magnitude, scaled for its bound)
+                "169",
+                curve(
+                    3,
+                    2,
+                    [vec![0.0; 4], vec![4.756165894112881e307], vec![m; 4]].concat(),
+                    vec![
+                        8.933e-321,
+                        m,
+                        0.6471512928421492,
+                        -m,
+                        -0.6364724767074192,
+                        m,
+                        1.944e-320,
+                        m,
+                        0.7048415647655206,
+                        m,
+                    ],
+                    vec![
+                        343.71991218703374,
+                        5.940150923565912,
+                        0.002279112769333967,
+                        0.0010272720907855714,
+                        51.94965698511369,
+                    ],
+                ),
+                vec![],
+            ),
+            (
                 "274",
                 curve(
                     4,

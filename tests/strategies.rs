@@ -745,8 +745,8 @@ mod mpfr {
                 ));
             }
             // inner bounds reached (exact min <= inner_lo, inner_hi <= exact max), up to the
-            // reference's resolution (ulps_outside counts |distance| < 2^-160 of the scale as 0:
-            // an attained f64 end value may sit ~1e-79 off the MPFR value)
+            // reference's resolution (ulps_outside counts |distance| < 2^-160 of the scale, at
+            // 256 bits, as 0: an attained f64 end value may sit ~1e-79 off the MPFR value)
             let reached = inner_reached(rb, j, cb.inner_lo, cb.inner_hi, c.coord_scale(j));
             if inner && !reached {
                 return Err(format!(

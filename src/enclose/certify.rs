@@ -295,19 +295,19 @@ const COORD_HEADROOM: i32 = 900;
 
 /// The exponent s of the power of two 2^-s that coordinate j is multiplied by for one side's
 /// certificate: 0 for a coordinate of moderate magnitude (largest control value 2^`e_m`
-/// within 2^±[`COORD_WINDOW`]); otherwise the bound's (or the attained value's, whichever is
-/// larger) binary exponent, so that the values near the extremum are near 1 and their
+/// within 2^±[`COORD_WINDOW`]) with a bound of moderate magnitude; otherwise the bound's (or
+/// the attained value's, whichever is larger) binary exponent, so that the values near the extremum are near 1 and their
 /// double-double enclosures ~2^-100 relative narrow (which values near f64::MAX, with
 /// overflowing error terms, or subnormal values, with no bits below 2^-1074, are not), but at
 /// least e_m - [`COORD_HEADROOM`] (no overflow). Any s is sound (module docs); this one only
 /// decides what can be resolved.
 fn coord_exponent(e_m: i32, bound: f64, inner: f64) -> i32 {
-    if e_m.abs() <= COORD_WINDOW {
-        return 0;
-    }
     let mag = |x: f64| if x.is_finite() { x.abs() } else { 0.0 };
     let m = mag(bound).max(mag(inner));
     let e_b = if m > 0.0 { exponent(m) } else { e_m };
+    if e_m.abs() <= COORD_WINDOW && e_b.abs() <= COORD_WINDOW {
+        return 0;
+    }
     e_b.max(e_m - COORD_HEADROOM)
 }
 
