@@ -292,6 +292,15 @@ impl Rescaling {
                 }
             })
             .collect();
+        // Scaling by powers of two keeps every validity condition: knots stay non-decreasing
+        // with the same multiplicities (exact), weights stay > 0, coordinates finite (the
+        // largest maps to [0.5, 1)). Should it ever fail, the original curve is used.
+        self.with_points(c, pts).unwrap_or_else(|| c.clone())
+    }
+
+    /// `c` with the control coordinates `pts` (row-major) and its knots and weights scaled by
+    /// 2^-knot_exp and 2^-weight_exp (exact), or `None` if that is not a valid curve.
+    fn with_points(&self, c: &NurbsCurve, pts: Vec<f64>) -> Option<NurbsCurve> {
         let knots: Vec<f64> = c
             .knots()
             .iter()
@@ -300,10 +309,7 @@ impl Rescaling {
         let weights = c
             .weights()
             .map(|w| w.iter().map(|&x| ldexp(x, -self.weight_exp)).collect());
-        // Scaling by powers of two keeps every validity condition: knots stay non-decreasing
-        // with the same multiplicities (exact), weights stay > 0, coordinates finite (the
-        // largest maps to [0.5, 1)). Should it ever fail, the original curve is used.
-        NurbsCurve::from_flat(c.degree(), d, knots, pts, weights).unwrap_or_else(|_| c.clone())
+        NurbsCurve::from_flat(c.degree(), c.dim(), knots, pts, weights).ok()
     }
 
     /// The curve the certificate of coordinate j evaluates ([`super::certify`]): knots and
@@ -333,16 +339,7 @@ impl Rescaling {
                 ldexp_directed(x, -s, up)
             })
             .collect();
-        let knots: Vec<f64> = c
-            .knots()
-            .iter()
-            .map(|&u| ldexp(u, -self.knot_exp))
-            .collect();
-        let weights = c
-            .weights()
-            .map(|w| w.iter().map(|&x| ldexp(x, -self.weight_exp)).collect());
-        let cs = NurbsCurve::from_flat(c.degree(), d, knots, pts, weights).ok()?;
-        Some((cs, rounded))
+        Some((self.with_points(c, pts)?, rounded))
     }
 
     /// The rescaled curve, coordinates rounded to nearest (see [`Rescaling::apply_directed`]).

@@ -61,11 +61,7 @@ pub fn de_casteljau_levels<S: Scalar>(
 /// encloses the polynomial at every real in `t`.
 #[inline]
 pub fn de_casteljau_eval_in_place<S: Scalar>(b: &mut [S], t: &S) -> S {
-    for r in 1..b.len() {
-        for i in 0..b.len() - r {
-            b[i] = S::lerp(t, &b[i], &b[i + 1]);
-        }
-    }
+    de_casteljau_levels(b, 1, t, |_, _| {});
     b.first().cloned().unwrap_or_else(S::zero)
 }
 

@@ -485,6 +485,14 @@ mod tests {
                     let q = (f1 - f0) / (t1 - t0);
                     let e = 1e-9 * (1.0 + q.abs());
                     assert!(d.inf() - e <= q && q <= d.sup() + e, "{d:?} {q}");
+                    // a box in the mean value form's range (width 2^-30) contains F' at its
+                    // ends and midpoint (dropping the F'' term would miss them)
+                    let (s0, s1) = (t.min(0.9), t.min(0.9) + 2f64.powi(-30));
+                    let ds = sp.df(T::new(s0, s1));
+                    for s in [s0, 0.5 * (s0 + s1), s1] {
+                        let v = sp.df(T::new(s, s)).mid();
+                        assert!(ds.contains(v), "k {k} [{s0}, {s1}]: {ds:?} vs F'({s}) {v}");
+                    }
                     assert!(sp.f(T::new(t0, t1)).contains(f0) && sp.f(T::new(t0, t1)).contains(f1));
                     // the piece's value at u(t), and u([t0, t1]) covers u(t0), u(t1)
                     let y = c.point::<f64>(u).unwrap()[0];
