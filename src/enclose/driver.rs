@@ -471,17 +471,24 @@ pub fn drive<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
 /// [`drive`] with the certification switched on (`certify`, the default) or off (every
 /// `optimal_lo` / `optimal_hi` stays `false`).
 pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool) -> Enclosure {
+    // One result variable for every path, so that the result is built in the caller's slot
+    // (returning different locals made the compiler copy the inline coordinates).
+    let mut e = Enclosure {
+        strategy: s.name(),
+        verified: true,
+        coords: Default::default(),
+    };
     // The allocation-free lane for a single polynomial Bézier segment of degree <= 3 with
     // moderate magnitudes (`lane`: the same facts and certificates, computed directly).
     if let Some(l) = s.lane() {
         if let Some(simple) = super::lane::Simple::of(c) {
-            if let Some(e) = super::lane::enclose(l, s.name(), c, &simple, certify) {
+            if super::lane::enclose_into(&mut e, l, s.name(), c, &simple, certify) {
                 return e;
             }
         }
     }
     let rescaling = Rescaling::of(c);
-    let mut e = if c.degree() > MAX_SEARCH_DEGREE {
+    e = if c.degree() > MAX_SEARCH_DEGREE {
         degree_fallback(s, c)
     } else {
         match &rescaling {

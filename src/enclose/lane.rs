@@ -23,11 +23,11 @@
 //! here; any side they leave open goes to the full certification (`certify::certify`), so the
 //! flags are those of the general path.
 
-use super::bezier::single::{raw_sides, RawSide, Segment};
+use super::bezier::single::{raw_sides_into, RawSide, Segment};
 use super::bezier::{end_kind, span_bounds};
 use super::driver::apply_facts;
 use super::driver::{exponent, COORD_WINDOW};
-use super::{certify, CandidateKind, Clock, CoordBox, Coords, Enclosure, Extrema, Extremum};
+use super::{certify, CandidateKind, Clock, CoordBox, Enclosure, Extrema, Extremum};
 use super::{SideData, Stats, Termination};
 use crate::num::ddi::Ddi;
 use crate::num::Scalar;
@@ -194,10 +194,12 @@ fn reaching<'e>(
     attained: f64,
     cands: impl Iterator<Item = &'e (f64, Extremum)>,
 ) -> Extrema {
-    let mut args: Extrema = cands
-        .filter(|(x, _)| *x >= attained)
-        .map(|(_, e)| *e)
-        .collect();
+    let mut args = Extrema::new();
+    for (x, e) in cands {
+        if *x >= attained {
+            args.push(*e);
+        }
+    }
     if args.is_empty() {
         args.push(Extremum {
             u_lo: s.a,
@@ -260,7 +262,8 @@ fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
         end_kinds: [CandidateKind::EndPoint; 2],
         right_attained: true,
     };
-    let raw = raw_sides(&seg, need)?;
+    let mut raw = [RawSide::new(), RawSide::new()];
+    raw_sides_into(&seg, need, &mut raw)?;
     let gap = max_gap(s, j);
     let mut out = [hi, lo];
     for (o, r) in out.iter_mut().zip(&raw) {
@@ -281,7 +284,9 @@ fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
 ///
 /// 1. Every span k starts with the bound max_i sign P_ij over its p + 1 local control values
 ///    (exact; the curve on the span is a convex combination of them). The clamped end values
-///    are attained.
+///    are attained. Only spans whose bound exceeds the attained value matter, and those are
+///    found from the control values above it (after step 2 on the spans of the largest
+///    control value has raised the attained value), not from a bound of every span.
 /// 2. The span with the largest bound above the attained value gets its f64 Bézier
 ///    coefficients (local Boehm insertion, `bspline::clamp_span`) with the a-priori error bound
 ///    of `bezier::span_filter` (`bezier::span_bounds`): an upper bound of the span and two
@@ -305,9 +310,7 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
         cands.push((v, end(u)));
     }
     let mut counts = [0u32, 1, 0, 0];
-    // step 1: the spans (u_k < u_{k+1}) with their control-value bounds, largest first (a
-    // binary heap: built in linear time, and only the spans above the attained value are
-    // taken out; keys are the bounds' total order as integers)
+    // keys: the bounds' total order as integers (for the heap below)
     let key = |b: f64| {
         let bits = b.to_bits();
         if bits >> 63 == 0 {
@@ -316,29 +319,53 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
             !bits
         }
     };
-    let mut spans: Vec<(u64, usize, bool)> = Vec::with_capacity(n + 1 - p);
-    // (the coordinate's values as one slice (copied out for d > 1), then per span the window
-    // of its p + 1 values and its two knots: iterators, no index arithmetic per value)
-    let copy: SmallVec<[f64; 64]>;
-    let xs: &[f64] = if d == 1 {
-        s.pts
-    } else {
-        copy = s.pts[j..].iter().step_by(d).copied().collect();
-        &copy
+    // step 2 for span k: the f64 coefficients and their a-priori bound (upper bound, attained)
+    let filter = |k: usize| -> Option<(f64, f64)> {
+        let q = span_coefficients::<f64>(s, j, k);
+        let m = (k - p..=k).fold(0.0f64, |m, i| m.max(x(i).abs()));
+        let signed = q.map(|v| sign * v);
+        span_bounds(&signed[..=p], m, true)
     };
-    let windows = xs.windows(p + 1).zip(kn[p..=n + 1].windows(2));
-    for (k, (w, kw)) in (p..=n).zip(windows) {
-        if kw[0] < kw[1] {
-            let b = w[1..]
-                .iter()
-                .fold(sign * w[0], |b, &v| if sign * v > b { sign * v } else { b });
-            // (spans below the attained end values are never taken)
-            if b > attained {
-                spans.push((key(b), k, false));
-            }
+    // (span k = [u_k, u_{k+1}], p <= k <= n, has the local control values k - p ..= k, so
+    // control value i lies in the spans max(i, p) ..= min(i + p, n); empty spans are skipped)
+    let spans_of = |i: usize| i.max(p)..=(i + p).min(n);
+    let nonempty = |k: usize| kn[k] < kn[k + 1];
+    // Step 1, in two passes over the control values instead of a bound for every span. A
+    // span's bound (the largest of its control values) exceeds a value A iff one of its
+    // control values does. First the spans around the largest control value i_max go through
+    // step 2 (the maximum is usually near it), which raises the attained value; then only
+    // the spans with a control value above that attained value enter the heap, with their
+    // control-value bounds. Spans left out have bound <= attained: they are done.
+    let i_max = (1..=n).fold(0, |b, i| if x(i) > x(b) { i } else { b });
+    let first = spans_of(i_max);
+    let mut filtered: SmallVec<[(f64, usize); 4]> = SmallVec::new();
+    if x(i_max) > attained {
+        for k in first.clone().filter(|&k| nonempty(k)) {
+            let (ub, at) = filter(k)?;
+            attained = attained.max(at);
+            filtered.push((ub, k));
         }
     }
-    let mut heap = std::collections::BinaryHeap::from(spans);
+    let mut spans: SmallVec<[(u64, usize, bool); 16]> = filtered
+        .iter()
+        .filter(|&&(ub, _)| ub > attained)
+        .map(|&(ub, k)| (key(ub), k, true))
+        .collect();
+    let mut next = p; // the first span not yet looked at (the passes go left to right)
+    for i in 0..=n {
+        if x(i) <= attained {
+            continue;
+        }
+        for k in spans_of(i) {
+            if k < next || first.contains(&k) || !nonempty(k) {
+                continue;
+            }
+            let b = (k - p..=k).fold(x(k - p), |b, l| if x(l) > b { x(l) } else { b });
+            spans.push((key(b), k, false));
+        }
+        next = next.max(i + p + 1);
+    }
+    let mut heap = std::collections::BinaryHeap::from(spans.into_vec());
     let gap = max_gap(s, j);
     while let Some((bk, k, filtered)) = heap.pop() {
         if bk <= key(attained) {
@@ -348,10 +375,7 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
         // bound, so that the double-double stage runs only on the span whose f64 bound is the
         // largest left (usually the one with the maximum)
         if !filtered {
-            let q = span_coefficients::<f64>(s, j, k);
-            let m = (k - p..=k).fold(0.0f64, |m, i| m.max(x(i).abs()));
-            let signed = q.map(|v| sign * v);
-            let (ub, at) = span_bounds(&signed[..=p], m, true)?;
+            let (ub, at) = filter(k)?;
             attained = attained.max(at);
             if ub > attained {
                 heap.push((key(ub), k, true));
@@ -402,7 +426,9 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
         let side = if sign > 0.0 { 0 } else { 1 };
         let mut need = [false; 2];
         need[side] = true;
-        let r = raw_sides(&seg, need)?[side];
+        let mut raw = [RawSide::new(), RawSide::new()];
+        raw_sides_into(&seg, need, &mut raw)?;
+        let r = &raw[side];
         if !r.tight(gap) {
             return None;
         }
@@ -479,22 +505,30 @@ fn hull_sides(s: &Simple, j: usize) -> [SideOut; 2] {
 }
 
 /// The enclosure of a [`Simple`] curve by a strategy named `name` answering with `lane`, with
-/// the certificates when `certify` (see the module docs); `None` sends the curve to the
-/// general path.
+/// the certificates when `certify` (see the module docs), written to `e` (whose coordinates
+/// are replaced); `false` sends the curve to the general path (`e` is then unspecified).
+/// (An out-parameter rather than an `Option<Enclosure>`: the caller's result is built in
+/// place, without moving the inline per-coordinate storage.)
 #[inline]
-pub fn enclose(
+pub fn enclose_into(
+    e: &mut Enclosure,
     lane: Lane,
     name: &'static str,
     c: &NurbsCurve,
     s: &Simple,
     certify: bool,
-) -> Option<Enclosure> {
-    let mut coords = Coords::new();
+) -> bool {
+    e.strategy = name;
+    e.verified = true;
+    e.coords.clear();
     for j in 0..s.d {
         let clock = Clock::start();
         let ([hi, lo], term) = match lane {
             Lane::Hull => (hull_sides(s, j), Termination::Direct),
-            Lane::Tight => (tight_sides(s, j)?, Termination::Converged),
+            Lane::Tight => match tight_sides(s, j) {
+                Some(sides) => (sides, Termination::Converged),
+                None => return false,
+            },
         };
         let n = |k: usize| (hi.counts[k] + lo.counts[k]) as u64;
         let stats = Stats {
@@ -505,10 +539,11 @@ pub fn enclose(
             time_total: clock.elapsed(),
             ..Stats::default()
         };
-        coords.push(CoordBox::from_sides(hi.data, lo.data, stats, term));
+        e.coords
+            .push(CoordBox::from_sides(hi.data, lo.data, stats, term));
     }
     let mut open = false;
-    for (j, cb) in coords.iter_mut().enumerate() {
+    for (j, cb) in e.coords.iter_mut().enumerate() {
         let (plo, phi) = s.range[j];
         let ends = [s.pts[j], s.pts[s.n * s.d + j]].map(Some);
         apply_facts(cb, (plo, phi), ends, true);
@@ -521,13 +556,8 @@ pub fn enclose(
             open |= q_hi.is_none() || q_lo.is_none();
         }
     }
-    let mut e = Enclosure {
-        strategy: name,
-        verified: true,
-        coords,
-    };
     if open {
-        certify::certify(c, &mut e);
+        certify::certify(c, e);
     }
-    Some(e)
+    true
 }

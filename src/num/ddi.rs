@@ -547,23 +547,32 @@ impl Ddi {
     /// 2^-1071) (Lemma B: a product and a term). Checked against exact rationals in the
     /// tests.
     pub fn de_casteljau_f64(c: &[f64], t: f64) -> Ddi {
-        let n = match c.len() {
-            1..=4 => c.len() - 1,
-            _ => return Ddi::ENTIRE,
-        };
         if !(0.0..=1.0).contains(&t) {
             return Ddi::ENTIRE;
         }
-        let mut bh = [0.0f64; 4];
-        let mut bt = [0.0f64; 4];
+        // (one body, instantiated per length so that the levels unroll)
+        match c.len() {
+            1 => Ddi::de_casteljau_n::<1>(c, t),
+            2 => Ddi::de_casteljau_n::<2>(c, t),
+            3 => Ddi::de_casteljau_n::<3>(c, t),
+            4 => Ddi::de_casteljau_n::<4>(c, t),
+            _ => Ddi::ENTIRE,
+        }
+    }
+
+    /// [`Ddi::de_casteljau_f64`] for `L` = n + 1 coefficients (`c.len() == L`, t in [0, 1]).
+    #[inline(always)]
+    fn de_casteljau_n<const L: usize>(c: &[f64], t: f64) -> Ddi {
+        let mut bh = [0.0f64; L];
+        let mut bt = [0.0f64; L];
         let mut m = 0.0f64;
-        for i in 0..=n {
-            bh[i] = c[i];
-            m = m.max(c[i].abs());
+        for (b, &x) in bh.iter_mut().zip(c) {
+            *b = x;
+            m = m.max(x.abs());
         }
         let (r, rho) = two_sum(1.0, -t);
-        for j in 1..=n {
-            for i in 0..=n - j {
+        for j in 1..L {
+            for i in 0..L - j {
                 let (s, p1) = two_prod(r, bh[i]);
                 let (v, p2) = two_prod(t, bh[i + 1]);
                 let (h, sg) = two_sum(s, v);

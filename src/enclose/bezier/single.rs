@@ -334,7 +334,8 @@ pub(crate) struct RawSide {
 }
 
 impl RawSide {
-    fn new() -> RawSide {
+    /// An empty side (no bound, nothing attained, no candidate).
+    pub(crate) fn new() -> RawSide {
         let e = Extremum {
             u_lo: 0.0,
             u_hi: 0.0,
@@ -405,6 +406,15 @@ pub(super) fn coord_sides(seg: &Segment, max_gap: f64, need: [bool; 2]) -> Optio
 /// (a side not in `need` comes back incomplete), or `None` where a step cannot be proven.
 /// The caller checks the gaps.
 pub(crate) fn raw_sides(seg: &Segment, need: [bool; 2]) -> Option<[RawSide; 2]> {
+    let mut out = [RawSide::new(), RawSide::new()];
+    raw_sides_into(seg, need, &mut out)?;
+    Some(out)
+}
+
+/// [`raw_sides`] written to `out` (`[max, min]`, each starting as `RawSide::new()`), for
+/// callers that keep the result in place (no move of the candidate arrays); `None` where a
+/// step cannot be proven (`out` is then unspecified).
+pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide; 2]) -> Option<()> {
     let Segment { c, a, b, .. } = *seg;
     let p = c.len().checked_sub(1)?;
     if !(2..=3).contains(&p) {
@@ -487,8 +497,7 @@ pub(crate) fn raw_sides(seg: &Segment, need: [bool; 2]) -> Option<[RawSide; 2]> 
         }
     }
     // Candidates: the end values and the enclosures over the sign-change intervals.
-    let mut hi = RawSide::new();
-    let mut lo = RawSide::new();
+    let [hi, lo] = out;
     for (t, v, kind, attained) in [
         (0.0, c[0], seg.end_kinds[0], true),
         (1.0, c[p], seg.end_kinds[1], seg.right_attained),
@@ -546,7 +555,7 @@ pub(crate) fn raw_sides(seg: &Segment, need: [bool; 2]) -> Option<[RawSide; 2]> 
         };
         let e = extremum(a, b, t0, t1, true, CandidateKind::Critical);
         let vb = xm.widen(corr).to_interval();
-        let side = if is_max { &mut hi } else { &mut lo };
+        let side = if is_max { &mut *hi } else { &mut *lo };
         side.point_evaluations += 1;
         if is_max {
             side.attain_ddi(xm);
@@ -557,7 +566,7 @@ pub(crate) fn raw_sides(seg: &Segment, need: [bool; 2]) -> Option<[RawSide; 2]> 
         }
     }
     hi.derivative_evaluations = derivative_evaluations;
-    Some([hi, lo])
+    Some(())
 }
 
 #[cfg(test)]
