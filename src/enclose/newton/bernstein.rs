@@ -488,7 +488,28 @@ fn span_shift(mut xs: Vec<f64>) -> f64 {
 
 /// `pair[i (p + 1) + l]` = (l - i) C(p, i) C(p, l) / C(2p - 2, i + l - 1) for i < l (see
 /// [`SpanPoly`]), enclosed: binomials by Pascal's rule in [`Mr`] (exact while below 2^53).
+/// They depend on p only: computed once per degree and thread, then copied (the Pascal rows
+/// and the p^2 / 2 enclosed quotients cost more than a span's Bernstein form at p = 10).
 pub(super) fn pair_coefficients(p: usize) -> Vec<Mr> {
+    thread_local! {
+        static PAIRS: std::cell::RefCell<Vec<(usize, Vec<Mr>)>> =
+            const { std::cell::RefCell::new(Vec::new()) };
+    }
+    PAIRS.with(|cache| {
+        let mut cache = cache.borrow_mut();
+        if let Some((_, v)) = cache.iter().find(|(q, _)| *q == p) {
+            return v.clone();
+        }
+        let v = pair_coefficients_uncached(p);
+        if cache.len() < 64 {
+            cache.push((p, v.clone()));
+        }
+        v
+    })
+}
+
+/// [`pair_coefficients`], computed.
+fn pair_coefficients_uncached(p: usize) -> Vec<Mr> {
     let binom = |n: usize| {
         let mut row = vec![Mr::from_f64(1.0)];
         for _ in 0..n {
