@@ -471,8 +471,8 @@ pub fn drive<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve) -> Enclosure {
 /// [`drive`] with the certification switched on (`certify`, the default) or off (every
 /// `optimal_lo` / `optimal_hi` stays `false`).
 pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool) -> Enclosure {
-    // One result variable for every path, so that the result is built in the caller's slot
-    // (returning different locals made the compiler copy the inline coordinates).
+    // One result variable, written in place by the lane or the general path (the lane's
+    // former `Option<Enclosure>` cost two copies of the inline coordinates per call).
     let mut e = Enclosure {
         strategy: s.name(),
         verified: true,
@@ -480,15 +480,21 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
     };
     // The allocation-free lane for a single polynomial Bézier segment of degree <= 3 with
     // moderate magnitudes (`lane`: the same facts and certificates, computed directly).
-    if let Some(l) = s.lane() {
-        if let Some(simple) = super::lane::Simple::of(c) {
-            if super::lane::enclose_into(&mut e, l, s.name(), c, &simple, certify) {
-                return e;
-            }
-        }
+    let laned = s.lane().is_some_and(|l| {
+        super::lane::Simple::of(c).is_some_and(|simple| {
+            super::lane::enclose_into(&mut e, l, s.name(), c, &simple, certify)
+        })
+    });
+    if !laned {
+        general(s, c, certify, &mut e);
     }
+    e
+}
+
+/// The general path of [`drive_with`] (everything but the lane), written to `e`.
+fn general<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool, e: &mut Enclosure) {
     let rescaling = Rescaling::of(c);
-    e = if c.degree() > MAX_SEARCH_DEGREE {
+    *e = if c.degree() > MAX_SEARCH_DEGREE {
         degree_fallback(s, c)
     } else {
         match &rescaling {
@@ -504,14 +510,13 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
         apply_facts(cb, c.coord_range(j, 0..=n), ends, verified);
     }
     if certify {
-        super::certify::certify_with(c, &mut e, rescaling.as_ref());
+        super::certify::certify_with(c, e, rescaling.as_ref());
     } else {
         for cb in &mut e.coords {
             cb.optimal_lo = false;
             cb.optimal_hi = false;
         }
     }
-    e
 }
 
 #[cfg(test)]
