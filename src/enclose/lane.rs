@@ -287,6 +287,17 @@ fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
 ///    are attained. Only spans whose bound exceeds the attained value matter, and those are
 ///    found from the control values above it (after step 2 on the spans of the largest
 ///    control value has raised the attained value), not from a bound of every span.
+///    A span whose control values above the attained value A are only at its end positions
+///    (P_{k-p} or P_k) is skipped when its neighbour on that side is a non-empty span: the
+///    Bézier points b_i = f(u_k^{p-i}, u_{k+1}^i) of span k (f the blossom of its piece) are
+///    convex combinations of its local control values, and P_k does not enter b_0 .. b_{p-1}
+///    (on span k its basis function is (u - u_k)^p / prod_j (u_{k+j} - u_k), whose blossom
+///    vanishes when an argument is u_k), nor P_{k-p} b_1 .. b_p (likewise at u_{k+1}). So
+///    every b_i is at most A except b_p = C(u_{k+1}) (if P_k > A) and b_0 = C(u_k) (if
+///    P_{k-p} > A), and those are curve values of the neighbouring spans: C(u_{k+1}) is the
+///    first Bézier point of span k + 1, whose local control values contain P_k at an inner
+///    position, so that span is taken here (never skipped) and its bound, whether below the
+///    attained value in step 2 or proved in step 3, covers C(u_{k+1}); the same on the left.
 /// 2. The span with the largest bound above the attained value gets its f64 Bézier
 ///    coefficients (local Boehm insertion, `bspline::clamp_span`) with the a-priori error bound
 ///    of `bezier::span_filter` (`bezier::span_bounds`): an upper bound of the span and two
@@ -358,6 +369,15 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
         }
         for k in spans_of(i) {
             if k < next || first.contains(&k) || !nonempty(k) {
+                continue;
+            }
+            // A span whose only control values above the attained value are at its end
+            // positions is covered by its neighbours (see step 1 in the docs above): skipped.
+            let inner = (k - p + 1..k).fold(f64::NEG_INFINITY, |b, l| b.max(x(l)));
+            if inner <= attained
+                && (x(k - p) <= attained || (k > p && nonempty(k - 1)))
+                && (x(k) <= attained || (k < n && nonempty(k + 1)))
+            {
                 continue;
             }
             let b = (k - p..=k).fold(x(k - p), |b, l| if x(l) > b { x(l) } else { b });
