@@ -635,7 +635,7 @@ fn attained_rule(bound: f64, inner: f64, witness: f64) -> bool {
 /// Whether the attained value is more than [`LOWER_WITHIN_ULPS`] ulps of the scale
 /// (max(|bound|, `scale`)) below the bound: a loose bound, which the search stages do not try
 /// to complete.
-fn far_below(bound: f64, inner: f64, scale: f64, within: usize) -> bool {
+pub(crate) fn far_below(bound: f64, inner: f64, scale: f64, within: usize) -> bool {
     bound - inner > within as f64 * crate::num::ulp(bound.abs().max(scale))
 }
 
