@@ -1693,4 +1693,60 @@ mod tests {
         assert_eq!(forced.coords[0].hi, 0.5f64.next_up());
         assert!(forced.coords[0].optimal_hi);
     }
+
+    /// An exact tie at an interior knot (a symmetric quintic, `extrema_at_knots`: the maximum
+    /// 1.9312094010166787 of x is attained at the double knot u = 0, where C' = 0): a box
+    /// ending at the knot holds the maximiser, whose double-double value straddles the
+    /// target. Without exact tries the box is stuck at once (no halving to the depth limit);
+    /// with them the exact concavity rule proves it.
+    #[test]
+    fn tie_at_a_knot_is_stuck_without_exact_tries_and_proved_with_them() {
+        let pts = [
+            [-0.9143550990509568, -0.8517801029854772],
+            [0.937797423850653, 0.9491875263731124],
+            [-0.9019469390372032, -0.2612406701040677],
+            [2.875594847701306, 0.4219571279133927],
+        ];
+        let pts: Vec<Vec<f64>> = pts
+            .iter()
+            .chain(pts.iter().rev())
+            .map(|x| x.to_vec())
+            .collect();
+        let mut kn = vec![-1.0; 6];
+        kn.extend([0.0, 0.0]);
+        kn.extend([1.0; 6]);
+        let c = NurbsCurve::new(5, kn, pts, None).unwrap();
+        let t = 1.9312094010166787;
+        let mut ev = Evals::new(&c, &c, 0);
+        let mut tries = MAX_EXACT_TRIES;
+        let v = box_at_most(
+            &mut ev,
+            5,
+            0,
+            1.0,
+            (t, t),
+            -1.0 / 64.0,
+            0.0,
+            true,
+            &mut tries,
+        );
+        assert!(matches!(v, BoxVerdict::Stuck));
+        let mut tries = 0;
+        let v = box_at_most(
+            &mut ev,
+            5,
+            0,
+            1.0,
+            (t, t),
+            -1.0 / 64.0,
+            0.0,
+            true,
+            &mut tries,
+        );
+        assert!(matches!(v, BoxVerdict::Below));
+        // and the certificate of the whole curve holds
+        let e = Newton::default().enclose(&c);
+        assert_eq!(e.coords[0].hi, t);
+        assert!(e.coords[0].optimal_hi);
+    }
 }
