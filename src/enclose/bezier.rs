@@ -17,6 +17,12 @@
 //!    interval local parameters (so rounding does not accumulate over the depth and the end
 //!    values are values of the curve at exact f64 parameters).
 //!
+//! 5. If the side's bound then exceeds its attained value by more than an ulp, the pieces that
+//!    set it are searched again in their span's local parameter on the double-double Bézier
+//!    segment (`refine_local`): pieces cut at f64 values of u cannot resolve a maximiser on a
+//!    span only a few thousand doubles of u wide, nor can midpoint-radius points a few hundred
+//!    ulps wide (extreme weights) resolve a sharp peak.
+//!
 //! Soundness: every segment that is not fully resolved contributes its coefficient bound (or a
 //! tighter verified enclosure over its parameter range); segments are dropped only when their
 //! coefficient bound is <= a value the curve provably attains.
@@ -133,15 +139,16 @@ impl<'a> Values<'a> {
 
 /// An f64 estimate of a critical point of C_j in (s0, s1) on the coordinate segment `seg`:
 /// Newton's method on the numerator N = A' w - A w' of C_j' (N = A' if non-rational), using
-/// the midpoints of the interval coefficients. `None` if Newton leaves the piece. The estimate
+/// the midpoints of the interval coefficients (`Scalar::to_f64`). (A segment with a = 0,
+/// b = 1 gives the estimate in the local parameter.) `None` if Newton leaves the piece. The estimate
 /// is only a place to split; nothing about soundness depends on it.
-fn critical(seg: &BezierSeg<Mr>, s0: f64, s1: f64) -> Option<f64> {
+fn critical<S: Scalar>(seg: &BezierSeg<S>, s0: f64, s1: f64) -> Option<f64> {
     let (a, b) = (seg.a, seg.b);
     let (av, wv): (Vec<f64>, Vec<f64>) = if seg.rational {
-        seg.pts.chunks(2).map(|c| (c[0].mid(), c[1].mid())).unzip()
+        seg.pts.chunks(2).map(|c| (c[0].to_f64(), c[1].to_f64())).unzip()
     } else {
         (
-            seg.pts.iter().map(|x| x.mid()).collect(),
+            seg.pts.iter().map(|x| x.to_f64()).collect(),
             vec![1.0; seg.pts.len()],
         )
     };
@@ -269,6 +276,9 @@ struct Ctx<'a> {
     segs: Vec<Option<BezierSeg<Mr>>>,
     fsegs: Vec<Option<BezierSeg<f64>>>,
     dsegs: Vec<Option<BezierSeg<Ddi>>>,
+    /// the homogeneous spline in double-double for the local refinement (`refine_local`) when
+    /// `hd` is not built
+    hdd: Option<HSpline<Ddi>>,
 }
 
 impl<'a> Ctx<'a> {
@@ -286,6 +296,7 @@ impl<'a> Ctx<'a> {
             segs: vec![None; n + 1],
             fsegs: vec![None; n + 1],
             dsegs: vec![None; n + 1],
+            hdd: None,
         }
     }
 }
@@ -324,6 +335,7 @@ impl BezierSubdivision {
             segs,
             fsegs,
             dsegs,
+            hdd,
         } = ctx;
         let c = vals.curve;
         let p = c.degree();
@@ -578,6 +590,19 @@ impl BezierSubdivision {
         // Every piece was either bounded (<= upper) or pruned (<= attained <= max C), so
         // max C <= max(upper, attained).
         side.upper = side.upper.max(side.attained);
+        if loose(side.upper, side.attained, scale) {
+            let mut dseg = |k: usize| {
+                dsegs[k]
+                    .get_or_insert_with(|| {
+                        let h = hd
+                            .as_ref()
+                            .unwrap_or_else(|| hdd.get_or_insert_with(|| HSpline::from_curve(c)));
+                        h.bezier_segment(k)
+                    })
+                    .coord(j)
+            };
+            refine_local(c, spans, sign, &mut dseg, &mut side);
+        }
         side
     }
 
@@ -606,6 +631,206 @@ impl BezierSubdivision {
             },
         );
     }
+}
+
+/// Whether the gap between a side's bound and its attained value is more than one ulp of
+/// max(|bound|, `scale`) (`certify::far_below` with a window of 1): a bound that is not yet
+/// the optimal double, or one that pieces the subdivision in u cannot resolve left loose.
+/// [`refine_local`] then takes those pieces over, so that the certificate finds the bound
+/// proved (a strict double-double witness) instead of searching and lowering it.
+fn loose(bound: f64, attained: f64, scale: f64) -> bool {
+    super::certify::far_below(bound, attained, scale, 1)
+}
+
+/// Pieces per side of the local refinement ([`refine_local`]).
+const REFINE_PIECES: usize = 256;
+
+/// A piece of the local refinement: span k over its local parameter range [t0, t1], its
+/// sign-adjusted Cartesian Bézier points (double-double) and their largest upper end `pri`.
+#[derive(Default)]
+struct LocalPiece {
+    pri: f64,
+    k: usize,
+    t0: f64,
+    t1: f64,
+    co: Vec<Ddi>,
+}
+
+/// The key of `f64::total_cmp` as an integer (for the refinement's heap of piece indices).
+fn total_key(x: f64) -> i64 {
+    let b = x.to_bits() as i64;
+    b ^ ((((b >> 63) as u64) >> 1) as i64)
+}
+
+/// The local refinement of a loose side ([`loose`]): the pieces of the branch and bound whose
+/// bounds exceed the attained value are searched again in the local parameter t in [0, 1] of
+/// their span, on the span's Bézier segment in double-double (`dseg(k)`: coordinate j's rows of
+/// [`HSpline::bezier_segment`], NURBS Book A5.6; thesis sec. 4.2), by the same best-first
+/// subdivision with splits at f64 critical-point estimates ([`critical`]) and exact f64 local
+/// parameters.
+///
+/// Why: pieces of the search in u are cut at f64 values of u. On a span a few thousand
+/// doubles of u wide (clustered knots) the maximiser lies between two of them, and no piece
+/// can resolve it; where extreme weights make the [`Mr`] points of a piece a few hundred ulps
+/// wide, the pieces stay "numerically flat" and are bounded as a whole. In t, f64 parameters
+/// are dense over the span, and double-double points are ~2^-100 relative narrow.
+///
+/// Soundness: the refined pieces cover the old ones (`u_to_local` rounds outward; on [t0, t1]
+/// the segment is the curve on the span's closed parameter range, its right end the left limit
+/// at a jump), each is bounded by the hull of its Cartesian Bézier points (convex hull
+/// property, weights > 0; the de Casteljau splits at exact f64 t1 and at an enclosure of
+/// t0 / t1 enclose the exact sub-segment, [`BezierSeg::sub_points`]) or, when no inner point
+/// exceeds its end points, by its end values; values count as attained at t0 (a value of the
+/// span's piece at an exact parameter, or the first point of the span) and at t1 < 1 or at a
+/// span end that is no jump. The old bounds of the refined pieces are replaced only if the
+/// side's bound goes down.
+fn refine_local(
+    c: &NurbsCurve,
+    spans: &[usize],
+    sign: f64,
+    dseg: &mut impl FnMut(usize) -> BezierSeg<Ddi>,
+    side: &mut Side,
+) {
+    let kn = c.knots();
+    let p = c.degree();
+    if p < 2 {
+        return;
+    }
+    let last = spans[spans.len() - 1];
+    let right_attained =
+        |k: usize| k == last || kn.iter().filter(|&&x| x == kn[k + 1]).count() <= p;
+    let signed = |x: Ddi| if sign < 0.0 { -x } else { x };
+    let attained0 = side.attained;
+    let mut out = Side::new();
+    out.attained = side.attained;
+    out.witness = side.witness;
+    let mut segs: Vec<(usize, BezierSeg<Ddi>)> = Vec::new();
+    // (the pieces, and a max-heap of (key of pri, index))
+    let mut store: Vec<LocalPiece> = Vec::new();
+    let mut heap = std::collections::BinaryHeap::new();
+    type Heap = std::collections::BinaryHeap<(i64, usize)>;
+    let mut kept: SmallVec<[(f64, Extremum); 4]> = SmallVec::new();
+    let ub = |co: &[Ddi]| co.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.to_interval().sup()));
+    // a piece of span k's segment over [t0, t1]: its sign-adjusted Cartesian points, pushed
+    let push = |heap: &mut Heap, store: &mut Vec<LocalPiece>, seg: &BezierSeg<Ddi>, k, t0, t1| {
+        let t1s = (t1 < 1.0).then(|| Ddi::exact(t1));
+        let t0s = (t0 > 0.0).then(|| Ddi::exact(t0) / Ddi::exact(t1));
+        let co: Vec<Ddi> = cartesian(seg.sub_points(t1s.as_ref(), t0s.as_ref()), 1, seg.rational)
+            .into_iter()
+            .map(signed)
+            .collect();
+        heap.push((total_key(ub(&co)), store.len()));
+        store.push(LocalPiece {
+            pri: ub(&co),
+            k,
+            t0,
+            t1,
+            co,
+        });
+    };
+    for &(b, e) in &side.cands {
+        let k = spans
+            .iter()
+            .copied()
+            .find(|&k| kn[k] <= e.u_lo && e.u_hi <= kn[k + 1]);
+        let (true, Some(k)) = (b > attained0 && e.u_lo < e.u_hi, k) else {
+            kept.push((b, e));
+            continue;
+        };
+        if !segs.iter().any(|x| x.0 == k) {
+            let mut s = dseg(k);
+            // (the local parameter itself: `critical` then estimates t)
+            (s.a, s.b) = (0.0, 1.0);
+            segs.push((k, s));
+        }
+        let seg = &segs.iter().find(|x| x.0 == k).unwrap().1;
+        let (t0, t1) = crate::enclose::newton::u_to_local(kn[k], kn[k + 1], e.u_lo, e.u_hi);
+        if t0 >= t1 {
+            kept.push((b, e));
+            continue;
+        }
+        push(&mut heap, &mut store, seg, k, t0, t1);
+    }
+    let attain = |out: &mut Side, v: Ddi| {
+        let iv = v.to_interval();
+        out.attain(iv);
+        if !iv.is_empty() {
+            out.witness = out.witness.max(v.strictly_below());
+        }
+    };
+    let bound = |out: &mut Side, b: f64, k: usize, t0: f64, t1: f64, kind| {
+        let (u_lo, u_hi) = crate::enclose::newton::local_to_u(kn[k], kn[k + 1], t0, t1);
+        out.bound(
+            b,
+            Extremum {
+                u_lo,
+                u_hi,
+                unique: false,
+                kind,
+            },
+        );
+    };
+    let mut pieces = 0usize;
+    while let Some((_, i)) = heap.pop() {
+        if store[i].pri <= out.attained {
+            break;
+        }
+        let LocalPiece { pri, k, t0, t1, co } = std::mem::take(&mut store[i]);
+        let seg = &segs.iter().find(|s| s.0 == k).unwrap().1;
+        pieces += 1;
+        let (e0, e1) = (co[0], co[p]);
+        attain(&mut out, e0);
+        if t1 < 1.0 || right_attained(k) {
+            attain(&mut out, e1);
+        }
+        let (i0, i1) = (e0.to_interval(), e1.to_interval());
+        let inner = co[1..p]
+            .iter()
+            .fold(f64::NEG_INFINITY, |m, x| m.max(x.to_interval().sup()));
+        if inner <= i0.inf().max(i1.inf()) {
+            // the piece's maximum is an end value
+            bound(&mut out, i0.sup().max(i1.sup()), k, t0, t1, CandidateKind::Critical);
+            continue;
+        }
+        let m = critical(seg, t0, t1).unwrap_or(0.5 * t0 + 0.5 * t1);
+        let lowest = co.iter().fold(f64::INFINITY, |m, x| m.min(x.to_interval().inf()));
+        if pri <= out.attained.next_up()
+            || pri <= lowest.next_up().next_up()
+            || pieces >= REFINE_PIECES
+            || !(t0 < m && m < t1)
+        {
+            // optimal already (no double between the attained value and the bound), resolved
+            // to rounding (all points within two doubles: a near-tie with a double, which only
+            // the certificate's exact stages decide), out of pieces, or no f64 parameter inside
+            bound(&mut out, pri, k, t0, t1, CandidateKind::Unresolved);
+            continue;
+        }
+        let v = cartesian(seg.eval_local(&Ddi::exact(m)), 1, seg.rational)[0];
+        attain(&mut out, signed(v));
+        out.stats.point_evaluations += 1;
+        out.stats.subdivisions += 1;
+        for (a, b) in [(t0, m), (m, t1)] {
+            push(&mut heap, &mut store, seg, k, a, b);
+        }
+    }
+    // pieces left in the heap are bounded by their points (or pruned: <= attained)
+    for (_, i) in heap {
+        let x = &store[i];
+        if x.pri > out.attained {
+            bound(&mut out, x.pri, x.k, x.t0, x.t1, CandidateKind::Unresolved);
+        }
+    }
+    for (b, e) in kept {
+        out.bound(b, e);
+    }
+    out.upper = out.upper.max(out.attained);
+    if out.upper < side.upper {
+        side.upper = out.upper;
+        side.cands = out.cands;
+    }
+    side.attained = side.attained.max(out.attained);
+    side.witness = side.witness.max(out.witness);
+    side.stats.add(&out.stats);
 }
 
 /// The f64 span filter: `(upper bound, attained value)` of sign * C_j on span k from the f64

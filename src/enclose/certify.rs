@@ -635,7 +635,7 @@ fn attained_rule(bound: f64, inner: f64, witness: f64) -> bool {
 /// Whether the attained value is more than [`LOWER_WITHIN_ULPS`] ulps of the scale
 /// (max(|bound|, `scale`)) below the bound: a loose bound, which the search stages do not try
 /// to complete.
-fn far_below(bound: f64, inner: f64, scale: f64, within: usize) -> bool {
+pub(crate) fn far_below(bound: f64, inner: f64, scale: f64, within: usize) -> bool {
     bound - inner > within as f64 * crate::num::ulp(bound.abs().max(scale))
 }
 
@@ -1403,12 +1403,21 @@ fn box_at_most(
     }
     if g[2].to_interval().sup() < 0.0 {
         // concave on the box: tangents first in double-double, then exactly
-        if let Some(v) = concave_ddi(ev, k, j, sign, t, lo, hi, m, &gm) {
-            return if v {
-                BoxVerdict::Below
-            } else {
-                BoxVerdict::Above
-            };
+        match concave_ddi(ev, k, j, sign, t, lo, hi, m, &gm) {
+            Concave::Decided(v) => {
+                return if v {
+                    BoxVerdict::Below
+                } else {
+                    BoxVerdict::Above
+                };
+            }
+            // A point u of the box whose double-double value holds t: every Ddi rule on a
+            // box containing u encloses g(u) too, so none can show g <= t there, however
+            // the box is split (an exact tie at a critical point, e.g. a symmetric curve's
+            // maximum at a knot). Only the exact rule below can; without exact tries left,
+            // the proof stops here instead of halving towards u to the depth limit.
+            Concave::Straddle if *exact_tries >= MAX_EXACT_TRIES => return BoxVerdict::Stuck,
+            _ => {}
         }
     }
     if g[2].to_interval().sup() < 0.0 && *exact_tries < MAX_EXACT_TRIES {
@@ -1430,7 +1439,8 @@ fn box_at_most(
 /// Newton steps from m (only to choose points) give u ~ the critical point; m1 < u < m2 a few
 /// ulps apart with g'(m1) > 0 > g'(m2) proved; then g lies below both tangents on the box,
 /// so below T = g(m1) + g'(m1)(x - m1) at their intersection x, all enclosed in Ddi.
-/// `Some(true)`: T <= t; `Some(false)`: a value above t; `None`: undecided.
+/// `Decided(true)`: T <= t; `Decided(false)`: a value above t; `Straddle`: undecided, and the
+/// value at the Newton point u (in the box) holds t; `Undecided` otherwise.
 #[allow(clippy::too_many_arguments)]
 fn concave_ddi(
     ev: &mut Evals,
@@ -1442,13 +1452,13 @@ fn concave_ddi(
     hi: f64,
     m: f64,
     gm: &[Ddi],
-) -> Option<bool> {
+) -> Concave {
     let mut u = m;
     let mut d = gm.to_vec();
     for _ in 0..4 {
         let (d1, d2) = (d[1].to_f64(), d[2].to_f64());
         if d2.is_nan() || d2 >= 0.0 || !d1.is_finite() {
-            return None;
+            return Concave::Undecided;
         }
         let next = (u - d1 / d2).clamp(lo, hi);
         if next == u || !next.is_finite() {
@@ -1458,7 +1468,7 @@ fn concave_ddi(
         d = ev.ddi_in(k, j, sign, Ddi::exact(u), 2);
     }
     if d[0].is_above(t) {
-        return Some(false);
+        return Concave::Decided(false);
     }
     let mut step = (u.abs().max(hi - lo) * f64::EPSILON).max(f64::from_bits(1));
     for _ in 0..6 {
@@ -1474,15 +1484,32 @@ fn concave_ddi(
                 // m1 and <= g(m1) + g'(m1)(m2 - m1) on [m1, m2] (and bounds g(m2)); right
                 // of m2, g(u) <= g(m2) + g'(m2)(u - m2) <= g(m2): so this bounds all of X
                 let top = a[0] + a[1] * (Ddi::exact(m2) - Ddi::exact(m1));
-                return top.is_at_most(t).then_some(true);
+                if top.is_at_most(t) {
+                    return Concave::Decided(true);
+                }
+                break;
             }
             let x = (b[0] - a[0] + a[1] * Ddi::exact(m1) - b[1] * Ddi::exact(m2)) / denom;
             let top = a[0] + a[1] * (x - Ddi::exact(m1));
-            return top.is_at_most(t).then_some(true);
+            if top.is_at_most(t) {
+                return Concave::Decided(true);
+            }
+            break;
         }
         step *= 8.0;
     }
-    None
+    if d[0].is_at_most(t) {
+        Concave::Undecided
+    } else {
+        Concave::Straddle
+    }
+}
+
+/// What [`concave_ddi`] showed.
+enum Concave {
+    Decided(bool),
+    Straddle,
+    Undecided,
 }
 
 /// The concavity rule on [lo, hi] (g'' < 0 there, proved by the caller): exact Newton steps
@@ -1665,5 +1692,44 @@ mod tests {
         certify(&c, &mut forced);
         assert_eq!(forced.coords[0].hi, 0.5f64.next_up());
         assert!(forced.coords[0].optimal_hi);
+    }
+
+    /// An exact tie at an interior knot (a symmetric quintic, `extrema_at_knots`: the maximum
+    /// 1.9312094010166787 of x is attained at the double knot u = 0, where C' = 0): a box
+    /// ending at the knot holds the maximiser, whose double-double value straddles the
+    /// target. Without exact tries the box is stuck at once (no halving to the depth limit);
+    /// with them the exact concavity rule proves it.
+    #[test]
+    fn tie_at_a_knot_is_stuck_without_exact_tries_and_proved_with_them() {
+        let pts = [
+            [-0.9143550990509568, -0.8517801029854772],
+            [0.937797423850653, 0.9491875263731124],
+            [-0.9019469390372032, -0.2612406701040677],
+            [2.875594847701306, 0.4219571279133927],
+        ];
+        let pts: Vec<Vec<f64>> = pts
+            .iter()
+            .chain(pts.iter().rev())
+            .map(|x| x.to_vec())
+            .collect();
+        let mut kn = vec![-1.0; 6];
+        kn.extend([0.0, 0.0]);
+        kn.extend([1.0; 6]);
+        let c = NurbsCurve::new(5, kn, pts, None).unwrap();
+        let t = 1.9312094010166787;
+        let mut ev = Evals::new(&c, &c, 0);
+        // (exact tries used up, then none used)
+        for (mut tries, stuck) in [(MAX_EXACT_TRIES, true), (0, false)] {
+            let v = box_at_most(&mut ev, 5, 0, 1.0, (t, t), -0.015625, 0.0, true, &mut tries);
+            assert!(if stuck {
+                matches!(v, BoxVerdict::Stuck)
+            } else {
+                matches!(v, BoxVerdict::Below)
+            });
+        }
+        // and the certificate of the whole curve holds
+        let e = Newton::default().enclose(&c);
+        assert_eq!(e.coords[0].hi, t);
+        assert!(e.coords[0].optimal_hi);
     }
 }

@@ -196,22 +196,12 @@ impl SpanPoly {
         (over + sh, at + sh)
     }
 
-    /// The box of the curve parameter u that contains u(t) = a + t (b - a) for every t in the
-    /// box t = [t0, t1] of this span [a, b] = [u_k, u_{k+1}]: the only map from the local
-    /// parameter to the global one.
-    ///
-    /// Rounding: every operation is in outward-rounded interval arithmetic, so `len` encloses
-    /// the exact b - a (its upper bound is +inf if b - a overflows), a + t0 len encloses the
-    /// exact u(t0) and its lower bound is <= u(t0); likewise the upper bound of a + t1 len is at
-    /// least u(t1). As u is increasing, [lo, hi] contains u([t0, t1]). Clamping to [a, b] loses
-    /// nothing, as u(t) is in [a, b] for t in [0, 1], and keeps the box inside the closed span
-    /// (where span k's piece is the curve).
+    /// The box of the curve parameter u that contains u(t) for every t in the box t = [t0, t1]
+    /// of this span [a, b] = [u_k, u_{k+1}], rounded outward and clamped to the closed span
+    /// ([`super::param::local_to_u`]).
     pub(super) fn to_u(&self, t: T) -> U {
-        let (a, b) = (self.seg.a, self.seg.b);
-        let len = iv::point(b) - iv::point(a);
-        let lo = (iv::point(a) + iv::point(t.lo) * len).inf();
-        let hi = (iv::point(a) + iv::point(t.hi) * len).sup();
-        U::new(lo.clamp(a, b), hi.clamp(a, b))
+        let (lo, hi) = super::param::local_to_u(self.seg.a, self.seg.b, t.lo, t.hi);
+        U::new(lo, hi)
     }
 
     /// Coordinate j of the span's Bézier points, enclosed: their hull [lo, hi] and whether

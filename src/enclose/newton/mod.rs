@@ -42,6 +42,7 @@ mod param;
 mod tests;
 
 pub(crate) use engine::{Engine, SpanMode};
+pub(crate) use param::{local_to_u, u_to_local};
 
 use super::{BoxEncloser, Enclosure, Guarantee};
 use crate::spline::curve::NurbsCurve;

@@ -4,7 +4,7 @@
 //! or, with the span's Bernstein form ([`super::Newton::bernstein`]), in the local parameter
 //! t = (u - u_k) / (u_{k+1} - u_k) in [0, 1] of span k. A box of one space is never read as
 //! one of the other: [`U`] and [`T`] are distinct types, a box of either is a [`SpanParam`],
-//! and the only map from t to u is [`super::bernstein::SpanPoly::to_u`] (rounded outward).
+//! and the only map from t to u is [`local_to_u`] (rounded outward; `SpanPoly::to_u`).
 
 use crate::num::iv;
 use inari::Interval;
@@ -100,4 +100,43 @@ pub(super) fn midpoint(x0: f64, x1: f64) -> f64 {
 pub(super) fn can_split(x0: f64, x1: f64) -> bool {
     let m = midpoint(x0, x1);
     x0 < m && m < x1
+}
+
+/// The box of the curve parameter u that contains u(t) = a + t (b - a) for every t in
+/// [t0, t1] inside [0, 1], for the span [a, b]: the map from a span's local parameter back to
+/// u ([`super::bernstein::SpanPoly::to_u`], and the local refinement of `bezier`).
+///
+/// Rounding: every operation is in outward-rounded interval arithmetic, so `len` encloses
+/// the exact b - a (its upper bound is +inf if b - a overflows), a + t0 len encloses the
+/// exact u(t0) and its lower bound is <= u(t0); likewise the upper bound of a + t1 len is at
+/// least u(t1). As u is increasing, [lo, hi] contains u([t0, t1]). Clamping to [a, b] loses
+/// nothing, as u(t) is in [a, b] for t in [0, 1], and keeps the box inside the closed span
+/// (where the span's piece is the curve).
+pub(crate) fn local_to_u(a: f64, b: f64, t0: f64, t1: f64) -> (f64, f64) {
+    let len = iv::point(b) - iv::point(a);
+    let lo = (iv::point(a) + iv::point(t0) * len).inf();
+    let hi = (iv::point(a) + iv::point(t1) * len).sup();
+    (lo.clamp(a, b), hi.clamp(a, b))
+}
+
+/// The box [t0, t1] of the local parameter t = (u - a) / (b - a) of the span [a, b] that
+/// contains t(u) for every u in [u0, u1] inside [a, b]: outward-rounded interval quotients
+/// (monotone in u), clamped to [0, 1] (t(u) lies there); [0, 1] itself where a quotient is not
+/// finite (b - a overflows or is subnormal-small), which contains every t.
+pub(crate) fn u_to_local(a: f64, b: f64, u0: f64, u1: f64) -> (f64, f64) {
+    let len = iv::point(b) - iv::point(a);
+    let t0 = if u0 <= a {
+        0.0
+    } else {
+        ((iv::point(u0) - iv::point(a)) / len).inf()
+    };
+    let t1 = if u1 >= b {
+        1.0
+    } else {
+        ((iv::point(u1) - iv::point(a)) / len).sup()
+    };
+    if !(t0.is_finite() && t1.is_finite()) {
+        return (0.0, 1.0);
+    }
+    (t0.clamp(0.0, 1.0), t1.clamp(0.0, 1.0))
 }
