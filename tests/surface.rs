@@ -697,3 +697,47 @@ fn fast_path_agrees_with_the_general_search() {
         }
     }
 }
+
+/// Ridges not along parameter lines (the families `ridge_diagonal`, `valley_antidiagonal`,
+/// `ridge_rotated`, `ridge_irrational`, `ridge_diagonal_spans`: a maximum or a minimum on a
+/// whole line of the domain, across knot lines in the last one) end in a proven bound within
+/// one ulp of the closed form, attained to within one ulp, without the general search
+/// (the fast path's chord proof, `Prover::ridge_line`).
+#[test]
+fn fast_path_proves_ridges_off_the_parameter_lines() {
+    let fam = families();
+    let exact = |n: &str| -> (NurbsSurface, Vec<(f64, f64)>) {
+        let f = fam.iter().find(|f| f.0 == n).unwrap();
+        (f.1.clone(), f.2.clone().unwrap())
+    };
+    for name in [
+        "ridge_diagonal",
+        "valley_antidiagonal",
+        "ridge_rotated",
+        "ridge_irrational",
+        "ridge_diagonal_spans",
+    ] {
+        let (s, ex) = exact(name);
+        for st in ["bezier", "newton"] {
+            let e = surface_strategy_by_name(st, None).unwrap().enclose(&s);
+            check(name, &s, &e, &samples(&s, 40), 2e-2);
+            assert_eq!(e.stats().fast_fallbacks, 0, "{name} {st}");
+            let cb = &e.coords[2];
+            // (16 / sqrt 3 rounds twice in f64: within one ulp of the exact value)
+            let u = ulp(ex[2].1);
+            for (b, want, what) in [
+                (cb.lo, ex[2].0, "lo"),
+                (cb.inner_lo, ex[2].0, "inner_lo"),
+                (cb.hi, ex[2].1, "hi"),
+                (cb.inner_hi, ex[2].1, "inner_hi"),
+            ] {
+                assert!(
+                    (b - want).abs() <= 2.0 * u,
+                    "{name} {st} {what}: {b} vs {want}"
+                );
+            }
+            assert!(cb.gap() <= u, "{name} {st}: gap {}", cb.gap() / u);
+            assert_ne!(cb.termination, Termination::WorkLimit, "{name} {st}");
+        }
+    }
+}
