@@ -237,10 +237,12 @@ impl FastSurface {
     }
 
     /// The maximum of sign * S_j over the surface, proven: `Some((outer, attained))` with
-    /// sign * S_j <= outer everywhere and sign * S_j >= attained somewhere; `None` if the fast
-    /// path could not prove it (the caller's general search runs then). Counts the side in
-    /// `st` (fast exit, fast proof or fallback).
-    pub(crate) fn side(&self, j: usize, sign: f64, st: &mut Stats) -> Option<(f64, f64)> {
+    /// sign * S_j <= outer everywhere and sign * S_j >= attained somewhere, and a strict
+    /// witness w (sign * S_j > w somewhere; -inf if none: from a candidate's `Ddi` value,
+    /// [`Ddi::strictly_below`]): `(outer, attained, w)`; `None` if the fast path could not prove it
+    /// (the caller's general search runs then). Counts the side in `st` (fast exit, fast
+    /// proof or fallback).
+    pub(crate) fn side(&self, j: usize, sign: f64, st: &mut Stats) -> Option<(f64, f64, f64)> {
         // fixed-size arrays: 16 coefficients up to bicubic, else MAXN (less to copy)
         let r = if (self.p + 1) * (self.q + 1) <= 16 {
             self.side_inner::<16>(j, sign, st)
@@ -258,14 +260,14 @@ impl FastSurface {
         j: usize,
         sign: f64,
         st: &mut Stats,
-    ) -> Option<(f64, f64)> {
+    ) -> Option<(f64, f64, f64)> {
         let n = [self.p, self.q];
         let mut grids: SmallVec<[DdGrid<N>; 1]> = SmallVec::new();
         for k in 0..self.patches.len() {
             grids.push(self.dd_grid(k, j, sign));
         }
         // corners: values the surface takes (continuous surface), and the vertex test
-        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+        let (mut lo, mut hi, mut wit) = (f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
         let mut vertex = true;
         let mut coef_max = SmallVec::<[f64; 1]>::new();
         let corners = [
@@ -307,7 +309,7 @@ impl FastSurface {
         }
         if vertex {
             st.fast_exits += 1;
-            return Some((hi, lo));
+            return Some((hi, lo, f64::NEG_INFINITY));
         }
         // candidates on the patches the vertex test did not settle
         // (pushed and filled in place: a grid, a piece and the candidates are hundreds of
@@ -353,6 +355,7 @@ impl FastSurface {
                     }
                     let dd = tight_derivs(g, m, c.t, self.rational);
                     let val = value_of(&dd, self.rational);
+                    wit = wit.max(dd_value(&dd, self.rational).strictly_below());
                     c.dd = Some(dd);
                     let scale = if slot < 4 {
                         roots[k].edge_max_abs(slot)
@@ -388,7 +391,9 @@ impl FastSurface {
             return None;
         }
         let mut budget = BUDGET;
+        let wit0 = wit;
         for first in [hi, hi.next_up()] {
+            wit = wit0;
             let (mut ub, mut at) = (first, lo);
             let mut ok = true;
             for k in 0..grids.len() {
@@ -399,6 +404,7 @@ impl FastSurface {
                     rational: self.rational,
                     ub,
                     lo: at,
+                    wit,
                     budget: &mut budget,
                     edges: [None; 4],
                     cands: &cands[k],
@@ -407,14 +413,14 @@ impl FastSurface {
                     st: &mut *st,
                 };
                 ok = pr.prove(&roots[k], 4, &grids[k]);
-                (ub, at) = (pr.ub, pr.lo);
+                (ub, at, wit) = (pr.ub, pr.lo, pr.wit);
                 if !ok {
                     break;
                 }
             }
             if ok {
                 st.fast_proofs += 1;
-                return Some((ub, at));
+                return Some((ub, at, wit));
             }
         }
         None
@@ -1689,10 +1695,15 @@ fn segment_lines<S: Scalar + Copy>(
 
 /// A / w enclosed.
 fn value_of(d: &[[Ddi; 3]; 2], rational: bool) -> Interval {
+    dd_value(d, rational).to_interval()
+}
+
+/// A / w in `Ddi`.
+fn dd_value(d: &[[Ddi; 3]; 2], rational: bool) -> Ddi {
     if rational {
-        (d[0][0] / d[1][0]).to_interval()
+        d[0][0] / d[1][0]
     } else {
-        d[0][0].to_interval()
+        d[0][0]
     }
 }
 
@@ -1703,6 +1714,8 @@ struct Prover<'a, const N: usize> {
     ub: f64,
     /// the best attained value found on the way
     lo: f64,
+    /// the best strict witness found on the way ([`Ddi::strictly_below`])
+    wit: f64,
     budget: &'a mut u32,
     /// proven boundary curves (0: u = 0, 1: u = 1, 2: v = 0, 3: v = 1)
     edges: [Option<bool>; 4],
@@ -2024,7 +2037,9 @@ impl<const N: usize> Prover<'_, N> {
                 tight_derivs(g, pn, c, self.rational)
             }
         };
-        let val = if self.rational { a[0] / w[0] } else { a[0] }.to_interval();
+        let vd = dd_value(&[a, w], self.rational);
+        self.wit = self.wit.max(vd.strictly_below());
+        let val = vd.to_interval();
         if val.is_empty() || !val.sup().is_finite() {
             return false;
         }
@@ -2522,18 +2537,18 @@ mod tests {
                 tally[0] += st.fast_exits;
                 tally[1] += st.fast_proofs;
                 tally[2] += st.fast_fallbacks;
-                let Some((ub, at)) = r else { continue };
-                assert!(at <= ub, "{at} {ub}");
+                let Some((ub, at, wit)) = r else { continue };
+                assert!(at <= ub && wit <= ub, "{at} {wit} {ub}");
                 let cb = &newton.coords[j];
                 let (nlo, nhi) = if sign > 0.0 {
                     (cb.inner_hi, cb.hi)
                 } else {
                     (-cb.inner_lo, -cb.lo)
                 };
-                // the exact maximum M: nlo <= M <= nhi, at <= M <= ub
+                // the exact maximum M: nlo <= M <= nhi, at <= M <= ub, wit < M
                 assert!(
-                    at <= nhi && nlo <= ub,
-                    "{j} {sign}: [{at}, {ub}] vs [{nlo}, {nhi}]"
+                    at <= nhi && nlo <= ub && wit < nhi,
+                    "{j} {sign}: [{at}, {ub}] (witness {wit}) vs [{nlo}, {nhi}]"
                 );
                 let n = 24;
                 for i in 0..=n {
@@ -2565,6 +2580,7 @@ mod tests {
             rational: f.rational,
             ub,
             lo: f64::NEG_INFINITY,
+            wit: f64::NEG_INFINITY,
             budget: &mut budget,
             edges: [None; 4],
             cands: &cands,
@@ -2613,6 +2629,7 @@ mod tests {
                 rational: false,
                 ub,
                 lo: f64::NEG_INFINITY,
+                wit: f64::NEG_INFINITY,
                 budget: &mut budget,
                 edges: [None; 4],
                 cands: &cands,
@@ -2690,7 +2707,7 @@ mod tests {
             let coefs: Vec<Exact> = z.iter().flatten().map(|&x| Exact::of(x)).collect();
             for sign in [1.0, -1.0] {
                 let mut st = Stats::default();
-                let Some((ub, at)) = f.side(2, sign, &mut st) else {
+                let Some((ub, at, _)) = f.side(2, sign, &mut st) else {
                     continue;
                 };
                 let n = 32;
