@@ -1538,6 +1538,15 @@ fn flat_across<const N: usize>(pc: &Piece<N>, f: &[f64; N], d: usize) -> bool {
     true
 }
 
+/// Whether the f64 Hessian of F at the piece's centre (coefficients `f`) is nearly singular,
+/// det H >= -(H_uu^2 + 2 H_uv^2 + H_vv^2) / 20: the filter of [`Prover::ridge_line`] (on a
+/// ridge H is rank one up to the distance from the ridge; no soundness role).
+fn ridge_like<const N: usize>(pc: &Piece<N>, f: &[f64; N]) -> bool {
+    let h = eval2::<f64, 2>(&f[..pc.count()], pc.n, [0.5, 0.5]);
+    let (a, b, c) = (h[3], h[4], h[5]);
+    a * c - b * b >= -(a * a + 2.0 * b * b + c * c) / 20.0
+}
+
 /// The Bernstein coefficients, over the range `range` of the other direction o, of the
 /// iso-line functions F(c, .) and F_d(c, .) at x_d = c (F = A - ub w from the patch grid `g`
 /// of degrees n, derivatives in the patch parameter), enclosed in `Ddi`: de Casteljau
@@ -2130,11 +2139,15 @@ impl<const N: usize> Prover<'_, N> {
         }
         let mus: [Option<f64>; 2] =
             std::array::from_fn(|d| sm[d].and_then(|_| pc.curvature(f, e, d)));
-        // along a parameter line first (cheaper), then along a chord
+        // along a parameter line first (cheaper), then along a chord where the piece looks
+        // like a ridge (a filter, no soundness role: the f64 Hessian at the piece's centre is
+        // nearly singular, det H >= -|H|^2 / 20; a saddle piece of a random patch is not, and
+        // the chord's set-up would cost more than the halving that settles it)
         (0..2).any(|d| {
             mus[d]
                 .is_some_and(|mu| flat_across(pc, f, d) && self.ridge_axis(pc, root, d, mu, ub0, g))
-        }) || (0..2).any(|d| mus[d].is_some_and(|mu| self.ridge_line(pc, root, d, mu, ub0, g)))
+        }) || (mus.iter().any(Option::is_some) && ridge_like(pc, f))
+            && (0..2).any(|d| mus[d].is_some_and(|mu| self.ridge_line(pc, root, d, mu, ub0, g)))
     }
 
     /// [`Prover::ridge`] along the parameter direction o other than d (curvature `mu` along
