@@ -518,9 +518,11 @@ fn replay(dirs: &[(&str, Target)]) -> usize {
 /// Every fuzz finding (crash, timeout, slow unit) replays without a violation, in bounded time.
 #[test]
 fn fuzz_findings_replay() {
-    // (every finding so far came from the structured target; the json target's corpus replays
-    // in `fuzz_corpus_replays`)
-    let n = replay(&[("tests/data/fuzz/structured", targets::structured)]);
+    // (the json target's corpus replays in `fuzz_corpus_replays`)
+    let n = replay(&[
+        ("tests/data/fuzz/structured", targets::structured),
+        ("tests/data/fuzz/surface", targets::surface),
+    ]);
     assert!(n > 0, "no fuzz findings found");
 }
 
@@ -573,6 +575,7 @@ fn fuzz_corpus_replays() {
     let n = replay(&[
         ("fuzz/corpus/json", targets::json),
         ("fuzz/corpus/structured", targets::structured),
+        ("fuzz/corpus/surface", targets::surface),
     ]);
     assert!(n > 0, "no fuzz corpus found");
 }

@@ -4,7 +4,7 @@
 mod common;
 
 use inari::Interval;
-use nurbs_box::enclose::{Enclosure, Settings, Termination};
+use nurbs_box::enclose::{Enclosure, Guarantee, Settings, Termination};
 use nurbs_box::io::{parse_record, Shape};
 use nurbs_box::num::ulp;
 use nurbs_box::surface::enclose::all_surface_strategies;
@@ -418,14 +418,31 @@ fn high_degree_stays_bounded_and_sound() {
 /// outer), on every family and strategy; the rational example of `docs/formats.md` has its
 /// corner bounds certified and its interior z maximum (2/3, not a double) not.
 #[test]
-fn optimality_flags_mark_exactly_the_attained_bounds() {
+fn optimality_flags_mark_exactly_the_attained_or_witnessed_bounds() {
     for (name, s, _) in families() {
         for e in all_surface_strategies(&Settings::default()) {
             let r = e.enclose(&s);
             for (j, c) in r.coords.iter().enumerate() {
                 let what = format!("{name} {} coordinate {j}", e.name());
-                assert_eq!(c.optimal_lo, c.inner_lo == c.lo, "{what}: optimal_lo");
-                assert_eq!(c.optimal_hi, c.inner_hi == c.hi, "{what}: optimal_hi");
+                // a strict witness lies inside the box: S_j < witness_lo somewhere and
+                // S_j >= lo everywhere, so witness_lo > lo (likewise hi)
+                assert!(
+                    c.witness_lo > c.lo && c.witness_hi < c.hi,
+                    "{what}: witness"
+                );
+                // the attained rule, or a strict witness within one ulp (`Ddi::strictly_below`)
+                let lo = c.inner_lo == c.lo || c.witness_lo <= c.lo.next_up();
+                let hi = c.inner_hi == c.hi || c.witness_hi >= c.hi.next_down();
+                assert_eq!(
+                    c.optimal_lo,
+                    e.guarantee() == Guarantee::Verified && lo,
+                    "{what}: optimal_lo"
+                );
+                assert_eq!(
+                    c.optimal_hi,
+                    e.guarantee() == Guarantee::Verified && hi,
+                    "{what}: optimal_hi"
+                );
             }
         }
     }
@@ -441,8 +458,11 @@ fn optimality_flags_mark_exactly_the_attained_bounds() {
     let lo: Vec<bool> = r.coords.iter().map(|c| c.optimal_lo).collect();
     let hi: Vec<bool> = r.coords.iter().map(|c| c.optimal_hi).collect();
     assert_eq!(lo, [true, true, true]);
-    assert_eq!(hi, [true, true, false]);
-    assert!(r.coords[2].hi >= 2.0 / 3.0 && r.coords[2].inner_hi <= 2.0 / 3.0);
+    // z's maximum 2/3 is not a float: certified by the fast path's double-double witness,
+    // hi = RU(2/3) (the f64 nearest 2/3 lies below it)
+    assert_eq!(hi, [true, true, true]);
+    assert!(2.0 / 3.0 < r.coords[2].hi && r.coords[2].inner_hi <= 2.0 / 3.0);
+    assert_eq!(r.coords[2].hi, (2.0f64 / 3.0).next_up());
 }
 
 /// The float-first fast path of `bezier` and `newton` on shapes with a known answer: an
@@ -694,6 +714,50 @@ fn fast_path_agrees_with_the_general_search() {
                 );
                 assert!(a.gap() <= b.gap().max(ulp(s.coord_scale(j))), "{seed} {j}");
             }
+        }
+    }
+}
+
+/// Ridges not along parameter lines (the families `ridge_diagonal`, `valley_antidiagonal`,
+/// `ridge_rotated`, `ridge_irrational`, `ridge_diagonal_spans`: a maximum or a minimum on a
+/// whole line of the domain, across knot lines in the last one) end in a proven bound within
+/// one ulp of the closed form, attained to within one ulp, without the general search
+/// (the fast path's chord proof, `Prover::ridge_line`).
+#[test]
+fn fast_path_proves_ridges_off_the_parameter_lines() {
+    let fam = families();
+    let exact = |n: &str| -> (NurbsSurface, Vec<(f64, f64)>) {
+        let f = fam.iter().find(|f| f.0 == n).unwrap();
+        (f.1.clone(), f.2.clone().unwrap())
+    };
+    for name in [
+        "ridge_diagonal",
+        "valley_antidiagonal",
+        "ridge_rotated",
+        "ridge_irrational",
+        "ridge_diagonal_spans",
+    ] {
+        let (s, ex) = exact(name);
+        for st in ["bezier", "newton"] {
+            let e = surface_strategy_by_name(st, None).unwrap().enclose(&s);
+            check(name, &s, &e, &samples(&s, 40), 2e-2);
+            assert_eq!(e.stats().fast_fallbacks, 0, "{name} {st}");
+            let cb = &e.coords[2];
+            // (16 / sqrt 3 rounds twice in f64: within one ulp of the exact value)
+            let u = ulp(ex[2].1);
+            for (b, want, what) in [
+                (cb.lo, ex[2].0, "lo"),
+                (cb.inner_lo, ex[2].0, "inner_lo"),
+                (cb.hi, ex[2].1, "hi"),
+                (cb.inner_hi, ex[2].1, "inner_hi"),
+            ] {
+                assert!(
+                    (b - want).abs() <= 2.0 * u,
+                    "{name} {st} {what}: {b} vs {want}"
+                );
+            }
+            assert!(cb.gap() <= u, "{name} {st}: gap {}", cb.gap() / u);
+            assert_ne!(cb.termination, Termination::WorkLimit, "{name} {st}");
         }
     }
 }

@@ -121,6 +121,8 @@ fn strategies_contain_the_reference_and_newton_is_within_ulps() {
         ));
     }
     let mut worst = 0.0f64;
+    // (attained bounds, certified bounds, bounds)
+    let mut flags = (0usize, 0usize, 0usize);
     for (name, s) in &surfaces {
         let r = reference(s);
         for st in all_surface_strategies(&Settings::default()) {
@@ -151,6 +153,30 @@ fn strategies_contain_the_reference_and_newton_is_within_ulps() {
                     r[j].0,
                     r[j].1
                 );
+                // every optimality flag is true: lo = RD(min) (min < next_up(lo); lo <= min
+                // is the containment above), hi = RU(max)
+                if cb.optimal_lo {
+                    assert!(
+                        r[j].0 < cb.lo.next_up(),
+                        "{name} {} {j}: optimal_lo on {} but the minimum is {}",
+                        st.name(),
+                        cb.lo,
+                        r[j].0
+                    );
+                }
+                if cb.optimal_hi {
+                    assert!(
+                        r[j].1 > cb.hi.next_down(),
+                        "{name} {} {j}: optimal_hi on {} but the maximum is {}",
+                        st.name(),
+                        cb.hi,
+                        r[j].1
+                    );
+                }
+                // (the attained rule alone, the rule before strict witnesses, for the count)
+                flags.0 += (cb.inner_lo == cb.lo) as usize + (cb.inner_hi == cb.hi) as usize;
+                flags.1 += cb.optimal_lo as usize + cb.optimal_hi as usize;
+                flags.2 += 2;
                 if st.name() != "hull" {
                     worst = worst.max(dlo).max(dhi);
                     eprintln!("{name} {} {j}: {dlo} / {dhi} ulps", st.name());
@@ -165,5 +191,9 @@ fn strategies_contain_the_reference_and_newton_is_within_ulps() {
     }
     eprintln!(
         "newton and bezier: worst distance to the reference {worst} ulps of the coordinate scale"
+    );
+    eprintln!(
+        "optimal bounds (all strategies): {} of {} certified, {} of them by the attained rule alone",
+        flags.1, flags.2, flags.0
     );
 }

@@ -95,6 +95,54 @@ fn arc(a: f64) -> [(f64, f64, f64); 3] {
     ]
 }
 
+/// `s` with the knot `t` inserted once in the u direction (Boehm's algorithm, The NURBS Book
+/// A5.3 per column; polynomial surfaces only): the same surface on one more span. On dyadic
+/// data and knots the affine combinations are exact in f64.
+pub fn insert_knot_u(s: &NurbsSurface, t: f64) -> NurbsSurface {
+    assert!(!s.is_rational(), "insert_knot_u: polynomial surfaces only");
+    let (p, kn) = (s.degree_u(), s.knots_u());
+    let k = kn.partition_point(|&x| x <= t) - 1; // t in [u_k, u_{k+1})
+    let old = s.control_points();
+    let net: Vec<Vec<Vec<f64>>> = (0..=old.len())
+        .map(|i| {
+            if i + p <= k {
+                old[i].clone()
+            } else if i > k {
+                old[i - 1].clone()
+            } else {
+                let a = (t - kn[i]) / (kn[i + p] - kn[i]);
+                (0..old[i].len())
+                    .map(|c| {
+                        (0..old[i][c].len())
+                            .map(|j| a * old[i][c][j] + (1.0 - a) * old[i - 1][c][j])
+                            .collect()
+                    })
+                    .collect()
+            }
+        })
+        .collect();
+    let mut knots = kn.to_vec();
+    knots.insert(k + 1, t);
+    NurbsSurface::new(p, s.degree_v(), knots, s.knots_v().to_vec(), net, None)
+        .expect("knot insertion keeps the surface valid")
+}
+
+/// z = -36 (u^2 + v^2 - 1/2)^2 as a degree (4, 4) Bézier patch (exact dyadic Bernstein
+/// coefficients): maximum 0 on the circle arc u^2 + v^2 = 1/2 (a ridge along a curve),
+/// minimum -81 at (1, 1). Not among [`families`] yet: the fast path's chord proof leaves
+/// O(W^4) on a curved ridge, so the maximum side ends at the work limit, a sound bound some
+/// 1e-5 above 0 (see `Prover::ridge_line`).
+pub fn ridge_circle() -> NurbsSurface {
+    let circ = [
+        [-9.0, -9.0, -3.0, 9.0, -9.0],
+        [-9.0, -9.0, -3.0, 9.0, -9.0],
+        [-3.0, -3.0, 1.0, 9.0, -15.0],
+        [9.0, 9.0, 9.0, 9.0, -27.0],
+        [-9.0, -9.0, -15.0, -27.0, -81.0],
+    ];
+    bezier_patch(4, 4, graph(4, 4, |r, c| circ[r][c]), None)
+}
+
 /// Named test surfaces with known extremes, for the tests, the harness and the benches:
 /// `(name, surface, exact box as (lo, hi) per coordinate where known in closed form)`.
 #[allow(clippy::type_complexity)]
@@ -197,6 +245,52 @@ pub fn families() -> Vec<(&'static str, NurbsSurface, Option<Vec<(f64, f64)>>)> 
         bezier_patch(2, 2, net, Some(w)),
         Some(vec![((2.0 + h) * h, 3.0), (-3.0 * h, 3.0 * h), (-h, h)]),
     ));
+    // Ridges not along parameter lines (the maximum, or the minimum of a valley, on a whole
+    // curve of the domain: a non-isolated critical set). Every net below is the exact
+    // Bernstein form of the closed form (dyadic coefficients), so the ridge is exact.
+    // z = 1 - (u - v)^2: maximum 1 on the diagonal
+    let diag = [[1.0, 1.0, 0.0], [1.0, 1.5, 1.0], [0.0, 1.0, 1.0]];
+    out.push((
+        "ridge_diagonal",
+        bezier_patch(2, 2, graph(2, 2, |r, c| diag[r][c]), None),
+        unit.clone(),
+    ));
+    // z = (u + v - 1)^2: minimum 0 on the anti-diagonal (a valley)
+    let valley = [[1.0, 0.0, 0.0], [0.0, -0.5, 0.0], [0.0, 0.0, 1.0]];
+    out.push((
+        "valley_antidiagonal",
+        bezier_patch(2, 2, graph(2, 2, |r, c| valley[r][c]), None),
+        unit.clone(),
+    ));
+    // z = 1 - (u - v / 2 - 1 / 4)^2: maximum 1 on a line of slope 1/2, minimum 7/16 at the
+    // corners (1, 0) and (0, 1)
+    let rot = [[15.0, 13.0, 7.0], [19.0, 21.0, 19.0], [7.0, 13.0, 15.0]];
+    out.push((
+        "ridge_rotated",
+        bezier_patch(2, 2, graph(2, 2, |r, c| rot[r][c] / 16.0), None),
+        Some(vec![(0.0, 1.0), (0.0, 1.0), (7.0 / 16.0, 1.0)]),
+    ));
+    // z = 24 (s - s^3), s = (u + v) / 2: maximum 16 / sqrt 3 (not a float) on the line
+    // u + v = 2 / sqrt 3 (not a float line), minimum 0 at the corners (0, 0) and (1, 1)
+    let cub = [
+        [0.0, 4.0, 8.0, 9.0],
+        [4.0, 8.0, 11.0, 10.0],
+        [8.0, 11.0, 12.0, 8.0],
+        [9.0, 10.0, 8.0, 0.0],
+    ];
+    out.push((
+        "ridge_irrational",
+        bezier_patch(3, 3, graph(3, 3, |r, c| cub[r][c]), None),
+        Some(vec![(0.0, 1.0), (0.0, 1.0), (0.0, 16.0 / 3f64.sqrt())]),
+    ));
+    // the diagonal ridge on 3 x 2 spans (knots 1/2, 3/4 in u, 1/4 in v, inserted exactly:
+    // every ratio (t - u_i) / (u_{i+p} - u_i) is dyadic): the ridge crosses the knot lines
+    let mut spans = bezier_patch(2, 2, graph(2, 2, |r, c| diag[r][c]), None);
+    for t in [0.5, 0.75] {
+        spans = insert_knot_u(&spans, t);
+    }
+    spans = insert_knot_u(&spans.transposed(), 0.25).transposed();
+    out.push(("ridge_diagonal_spans", spans, unit.clone()));
     out.push(("random_bicubic", random_surface(1, 3, 3, 0, false), None));
     out.push(("random_rational", random_surface(2, 3, 2, 3, true), None));
     // unclamped (uniform) knots in both directions

@@ -477,9 +477,17 @@ pub fn check_surface_enclosure(
         return Ok(());
     }
     for (j, cb) in e.coords.iter().enumerate() {
-        if (cb.optimal_lo && cb.inner_lo != cb.lo) || (cb.optimal_hi && cb.inner_hi != cb.hi) {
+        // (a strict witness lies inside the box: the surface reaches a value < witness_lo,
+        // none below lo)
+        if cb.witness_lo <= cb.lo || cb.witness_hi >= cb.hi {
+            return Err(format!("coordinate {j}: a witness outside the box"));
+        }
+        // (a flag needs an attained bound or a strict witness within one ulp of it)
+        if (cb.optimal_lo && cb.inner_lo != cb.lo && cb.witness_lo > cb.lo.next_up())
+            || (cb.optimal_hi && cb.inner_hi != cb.hi && cb.witness_hi < cb.hi.next_down())
+        {
             return Err(format!(
-                "coordinate {j}: an optimal flag on an unattained bound"
+                "coordinate {j}: an optimal flag on a bound neither attained nor witnessed"
             ));
         }
     }

@@ -233,9 +233,12 @@ impl SurfaceEncloser for BezierPatches {
                 let mut st = Stats::default();
                 // per side: (outer, attained, termination) of sign * S_j's maximum
                 let mut sides = [None, None];
+                // the fast path's strict witnesses (sign-adjusted; `Ddi::strictly_below`)
+                let mut wit = [f64::NEG_INFINITY; 2];
                 for (k, sign) in [(0, -1.0), (1, 1.0)] {
-                    if let Some((b, at)) = fast.as_ref().and_then(|f| f.side(j, sign, &mut st)) {
+                    if let Some((b, at, w)) = fast.as_ref().and_then(|f| f.side(j, sign, &mut st)) {
                         sides[k] = Some((b, at, Termination::Converged));
+                        wit[k] = w;
                     }
                 }
                 for (k, sign) in [(0, 1.0), (1, -1.0)] {
@@ -258,7 +261,9 @@ impl SurfaceEncloser for BezierPatches {
                 }
                 let [(nlo, nilo, t1), (hi, ihi, t2)] = sides.map(|x| x.expect("both sides"));
                 let term = if t1 == Termination::Converged { t2 } else { t1 };
-                coord_box(-nlo, hi, -nilo, ihi, st, term)
+                let mut cb = coord_box(-nlo, hi, -nilo, ihi, st, term);
+                (cb.witness_lo, cb.witness_hi) = (-wit[0], wit[1]);
+                cb
             })
             .collect();
         if let Some(c) = coords.first_mut() {

@@ -237,10 +237,12 @@ impl FastSurface {
     }
 
     /// The maximum of sign * S_j over the surface, proven: `Some((outer, attained))` with
-    /// sign * S_j <= outer everywhere and sign * S_j >= attained somewhere; `None` if the fast
-    /// path could not prove it (the caller's general search runs then). Counts the side in
-    /// `st` (fast exit, fast proof or fallback).
-    pub(crate) fn side(&self, j: usize, sign: f64, st: &mut Stats) -> Option<(f64, f64)> {
+    /// sign * S_j <= outer everywhere and sign * S_j >= attained somewhere, and a strict
+    /// witness w (sign * S_j > w somewhere; -inf if none: from a candidate's `Ddi` value,
+    /// [`Ddi::strictly_below`]): `(outer, attained, w)`; `None` if the fast path could not prove it
+    /// (the caller's general search runs then). Counts the side in `st` (fast exit, fast
+    /// proof or fallback).
+    pub(crate) fn side(&self, j: usize, sign: f64, st: &mut Stats) -> Option<(f64, f64, f64)> {
         // fixed-size arrays: 16 coefficients up to bicubic, else MAXN (less to copy)
         let r = if (self.p + 1) * (self.q + 1) <= 16 {
             self.side_inner::<16>(j, sign, st)
@@ -258,14 +260,14 @@ impl FastSurface {
         j: usize,
         sign: f64,
         st: &mut Stats,
-    ) -> Option<(f64, f64)> {
+    ) -> Option<(f64, f64, f64)> {
         let n = [self.p, self.q];
         let mut grids: SmallVec<[DdGrid<N>; 1]> = SmallVec::new();
         for k in 0..self.patches.len() {
             grids.push(self.dd_grid(k, j, sign));
         }
         // corners: values the surface takes (continuous surface), and the vertex test
-        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+        let (mut lo, mut hi, mut wit) = (f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
         let mut vertex = true;
         let mut coef_max = SmallVec::<[f64; 1]>::new();
         let corners = [
@@ -307,7 +309,7 @@ impl FastSurface {
         }
         if vertex {
             st.fast_exits += 1;
-            return Some((hi, lo));
+            return Some((hi, lo, f64::NEG_INFINITY));
         }
         // candidates on the patches the vertex test did not settle
         // (pushed and filled in place: a grid, a piece and the candidates are hundreds of
@@ -353,6 +355,7 @@ impl FastSurface {
                     }
                     let dd = tight_derivs(g, m, c.t, self.rational);
                     let val = value_of(&dd, self.rational);
+                    wit = wit.max(dd_value(&dd, self.rational).strictly_below());
                     c.dd = Some(dd);
                     let scale = if slot < 4 {
                         roots[k].edge_max_abs(slot)
@@ -388,7 +391,9 @@ impl FastSurface {
             return None;
         }
         let mut budget = BUDGET;
+        let wit0 = wit;
         for first in [hi, hi.next_up()] {
+            wit = wit0;
             let (mut ub, mut at) = (first, lo);
             let mut ok = true;
             for k in 0..grids.len() {
@@ -399,6 +404,7 @@ impl FastSurface {
                     rational: self.rational,
                     ub,
                     lo: at,
+                    wit,
                     budget: &mut budget,
                     edges: [None; 4],
                     cands: &cands[k],
@@ -407,14 +413,14 @@ impl FastSurface {
                     st: &mut *st,
                 };
                 ok = pr.prove(&roots[k], 4, &grids[k]);
-                (ub, at) = (pr.ub, pr.lo);
+                (ub, at, wit) = (pr.ub, pr.lo, pr.wit);
                 if !ok {
                     break;
                 }
             }
             if ok {
                 st.fast_proofs += 1;
-                return Some((ub, at));
+                return Some((ub, at, wit));
             }
         }
         None
@@ -1532,6 +1538,15 @@ fn flat_across<const N: usize>(pc: &Piece<N>, f: &[f64; N], d: usize) -> bool {
     true
 }
 
+/// Whether the f64 Hessian of F at the piece's centre (coefficients `f`) is nearly singular,
+/// det H >= -(H_uu^2 + 2 H_uv^2 + H_vv^2) / 20: the filter of [`Prover::ridge_line`] (on a
+/// ridge H is rank one up to the distance from the ridge; no soundness role).
+fn ridge_like<const N: usize>(pc: &Piece<N>, f: &[f64; N]) -> bool {
+    let h = eval2::<f64, 2>(&f[..pc.count()], pc.n, [0.5, 0.5]);
+    let (a, b, c) = (h[3], h[4], h[5]);
+    a * c - b * b >= -(a * a + 2.0 * b * b + c * c) / 20.0
+}
+
 /// The Bernstein coefficients, over the range `range` of the other direction o, of the
 /// iso-line functions F(c, .) and F_d(c, .) at x_d = c (F = A - ub w from the patch grid `g`
 /// of degrees n, derivatives in the patch parameter), enclosed in `Ddi`: de Casteljau
@@ -1588,12 +1603,116 @@ fn iso_line<S: Scalar + Copy>(
     (o0 < o1).then(|| (restrict(fv), restrict(fd)))
 }
 
+/// The blossom values f(a^(n - i), b^i), i = 0..=n, of the Bernstein polynomial with
+/// coefficients `x` (degree n = x.len() - 1): the Bernstein coefficients of f over the
+/// parameter segment from a to b (a > b allowed: the reversed segment). By the blossoming
+/// principle (Farin, *Curves and Surfaces for CAGD*, sec. on blossoms; Ramshaw 1989) the
+/// blossom is de Casteljau's algorithm with one parameter per level, here n - i levels at a
+/// and i at b: no split parameter (b - a) / (1 - a) to round, so in interval arithmetic on
+/// dyadic data at short dyadic a, b the results are exact; for verified types each result
+/// encloses the exact one (inclusion isotonicity).
+fn blossom_ends<S: Scalar + Copy>(x: &[S], a: f64, b: f64) -> SmallVec<[S; MAX_DEGREE + 1]> {
+    let n = x.len() - 1;
+    let (ta, tb) = (S::from_f64(a), S::from_f64(b));
+    (0..=n)
+        .map(|i| {
+            let mut c: SmallVec<[S; MAX_DEGREE + 1]> = x.iter().copied().collect();
+            for lev in 1..=n {
+                let t = if lev <= n - i { &ta } else { &tb };
+                for k in 0..=n - lev {
+                    c[k] = S::horner_step(&(c[k + 1] - c[k]), t, &c[k]);
+                }
+            }
+            c[0]
+        })
+        .collect()
+}
+
+/// The Bernstein coefficients (degree n0 + n1) of the tensor Bernstein polynomial `c` (grid
+/// of degrees n, row-major in u) restricted to the segment from (a0, a1) to (b0, b1) of the
+/// patch: first the coefficients over the parameter box with those corners
+/// ([`blossom_ends`] along both directions), on which the segment is the diagonal
+/// s_u = s_v = s; then B_r^{n0}(s) B_c^{n1}(s) = [C(n0, r) C(n1, c) / C(n0 + n1, r + c)]
+/// B_{r+c}^{n0+n1}(s) (the product of Bernstein polynomials; Farin, sec. on degree
+/// elevation), so coefficient k is sum over r + c = k of C(n0, r) C(n1, c) b_rc divided by
+/// C(n0 + n1, k) (a convex combination: the weights sum to 1 by Vandermonde's identity).
+/// Integer weights and one division per coefficient: exact in interval arithmetic where the
+/// quotient is a float (a ridge value 0).
+fn segment_coefs<S: Scalar + Copy>(
+    c: &[S],
+    n: [usize; 2],
+    a: [f64; 2],
+    b: [f64; 2],
+) -> SmallVec<[S; 2 * MAX_DEGREE + 1]> {
+    let (n0, n1) = (n[0], n[1]);
+    let mut rows: SmallVec<[SmallVec<[S; MAX_DEGREE + 1]>; MAX_DEGREE + 1]> = (0..=n0)
+        .map(|r| blossom_ends(&c[r * (n1 + 1)..(r + 1) * (n1 + 1)], a[1], b[1]))
+        .collect();
+    for k in 0..=n1 {
+        let col: SmallVec<[S; MAX_DEGREE + 1]> = rows.iter().map(|r| r[k]).collect();
+        for (r, x) in blossom_ends(&col, a[0], b[0]).into_iter().enumerate() {
+            rows[r][k] = x;
+        }
+    }
+    // (C(n, k) for n <= 2 MAX_DEGREE: small integers, exact)
+    let binom = |n: usize, k: usize| (0..k).fold(1usize, |x, i| x * (n - i) / (i + 1));
+    (0..=n0 + n1)
+        .map(|k| {
+            let mut s = S::zero();
+            for r in k.saturating_sub(n1)..=k.min(n0) {
+                s = s + S::from_usize(binom(n0, r) * binom(n1, k - r)) * rows[r][k - r];
+            }
+            s / S::from_usize(binom(n0 + n1, k))
+        })
+        .collect()
+}
+
+/// The coefficients of F = A - ub w (patch grid `ga`, `gw` of degrees n) and of F_d (the
+/// derivative along d in the patch parameter, degrees n with n_d one less: n_d times the
+/// differences along d; Farin, derivatives of a Bézier patch) restricted to the segment from
+/// `a` to `b` ([`segment_coefs`]); `None` if a degree along d is below 2.
+#[allow(clippy::type_complexity)]
+fn segment_lines<S: Scalar + Copy>(
+    ga: &[S],
+    gw: &[S],
+    n: [usize; 2],
+    d: usize,
+    ub: f64,
+    (a, b): ([f64; 2], [f64; 2]),
+) -> Option<(
+    SmallVec<[S; 2 * MAX_DEGREE + 1]>,
+    SmallVec<[S; 2 * MAX_DEGREE + 1]>,
+)> {
+    if n[d] < 2 {
+        return None;
+    }
+    let ubs = S::from_f64(ub);
+    let cnt = (n[0] + 1) * (n[1] + 1);
+    let f: SmallVec<[S; MAXN]> = (0..cnt).map(|i| ga[i] - ubs * gw[i]).collect();
+    let mut m = n;
+    m[d] -= 1;
+    let nd = S::from_usize(n[d]);
+    let fd: SmallVec<[S; MAXN]> = (0..=m[0])
+        .flat_map(|r| (0..=m[1]).map(move |c| (r, c)))
+        .map(|(r, c)| {
+            let (r1, c1) = if d == 0 { (r + 1, c) } else { (r, c + 1) };
+            nd * (f[r1 * (n[1] + 1) + c1] - f[r * (n[1] + 1) + c])
+        })
+        .collect();
+    Some((segment_coefs(&f, n, a, b), segment_coefs(&fd, m, a, b)))
+}
+
 /// A / w enclosed.
 fn value_of(d: &[[Ddi; 3]; 2], rational: bool) -> Interval {
+    dd_value(d, rational).to_interval()
+}
+
+/// A / w in `Ddi`.
+fn dd_value(d: &[[Ddi; 3]; 2], rational: bool) -> Ddi {
     if rational {
-        (d[0][0] / d[1][0]).to_interval()
+        d[0][0] / d[1][0]
     } else {
-        d[0][0].to_interval()
+        d[0][0]
     }
 }
 
@@ -1604,6 +1723,8 @@ struct Prover<'a, const N: usize> {
     ub: f64,
     /// the best attained value found on the way
     lo: f64,
+    /// the best strict witness found on the way ([`Ddi::strictly_below`])
+    wit: f64,
     budget: &'a mut u32,
     /// proven boundary curves (0: u = 0, 1: u = 1, 2: v = 0, 3: v = 1)
     edges: [Option<bool>; 4],
@@ -1917,7 +2038,7 @@ impl<const N: usize> Prover<'_, N> {
                     }
                     if self
                         .mu_after_raise(pc, mu, ub0, None)
-                        .is_some_and(|mu| self.bound(pc, c, mu, wd, fc, gr, free))
+                        .is_some_and(|mu| self.bound(pc, c.map(iv::point), mu, wd, fc, gr, free))
                     {
                         return true;
                     }
@@ -1925,7 +2046,9 @@ impl<const N: usize> Prover<'_, N> {
                 tight_derivs(g, pn, c, self.rational)
             }
         };
-        let val = if self.rational { a[0] / w[0] } else { a[0] }.to_interval();
+        let vd = dd_value(&[a, w], self.rational);
+        self.wit = self.wit.max(vd.strictly_below());
+        let val = vd.to_interval();
         if val.is_empty() || !val.sup().is_finite() {
             return false;
         }
@@ -1941,7 +2064,7 @@ impl<const N: usize> Prover<'_, N> {
         let Some(mu) = self.mu_after_raise(pc, mu, ub0, None) else {
             return false;
         };
-        if self.bound(pc, c, mu, wd, fc, gr, free) {
+        if self.bound(pc, c.map(iv::point), mu, wd, fc, gr, free) {
             return true;
         }
         // A maximum that is a float at a short dyadic point (a bump's top at t = 1/2): there
@@ -1962,7 +2085,7 @@ impl<const N: usize> Prover<'_, N> {
         let Some(mu) = self.mu_after_raise(pc, mu, ub0, None) else {
             return false;
         };
-        self.bound(pc, cs, mu, wd, fc, gr, free)
+        self.bound(pc, cs.map(iv::point), mu, wd, fc, gr, free)
     }
 
     /// The curvature bound mu of a piece (of F = A - ub0 w: [`Piece::concavity`], or
@@ -2014,82 +2137,75 @@ impl<const N: usize> Prover<'_, N> {
         if pc.n[0] == 0 || pc.n[1] == 0 || root.n != pc.full {
             return false;
         }
-        for d in 0..2 {
-            if sm[d].is_none() || !flat_across(pc, f, d) {
-                continue;
-            }
-            let Some(mu) = pc.curvature(f, e, d) else {
-                continue;
-            };
-            self.st.newton_iterations += 1;
-            let o = 1 - d;
-            let mid = |k: usize| 0.5 * pc.t[k].0 + 0.5 * pc.t[k].1;
-            let mut t = [mid(0), mid(1)];
-            for _ in 0..16 {
-                let a = eval2::<f64, 2>(&root.a[..], root.n, t);
-                let dv = if self.rational {
-                    quotient(a, eval2::<f64, 2>(&root.w[..], root.n, t))
-                } else {
-                    a
-                };
-                let (g1, g2) = (dv[1 + d], dv[3 + 2 * d]);
-                if g2 >= 0.0 || g2.is_nan() {
-                    break;
-                }
-                let nt = (t[d] - g1 / g2).clamp(pc.t[d].0, pc.t[d].1);
-                if !nt.is_finite() {
-                    break;
-                }
-                let moved = (nt - t[d]).abs() > 4.0 * f64::EPSILON;
-                t[d] = nt;
-                if !moved {
-                    break;
-                }
-            }
-            let val = tight_value(g, pc.full, t, self.rational);
-            if val.is_empty() || !val.sup().is_finite() {
-                return false;
-            }
-            self.lo = self.lo.max(val.inf());
-            if val.inf() > self.ub {
-                self.ub = val.sup();
-            }
-            let cnt = (pc.full[0] + 1) * (pc.full[1] + 1);
-            let lines = iso_line(&g.a[..cnt], &g.w[..cnt], pc.full, d, t[d], self.ub, pc.t[o]);
-            let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
-                continue;
-            };
-            if self.ridge_bound(pc, t, d, mu, lines) {
-                return true;
-            }
-            // a ridge value that is a float (a short dyadic c_d on dyadic data): interval
-            // arithmetic can be exact there, where `Ddi` always carries a radius
-            let dd = tight_derivs(g, pc.full, t, self.rational);
-            if !near_float(&dd, self.rational, pc.max_abs()) {
-                continue;
-            }
-            let Some((cs, [ai, wi])) = snapped(g, pc.full, t, pc) else {
-                continue;
-            };
-            let v = (ai[0] / wi[0]).sup();
-            self.lo = self.lo.max(v);
-            self.ub = self.ub.max(v);
-            let (ga, gw): (Vec<Interval>, Vec<Interval>) = (0..cnt)
-                .map(|i| (g.a[i].to_interval(), g.w[i].to_interval()))
-                .unzip();
-            let lines = iso_line(&ga, &gw, pc.full, d, cs[d], self.ub, pc.t[o]);
-            let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
-                continue;
-            };
-            if self.ridge_bound(pc, cs, d, mu, lines) {
-                return true;
-            }
+        let mus: [Option<f64>; 2] =
+            std::array::from_fn(|d| sm[d].and_then(|_| pc.curvature(f, e, d)));
+        // along a parameter line first (cheaper), then along a chord where the piece looks
+        // like a ridge (a filter, no soundness role: the f64 Hessian at the piece's centre is
+        // nearly singular, det H >= -|H|^2 / 20; a saddle piece of a random patch is not, and
+        // the chord's set-up would cost more than the halving that settles it)
+        (0..2).any(|d| {
+            mus[d]
+                .is_some_and(|mu| flat_across(pc, f, d) && self.ridge_axis(pc, root, d, mu, ub0, g))
+        }) || (mus.iter().any(Option::is_some) && ridge_like(pc, f))
+            && (0..2).any(|d| mus[d].is_some_and(|mu| self.ridge_line(pc, root, d, mu, ub0, g)))
+    }
+
+    /// [`Prover::ridge`] along the parameter direction o other than d (curvature `mu` along
+    /// d for F = A - ub0 w).
+    fn ridge_axis(
+        &mut self,
+        pc: &Piece<N>,
+        root: &Piece<N>,
+        d: usize,
+        mu: f64,
+        ub0: f64,
+        g: &DdGrid<N>,
+    ) -> bool {
+        self.st.newton_iterations += 1;
+        let o = 1 - d;
+        let mid = |k: usize| 0.5 * pc.t[k].0 + 0.5 * pc.t[k].1;
+        let t = max_along(root, d, [mid(0), mid(1)], pc.t[d]);
+        let val = tight_value(g, pc.full, t, self.rational);
+        if val.is_empty() || !val.sup().is_finite() {
+            return false;
         }
-        false
+        self.lo = self.lo.max(val.inf());
+        if val.inf() > self.ub {
+            self.ub = val.sup();
+        }
+        let cnt = (pc.full[0] + 1) * (pc.full[1] + 1);
+        let lines = iso_line(&g.a[..cnt], &g.w[..cnt], pc.full, d, t[d], self.ub, pc.t[o]);
+        let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
+            return false;
+        };
+        if self.ridge_bound(pc, t, d, mu, lines) {
+            return true;
+        }
+        // a ridge value that is a float (a short dyadic c_d on dyadic data): interval
+        // arithmetic can be exact there, where `Ddi` always carries a radius
+        let dd = tight_derivs(g, pc.full, t, self.rational);
+        if !near_float(&dd, self.rational, pc.max_abs()) {
+            return false;
+        }
+        let Some((cs, [ai, wi])) = snapped(g, pc.full, t, pc) else {
+            return false;
+        };
+        let v = (ai[0] / wi[0]).sup();
+        self.lo = self.lo.max(v);
+        self.ub = self.ub.max(v);
+        let (ga, gw): (Vec<Interval>, Vec<Interval>) = (0..cnt)
+            .map(|i| (g.a[i].to_interval(), g.w[i].to_interval()))
+            .unzip();
+        let lines = iso_line(&ga, &gw, pc.full, d, cs[d], self.ub, pc.t[o]);
+        let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
+            return false;
+        };
+        self.ridge_bound(pc, cs, d, mu, lines)
     }
 
     /// The bound of [`Prover::ridge`] from the iso-line coefficients `lines` (F(c_d, .) and
-    /// F_d(c_d, .) over the piece's o range) at c: whether it is <= 0.
+    /// F_d(c_d, .) over the piece's o range) at c: whether it is <= 0 ([`Prover::line_bound`]
+    /// with the chord the iso-line itself).
     fn ridge_bound<S: Scalar>(
         &self,
         pc: &Piece<N>,
@@ -2098,19 +2214,165 @@ impl<const N: usize> Prover<'_, N> {
         mu: f64,
         lines: Option<(Vec<S>, Vec<S>)>,
     ) -> bool {
-        let Some((fv, fd)) = lines else {
+        lines.is_some_and(|(fv, fd)| self.line_bound(pc, d, mu, (c[d], c[d]), &fv, &fd))
+    }
+
+    /// F <= 0 on a 2-D piece crossed by a ridge that is not along a parameter line (a
+    /// diagonal or rotated line, a curve): F is strictly concave along one parameter
+    /// direction d on the piece, -F_dd >= mu_t (mu_t = mu / W_d^2 in the patch parameter,
+    /// [`Piece::curvature`]), and nothing is assumed along the other direction o.
+    ///
+    /// Take the segment L from a = (a_d, o_lo) to b = (b_d, o_hi) with a_d, b_d in the
+    /// piece's d range (f64 maximisers of S along d on the piece's two o sides,
+    /// [`max_along`]: on a straight ridge L is the ridge up to rounding). Every x of the
+    /// piece has the point l = L(s) with l_o = x_o (L spans the o range), and the segment from
+    /// l to x runs along d inside the piece (a box, l_d between a_d and b_d). Taylor's formula
+    /// with the integral remainder along it gives
+    /// F(x) <= F(l) + F_d(l) (x_d - l_d) - mu_t (x_d - l_d)^2 / 2 <= F(l) + F_d(l)^2 / (2 mu_t)
+    /// (the maximum of the parabola over all x_d). So F <= max_L F + max_L |F_d|^2 / (2 mu_t)
+    /// on the piece, with both maxima bounded by the Bernstein coefficients of F and F_d
+    /// restricted to L ([`segment_lines`], convex hull property), enclosed in `Ddi` (or in
+    /// intervals on the patch grid's hulls: exact on dyadic data with a float ridge value at
+    /// dyadic ends). On a straight ridge F_d = 0 on L up to rounding and F <= the ridge value
+    /// up to rounding; on a curved ridge the chord leaves the ridge by O(W^2), the excess is
+    /// O(W^4) and the piece is halved until it is below the rounding. (Not in the thesis; the
+    /// Taylor bound as in [`Prover::ridge`], along a chord instead of a parameter line.)
+    fn ridge_line(
+        &mut self,
+        pc: &Piece<N>,
+        root: &Piece<N>,
+        d: usize,
+        mu: f64,
+        ub0: f64,
+        g: &DdGrid<N>,
+    ) -> bool {
+        let o = 1 - d;
+        let (lo, hi) = pc.t[d];
+        // the ridge's d position on the piece's two o sides, not clamped to the piece
+        // (the piece's d range widened by its width on both sides)
+        let w = hi - lo;
+        let ridge_at = |x_o: f64| {
+            let mut t = [0.0; 2];
+            (t[d], t[o]) = (0.5 * lo + 0.5 * hi, x_o);
+            max_along(root, d, t, (lo - w, hi + w))[d]
+        };
+        let (o0, o1) = pc.t[o];
+        let (r0, r1) = (ridge_at(o0), ridge_at(o1));
+        self.st.newton_iterations += 1;
+        // The o range cut where the line through the two ridge points crosses a d side of
+        // the piece: on each part the chord is that line clamped into the piece (inside,
+        // or along the side the ridge lies beyond). Any cut points and any chord ends in
+        // the piece give a valid bound; these make it tight.
+        let mut cuts: SmallVec<[f64; 4]> = SmallVec::new();
+        cuts.push(o0);
+        if r1 != r0 {
+            for side in [lo, hi] {
+                let s = o0 + (side - r0) / (r1 - r0) * (o1 - o0);
+                if s > o0 && s < o1 {
+                    cuts.push(s);
+                }
+            }
+        }
+        cuts.push(o1);
+        cuts.sort_by(f64::total_cmp);
+        let at = |x_o: f64| {
+            let x_d = if r1 == r0 {
+                r0
+            } else {
+                r0 + (x_o - o0) / (o1 - o0) * (r1 - r0)
+            };
+            let mut t = [0.0; 2];
+            (t[d], t[o]) = (if x_d.is_nan() { lo } else { x_d.clamp(lo, hi) }, x_o);
+            t
+        };
+        let parts: SmallVec<[([f64; 2], [f64; 2]); 3]> =
+            cuts.windows(2).map(|c| (at(c[0]), at(c[1]))).collect();
+        // f64 pre-check (no soundness role): skip the verified work where the bound
+        // clearly fails
+        let scale = self.ub.abs().max(pc.max_abs());
+        let cnt = (pc.full[0] + 1) * (pc.full[1] + 1);
+        let clear = parts.iter().all(|&ends| {
+            segment_lines::<f64>(&root.a[..cnt], &root.w[..cnt], pc.full, d, self.ub, ends)
+                .is_some_and(|(fv, fd)| {
+                    let gm = fd.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                    let fm = fv.iter().fold(f64::NEG_INFINITY, |m, &x| m.max(x));
+                    // (the unconstrained parabola: an over-estimate of the bound below)
+                    fm + gm * gm * w * w / (2.0 * mu) <= 1e-12 * scale || fm <= 1e-12 * scale
+                })
+        });
+        if !clear {
+            return false;
+        }
+        // the value at a ridge point is attained (and raises ub when it provably beats it)
+        let val = tight_value(g, pc.full, parts[0].0, self.rational);
+        if val.is_empty() || !val.sup().is_finite() {
+            return false;
+        }
+        self.lo = self.lo.max(val.inf());
+        if val.inf() > self.ub {
+            self.ub = val.sup();
+        }
+        let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
             return false;
         };
+        parts
+            .iter()
+            .all(|&ends| self.chord_bound(pc, d, mu, ends, g))
+    }
+
+    /// F <= 0 on the slab of the piece over the o range of the chord `ends` (points of the
+    /// piece), F_dd <= -mu / W_d^2 on the piece: [`Prover::line_bound`] on the coefficients of
+    /// F and F_d along the chord in `Ddi`, then (a float ridge value on dyadic data) in
+    /// interval arithmetic on the hulls of the grid's coefficients, which can be exact where
+    /// `Ddi` always carries a radius.
+    fn chord_bound(
+        &self,
+        pc: &Piece<N>,
+        d: usize,
+        mu: f64,
+        ends: ([f64; 2], [f64; 2]),
+        g: &DdGrid<N>,
+    ) -> bool {
+        let cnt = (pc.full[0] + 1) * (pc.full[1] + 1);
+        let cd = (ends.0[d], ends.1[d]);
+        segment_lines(&g.a[..cnt], &g.w[..cnt], pc.full, d, self.ub, ends)
+            .is_some_and(|(fv, fd)| self.line_bound(pc, d, mu, cd, &fv, &fd))
+            || {
+                let (ga, gw): (SmallVec<[Interval; MAXN]>, SmallVec<[Interval; MAXN]>) = (0..cnt)
+                    .map(|i| (g.a[i].to_interval(), g.w[i].to_interval()))
+                    .unzip();
+                segment_lines(&ga, &gw, pc.full, d, self.ub, ends)
+                    .is_some_and(|(fv, fd)| self.line_bound(pc, d, mu, cd, &fv, &fd))
+            }
+    }
+
+    /// The bound of [`Prover::ridge_line`] on the slab of the piece over the o range of the
+    /// chord `ends`, from the coefficients of F and F_d on the chord: [`Prover::bound`] along
+    /// d with the expansion point anywhere between the chord's d ends, F(l) <= max F and
+    /// F_d(l) in the hull of the F_d coefficients, over the slab's x_d (the whole d range of
+    /// the piece): whether it is <= 0, rounding included.
+    #[allow(clippy::type_complexity)]
+    fn line_bound<S: Scalar>(
+        &self,
+        pc: &Piece<N>,
+        d: usize,
+        mu: f64,
+        ends: (f64, f64),
+        fv: &[S],
+        fd: &[S],
+    ) -> bool {
         let hull = |c: &[S]| {
             c.iter()
                 .map(|x| x.to_interval())
                 .fold(Interval::EMPTY, |h, x| h.convex_hull(x))
         };
-        let (fh, gh) = (hull(&fv), hull(&fd));
-        if fh.is_empty() || gh.is_empty() || !fh.sup().is_finite() || !gh.is_common_interval() {
+        let (fh, gh) = (hull(fv), hull(fd));
+        if fh.is_empty() || !fh.sup().is_finite() || !gh.is_common_interval() {
             return false;
         }
         let wd = iv::point(pc.t[d].1) - iv::point(pc.t[d].0);
+        let mut c = [Interval::EMPTY; 2];
+        c[d] = iv::point(ends.0).convex_hull(iv::point(ends.1));
         let mut gr = [Interval::EMPTY; 2];
         gr[d] = gh;
         let mut free = [false; 2];
@@ -2119,12 +2381,14 @@ impl<const N: usize> Prover<'_, N> {
     }
 
     /// The bound of [`Prover::concave`] at c from F(c) and grad F(c) (enclosures), mu and
-    /// the piece width `wd`, over the directions `free`: whether it is <= 0.
+    /// the piece width `wd`, over the directions `free`: whether it is <= 0. (`c[k]` may be
+    /// an interval: the bound then holds for expansion points anywhere in it, as
+    /// [`Prover::ridge_line`] needs; the distances to the piece's sides are enclosed over it.)
     #[allow(clippy::too_many_arguments)]
     fn bound(
         &self,
         pc: &Piece<N>,
-        c: [f64; 2],
+        c: [Interval; 2],
         mu: f64,
         wd: Interval,
         fc: Interval,
@@ -2136,8 +2400,8 @@ impl<const N: usize> Prover<'_, N> {
         let mut bound = fc;
         for k in (0..2).filter(|&k| free[k]) {
             let g = gr[k];
-            let dlo = iv::point(pc.t[k].0) - iv::point(c[k]);
-            let dhi = iv::point(pc.t[k].1) - iv::point(c[k]);
+            let dlo = iv::point(pc.t[k].0) - c[k];
+            let dhi = iv::point(pc.t[k].1) - c[k];
             // max over d in [0, dhi] with g_hi, over d in [dlo, 0] with g_lo
             let side = |gx: f64, de: Interval, up_side: bool| -> f64 {
                 let gi = iv::point(gx);
@@ -2162,6 +2426,39 @@ impl<const N: usize> Prover<'_, N> {
         }
         bound.sup() <= 0.0
     }
+}
+
+/// An f64 estimate of the maximiser of sign * S_j along direction d through t, in `range`
+/// (Newton iterations on S_d, clamped; the patch polynomial extends beyond [0, 1]). Only an estimate: the proofs that use
+/// it ([`Prover::ridge`], [`Prover::ridge_line`]) hold for any point of the range.
+fn max_along<const N: usize>(
+    root: &Piece<N>,
+    d: usize,
+    mut t: [f64; 2],
+    range: (f64, f64),
+) -> [f64; 2] {
+    for _ in 0..16 {
+        let a = eval2::<f64, 2>(&root.a[..], root.n, t);
+        let dv = if root.rational {
+            quotient(a, eval2::<f64, 2>(&root.w[..], root.n, t))
+        } else {
+            a
+        };
+        let (g1, g2) = (dv[1 + d], dv[3 + 2 * d]);
+        if g2 >= 0.0 || g2.is_nan() {
+            break;
+        }
+        let nt = (t[d] - g1 / g2).clamp(range.0, range.1);
+        if !nt.is_finite() {
+            break;
+        }
+        let moved = (nt - t[d]).abs() > 4.0 * f64::EPSILON;
+        t[d] = nt;
+        if !moved {
+            break;
+        }
+    }
+    t
 }
 
 /// An f64 estimate of the maximiser of sign * S_j over the piece: Newton iterations on the
@@ -2253,18 +2550,18 @@ mod tests {
                 tally[0] += st.fast_exits;
                 tally[1] += st.fast_proofs;
                 tally[2] += st.fast_fallbacks;
-                let Some((ub, at)) = r else { continue };
-                assert!(at <= ub, "{at} {ub}");
+                let Some((ub, at, wit)) = r else { continue };
+                assert!(at <= ub && wit <= ub, "{at} {wit} {ub}");
                 let cb = &newton.coords[j];
                 let (nlo, nhi) = if sign > 0.0 {
                     (cb.inner_hi, cb.hi)
                 } else {
                     (-cb.inner_lo, -cb.lo)
                 };
-                // the exact maximum M: nlo <= M <= nhi, at <= M <= ub
+                // the exact maximum M: nlo <= M <= nhi, at <= M <= ub, wit < M
                 assert!(
-                    at <= nhi && nlo <= ub,
-                    "{j} {sign}: [{at}, {ub}] vs [{nlo}, {nhi}]"
+                    at <= nhi && nlo <= ub && wit < nhi,
+                    "{j} {sign}: [{at}, {ub}] (witness {wit}) vs [{nlo}, {nhi}]"
                 );
                 let n = 24;
                 for i in 0..=n {
@@ -2281,6 +2578,80 @@ mod tests {
                 // did not close and the retry one ulp higher did)
                 assert!(gap <= 2.0, "{j} {sign}: gap {gap} ulps");
             }
+        }
+    }
+
+    /// The proof of F <= 0 (z coordinate, maximum side) on patch 0 of `s` against `ub`,
+    /// without candidates: whether it succeeds.
+    fn proves(s: &NurbsSurface, ub: f64) -> bool {
+        let f = FastSurface::new(s).expect("fast path applies");
+        let g = f.dd_grid::<MAXN>(0, 2, 1.0);
+        let root = Piece::root(&g, [f.p, f.q], f.rational).expect("finite");
+        let (mut budget, mut st) = (BUDGET, Stats::default());
+        let cands = [None; 5];
+        let mut pr = Prover {
+            rational: f.rational,
+            ub,
+            lo: f64::NEG_INFINITY,
+            wit: f64::NEG_INFINITY,
+            budget: &mut budget,
+            edges: [None; 4],
+            cands: &cands,
+            found: SmallVec::new(),
+            searches: 0,
+            st: &mut st,
+        };
+        pr.prove(&root, 4, &g) && pr.ub == ub
+    }
+
+    /// The chord proof ([`Prover::ridge_line`]) never proves a bound below the maximum: on the
+    /// curved ridge (maximum 0 on an arc, the chords between ridge points leave it), on the
+    /// straight ones, and on a chord off the ridge, where only the F_d^2 / (2 mu) term covers
+    /// the points between chord and ridge. Mutation tried: dropping the F_d term in
+    /// [`Prover::line_bound`] (gr[d] = 0) proves 0.95 on the off-ridge chord (this test
+    /// fails). A bound above the maximum is proven (on the straight ridges exactly at the
+    /// maximum, a float).
+    #[test]
+    fn ridge_chords_prove_no_bound_below_the_maximum() {
+        let fam = families();
+        let get = |n: &str| fam.iter().find(|f| f.0 == n).unwrap().1.clone();
+        let circle = crate::surface::gen::ridge_circle();
+        for ub in [-1e-3, -1e-4, -1e-6] {
+            assert!(!proves(&circle, ub), "circle {ub}");
+        }
+        assert!(proves(&circle, 1e-3));
+        for name in ["ridge_diagonal", "ridge_rotated"] {
+            let s = get(name);
+            assert!(!proves(&s, 1.0 - 1e-9), "{name}");
+            assert!(proves(&s, 1.0), "{name}");
+        }
+        // A chord off the ridge: z = 1 - (u - v)^2 on the whole patch (F_uu = -2), the chord
+        // from (0.3, 0) to (1, 0.7) parallel to the ridge, where z = 0.91. The bound
+        // 0.91 + F_u^2 / (2 mu) = 0.91 + 0.36 / 4 = 1 must not prove ub = 0.95 (dropping the
+        // F_d term in `line_bound` does), and proves ub = 1 + 1e-9.
+        let s = get("ridge_diagonal");
+        let f = FastSurface::new(&s).unwrap();
+        let g = f.dd_grid::<MAXN>(0, 2, 1.0);
+        let root = Piece::root(&g, [2, 2], false).unwrap();
+        let mut buf = [0.0; MAXN];
+        let (fv, e) = root.f_values(0.95, &mut buf).unwrap();
+        let mu = root.curvature(fv, e, 0).unwrap();
+        let (mut budget, mut st, cands) = (BUDGET, Stats::default(), [None; 5]);
+        for (ub, want) in [(0.95, false), (1.0 + 1e-9, true)] {
+            let pr = Prover {
+                rational: false,
+                ub,
+                lo: f64::NEG_INFINITY,
+                wit: f64::NEG_INFINITY,
+                budget: &mut budget,
+                edges: [None; 4],
+                cands: &cands,
+                found: SmallVec::new(),
+                searches: 0,
+                st: &mut st,
+            };
+            let ok = pr.chord_bound(&root, 0, mu, ([0.3, 0.0], [1.0, 0.7]), &g);
+            assert_eq!(ok, want, "off-ridge chord, ub {ub}");
         }
     }
 
@@ -2349,7 +2720,7 @@ mod tests {
             let coefs: Vec<Exact> = z.iter().flatten().map(|&x| Exact::of(x)).collect();
             for sign in [1.0, -1.0] {
                 let mut st = Stats::default();
-                let Some((ub, at)) = f.side(2, sign, &mut st) else {
+                let Some((ub, at, _)) = f.side(2, sign, &mut st) else {
                     continue;
                 };
                 let n = 32;

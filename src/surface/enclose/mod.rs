@@ -236,10 +236,12 @@ pub fn drive<E: SurfaceEncloser + ?Sized>(e: &E, s: &NurbsSurface) -> Enclosure 
         cb.inner_hi = cb.inner_hi.max(cb.lo).min(cb.hi);
         // The certificate's first rule (as for curves, `enclose::certify`): S_j provably
         // reaches a value <= inner_lo and never goes below lo, so inner_lo == lo means
-        // min S_j = lo exactly, hence lo = RD(min); likewise hi. Surfaces have no other rule yet
-        // (no double-double or exact stage), so every other flag is `false`.
-        cb.optimal_lo = r.verified && cb.inner_lo == cb.lo;
-        cb.optimal_hi = r.verified && cb.inner_hi == cb.hi;
+        // min S_j = lo exactly, hence lo = RD(min); or it provably reaches a value
+        // < witness_lo (a double-double value of the fast path, `Ddi::strictly_below`), and
+        // witness_lo <= next_up(lo) means lo <= min < next_up(lo), hence lo = RD(min);
+        // likewise hi. (No search for witnesses beyond what the strategies computed.)
+        cb.optimal_lo = r.verified && (cb.inner_lo == cb.lo || cb.witness_lo <= cb.lo.next_up());
+        cb.optimal_hi = r.verified && (cb.inner_hi == cb.hi || cb.witness_hi >= cb.hi.next_down());
     }
     r
 }

@@ -648,7 +648,7 @@ impl SurfaceEncloser for SurfaceNewton {
         // Float first: every side proven by the fast path, or the search below for all
         // (then the proven sides keep the tighter of both results; both are sound).
         let mut fast_st = vec![Stats::default(); d];
-        let fast: Vec<[Option<(f64, f64)>; 2]> = match self
+        let fast: Vec<[Option<(f64, f64, f64)>; 2]> = match self
             .fast_path
             .then(|| super::fast::FastSurface::new(s))
             .flatten()
@@ -664,12 +664,14 @@ impl SurfaceEncloser for SurfaceNewton {
         if fast.iter().flatten().all(Option::is_some) {
             let coords = (0..d)
                 .map(|j| {
-                    let [(nlo, nilo), (hi, ihi)] = fast[j].map(|x| x.expect("proven"));
+                    let [(nlo, nilo, wlo), (hi, ihi, whi)] = fast[j].map(|x| x.expect("proven"));
                     let mut st = fast_st[j];
                     if j == 0 {
                         st.time_total = t0.elapsed();
                     }
-                    coord_box(-nlo, hi, -nilo, ihi, st, Termination::Converged)
+                    let mut cb = coord_box(-nlo, hi, -nilo, ihi, st, Termination::Converged);
+                    (cb.witness_lo, cb.witness_hi) = (-wlo, whi);
+                    cb
                 })
                 .collect();
             return enclosure(self.name(), true, coords);
@@ -731,13 +733,15 @@ impl SurfaceEncloser for SurfaceNewton {
         }
         for (j, c) in coords.iter_mut().enumerate() {
             c.stats.add(&fast_st[j]);
-            if let Some((nlo, nilo)) = fast[j][0] {
+            if let Some((nlo, nilo, wlo)) = fast[j][0] {
                 c.lo = c.lo.max(-nlo);
                 c.inner_lo = c.inner_lo.min(-nilo);
+                c.witness_lo = c.witness_lo.min(-wlo);
             }
-            if let Some((hi, ihi)) = fast[j][1] {
+            if let Some((hi, ihi, whi)) = fast[j][1] {
                 c.hi = c.hi.min(hi);
                 c.inner_hi = c.inner_hi.max(ihi);
+                c.witness_hi = c.witness_hi.max(whi);
             }
         }
         enclosure(self.name(), true, coords)
