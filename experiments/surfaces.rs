@@ -1,5 +1,7 @@
 //! The surface harness binary: runs [`surface_sweep::run`] (see there), writes
-//! `results/surfaces.md` and `results/surface_figure.svg`, exits non-zero on a containment miss.
+//! `results/surfaces.md` and `results/surface_figure.svg` (built with `--features mpfr` also
+//! `results/surface_tightness.md`, every strategy against the 256-bit reference), exits
+//! non-zero on a containment miss (or, with `mpfr`, a reference miss or a false certificate).
 //!
 //! `cargo run --release --bin surfaces` (`-- --quick` for a smaller sweep; `-- --bicubic` for
 //! the bicubic timing table alone, printed, no file written).

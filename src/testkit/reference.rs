@@ -36,6 +36,7 @@
 use crate::num::{mpfr_prec, ulp, with_mpfr_prec, MPFR_PREC};
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
+use crate::surface::{NurbsSurface, SurfaceEval};
 use rug::Float;
 use std::cmp::Ordering;
 
@@ -546,6 +547,105 @@ pub fn inner_reached(
 ) -> bool {
     ulps_outside(inner_lo, &rb.lo[j], scale, true) >= 0.0
         && ulps_outside(inner_hi, &rb.hi[j], scale, false) >= 0.0
+}
+
+/// Extrema (lo, hi) per coordinate of a surface with clamped sides, at 256 bits: values the
+/// surface attains (so `hi` is a lower bound of the exact maximum) found by a search dense
+/// enough to be the exact extrema on the surface families of `surface::gen`: the boundary
+/// curves and knot lines of multiplicity >= the degree (rows / columns of the net) by the
+/// curve reference [`reference_box`], and the interior critical points by a 12 x 12 grid in
+/// every Bézier span pair, each grid point polished by Newton's method on grad S_j = 0 in MPFR.
+/// Unlike the curve reference this is a dense search, not a root isolation: a reference for
+/// the tests and the surface harness, not a proof.
+pub fn surface_reference(s: &NurbsSurface) -> Vec<(Float, Float)> {
+    let ((a, b), (c, d)) = s.domain();
+    let dim = s.dim();
+    let mut out: Vec<(Float, Float)> = (0..dim)
+        .map(|_| {
+            (
+                Float::with_val(256, f64::INFINITY),
+                Float::with_val(256, f64::NEG_INFINITY),
+            )
+        })
+        .collect();
+    let take = |j: usize, x: &Float, out: &mut Vec<(Float, Float)>| {
+        if *x < out[j].0 {
+            out[j].0 = x.clone();
+        }
+        if *x > out[j].1 {
+            out[j].1 = x.clone();
+        }
+    };
+    // lines: clamped sides and knot lines of multiplicity >= the degree are row / column curves
+    let t = s.transposed();
+    for (surf, lo, hi, kinks) in [(s, a, b, s.kink_knots_u()), (&t, c, d, s.kink_knots_v())] {
+        let mut xs = vec![lo, hi];
+        xs.extend(kinks);
+        for x in xs {
+            for left in [false, true] {
+                if let Some(r) = surf.exact_row_at(x, left) {
+                    let rb = reference_box(&surf.row_curve(r));
+                    for j in 0..dim {
+                        take(j, &rb.lo[j], &mut out);
+                        take(j, &rb.hi[j], &mut out);
+                    }
+                }
+            }
+        }
+    }
+    // interior: grid + Newton polish per span pair
+    let ev = SurfaceEval::<Float>::new(s, 2, 2, 2);
+    let net = ev.net();
+    let g = 12usize;
+    for ku in net.spans_u() {
+        for kv in net.spans_v() {
+            let (u0, u1) = (net.ku[ku], net.ku[ku + 1]);
+            let (v0, v1) = (net.kv[kv], net.kv[kv + 1]);
+            for i in 1..g {
+                for k in 1..g {
+                    let u = Float::with_val(256, u0)
+                        + (Float::with_val(256, u1) - u0) * i as f64 / g as f64;
+                    let v = Float::with_val(256, v0)
+                        + (Float::with_val(256, v1) - v0) * k as f64 / g as f64;
+                    let val = ev.derivs_in_span(ku, kv, &u, &v, (0, 0, 0));
+                    for j in 0..dim {
+                        take(j, &val[0][0].as_ref().unwrap()[j], &mut out);
+                    }
+                    // Newton on grad S_j from every grid point (cheap at this size)
+                    for j in 0..dim {
+                        let (mut uu, mut vv) = (u.clone(), v.clone());
+                        let mut ok = false;
+                        for _ in 0..60 {
+                            let dv = ev.derivs_in_span(ku, kv, &uu, &vv, (2, 2, 2));
+                            let gq = |a: usize, b: usize| dv[a][b].as_ref().unwrap()[j].clone();
+                            let (gu, gv) = (gq(1, 0), gq(0, 1));
+                            let (huu, huv, hvv) = (gq(2, 0), gq(1, 1), gq(0, 2));
+                            let det = huu.clone() * &hvv - huv.clone() * &huv;
+                            if det.is_zero() {
+                                break;
+                            }
+                            let du = (hvv * &gu - huv.clone() * &gv) / &det;
+                            let dvv = (huu * &gv - huv * &gu) / &det;
+                            uu -= &du;
+                            vv -= &dvv;
+                            if uu < u0 || uu > u1 || vv < v0 || vv > v1 {
+                                break;
+                            }
+                            if du.clone().abs() < 1e-70 && dvv.clone().abs() < 1e-70 {
+                                ok = true;
+                                break;
+                            }
+                        }
+                        if ok {
+                            let val = ev.derivs_in_span(ku, kv, &uu, &vv, (0, 0, 0));
+                            take(j, &val[0][0].as_ref().unwrap()[j], &mut out);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
