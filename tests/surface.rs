@@ -761,3 +761,19 @@ fn fast_path_proves_ridges_off_the_parameter_lines() {
         }
     }
 }
+
+/// A ridge along a curve (`gen::ridge_circle`: z has its maximum 0 on an arc) is not proven
+/// tight by the chord proof, but it must still end in a sound box far below the net box (net
+/// maximum 9): containment of dense samples, hi >= 0 (the exact maximum), hi < 1e-3.
+#[test]
+fn a_curved_ridge_ends_in_a_sound_box_not_the_net_box() {
+    let s = nurbs_box::surface::gen::ridge_circle();
+    let pts = samples(&s, 40);
+    for st in ["bezier", "newton"] {
+        let e = surface_strategy_by_name(st, None).unwrap().enclose(&s);
+        check("ridge_circle", &s, &e, &pts, 2e-2);
+        let cb = &e.coords[2];
+        assert!(cb.hi >= 0.0 && cb.hi < 1e-3, "{st}: hi {}", cb.hi);
+        assert!(cb.inner_hi <= 0.0, "{st}: inner_hi {}", cb.inner_hi);
+    }
+}

@@ -427,18 +427,7 @@ fn restrict_hull_f64(co: &[Mr], t0: f64, t1: f64) -> Option<(Interval, f64)> {
         return Some((Interval::ENTIRE, f64::INFINITY));
     }
     let b = &mut b[..=n];
-    let out = &mut out[..=n];
-    if t1 < 1.0 {
-        out[0] = b[0];
-        de_casteljau_levels(b, 1, &t1, |lv, b| out[lv] = b[0]);
-        b.copy_from_slice(out);
-    }
-    if t0 > 0.0 {
-        let s = (t0 / t1).next_down().max(0.0);
-        out[n] = b[n];
-        de_casteljau_levels(b, 1, &s, |lv, b| out[n - lv] = b[n - lv]);
-        b.copy_from_slice(out);
-    }
+    restrict_in_place(b, &mut out[..=n], t0, t1);
     let (lo, hi) = b.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
         (lo.min(x), hi.max(x))
     });
@@ -451,6 +440,26 @@ fn restrict_hull_f64(co: &[Mr], t0: f64, t1: f64) -> Option<(Interval, f64)> {
         return Some((Interval::ENTIRE, f64::INFINITY));
     }
     Some((iv::span(lo, hi) + iv::span(-e, e), e))
+}
+
+/// The splits of [`restrict_hull_f64`] in place on the coefficients `b` (`out`: a buffer of
+/// the same length): left part at t1 (unless t1 = 1), then its right part at
+/// s = max(0, next_down(fl(t0 / t1))) (unless t0 = 0), so that `b` ends as the coefficients
+/// over [s t1, t1], which contains [t0, t1]. Generic so that the test runs the same splits
+/// in exact arithmetic.
+fn restrict_in_place<S: Scalar>(b: &mut [S], out: &mut [S], t0: f64, t1: f64) {
+    let n = b.len() - 1;
+    if t1 < 1.0 {
+        out[0] = b[0].clone();
+        de_casteljau_levels(b, 1, &S::from_f64(t1), |lv, b| out[lv] = b[0].clone());
+        b.clone_from_slice(out);
+    }
+    if t0 > 0.0 {
+        let s = (t0 / t1).next_down().max(0.0);
+        out[n] = b[n].clone();
+        de_casteljau_levels(b, 1, &S::from_f64(s), |lv, b| out[n - lv] = b[n - lv].clone());
+        b.clone_from_slice(out);
+    }
 }
 
 /// Interval hull of enclosures (ENTIRE if any is unbounded).
@@ -659,22 +668,10 @@ mod tests {
             }
             let co: Vec<Mr> = c.iter().map(|&x| Mr::from_f64(x)).collect();
             let (got, _) = restrict_hull_f64(&co, t0, t1).unwrap();
-            // exact restriction at the same parameters (t1, then s as in the function)
+            // exact restriction at the same parameters (the same splits in exact arithmetic)
             let mut b: Vec<Exact> = c.iter().map(|&x| Exact::of(x)).collect();
             let mut out = b.clone();
-            if t1 < 1.0 {
-                out[0] = b[0].clone();
-                de_casteljau_levels(&mut b, 1, &Exact::of(t1), |lv, b| out[lv] = b[0].clone());
-                b = out.clone();
-            }
-            if t0 > 0.0 {
-                let s = (t0 / t1).next_down().max(0.0);
-                out[n] = b[n].clone();
-                de_casteljau_levels(&mut b, 1, &Exact::of(s), |lv, b| {
-                    out[n - lv] = b[n - lv].clone()
-                });
-                b = out.clone();
-            }
+            restrict_in_place(&mut b, &mut out, t0, t1);
             for x in &b {
                 assert!(
                     !x.gt_f64(got.sup()) && !(Exact::of(got.inf()) - x.clone()).gt_f64(0.0),

@@ -435,6 +435,14 @@ struct DdGrid<const N: usize> {
 }
 
 impl<const N: usize> DdGrid<N> {
+    /// The first `cnt` coefficients of A and w as intervals (their hulls), for the interval
+    /// passes that can be exact where `Ddi` always carries a radius.
+    fn hulls(&self, cnt: usize) -> (SmallVec<[Interval; MAXN]>, SmallVec<[Interval; MAXN]>) {
+        (0..cnt)
+            .map(|i| (self.a[i].to_interval(), self.w[i].to_interval()))
+            .unzip()
+    }
+
     /// The grid of boundary curve e of a patch of degrees n (see [`Piece::edge`]).
     fn edge(&self, e: usize, n: [usize; 2]) -> DdGrid<N> {
         let mut g = *self;
@@ -1901,11 +1909,7 @@ impl<const N: usize> Prover<'_, N> {
             // a maximum the first candidates missed: Newton from this piece's centre
             self.searches -= 1;
             if let Some(c) = newton_from(root, self.rational, pc.argmax_point()) {
-                let val = tight_value(g, pc.full, c.t, self.rational);
-                self.lo = self.lo.max(val.inf());
-                if val.inf() > self.ub {
-                    self.ub = val.sup();
-                }
+                self.attain_at(g, pc, c.t);
                 self.found.push(c);
             }
         }
@@ -2150,6 +2154,21 @@ impl<const N: usize> Prover<'_, N> {
             && (0..2).any(|d| mus[d].is_some_and(|mu| self.ridge_line(pc, root, d, mu, ub0, g)))
     }
 
+    /// A value the surface attains at the patch parameter t (`tight_value`, double double):
+    /// its lower end raises the attained value `lo`, and it raises `ub` when it provably
+    /// exceeds it. `false`, with nothing recorded, for an empty or unbounded enclosure.
+    fn attain_at(&mut self, g: &DdGrid<N>, pc: &Piece<N>, t: [f64; 2]) -> bool {
+        let val = tight_value(g, pc.full, t, self.rational);
+        if val.is_empty() || !val.sup().is_finite() {
+            return false;
+        }
+        self.lo = self.lo.max(val.inf());
+        if val.inf() > self.ub {
+            self.ub = val.sup();
+        }
+        true
+    }
+
     /// [`Prover::ridge`] along the parameter direction o other than d (curvature `mu` along
     /// d for F = A - ub0 w).
     fn ridge_axis(
@@ -2165,13 +2184,8 @@ impl<const N: usize> Prover<'_, N> {
         let o = 1 - d;
         let mid = |k: usize| 0.5 * pc.t[k].0 + 0.5 * pc.t[k].1;
         let t = max_along(root, d, [mid(0), mid(1)], pc.t[d]);
-        let val = tight_value(g, pc.full, t, self.rational);
-        if val.is_empty() || !val.sup().is_finite() {
+        if !self.attain_at(g, pc, t) {
             return false;
-        }
-        self.lo = self.lo.max(val.inf());
-        if val.inf() > self.ub {
-            self.ub = val.sup();
         }
         let cnt = (pc.full[0] + 1) * (pc.full[1] + 1);
         let lines = iso_line(&g.a[..cnt], &g.w[..cnt], pc.full, d, t[d], self.ub, pc.t[o]);
@@ -2193,9 +2207,7 @@ impl<const N: usize> Prover<'_, N> {
         let v = (ai[0] / wi[0]).sup();
         self.lo = self.lo.max(v);
         self.ub = self.ub.max(v);
-        let (ga, gw): (Vec<Interval>, Vec<Interval>) = (0..cnt)
-            .map(|i| (g.a[i].to_interval(), g.w[i].to_interval()))
-            .unzip();
+        let (ga, gw) = g.hulls(cnt);
         let lines = iso_line(&ga, &gw, pc.full, d, cs[d], self.ub, pc.t[o]);
         let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
             return false;
@@ -2304,13 +2316,8 @@ impl<const N: usize> Prover<'_, N> {
             return false;
         }
         // the value at a ridge point is attained (and raises ub when it provably beats it)
-        let val = tight_value(g, pc.full, parts[0].0, self.rational);
-        if val.is_empty() || !val.sup().is_finite() {
+        if !self.attain_at(g, pc, parts[0].0) {
             return false;
-        }
-        self.lo = self.lo.max(val.inf());
-        if val.inf() > self.ub {
-            self.ub = val.sup();
         }
         let Some(mu) = self.mu_after_raise(pc, mu, ub0, Some(d)) else {
             return false;
@@ -2338,9 +2345,7 @@ impl<const N: usize> Prover<'_, N> {
         segment_lines(&g.a[..cnt], &g.w[..cnt], pc.full, d, self.ub, ends)
             .is_some_and(|(fv, fd)| self.line_bound(pc, d, mu, cd, &fv, &fd))
             || {
-                let (ga, gw): (SmallVec<[Interval; MAXN]>, SmallVec<[Interval; MAXN]>) = (0..cnt)
-                    .map(|i| (g.a[i].to_interval(), g.w[i].to_interval()))
-                    .unzip();
+                let (ga, gw) = g.hulls(cnt);
                 segment_lines(&ga, &gw, pc.full, d, self.ub, ends)
                     .is_some_and(|(fv, fd)| self.line_bound(pc, d, mu, cd, &fv, &fd))
             }
