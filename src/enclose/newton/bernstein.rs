@@ -134,9 +134,30 @@ impl SpanPoly {
         // (the f64 restriction's error bound is relative to the largest coefficient: where it
         // cannot exclude 0, e.g. coefficients of very different magnitudes from extreme
         // weights, the `Mr` restriction, which tracks each coefficient's own error, decides)
+        // (and where the f64 coefficients straddle 0 by more than their bound, the `Mr` ones
+        // would too: the f64 hull is then as good an answer, since only whether 0 can be
+        // excluded matters for a box)
         match restrict_hull_f64(&self.f.pts, t0, t1) {
-            Some((v, _)) if !v.contains(0.0) => v,
+            Some((v, _, straddles)) if !v.contains(0.0) || straddles => v,
             _ => hull(&Self::restrict(&self.f, t0, t1)),
+        }
+    }
+
+    /// F at the f64 point t in plain f64 with an a-priori error bound ([`value_f64`]):
+    /// (enclosure, bound E), or `None` (degree above [`F64_RESTRICT_MAX`]). Wider than the `Mr`
+    /// value of [`SpanPoly::f`] (E ~ 2^-49 n max |F_i| instead of the coefficients' own
+    /// errors); the Newton search uses it where that width does not matter
+    /// (`Engine::f_newton`).
+    pub(super) fn f_value_f64(&self, t: f64) -> Option<(Interval, f64)> {
+        value_f64(&self.f.pts, t)
+    }
+
+    /// F' at the point t: in f64 with the a-priori bound where that excludes 0 with the bound
+    /// far below |F'(t)| (as for the restriction in [`SpanPoly::df`]), else in `Mr`.
+    fn df_at(&self, t: f64) -> Interval {
+        match value_f64(&self.df.pts, t) {
+            Some((v, e)) if !v.contains(0.0) && e <= v.mig() * (1.0 / 1_073_741_824.0) => v,
+            _ => self.df.eval_local(&Mr::from_f64(t))[0].to_interval(),
         }
     }
 
@@ -152,12 +173,12 @@ impl SpanPoly {
     pub(super) fn df(&self, t: T) -> Interval {
         let (t0, t1) = (t.lo, t.hi);
         if t0 == t1 {
-            return self.df.eval_local(&Mr::from_f64(t0))[0].to_interval();
+            return self.df_at(t0);
         }
         let w = t1 - t0;
         if (1.0 / 1_099_511_627_776.0..=1.0 / 1_048_576.0).contains(&w) && !self.d2.is_entire() {
             let m = midpoint(t0, t1);
-            let dm = self.df.eval_local(&Mr::from_f64(m))[0].to_interval();
+            let dm = self.df_at(m);
             let mv = dm + self.d2 * (iv::span(t0, t1) - iv::point(m));
             if !mv.is_empty() && !mv.contains(0.0) {
                 return mv;
@@ -166,16 +187,49 @@ impl SpanPoly {
         // (as in `f`; and only where its error bound is far below |F'| over the box, so that
         // the Newton step's contraction is that of the exact range)
         match restrict_hull_f64(&self.df.pts, t0, t1) {
-            Some((v, e)) if !v.contains(0.0) && e <= v.mig() * (1.0 / 1_073_741_824.0) => v,
+            Some((v, e, _)) if !v.contains(0.0) && e <= v.mig() * (1.0 / 1_073_741_824.0) => v,
             _ => hull(&Self::restrict(&self.df, t0, t1)),
         }
     }
 
     /// The values of the piece C_j over the box t = [t0, t1]: hull of the Cartesian Bézier
-    /// points of the restricted segment, shifted back by c.
+    /// points of the restricted segment, shifted back by c. The rows of the homogeneous segment
+    /// are restricted in f64 with the a-priori bound of [`restrict_hull_f64`] where that applies
+    /// (each restricted homogeneous coefficient within E_row of the exact one; the Cartesian
+    /// points are the outward-rounded quotients of those enclosures, their hull contains the
+    /// piece's values by the convex hull property with positive weights), else in `Mr`.
     pub(super) fn values(&self, t: T) -> Interval {
+        if t.lo < t.hi {
+            if let Some(v) = self.values_f64(t.lo, t.hi) {
+                return v + iv::point(self.c);
+            }
+        }
         let q = Self::restrict(&self.seg, t.lo, t.hi);
         hull(&cartesian(q, self.seg.rational)) + iv::point(self.c)
+    }
+
+    /// The f64 part of [`SpanPoly::values`] (without the shift c), `None` where it does not
+    /// apply (degree above [`F64_RESTRICT_MAX`]) or gives nothing finite.
+    fn values_f64(&self, t0: f64, t1: f64) -> Option<Interval> {
+        let h = if self.seg.rational { 2 } else { 1 };
+        let row = |r: usize| self.seg.pts.iter().skip(r).step_by(h).copied();
+        let mut x = [Interval::EMPTY; F64_RESTRICT_MAX + 1];
+        let n = restricted_f64(row(0), t0, t1, |b, e| {
+            for (xi, &bi) in x.iter_mut().zip(b) {
+                *xi = widened(bi, bi, e);
+            }
+            b.len()
+        })?;
+        let v = if h == 1 {
+            x[..n].iter().fold(Interval::EMPTY, |a, &xi| a.convex_hull(xi))
+        } else {
+            restricted_f64(row(1), t0, t1, |b, e| {
+                x[..n].iter().zip(b).fold(Interval::EMPTY, |a, (&xi, &wi)| {
+                    a.convex_hull(xi / widened(wi, wi, e))
+                })
+            })?
+        };
+        (!v.is_empty() && v.is_common_interval()).then_some(v)
     }
 
     /// As [`SpanPoly::values`], and C_j at the parameter u(t_mid) (a real in the closed span:
@@ -289,7 +343,7 @@ impl SpanPoly {
                 if out.len() >= max {
                     return false;
                 }
-                out.push(locate(&c, &dc, t0, t1));
+                out.push(locate(&c, &dc, t0, t1, polygon_crossing(&v, t0, t1)));
                 continue;
             }
             let (l, r) = crate::spline::bezier::de_casteljau_split(&v, 1, &0.5);
@@ -309,13 +363,47 @@ impl SpanPoly {
     }
 }
 
+/// How close (in t in [0, 1]) an estimate of [`locate`] needs to be: far below the half-width
+/// 2^-30 of the boxes the Newton search puts around it (`Engine::seed_float_first`). Asking for
+/// more made Newton's f64 steps bounce at the rounding level of the evaluation until the
+/// iteration limit (most of the estimation cost at degree 10).
+const LOCATE_TOL: f64 = 1.0 / 17_592_186_044_416.0; // 2^-44
+
+/// Where the control polygon of the piece `v` over [t0, t1] (Bernstein coefficients, abscissae
+/// i / n) first crosses 0, mapped to [t0, t1]: the start of [`locate`] (it converges to a simple
+/// zero quadratically under subdivision; Farin, "Curves and Surfaces for CAGD"). The midpoint
+/// when there is no crossing.
+fn polygon_crossing(v: &[f64], t0: f64, t1: f64) -> f64 {
+    let n = v.len().saturating_sub(1).max(1) as f64;
+    let mut last: Option<(usize, f64)> = None;
+    for (i, &x) in v.iter().enumerate() {
+        if x == 0.0 {
+            continue;
+        }
+        if let Some((l, y)) = last {
+            if (x > 0.0) != (y > 0.0) {
+                let s = (l as f64 + (i - l) as f64 * (y / (y - x))) / n;
+                return t0 + s * (t1 - t0);
+            }
+        }
+        last = Some((i, x));
+    }
+    0.5 * (t0 + t1)
+}
+
 /// A zero of the f64 Bernstein polynomial `c` (derivative coefficients `dc`) in [t0, t1],
-/// where the sign changes once: Newton's method from the midpoint, a bisection step whenever
-/// it leaves the bracket (an estimate only; see [`SpanPoly::zero_estimates`]).
-fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64) -> f64 {
+/// where the sign changes once: Newton's method from `start` (the midpoint if `start` is not
+/// inside), a bisection step whenever
+/// it leaves the bracket, until a step or the bracket is below [`LOCATE_TOL`] (an estimate
+/// only; see [`SpanPoly::zero_estimates`]).
+fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64, start: f64) -> f64 {
     let eval = |v: &[f64], t: f64| crate::spline::bezier::bernstein_value(v, t);
     let f0 = eval(c, t0);
-    let mut t = 0.5 * (t0 + t1);
+    let mut t = if start > t0 && start < t1 {
+        start
+    } else {
+        0.5 * (t0 + t1)
+    };
     for _ in 0..60 {
         let ft = eval(c, t);
         if ft == 0.0 {
@@ -329,12 +417,13 @@ fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64) -> f64 {
         }
         let d = eval(dc, t);
         let mut nt = t - ft / d;
+        // (a converged step first: at the rounding level a step can land just outside the
+        // updated bracket, and a bisection from there crawled back in dozens of steps)
+        if (nt - t).abs() <= LOCATE_TOL || t1 - t0 <= LOCATE_TOL {
+            return t;
+        }
         if !(nt > t0 && nt < t1) {
             nt = 0.5 * (t0 + t1);
-        }
-        if (nt - t).abs() <= 2.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE) || t1 - t0 <= 0.0
-        {
-            return nt;
         }
         t = nt;
     }
@@ -410,9 +499,59 @@ const F64_RESTRICT_MAX: usize = 63;
 /// [`crate::num::ddi`]: a product, an f64 and an f64; 2^-49 n and n 2^-1073 are exact), in
 /// outward-rounded interval arithmetic (returned with E). A non-finite value anywhere gives
 /// ENTIRE. Tested against exact rational restrictions (`f64_restriction_bound_holds_exactly`).
-fn restrict_hull_f64(co: &[Mr], t0: f64, t1: f64) -> Option<(Interval, f64)> {
+///
+/// The third value says whether the f64 coefficients straddle 0 by more than E (lowest < -E,
+/// highest > E): then so do the exact restricted coefficients, and no enclosure built from
+/// coefficients over the box (such as the `Mr` restriction) can exclude 0 either.
+fn restrict_hull_f64(co: &[Mr], t0: f64, t1: f64) -> Option<(Interval, f64, bool)> {
+    if !(0.0 <= t0 && t0 < t1 && t1 <= 1.0) {
+        return None;
+    }
+    restricted_f64(co.iter().copied(), t0, t1, |b, e| {
+        let (lo, hi) = b.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+            (lo.min(x), hi.max(x))
+        });
+        (widened(lo, hi, e), e, lo < -e && hi > e)
+    })
+}
+
+/// The value at t in [0, 1] of every polynomial whose Bernstein coefficients lie in the `Mr`
+/// enclosures `co`: de Casteljau's algorithm (NURBS Book A1.5) in plain f64 on the midpoints,
+/// widened by the same a-priori bound E as [`restrict_hull_f64`] (returned with E); `None` as
+/// there. The value is the last coefficient of the left part at t, i.e. the first split of
+/// [`restrict_in_place`] with t0 = 0 (n levels, where the bound's proof allows 2n); about a
+/// tenth of the cost of the same evaluation in `Mr`. (At t = 1 there is no split: the value is
+/// the last coefficient, exact up to its radius.)
+fn value_f64(co: &[Mr], t: f64) -> Option<(Interval, f64)> {
+    if !(0.0..=1.0).contains(&t) {
+        return None;
+    }
+    restricted_f64(co.iter().copied(), 0.0, t, |b, e| {
+        let v = b[b.len() - 1];
+        (widened(v, v, e), e)
+    })
+}
+
+/// [lo - e, hi + e] rounded outward (ENTIRE for non-finite ends or bound).
+fn widened(lo: f64, hi: f64, e: f64) -> Interval {
+    if !(lo.is_finite() && hi.is_finite() && e.is_finite()) {
+        return Interval::ENTIRE;
+    }
+    iv::span(lo, hi) + iv::span(-e, e)
+}
+
+/// The common body of [`restrict_hull_f64`] and [`value_f64`]: the midpoints of the
+/// coefficients `co` restricted to [t0, t1] ([`restrict_in_place`]) and the bound E (see
+/// [`restrict_hull_f64`]) handed to `done` (E = inf for non-finite data); `None` for no
+/// coefficient or a degree above [`F64_RESTRICT_MAX`].
+fn restricted_f64<R>(
+    co: impl ExactSizeIterator<Item = Mr>,
+    t0: f64,
+    t1: f64,
+    done: impl FnOnce(&[f64], f64) -> R,
+) -> Option<R> {
     let n = co.len().checked_sub(1)?;
-    if n > F64_RESTRICT_MAX || !(0.0 <= t0 && t0 < t1 && t1 <= 1.0) {
+    if n > F64_RESTRICT_MAX {
         return None;
     }
     let mut b = [0.0f64; F64_RESTRICT_MAX + 1];
@@ -423,23 +562,14 @@ fn restrict_hull_f64(co: &[Mr], t0: f64, t1: f64) -> Option<(Interval, f64)> {
         m = m.max(x.abs());
         r = r.max(c.rad());
     }
-    if !(m.is_finite() && r.is_finite()) {
-        return Some((Interval::ENTIRE, f64::INFINITY));
-    }
     let b = &mut b[..=n];
-    restrict_in_place(b, &mut out[..=n], t0, t1);
-    let (lo, hi) = b.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-        (lo.min(x), hi.max(x))
-    });
-    if !(lo.is_finite() && hi.is_finite()) {
-        return Some((Interval::ENTIRE, f64::INFINITY));
+    if !(m.is_finite() && r.is_finite()) {
+        return Some(done(b, f64::INFINITY));
     }
+    restrict_in_place(b, &mut out[..=n], t0, t1);
     let nf = n as f64;
     let e = up(nf * (1.0 / 562_949_953_421_312.0) * m + nf * f64::from_bits(2) + r);
-    if !e.is_finite() {
-        return Some((Interval::ENTIRE, f64::INFINITY));
-    }
-    Some((iv::span(lo, hi) + iv::span(-e, e), e))
+    Some(done(b, e))
 }
 
 /// The splits of [`restrict_hull_f64`] in place on the coefficients `b` (`out`: a buffer of
@@ -667,7 +797,7 @@ mod tests {
                 continue;
             }
             let co: Vec<Mr> = c.iter().map(|&x| Mr::from_f64(x)).collect();
-            let (got, _) = restrict_hull_f64(&co, t0, t1).unwrap();
+            let (got, _, _) = restrict_hull_f64(&co, t0, t1).unwrap();
             // exact restriction at the same parameters (the same splits in exact arithmetic)
             let mut b: Vec<Exact> = c.iter().map(|&x| Exact::of(x)).collect();
             let mut out = b.clone();
@@ -680,6 +810,18 @@ mod tests {
                     got.sup()
                 );
             }
+            // the point value at t1 (the last coefficient of the exact left part at t1)
+            let (pv, _) = value_f64(&co, t1).unwrap();
+            let mut b: Vec<Exact> = c.iter().map(|&x| Exact::of(x)).collect();
+            let mut out = b.clone();
+            restrict_in_place(&mut b, &mut out, 0.0, t1);
+            let v = &b[n];
+            assert!(
+                !v.gt_f64(pv.sup()) && !(Exact::of(pv.inf()) - v.clone()).gt_f64(0.0),
+                "n = {n}, at {t1}, {c:?}: {:e} .. {:e}",
+                pv.inf(),
+                pv.sup()
+            );
             // how far inside the enclosure the exact extreme coefficients stay, relative to the
             // scale: the bound must not be vacuous either
             let w = got.sup() - got.inf();
