@@ -302,8 +302,16 @@ impl TightEval {
     /// # Panics
     /// If `j >= dim` (as indexing does).
     pub fn coord_at(&self, j: usize, u: f64) -> Interval {
+        self.coord_at_tight(j, u).0
+    }
+
+    /// [`TightEval::coord_at`], and the double-double enclosure behind it where there is one
+    /// (`None` at a clamped end, whose value is exact, and where the generic fallback ran):
+    /// about 2^-100 relative wide, so that callers can derive strict witnesses from it
+    /// ([`Ddi::strictly_below`]) where the f64 interval is an ulp wide.
+    pub fn coord_at_tight(&self, j: usize, u: f64) -> (Interval, Option<Ddi>) {
         if !u.is_finite() {
-            return Interval::ENTIRE; // no value to enclose; the safe answer
+            return (Interval::ENTIRE, None); // no value to enclose; the safe answer
         }
         // At a clamped domain end the value is the end control point exactly
         // (`NurbsCurve::clamped_ends`): no span expansion is built for it.
@@ -311,18 +319,19 @@ impl TightEval {
         if u == a || u == b {
             let cl = self.curve.clamped_ends();
             if u == a && cl[0] {
-                return iv::point(self.curve.control_point(0)[j]);
+                return (iv::point(self.curve.control_point(0)[j]), None);
             }
             if u == b && cl[1] {
-                return iv::point(self.curve.control_point(self.curve.num_points() - 1)[j]);
+                let last = self.curve.num_points() - 1;
+                return (iv::point(self.curve.control_point(last)[j]), None);
             }
         }
         let k = self.curve.find_span(u);
         let v = self.ddi_at(j, k, u);
         if !v.is_entire() {
-            return v.to_interval();
+            return (v.to_interval(), Some(v));
         }
-        self.generic_at(j, k, u)
+        (self.generic_at(j, k, u), None)
     }
 
     /// Fallback for `coord_at`: generic de Boor in `Ddi`, then in intervals.

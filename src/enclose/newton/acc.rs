@@ -4,6 +4,7 @@
 
 use super::param::{T, U};
 use crate::enclose::{CandidateKind, CoordBox, Extremum, Stats, Termination};
+use crate::num::ddi::Ddi;
 use inari::Interval;
 
 /// A candidate: parameter box `u` inside the closed span `k`, evaluated with that span's
@@ -44,6 +45,9 @@ pub(super) struct Acc {
     /// the curve attains a value <= `inner_lo` (and >= `inner_hi`)
     pub(super) inner_lo: f64,
     pub(super) inner_hi: f64,
+    /// strict witnesses: the curve reaches a value < `witness_lo` (and > `witness_hi`)
+    witness_lo: f64,
+    witness_hi: f64,
     cands: Vec<(Extremum, Interval)>,
 }
 
@@ -54,13 +58,22 @@ impl Acc {
             hi: f64::NEG_INFINITY,
             inner_lo: f64::INFINITY,
             inner_hi: f64::NEG_INFINITY,
+            witness_lo: f64::INFINITY,
+            witness_hi: f64::NEG_INFINITY,
             cands: Vec::new(),
         }
     }
 
-    /// Add candidate `cd` with the outer enclosure `e` of its values and enclosures of values
-    /// the curve attains (EMPTY for none).
-    pub(super) fn add(&mut self, cd: &Cand, e: Interval, attained: [Interval; 2]) {
+    /// Add candidate `cd` with the outer enclosure `e` of its values, enclosures of values
+    /// the curve attains (EMPTY for none), and a double-double enclosure `w` of a value the
+    /// curve attains (if any): the largest double strictly below it is a strict witness for the
+    /// maximum, the smallest strictly above it one for the minimum (the certificate's first
+    /// rule then needs no evaluation of its own).
+    pub(super) fn add(&mut self, cd: &Cand, e: Interval, attained: [Interval; 2], w: Option<Ddi>) {
+        if let Some(v) = w {
+            self.witness_hi = self.witness_hi.max(v.strictly_below());
+            self.witness_lo = self.witness_lo.min(-(-v).strictly_below());
+        }
         // An empty enclosure cannot occur (every value evaluated is a real number); treat it
         // as "anything" to stay sound.
         let e = if e.is_empty() { Interval::ENTIRE } else { e };
@@ -108,8 +121,8 @@ impl Acc {
             termination,
             optimal_lo: false,
             optimal_hi: false,
-            witness_lo: f64::INFINITY,
-            witness_hi: f64::NEG_INFINITY,
+            witness_lo: self.witness_lo,
+            witness_hi: self.witness_hi,
         }
     }
 }

@@ -11,6 +11,7 @@ use super::bernstein::{pair_coefficients, SpanPoly};
 use super::param::{can_split, midpoint, Space, SpanParam, T, U};
 use super::{DerivForm, Newton, Split, BERNSTEIN_MAX_DEGREE, EVALS_PER_SPAN, WORK_PER_SPAN};
 use crate::enclose::{CandidateKind, CoordBox, Stats, Termination};
+use crate::num::ddi::Ddi;
 use crate::num::iv;
 use crate::num::mr::Mr;
 use crate::spline::bspline::HSpline;
@@ -296,9 +297,10 @@ impl<'a> Engine<'a> {
         }
     }
 
-    /// Outer enclosure of C_j over the candidate box, and enclosures of values the curve
-    /// attains (if `attained`; EMPTY for none).
-    fn eval_cand(&mut self, cd: &Cand) -> (Interval, [Interval; 2]) {
+    /// Outer enclosure of C_j over the candidate box, enclosures of values the curve attains
+    /// (if `attained`; EMPTY for none), and the double-double enclosure of one of those values
+    /// where there is one (for strict witnesses, [`Acc::add`]).
+    fn eval_cand(&mut self, cd: &Cand) -> (Interval, [Interval; 2], Option<Ddi>) {
         let k = cd.k;
         // Convex hull of the local control points (thesis prop. 2.1): exact and always sound
         // for every value of span k's piece on the closed span (also the limit at its end);
@@ -307,6 +309,7 @@ impl<'a> Engine<'a> {
         let hull = iv::span(hmin, hmax);
         self.stats.point_evaluations += 1;
         let U { lo, hi } = cd.u;
+        let mut tight = None;
         let (enc, at) = if lo == hi && !cd.attained {
             // Left limit at a discontinuity q: span k's piece on [q-, q] (q- the float below
             // q, still in span k) contains it; TightEval adds the curve's value C(q) there,
@@ -317,7 +320,8 @@ impl<'a> Engine<'a> {
         } else if lo == hi {
             // C(q) about one ulp wide (TightEval, double-double Horner); the curve's value at q
             // is span k's piece there (k is q's span, or the curve is continuous at q)
-            let v = self.tight.coord_at(self.j, lo);
+            let (v, d) = self.tight.coord_at_tight(self.j, lo);
+            tight = d;
             (v, [v, Interval::EMPTY])
         } else {
             // C over the box (TightEval: second-order Taylor form around the midpoint m,
@@ -329,8 +333,10 @@ impl<'a> Engine<'a> {
             self.stats.point_evaluations += 1;
             let m = midpoint(lo, hi);
             let at_knot = cd.t.is_some() && lo == self.c.knots()[k];
+            let (vm, d) = self.tight.coord_at_tight(self.j, m);
+            tight = d;
             let cm = [
-                self.tight.coord_at(self.j, m),
+                vm,
                 if at_knot {
                     self.stats.point_evaluations += 1;
                     self.tight.coord_at(self.j, lo)
@@ -374,7 +380,7 @@ impl<'a> Engine<'a> {
                 Interval::EMPTY
             }
         });
-        (enc, at)
+        (enc, at, tight.filter(|_| cd.attained))
     }
 
     /// min / max of coordinate j of the local control points P_{k-p} .. P_k (exact).
@@ -689,8 +695,8 @@ impl<'a> Engine<'a> {
         }
         let mut acc = Acc::new();
         for cd in &cands {
-            let (e, at) = self.eval_cand(cd);
-            acc.add(cd, e, at);
+            let (e, at, w) = self.eval_cand(cd);
+            acc.add(cd, e, at, w);
         }
         let mut status = vec![Status::Covered; ns];
         let mut term = Termination::Converged;
@@ -825,8 +831,8 @@ impl<'a> Engine<'a> {
                     attained: true,
                     t,
                 };
-                let (e, at) = self.eval_cand(&cd);
-                acc.add(&cd, e, at);
+                let (e, at, w) = self.eval_cand(&cd);
+                acc.add(&cd, e, at, w);
             }
         }
         // Knot rule (see the doc comment): smooth knots between two monotone spans.
@@ -840,8 +846,8 @@ impl<'a> Engine<'a> {
                 if (li && !ri) || (ld && !rd) {
                     let q = self.spans[i].2;
                     let cd = Cand::point(self.spans[i + 1].0, q, CandidateKind::Knot, true);
-                    let (e, at) = self.eval_cand(&cd);
-                    acc.add(&cd, e, at);
+                    let (e, at, w) = self.eval_cand(&cd);
+                    acc.add(&cd, e, at, w);
                 }
             }
         }
