@@ -127,9 +127,15 @@ impl<'a> Values<'a> {
             tight: TightEval::new(curve),
         }
     }
-    /// Enclosure of C_j(u) at the exact f64 u.
-    fn at(&self, j: usize, u: f64) -> Interval {
-        self.tight.coord_at(j, u)
+    /// Enclosure of sign * C_j(u) at the exact f64 u, and a strict witness below it: the
+    /// largest double strictly below the double-double enclosure of sign * C_j(u) behind the
+    /// interval (-inf where there is none), so that sign * C_j(u) > witness.
+    fn at(&self, j: usize, u: f64, sign: f64) -> (Interval, f64) {
+        let (v, d) = self.tight.coord_at_tight(j, u);
+        let w = d.map_or(f64::NEG_INFINITY, |d| {
+            if sign > 0.0 { d } else { -d }.strictly_below()
+        });
+        (iv::point(sign) * v, w)
     }
     /// Enclosure of C_j over [a, b].
     fn over(&self, j: usize, a: f64, b: f64) -> Interval {
@@ -481,11 +487,14 @@ impl BezierSubdivision {
                     // piece and this piece only approaches its end coefficient: then the
                     // intersection is empty and the (closure) value e itself is used.
                     // (the closure value bounds the piece but is not attained)
-                    let v = (sg * vals.at(j, s)).intersection(e);
+                    let (v, w) = vals.at(j, s, sign);
+                    let v = v.intersection(e);
                     let v = if v.is_empty() {
                         e
                     } else {
+                        // (C(s) is a value of the curve: its strict witness too)
                         side.attain(v);
+                        side.witness = side.witness.max(w);
                         v
                     };
                     side.bound(
@@ -544,9 +553,10 @@ impl BezierSubdivision {
             };
             if let Some(t) = crit {
                 let (m0, m1) = (t - d, t + d);
-                let v = sg * vals.at(j, t);
+                let (v, w) = vals.at(j, t, sign);
                 side.stats.point_evaluations += 1;
                 side.attain(v);
+                side.witness = side.witness.max(w);
                 push(s0, m0, &mut heap);
                 push(m1, s1, &mut heap);
                 let mid = sub_coeffs(&seg, m0, m1, sign);
