@@ -367,6 +367,39 @@ impl Ddi {
         }
     }
 
+    /// `RD(hi + lo - rad)` or a double at most one step below it (-inf for ENTIRE): the lower
+    /// end of [`Scalar::to_interval`], without the upper one. Fast path: the lower end is
+    /// v = hi + t with t = lo - rad exactly. RN(lo - rad) has the sign of t (a rounded
+    /// difference of two floats is 0 only if they are equal): if t >= 0, hi <= v is the lower
+    /// bound. Else, with g = hi - next_down(hi) (exact: neighbours), |t| <= |fl(t)| / (1 - u)
+    /// <= fl(|fl(t)| (1 + 2^-50)) (no underflow error: a tiny difference is exact), so if that
+    /// is <= g then next_down(hi) <= v. Otherwise (large radius) the general `lower_sum3`.
+    #[inline]
+    pub fn lower_end(&self) -> f64 {
+        if self.is_entire() {
+            return f64::NEG_INFINITY;
+        }
+        let (h, l, r) = (self.hi, self.lo, self.rad);
+        let t = l - r;
+        if t >= 0.0 {
+            h
+        } else {
+            let below = next_down(h);
+            if -t * (1.0 + 1.0 / 1_125_899_906_842_624.0) <= h - below {
+                below
+            } else {
+                lower_sum3(h, l, -r)
+            }
+        }
+    }
+
+    /// The upper end of [`Scalar::to_interval`] (+inf for ENTIRE): [`Ddi::lower_end`] of the
+    /// negation, negated (negation is exact).
+    #[inline]
+    pub fn upper_end(&self) -> f64 {
+        -(-*self).lower_end()
+    }
+
     /// Whether the set is the single f64 value `hi` (lo = rad = 0).
     #[inline]
     fn is_f64(&self) -> bool {
@@ -780,39 +813,7 @@ impl Scalar for Ddi {
     /// bounds hold.
     #[inline]
     fn to_interval(&self) -> Interval {
-        if self.is_entire() {
-            return Interval::ENTIRE;
-        }
-        // Fast path, per end. Lower end v = hi + t with t = lo - rad exactly. RN(lo - rad)
-        // has the sign of t (a rounded difference of two floats is 0 only if they are equal):
-        // if t >= 0, hi <= v is the lower bound. Else, with g = hi - next_down(hi) (exact:
-        // neighbours), |t| <= |fl(t)| / (1 - u) <= fl(|fl(t)| (1 + 2^-50)) (no underflow error:
-        // a tiny difference is exact), so if that is <= g then next_down(hi) <= v. Otherwise
-        // (large radius) the general lower_sum3. The upper end is symmetric.
-        let (h, l, r) = (self.hi, self.lo, self.rad);
-        let t = l - r;
-        let lo = if t >= 0.0 {
-            h
-        } else {
-            let below = next_down(h);
-            if -t * (1.0 + 1.0 / 1_125_899_906_842_624.0) <= h - below {
-                below
-            } else {
-                lower_sum3(h, l, -r)
-            }
-        };
-        let t = l + r;
-        let hi = if t <= 0.0 {
-            h
-        } else {
-            let above = -next_down(-h);
-            if t * (1.0 + 1.0 / 1_125_899_906_842_624.0) <= above - h {
-                above
-            } else {
-                -lower_sum3(-h, -l, -r)
-            }
-        };
-        Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
+        Interval::try_from((self.lower_end(), self.upper_end())).unwrap_or(Interval::ENTIRE)
     }
 
     #[inline]
