@@ -12,6 +12,7 @@ use crate::spline::bezier::de_casteljau_levels;
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
 use inari::Interval;
+use smallvec::SmallVec;
 
 /// The Bernstein form of coordinate j on one knot span k = [a, b] = [u_k, u_{k+1}], in [`Mr`]
 /// ([`Newton::bernstein`]; not in the thesis). With t = (u - a) / (b - a):
@@ -213,13 +214,9 @@ impl SpanPoly {
     fn values_f64(&self, t0: f64, t1: f64) -> Option<Interval> {
         let h = if self.seg.rational { 2 } else { 1 };
         let row = |r: usize| self.seg.pts.iter().skip(r).step_by(h).copied();
-        let mut x = [Interval::EMPTY; F64_RESTRICT_MAX + 1];
-        let n = restricted_f64(row(0), t0, t1, |b, e| {
-            for (xi, &bi) in x.iter_mut().zip(b) {
-                *xi = widened(bi, bi, e);
-            }
-            b.len()
-        })?;
+        let x: SmallVec<[Interval; 32]> =
+            restricted_f64(row(0), t0, t1, |b, e| b.iter().map(|&bi| widened(bi, bi, e)).collect())?;
+        let n = x.len();
         let v = if h == 1 {
             x[..n].iter().fold(Interval::EMPTY, |a, &xi| a.convex_hull(xi))
         } else {
@@ -554,19 +551,27 @@ fn restricted_f64<R>(
     if n > F64_RESTRICT_MAX {
         return None;
     }
-    let mut b = [0.0f64; F64_RESTRICT_MAX + 1];
-    let mut out = [0.0f64; F64_RESTRICT_MAX + 1];
+    // (stack buffers for the usual degrees, heap ones above)
+    const STACK: usize = 64;
+    let (mut sb, mut so) = ([0.0f64; STACK], [0.0f64; STACK]);
+    let (mut hb, mut ho) = (Vec::new(), Vec::new());
+    let (b, out) = if n < STACK {
+        (&mut sb[..=n], &mut so[..=n])
+    } else {
+        hb.resize(n + 1, 0.0);
+        ho.resize(n + 1, 0.0);
+        (&mut hb[..], &mut ho[..])
+    };
     let (mut m, mut r) = (0.0f64, 0.0f64);
     for (x, c) in b.iter_mut().zip(co) {
         *x = c.mid();
         m = m.max(x.abs());
         r = r.max(c.rad());
     }
-    let b = &mut b[..=n];
     if !(m.is_finite() && r.is_finite()) {
         return Some(done(b, f64::INFINITY));
     }
-    restrict_in_place(b, &mut out[..=n], t0, t1);
+    restrict_in_place(b, out, t0, t1);
     let nf = n as f64;
     let e = up(nf * (1.0 / 562_949_953_421_312.0) * m + nf * f64::from_bits(2) + r);
     Some(done(b, e))
