@@ -212,6 +212,21 @@ fn sub_coeffs(seg: &BezierSeg<Mr>, s0: f64, s1: f64, sign: f64) -> Vec<Interval>
         .collect()
 }
 
+/// An upper bound of sign * C_j over the piece [s0, s1] of the coordinate segment `seg` from
+/// f64 restrictions of its rows with their a-priori error bound
+/// ([`segment_values_f64`](super::newton::bernstein::segment_values_f64)), over the local box
+/// [T0, T1] that contains (s0 - a) / (b - a) .. (s1 - a) / (b - a) (outward-rounded interval
+/// quotients): a tenth of the cost of [`sub_coeffs`]. `None` where it does not apply.
+fn piece_bound_f64(seg: &BezierSeg<Mr>, s0: f64, s1: f64, sign: f64) -> Option<f64> {
+    let (pa, pb) = (iv::point(seg.a), iv::point(seg.b));
+    let len = pb - pa;
+    let t0 = ((iv::point(s0) - pa) / len).inf().max(0.0);
+    let t1 = ((iv::point(s1) - pa) / len).sup().min(1.0);
+    let v = super::newton::bernstein::segment_values_f64(seg, t0, t1)?;
+    let b = (iv::point(sign) * v).sup();
+    b.is_finite().then_some(b)
+}
+
 pub(crate) struct Side {
     /// largest lower end of enclosures of values the curve attains (sign-adjusted)
     attained: f64,
@@ -456,6 +471,21 @@ impl BezierSubdivision {
                 let kn = c.knots();
                 k == spans[spans.len() - 1] || kn.iter().filter(|&&x| x == kn[k + 1]).count() <= p
             };
+            // A piece pushed with its f64 bound only (`push` below) gets its `Mr` coefficients
+            // when it comes first: it may still be pruned, which the cheap bound decided
+            // without them for every piece left in the heap at the end.
+            if let Some((s0, s1, depth, co)) = &item.piece {
+                if co.is_empty() {
+                    let co = sub_coeffs(&seg, *s0, *s1, sign);
+                    heap.push(Item {
+                        pri: ub(&co).min(item.pri),
+                        span: k,
+                        piece: Some((*s0, *s1, *depth, co)),
+                        filtered: true,
+                    });
+                    continue;
+                }
+            }
             let Some((s0, s1, depth, co)) = item.piece else {
                 let co = sub_coeffs(&seg, seg.a, seg.b, sign);
                 side.attain(co[0]);
@@ -542,10 +572,19 @@ impl BezierSubdivision {
             side.stats.subdivisions += 1;
             side.stats.derivative_evaluations += 1;
             let crit = critical(&seg, s0, s1).filter(|&t| t - d > s0 && t + d < s1);
+            // (a child piece first enters with the bound of its f64 coefficients, restricted
+            // with an a-priori error bound: `piece_bound_f64`; its `Mr` coefficients, which the
+            // processing below needs, are computed only if it is taken from the heap)
             let push = |a: f64, b: f64, heap: &mut std::collections::BinaryHeap<Item>| {
-                let co = sub_coeffs(&seg, a, b, sign);
+                let (pri, co) = match piece_bound_f64(&seg, a, b, sign) {
+                    Some(pri) => (pri, Vec::new()),
+                    None => {
+                        let co = sub_coeffs(&seg, a, b, sign);
+                        (ub(&co), co)
+                    }
+                };
                 heap.push(Item {
-                    pri: ub(&co),
+                    pri,
                     span: k,
                     piece: Some((a, b, depth + 1, co)),
                     filtered: true,

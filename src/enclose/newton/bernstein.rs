@@ -209,24 +209,9 @@ impl SpanPoly {
         hull(&cartesian(q, self.seg.rational)) + iv::point(self.c)
     }
 
-    /// The f64 part of [`SpanPoly::values`] (without the shift c), `None` where it does not
-    /// apply (degree above [`F64_RESTRICT_MAX`]) or gives nothing finite.
+    /// The f64 part of [`SpanPoly::values`] (without the shift c): [`segment_values_f64`].
     fn values_f64(&self, t0: f64, t1: f64) -> Option<Interval> {
-        let h = if self.seg.rational { 2 } else { 1 };
-        let row = |r: usize| self.seg.pts.iter().skip(r).step_by(h).copied();
-        let x: SmallVec<[Interval; 32]> =
-            restricted_f64(row(0), t0, t1, |b, e| b.iter().map(|&bi| widened(bi, bi, e)).collect())?;
-        let n = x.len();
-        let v = if h == 1 {
-            x[..n].iter().fold(Interval::EMPTY, |a, &xi| a.convex_hull(xi))
-        } else {
-            restricted_f64(row(1), t0, t1, |b, e| {
-                x[..n].iter().zip(b).fold(Interval::EMPTY, |a, (&xi, &wi)| {
-                    a.convex_hull(xi / widened(wi, wi, e))
-                })
-            })?
-        };
-        (!v.is_empty() && v.is_common_interval()).then_some(v)
+        segment_values_f64(&self.seg, t0, t1)
     }
 
     /// As [`SpanPoly::values`], and C_j at the parameter u(t_mid) (a real in the closed span:
@@ -454,6 +439,32 @@ fn shifted_segment<S: Scalar>(c: &NurbsCurve, j: usize, k: usize, shift: f64) ->
         pts,
     };
     local.bezier_segment(p)
+}
+
+/// The values over the local box [t0, t1] (0 <= t0 < t1 <= 1) of the one-coordinate segment
+/// `seg` (rows x w, w or x): its rows restricted in f64 with the a-priori bound of
+/// [`restrict_hull_f64`] (each restricted homogeneous coefficient within E_row of the exact
+/// one, over a box containing [t0, t1]), the hull of the outward-rounded quotients of those
+/// enclosures (convex hull property of the rational piece, weights > 0). `None` where that does
+/// not apply (degree above [`F64_RESTRICT_MAX`]) or gives nothing finite.
+pub(crate) fn segment_values_f64(seg: &BezierSeg<Mr>, t0: f64, t1: f64) -> Option<Interval> {
+    if !(0.0 <= t0 && t0 < t1 && t1 <= 1.0) {
+        return None;
+    }
+    let h = if seg.rational { 2 } else { 1 };
+    let row = |r: usize| seg.pts.iter().skip(r).step_by(h).copied();
+    let x: SmallVec<[Interval; 32]> =
+        restricted_f64(row(0), t0, t1, |b, e| b.iter().map(|&bi| widened(bi, bi, e)).collect())?;
+    let v = if h == 1 {
+        x.iter().fold(Interval::EMPTY, |a, &xi| a.convex_hull(xi))
+    } else {
+        restricted_f64(row(1), t0, t1, |b, e| {
+            x.iter().zip(b).fold(Interval::EMPTY, |a, (&xi, &wi)| {
+                a.convex_hull(xi / widened(wi, wi, e))
+            })
+        })?
+    };
+    (!v.is_empty() && v.is_common_interval()).then_some(v)
 }
 
 /// The Cartesian points (x_i - c) of homogeneous one-coordinate points.

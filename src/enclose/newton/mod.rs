@@ -35,7 +35,7 @@
 //! (global u, a span's local t) every evaluation takes.
 
 mod acc;
-mod bernstein;
+pub(crate) mod bernstein;
 mod engine;
 mod param;
 #[cfg(test)]
