@@ -373,6 +373,8 @@ struct Evals<'a> {
     ddi0: Option<HSpline<Ddi>>,
     buf: Vec<Ddi>,
     exact: Option<CurveEval<Exact>>,
+    /// the homogeneous curve in exact rationals (Bézier segments for [`exact_bernstein_rule`])
+    hexact: Option<HSpline<Exact>>,
 }
 
 impl<'a> Evals<'a> {
@@ -386,6 +388,7 @@ impl<'a> Evals<'a> {
             ddi0: None,
             buf: Vec::new(),
             exact: None,
+            hexact: None,
         }
     }
 
@@ -769,6 +772,26 @@ fn certify_side(
             (exact && goal < t && prove_at_most(ev, j, sign, (dn(t), t), cands, true, sc.boxes))
                 .then_some(t)
         };
+        // A straddle (some value within ~2^-100 relative of t) with exact arithmetic
+        // available: the exact Bernstein rule decides at once, on every span whose control
+        // points exceed t, either g <= t (the bound is lowered to t) or a value above t
+        // (the certificate). The double-double lowering cannot succeed here (every
+        // enclosure of the straddling value holds t) and is skipped.
+        if d.straddle && lower && ev.exact_possible() {
+            match exact_at_most(cv.above(sign), j, sign, (dn(t), t), cands) {
+                Some(true) => {
+                    bound = t;
+                    continue;
+                }
+                // (a value of the curve above dn(t) is one above t when the curve evaluated is
+                // the enclosed one, exactly scaled, and t is scaled without rounding)
+                Some(false) if cv.up.is_none() && dn(t) == up(t) => {
+                    proved = true;
+                    break;
+                }
+                _ => {}
+            }
+        }
         if let Some(nb) = try_lower(cv.above(sign), false) {
             bound = nb;
             continue;
@@ -1310,6 +1333,266 @@ fn bezier_rule(
     Some(out)
 }
 
+/// Spans per [`exact_at_most`] (beyond, `None`).
+const MAX_EXACT_SPANS: usize = 8;
+
+/// Whether g <= t on the whole domain (`Some(true)`), or some value of the curve exceeds t
+/// (`Some(false)`), decided by the strong convex hull of each span's control points (exact f64
+/// comparisons, as in [`prove_at_most`]) and, on the spans that leaves, the exact Bernstein
+/// rule ([`exact_bernstein_rule`]); `None`: undecided (more than [`MAX_EXACT_SPANS`] such
+/// spans, or a span undecided within its splits). `t` is on the evaluated curve's scale,
+/// `t_own` the same target in the enclosed curve's units (for its own control points).
+fn exact_at_most(
+    ev: &mut Evals,
+    j: usize,
+    sign: f64,
+    (t, t_own): (f64, f64),
+    cands: &[Extremum],
+) -> Option<bool> {
+    let c = ev.c;
+    let (p, n) = (c.degree(), c.num_points() - 1);
+    let kn = c.knots();
+    let mut spans: Vec<usize> = (p..=n)
+        .filter(|&k| kn[k] < kn[k + 1])
+        .filter(|&k| {
+            (k - p..=k)
+                .map(|i| sign * ev.orig.control_point(i)[j])
+                .fold(f64::NEG_INFINITY, f64::max)
+                > t_own
+        })
+        .collect();
+    if spans.len() > MAX_EXACT_SPANS {
+        return None;
+    }
+    let near = |k: usize| cands.iter().any(|x| x.u_lo <= kn[k + 1] && x.u_hi >= kn[k]);
+    spans.sort_by_key(|&k| !near(k));
+    let mut undecided = false;
+    for k in spans {
+        match exact_bernstein_rule(ev, k, j, sign, t) {
+            Some(true) => {}
+            Some(false) => return Some(false),
+            None => undecided = true,
+        }
+    }
+    (!undecided).then_some(true)
+}
+
+/// Coefficients longer than this (numerator and denominator bits) are not tried by
+/// [`exact_bernstein_rule`] at all.
+const EXACT_RULE_MAX_BITS: u64 = 12_000;
+/// Largest binary exponent (in magnitude) of a span's data for [`exact_bernstein_rule`].
+const EXACT_RULE_MAX_EXP: i32 = 300;
+/// Pieces whose coefficients are longer than this are rounded up ([`exact_bernstein_rule`]).
+const EXACT_RULE_ROUND_BITS: u64 = 512;
+/// Bits kept below the largest coefficient when rounding up.
+const EXACT_RULE_KEEP_BITS: i64 = 256;
+
+/// Splits per span of [`exact_bernstein_rule`].
+const MAX_EXACT_SPLITS: usize = 48;
+
+/// The exact Bernstein rule of a lowering proof on span k: whether g <= t on the span's piece,
+/// decided in exact rational arithmetic. `Some(true)`: proved; `Some(false)`: a value of the
+/// piece exceeds t (t is not a bound); `None`: undecided within [`MAX_EXACT_SPLITS`] splits.
+///
+/// The piece is A(s) / W(s) (s in [0, 1] its local parameter; W = 1 for a polynomial curve)
+/// with A, W Bernstein polynomials whose coefficients are the span's Bézier segment
+/// ([`HSpline::bezier_segment`], Boehm knot insertion, NURBS Book A5.1 / A5.6; run on
+/// [`Exact`], so exact). All weights are > 0, so W(s) > 0 (a convex combination of positive
+/// segment weights) and g(s) <= t iff f(s) := sign A(s) - t W(s) <= 0: a polynomial with exact
+/// Bernstein coefficients f_i = sign A_i - t W_i. By the convex hull property of the Bernstein
+/// basis (B_i >= 0, sum B_i = 1; thesis sec. 4.2) f <= max_i f_i on [0, 1], and the same on
+/// every piece from exact de Casteljau subdivision (NURBS Book A1.5 at a rational point, no
+/// rounding). A piece whose coefficients are all <= 0 is proved; an end coefficient > 0 is a
+/// value f(s) > 0, i.e. a curve value (or a left limit of curve values) above t.
+///
+/// A tie, max g = t exactly, makes f touch 0 at the maximiser s* (a double root): no piece
+/// containing s* in its interior has all coefficients <= 0, but pieces with s* as an end do,
+/// once short enough (f(s*) = f'(s*) = 0 makes the first two coefficients 0 and the rest
+/// ~ f''(s*) h^2 < 0). So the piece is split at s* first: s* is chosen as the best (largest
+/// exact f) of the f64 maximiser of f's rounded coefficients (only to choose a point) and of
+/// exact Newton steps on f' from it (exact for a quadratic; rounded to dyadic grids of
+/// 2^-60 and 2^-200 for higher degrees, which hit a dyadic maximiser such as 1/2 exactly).
+/// The pieces next to s* are then halved towards it. A near-tie below t (f(s*) < 0 within
+/// 2^-100 relative) is decided the same way, with pieces of width ~ |f(s*) / f'(s*)|.
+fn exact_bernstein_rule(ev: &mut Evals, k: usize, j: usize, sign: f64, t: f64) -> Option<bool> {
+    let c = ev.c;
+    if !exact_is_cheap(c, k, j, t) {
+        return None;
+    }
+    let h = ev.hexact.get_or_insert_with(|| HSpline::from_curve(c));
+    let seg = h.bezier_segment(k);
+    let (hd, dim, rational, p) = (seg.hdim(), seg.dim, seg.rational, seg.degree);
+    let tt = Exact::of(t);
+    if tt.value().is_none() {
+        return None;
+    }
+    let f: Vec<Exact> = (0..=p)
+        .map(|i| {
+            let a = seg.pts[i * hd + j].clone();
+            let a = if sign < 0.0 { -a } else { a };
+            let w = if rational {
+                seg.pts[i * hd + dim].clone()
+            } else {
+                Exact::of(1.0)
+            };
+            a - tt.clone() * w
+        })
+        .collect();
+    let positive = |x: &Exact| x.signum() == Some(Ordering::Greater);
+    let at_most_zero = |x: &Exact| matches!(x.signum(), Some(Ordering::Less | Ordering::Equal));
+    if f.iter().all(at_most_zero) {
+        return Some(true);
+    }
+    if positive(&f[0]) || positive(&f[p]) {
+        return Some(false);
+    }
+    if f.iter().map(Exact::bits).max().unwrap_or(0) > EXACT_RULE_MAX_BITS {
+        return None;
+    }
+    let split_point = best_split(&f);
+    // pieces (coefficients, local start, local end), local ends exact in [0, 1]
+    let mut stack = vec![(f, Exact::of(0.0), Exact::of(1.0))];
+    // whether some coefficients were rounded up (then an end coefficient > 0 refutes nothing)
+    let mut rounded = false;
+    let mut splits = 0usize;
+    let half = Exact::of(0.5);
+    while let Some((b, s0, s1)) = stack.pop() {
+        // Long coefficients (extreme magnitudes: 2^±1000 in one span) are rounded up to
+        // [`EXACT_RULE_KEEP_BITS`] bits below the largest one: upper bounds of the Bernstein
+        // coefficients bound f from above on the piece (B_i >= 0), and de Casteljau's
+        // corner cuts at r in [0, 1] are convex combinations, so the pieces' coefficients
+        // computed from upper bounds are upper bounds of the exact pieces' coefficients.
+        let b = if b.iter().map(Exact::bits).max().unwrap_or(0) > EXACT_RULE_ROUND_BITS {
+            let Some(e) = b.iter().filter_map(Exact::log2_estimate).max() else {
+                return None;
+            };
+            rounded = true;
+            b.iter()
+                .map(|x| x.ceil_to(e - EXACT_RULE_KEEP_BITS))
+                .collect()
+        } else {
+            b
+        };
+        if b.iter().all(at_most_zero) {
+            continue;
+        }
+        if positive(&b[0]) || positive(&b[p]) {
+            return if rounded { None } else { Some(false) };
+        }
+        if b.iter().any(|x| x.value().is_none()) {
+            return None;
+        }
+        splits += 1;
+        if splits > MAX_EXACT_SPLITS {
+            return None;
+        }
+        // split at s* when it lies strictly inside, else halve
+        let inside = split_point.as_ref().filter(|x| {
+            positive(&((*x).clone() - s0.clone())) && positive(&(s1.clone() - (*x).clone()))
+        });
+        let r = match inside {
+            Some(x) => (x.clone() - s0.clone()) / (s1.clone() - s0.clone()),
+            None => half.clone(),
+        };
+        let m = s0.clone() + r.clone() * (s1.clone() - s0.clone());
+        let (l, rt) = de_casteljau_split(&b, 1, &r);
+        stack.push((rt, m.clone(), s1));
+        stack.push((l, s0, m));
+    }
+    Some(true)
+}
+
+/// Whether the data of span k (coordinate j and weights of its control points, its knots
+/// relative to the span's length, the target t) have binary exponents within
+/// +-[`EXACT_RULE_MAX_EXP`]: an f64 m 2^e is a rational of about 53 + |e| bits, and the
+/// exact Bézier segment of data spanning 2^+-1000 (range limits) has coefficients of
+/// thousands of bits, whose arithmetic costs milliseconds.
+fn exact_is_cheap(c: &NurbsCurve, k: usize, j: usize, t: f64) -> bool {
+    let p = c.degree();
+    let kn = c.knots();
+    let ok =
+        |x: f64| x == 0.0 || (x.is_finite() && exponent_of(x.abs()).abs() <= EXACT_RULE_MAX_EXP);
+    let len = kn[k + 1] - kn[k];
+    ok(t)
+        && ok(len)
+        && (k - p..=k).all(|i| ok(c.control_point(i)[j]) && ok(c.weight(i)))
+        && kn[k - p + 1..=k + p].iter().all(|&u| ok((u - kn[k]) / len))
+}
+
+/// The split point s* of [`exact_bernstein_rule`] for the Bernstein coefficients `f` on [0, 1]:
+/// the candidate in (0, 1) with the largest exact value (`None` if none lies inside).
+fn best_split(f: &[Exact]) -> Option<Exact> {
+    let ff: Vec<f64> = f.iter().map(Exact::to_f64).collect();
+    if ff.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    // normalise (only to choose a point; f64 rounding is harmless here)
+    let big = ff.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if big == 0.0 {
+        return None;
+    }
+    let ff: Vec<f64> = ff.iter().map(|x| x / big).collect();
+    let (f1, f2) = (hodograph(&ff), hodograph(&hodograph(&ff)));
+    let mut s = 0.5;
+    let mut best = de_casteljau_eval(&ff, &s);
+    for i in 1..SEARCH_SAMPLES {
+        let v = i as f64 / SEARCH_SAMPLES as f64;
+        let g = de_casteljau_eval(&ff, &v);
+        if g > best {
+            (s, best) = (v, g);
+        }
+    }
+    for _ in 0..2 * NEWTON_STEPS {
+        let (d1, d2) = (de_casteljau_eval(&f1, &s), de_casteljau_eval(&f2, &s));
+        if !(d2 < 0.0) || !d1.is_finite() {
+            break;
+        }
+        let next = (s - d1 / d2).clamp(0.0, 1.0);
+        if next == s {
+            break;
+        }
+        s = next;
+    }
+    let positive = |x: Exact| x.signum() == Some(Ordering::Greater);
+    let inside = |x: &Exact| positive(x.clone()) && positive(Exact::of(1.0) - x.clone());
+    let se = Exact::of(s);
+    // exact Newton on f' from s (for a quadratic, f' is linear: the exact critical point)
+    let mut cands = Vec::new();
+    let e2 = hodograph(&hodograph(f));
+    let d2 = de_casteljau_eval(&e2, &se);
+    if d2.signum() == Some(Ordering::Less) {
+        let n = se.clone() - de_casteljau_eval(&hodograph(f), &se) / d2;
+        if f.len() <= 3 {
+            cands.push(n);
+        } else {
+            cands.push(se);
+            for bits in [60, 200] {
+                // the nearest grid point: floor(n + half a step)
+                let step = Exact::of(2f64.powi(-(bits as i32) - 1));
+                cands.push((n.clone() + step).truncate_to(0, bits));
+            }
+        }
+    } else {
+        cands.push(se);
+    }
+    // the first with f = 0 exactly (a tie: split there), else the largest f
+    let mut best: Option<(Exact, Exact)> = None;
+    for x in cands.into_iter().filter(inside) {
+        let v = de_casteljau_eval(f, &x);
+        if v.is_exact_zero() {
+            return Some(x);
+        }
+        if v.value().is_some()
+            && best
+                .as_ref()
+                .is_none_or(|(b, _)| (v.clone() - b.clone()).signum() == Some(Ordering::Greater))
+        {
+            best = Some((v, x));
+        }
+    }
+    best.map(|(_, x)| x)
+}
+
 /// What one box of the branch and bound showed.
 enum BoxVerdict {
     /// g <= t on the box
@@ -1692,6 +1975,59 @@ mod tests {
         certify(&c, &mut forced);
         assert_eq!(forced.coords[0].hi, 0.5f64.next_up());
         assert!(forced.coords[0].optimal_hi);
+    }
+
+    /// The exact Bernstein rule decides exact ties both ways: a symmetric quadratic with the
+    /// double maximum 3/8 at u = 1/2 is <= 3/8 (the double root of f = g - 3/8 is split at),
+    /// not <= next_down(3/8); a symmetric cubic likewise (maximum (a + 3b)/4 at u = 1/2, hit
+    /// by the exact Newton step rounded to a dyadic grid); a quadratic whose maximiser
+    /// 1/3 is no double (P0 = 0, P1 = 1, P2 = -1: C = 2u(1-u) - u^2, max 1/3 at u = 1/3)
+    /// is <= RU(1/3) and not <= RD(1/3).
+    #[test]
+    fn exact_bernstein_rule_decides_ties() {
+        let cubic = |a: f64, b: f64| {
+            NurbsCurve::new(
+                3,
+                vec![0., 0., 0., 0., 1., 1., 1., 1.],
+                vec![vec![a], vec![b], vec![b], vec![a]],
+                None,
+            )
+            .unwrap()
+        };
+        // 1/3 rounds down in f64 (binary 0.0101...01|0101...)
+        let (third_dn, third_up) = (1.0f64 / 3.0, (1.0f64 / 3.0).next_up());
+        let cases = [
+            (quad(0.0, 0.75, 0.0), 0.375, 0.375f64.next_down()),
+            (cubic(-1.0, 3.0), 2.0, 2.0f64.next_down()),
+            (quad(0.0, 1.0, -1.0), third_up, third_dn),
+        ];
+        for (c, good, bad) in cases {
+            let mut ev = Evals::new(&c, &c, 0);
+            assert_eq!(
+                exact_bernstein_rule(&mut ev, c.degree(), 0, 1.0, good),
+                Some(true)
+            );
+            assert_eq!(
+                exact_bernstein_rule(&mut ev, c.degree(), 0, 1.0, bad),
+                Some(false)
+            );
+            // and the minimum side of -C (sign -1)
+            let neg = NurbsCurve::new(
+                c.degree(),
+                c.knots().to_vec(),
+                (0..c.num_points())
+                    .map(|i| vec![-c.control_point(i)[0]])
+                    .collect(),
+                None,
+            )
+            .unwrap();
+            let mut ev = Evals::new(&neg, &neg, 0);
+            assert_eq!(
+                exact_bernstein_rule(&mut ev, c.degree(), 0, -1.0, good),
+                Some(true),
+                "{good}"
+            );
+        }
     }
 
     /// An exact tie at an interior knot (a symmetric quintic, `extrema_at_knots`: the maximum
