@@ -141,6 +141,10 @@ use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
 use crate::spline::knots::multiplicity;
 use inari::Interval;
+use num_bigint::{BigInt, Sign};
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, ToPrimitive};
 use std::cmp::Ordering;
 
 /// Candidates per side that are examined (in the strategy's order).
@@ -510,6 +514,14 @@ impl<'a> Evals<'a> {
         self.c.degree() <= max_degree
     }
 
+    /// Whether [`exact_bernstein_rule`] is tried for this curve: degree at most
+    /// [`EXACT_MAX_DEGREE`], rational or not (the rule works on the homogeneous
+    /// coefficients, with no quotient rule, so a rational curve costs what a polynomial one of
+    /// one more row does).
+    fn exact_rule_possible(&self) -> bool {
+        self.c.degree() <= EXACT_MAX_DEGREE
+    }
+
     /// C_j(u) exactly when u is a clamped end of the domain: the end control point
     /// ([`NurbsCurve::clamped_ends`]; the last span's piece there is the curve's value). In
     /// the enclosed curve's own units (its control point, `orig`); u is a parameter of `c`
@@ -750,10 +762,11 @@ fn certify_side(
         // (above LOWER_MAX_DEGREE only when a clamped end's value is the largest value seen,
         // the likely maximum, which the Bézier rule decides with a few halvings of the end
         // spans)
+        let ev_rule_possible = ev.exact_rule_possible();
         let at_clamped_end = end_value.is_finite() && end_value >= nth_down(guess, 2);
         let lower = round < MAX_LOWERINGS
             && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end)
-            && (!d.straddle || ev.exact_possible())
+            && (!d.straddle || ev.exact_possible() || ev.exact_rule_possible())
             && (target >= nth_down(bound, within) || bound - target <= near_scale);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
             if !lower {
@@ -777,7 +790,7 @@ fn certify_side(
         // points exceed t, either g <= t (the bound is lowered to t) or a value above t
         // (the certificate). The double-double lowering cannot succeed here (every
         // enclosure of the straddling value holds t) and is skipped.
-        if d.straddle && lower && ev.exact_possible() {
+        if d.straddle && lower && ev.exact_rule_possible() {
             match exact_at_most(cv.above(sign), j, sign, (dn(t), t), cands) {
                 Some(true) => {
                     bound = t;
@@ -800,10 +813,28 @@ fn certify_side(
             proved = true;
             break;
         }
-        match try_lower(cv.above(sign), true) {
-            Some(nb) => bound = nb,
-            None => break,
+        if let Some(nb) = try_lower(cv.above(sign), true) {
+            bound = nb;
+            continue;
         }
+        // Last, the exact Bernstein rule for a bound the rules above could not lower (a degree
+        // above LOWER_MAX_DEGREE, extreme weights whose interval derivatives are wide, or
+        // clustered knots): the same targets as `try_lower`, without the degree limit.
+        let exact_ok = round < MAX_LOWERINGS
+            && !d.straddle
+            && ev_rule_possible
+            && (target >= nth_down(bound, within) || bound - target <= near_scale);
+        let goal = if target.is_finite() && target < t {
+            target
+        } else {
+            t
+        };
+        if exact_ok && exact_at_most(cv.above(sign), j, sign, (dn(goal), goal), cands) == Some(true)
+        {
+            bound = goal;
+            continue;
+        }
+        break;
     }
     if max_side {
         cb.hi = bound;
@@ -1338,8 +1369,9 @@ const MAX_EXACT_SPANS: usize = 8;
 
 /// Whether g <= t on the whole domain (`Some(true)`), or some value of the curve exceeds t
 /// (`Some(false)`), decided by the strong convex hull of each span's control points (exact f64
-/// comparisons, as in [`prove_at_most`]) and, on the spans that leaves, the exact Bernstein
-/// rule ([`exact_bernstein_rule`]); `None`: undecided (more than [`MAX_EXACT_SPANS`] such
+/// comparisons, as in [`prove_at_most`]), then the double-double Bézier rule ([`bezier_rule`]:
+/// its `None` is a rigorous enclosure of a piece's end value, a curve value, above t) and,
+/// on the spans these leave, the exact Bernstein rule ([`exact_bernstein_rule`]); `None`: undecided (more than [`MAX_EXACT_SPANS`] such
 /// spans, or a span undecided within its splits). `t` is on the evaluated curve's scale,
 /// `t_own` the same target in the enclosed curve's units (for its own control points).
 fn exact_at_most(
@@ -1367,7 +1399,16 @@ fn exact_at_most(
     let near = |k: usize| cands.iter().any(|x| x.u_lo <= kn[k + 1] && x.u_hi >= kn[k]);
     spans.sort_by_key(|&k| !near(k));
     let mut undecided = false;
+    let mut pieces = MAX_PIECES;
     for k in spans {
+        // the double-double Bézier rule first on the spans away from the candidates: it
+        // decides them at a fraction of the exact rule's cost (near a candidate the value
+        // straddles t, which only the exact rule decides)
+        match (!near(k)).then(|| bezier_rule(ev, k, j, sign, (t, t_own), &mut pieces)) {
+            Some(None) => return Some(false),
+            Some(Some(rest)) if rest.is_empty() => continue,
+            _ => {}
+        }
         match exact_bernstein_rule(ev, k, j, sign, t) {
             Some(true) => {}
             Some(false) => return Some(false),
@@ -1385,7 +1426,7 @@ const EXACT_RULE_MAX_EXP: i32 = 300;
 /// Pieces whose coefficients are longer than this are rounded up ([`exact_bernstein_rule`]).
 const EXACT_RULE_ROUND_BITS: u64 = 512;
 /// Bits kept below the largest coefficient when rounding up.
-const EXACT_RULE_KEEP_BITS: i64 = 256;
+const EXACT_RULE_KEEP_BITS: u64 = 256;
 
 /// Splits per span of [`exact_bernstein_rule`].
 const MAX_EXACT_SPLITS: usize = 48;
@@ -1449,53 +1490,50 @@ fn exact_bernstein_rule(ev: &mut Evals, k: usize, j: usize, sign: f64, t: f64) -
     if f.iter().map(Exact::bits).max().unwrap_or(0) > EXACT_RULE_MAX_BITS {
         return None;
     }
-    let split_point = best_split(&f);
-    // pieces (coefficients, local start, local end), local ends exact in [0, 1]
-    let mut stack = vec![(f, Exact::of(0.0), Exact::of(1.0))];
+    // The coefficients as integers over a common positive denominator, which is dropped
+    // (only signs matter): no gcd per operation, the cost of big rationals.
+    let fi = integer_numerators(&f)?;
+    let split_point = best_split(&fi);
+    let mut stack = vec![(fi, Exact::of(0.0), Exact::of(1.0))];
     // whether some coefficients were rounded up (then an end coefficient > 0 refutes nothing)
     let mut rounded = false;
     let mut splits = 0usize;
     let half = Exact::of(0.5);
-    while let Some((b, s0, s1)) = stack.pop() {
-        // Long coefficients (extreme magnitudes: 2^±1000 in one span) are rounded up to
-        // [`EXACT_RULE_KEEP_BITS`] bits below the largest one: upper bounds of the Bernstein
-        // coefficients bound f from above on the piece (B_i >= 0), and de Casteljau's
-        // corner cuts at r in [0, 1] are convex combinations, so the pieces' coefficients
-        // computed from upper bounds are upper bounds of the exact pieces' coefficients.
-        let b = if b.iter().map(Exact::bits).max().unwrap_or(0) > EXACT_RULE_ROUND_BITS {
-            let Some(e) = b.iter().filter_map(Exact::log2_estimate).max() else {
-                return None;
-            };
+    let pos = |x: &BigInt| x.sign() == Sign::Plus;
+    while let Some((mut b, s0, s1)) = stack.pop() {
+        // Long coefficients (extreme magnitudes, or many splits at a non-dyadic point) are
+        // rounded up to [`EXACT_RULE_KEEP_BITS`] bits below the largest one (the same
+        // power of two divides every coefficient of the piece, a positive common factor):
+        // upper bounds of the Bernstein coefficients bound f from above on the piece
+        // (B_i >= 0), and de Casteljau's corner cuts at r in [0, 1] are convex combinations,
+        // so the pieces' coefficients computed from upper bounds bound the exact pieces'.
+        let long = b.iter().map(BigInt::bits).max().unwrap_or(0);
+        if long > EXACT_RULE_ROUND_BITS {
+            let d = BigInt::one() << (long - EXACT_RULE_KEEP_BITS);
+            b = b.iter().map(|x| x.div_ceil(&d)).collect();
             rounded = true;
-            b.iter()
-                .map(|x| x.ceil_to(e - EXACT_RULE_KEEP_BITS))
-                .collect()
-        } else {
-            b
-        };
-        if b.iter().all(at_most_zero) {
+        }
+        if b.iter().all(|x| !pos(x)) {
             continue;
         }
-        if positive(&b[0]) || positive(&b[p]) {
+        if pos(&b[0]) || pos(&b[p]) {
             return if rounded { None } else { Some(false) };
-        }
-        if b.iter().any(|x| x.value().is_none()) {
-            return None;
         }
         splits += 1;
         if splits > MAX_EXACT_SPLITS {
             return None;
         }
         // split at s* when it lies strictly inside, else halve
-        let inside = split_point.as_ref().filter(|x| {
-            positive(&((*x).clone() - s0.clone())) && positive(&(s1.clone() - (*x).clone()))
-        });
+        let positive = |x: Exact| x.signum() == Some(Ordering::Greater);
+        let inside = split_point
+            .as_ref()
+            .filter(|x| positive((*x).clone() - s0.clone()) && positive(s1.clone() - (*x).clone()));
         let r = match inside {
             Some(x) => (x.clone() - s0.clone()) / (s1.clone() - s0.clone()),
             None => half.clone(),
         };
         let m = s0.clone() + r.clone() * (s1.clone() - s0.clone());
-        let (l, rt) = de_casteljau_split(&b, 1, &r);
+        let (l, rt) = split_integer(&b, r.value()?);
         stack.push((rt, m.clone(), s1));
         stack.push((l, s0, m));
     }
@@ -1519,19 +1557,81 @@ fn exact_is_cheap(c: &NurbsCurve, k: usize, j: usize, t: f64) -> bool {
         && kn[k - p + 1..=k + p].iter().all(|&u| ok((u - kn[k]) / len))
 }
 
+/// Integers N_i with f_i = N_i / D for one D > 0 (the least common multiple of the
+/// denominators); `None` if some value is undefined.
+fn integer_numerators(f: &[Exact]) -> Option<Vec<BigInt>> {
+    let vals: Vec<&BigRational> = f.iter().map(Exact::value).collect::<Option<_>>()?;
+    let d = vals.iter().fold(BigInt::one(), |acc, q| acc.lcm(q.denom()));
+    Some(vals.iter().map(|q| q.numer() * (&d / q.denom())).collect())
+}
+
+/// De Casteljau subdivision (NURBS Book A1.5) of the Bernstein coefficients `b` (over a common
+/// positive denominator) at the rational r = m / n in (0, 1), n > 0, in integers: each corner
+/// cut (1 - r) x + r y is (n - m) x + m y over n times the denominator, and the two halves'
+/// coefficients from level l are multiplied by n^(p - l) to share the denominator n^p. Exact:
+/// the returned integers are the halves' coefficients times one positive factor each.
+fn split_integer(b: &[BigInt], r: &BigRational) -> (Vec<BigInt>, Vec<BigInt>) {
+    let p = b.len() - 1;
+    let (m, n) = (r.numer().clone(), r.denom().clone());
+    let nm = &n - &m;
+    let mut lvl = b.to_vec();
+    let mut left = vec![lvl[0].clone()];
+    let mut right = vec![lvl[p].clone()];
+    for l in 1..=p {
+        for i in 0..=p - l {
+            lvl[i] = &nm * &lvl[i] + &m * &lvl[i + 1];
+        }
+        left.push(lvl[0].clone());
+        right.push(lvl[p - l].clone());
+    }
+    // level l was scaled by n^l: bring every entry to n^p
+    let pow: Vec<BigInt> = (0..=p)
+        .scan(BigInt::one(), |acc, _| {
+            let v = acc.clone();
+            *acc *= &n;
+            Some(v)
+        })
+        .collect();
+    let left = left
+        .iter()
+        .enumerate()
+        .map(|(l, x)| x * &pow[p - l])
+        .collect();
+    // right[i] came from level p - i (the right half's coefficient i)
+    let mut right: Vec<BigInt> = right
+        .iter()
+        .enumerate()
+        .map(|(l, x)| x * &pow[p - l])
+        .collect();
+    right.reverse();
+    (left, right)
+}
+
 /// The split point s* of [`exact_bernstein_rule`] for the Bernstein coefficients `f` on [0, 1]:
 /// the candidate in (0, 1) with the largest exact value (`None` if none lies inside).
-fn best_split(f: &[Exact]) -> Option<Exact> {
-    let ff: Vec<f64> = f.iter().map(Exact::to_f64).collect();
+fn best_split(fi: &[BigInt]) -> Option<Exact> {
+    // (the integer coefficients, the exact ones times a positive factor: the same signs,
+    // maximisers and double roots)
+    let ff: Vec<f64> = fi.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect();
+    let big = ff.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    // normalise (only to choose a point; f64 rounding is harmless here); coefficients
+    // beyond f64 are shifted first
+    let ff: Vec<f64> = if big.is_finite() && big > 0.0 {
+        ff.iter().map(|x| x / big).collect()
+    } else {
+        let shift = fi
+            .iter()
+            .map(BigInt::bits)
+            .max()
+            .unwrap_or(0)
+            .saturating_sub(60);
+        fi.iter()
+            .map(|x| (x >> shift).to_f64().unwrap_or(f64::NAN))
+            .collect()
+    };
     if ff.iter().any(|x| !x.is_finite()) {
         return None;
     }
-    // normalise (only to choose a point; f64 rounding is harmless here)
-    let big = ff.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    if big == 0.0 {
-        return None;
-    }
-    let ff: Vec<f64> = ff.iter().map(|x| x / big).collect();
     let (f1, f2) = (hodograph(&ff), hodograph(&hodograph(&ff)));
     let mut s = 0.5;
     let mut best = de_casteljau_eval(&ff, &s);
@@ -1553,44 +1653,69 @@ fn best_split(f: &[Exact]) -> Option<Exact> {
         }
         s = next;
     }
-    let positive = |x: Exact| x.signum() == Some(Ordering::Greater);
-    let inside = |x: &Exact| positive(x.clone()) && positive(Exact::of(1.0) - x.clone());
-    let se = Exact::of(s);
+    let zero = BigRational::from_integer(BigInt::from(0));
+    let one = BigRational::one();
+    let inside = |x: &BigRational| *x > zero && *x < one;
+    let se = Exact::of(s).value()?.clone();
     // exact Newton on f' from s (for a quadratic, f' is linear: the exact critical point)
     let mut cands = Vec::new();
-    let e2 = hodograph(&hodograph(f));
-    let d2 = de_casteljau_eval(&e2, &se);
-    if d2.signum() == Some(Ordering::Less) {
-        let n = se.clone() - de_casteljau_eval(&hodograph(f), &se) / d2;
-        if f.len() <= 3 {
-            cands.push(n);
+    let h1: Vec<BigInt> = fi.windows(2).map(|w| &w[1] - &w[0]).collect();
+    let h2: Vec<BigInt> = h1.windows(2).map(|w| &w[1] - &w[0]).collect();
+    let p = fi.len() - 1;
+    if p >= 2 {
+        let (d1, sc1) = eval_integer(&h1, &se);
+        let (d2, sc2) = eval_integer(&h2, &se);
+        if d2.sign() == Sign::Minus {
+            // f' = p sum h1_i B_i, f'' = p (p - 1) sum h2_i B_i; step = f'/f''
+            let step = BigRational::new(d1 * &sc2, d2 * &sc1 * BigInt::from(p - 1));
+            let n = &se - step;
+            if p == 2 {
+                cands.push(n);
+            } else {
+                cands.push(se);
+                for bits in [60u32, 200] {
+                    // the nearest point of the grid 2^-bits
+                    let g = BigInt::one() << bits;
+                    let r = (&n * BigRational::from_integer(g.clone())).round();
+                    cands.push(r / BigRational::from_integer(g));
+                }
+            }
         } else {
             cands.push(se);
-            for bits in [60, 200] {
-                // the nearest grid point: floor(n + half a step)
-                let step = Exact::of(2f64.powi(-(bits as i32) - 1));
-                cands.push((n.clone() + step).truncate_to(0, bits));
-            }
         }
     } else {
         cands.push(se);
     }
     // the first with f = 0 exactly (a tie: split there), else the largest f
-    let mut best: Option<(Exact, Exact)> = None;
+    let mut best: Option<(BigRational, BigRational)> = None;
     for x in cands.into_iter().filter(inside) {
-        let v = de_casteljau_eval(f, &x);
-        if v.is_exact_zero() {
-            return Some(x);
+        let (v, sc) = eval_integer(fi, &x);
+        if v.sign() == Sign::NoSign {
+            return Some(Exact::from_ratio(x));
         }
-        if v.value().is_some()
-            && best
-                .as_ref()
-                .is_none_or(|(b, _)| (v.clone() - b.clone()).signum() == Some(Ordering::Greater))
-        {
+        let v = BigRational::new(v, sc);
+        if best.as_ref().is_none_or(|(b, _)| v > *b) {
             best = Some((v, x));
         }
     }
-    best.map(|(_, x)| x)
+    best.map(|(_, x)| Exact::from_ratio(x))
+}
+
+/// The value at the rational x = m / n (n > 0) of the Bernstein polynomial with integer
+/// coefficients `b`, as (v, n^p) with value v / n^p: de Casteljau in integers (each corner
+/// cut (n - m) a + m b over n).
+fn eval_integer(b: &[BigInt], x: &BigRational) -> (BigInt, BigInt) {
+    let (m, n) = (x.numer().clone(), x.denom().clone());
+    let nm = &n - &m;
+    let mut lvl = b.to_vec();
+    let mut scale = BigInt::one();
+    for l in 1..lvl.len() {
+        for i in 0..lvl.len() - l {
+            lvl[i] = &nm * &lvl[i] + &m * &lvl[i + 1];
+        }
+        scale *= &n;
+    }
+    (lvl.swap_remove(0), scale)
 }
 
 /// What one box of the branch and bound showed.

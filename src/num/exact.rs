@@ -31,6 +31,11 @@ impl Exact {
         Exact(ratio_of_f64(x))
     }
 
+    /// A rational as an exact value.
+    pub fn from_ratio(q: BigRational) -> Exact {
+        Exact(Some(q))
+    }
+
     /// The rational itself (`None` if undefined).
     pub fn value(&self) -> Option<&BigRational> {
         self.0.as_ref()
