@@ -953,8 +953,11 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
         }
         best.push(top);
     }
-    // 2b. the same in the local parameter of the candidates' spans (Bézier form)
-    if bezier_search(ev, j, sign, t, cands, guess) {
+    // 2b. the same in the local parameter of the candidates' spans (Bézier form); not after
+    // a straddle on a curve that is not rescaled and that the exact Bernstein rule takes
+    // (which decides the straddle either way, `certify_side`)
+    let exact_next = straddle && ev.exact_rule_possible() && std::ptr::eq(ev.c, ev.orig);
+    if !exact_next && bezier_search(ev, j, sign, t, cands, guess) {
         out.proved = true;
         return out;
     }
@@ -1460,46 +1463,48 @@ fn exact_bernstein_rule(ev: &mut Evals, k: usize, j: usize, sign: f64, t: f64) -
     if !exact_is_cheap(c, k, j, t) {
         return None;
     }
-    let h = ev.hexact.get_or_insert_with(|| HSpline::from_curve(c));
-    let seg = h.bezier_segment(k);
-    let (hd, dim, rational, p) = (seg.hdim(), seg.dim, seg.rational, seg.degree);
-    let tt = Exact::of(t);
-    if tt.value().is_none() {
-        return None;
-    }
-    let f: Vec<Exact> = (0..=p)
-        .map(|i| {
-            let a = seg.pts[i * hd + j].clone();
-            let a = if sign < 0.0 { -a } else { a };
-            let w = if rational {
-                seg.pts[i * hd + dim].clone()
-            } else {
-                Exact::of(1.0)
-            };
-            a - tt.clone() * w
-        })
-        .collect();
-    let positive = |x: &Exact| x.signum() == Some(Ordering::Greater);
-    let at_most_zero = |x: &Exact| matches!(x.signum(), Some(Ordering::Less | Ordering::Equal));
-    if f.iter().all(at_most_zero) {
-        return Some(true);
-    }
-    if positive(&f[0]) || positive(&f[p]) {
-        return Some(false);
-    }
-    if f.iter().map(Exact::bits).max().unwrap_or(0) > EXACT_RULE_MAX_BITS {
-        return None;
-    }
+    let p = c.degree();
     // The coefficients as integers over a common positive denominator, which is dropped
     // (only signs matter): no gcd per operation, the cost of big rationals.
-    let fi = integer_numerators(&f)?;
+    let fi = match bezier_coefficients_direct(c, k, j, sign, t) {
+        Some(fi) => fi,
+        None => {
+            let h = ev.hexact.get_or_insert_with(|| HSpline::from_curve(c));
+            let seg = h.bezier_segment(k);
+            let (hd, dim, rational) = (seg.hdim(), seg.dim, seg.rational);
+            let tt = Exact::of(t);
+            tt.value()?;
+            let f: Vec<Exact> = (0..=p)
+                .map(|i| {
+                    let a = seg.pts[i * hd + j].clone();
+                    let a = if sign < 0.0 { -a } else { a };
+                    let w = if rational {
+                        seg.pts[i * hd + dim].clone()
+                    } else {
+                        Exact::of(1.0)
+                    };
+                    a - tt.clone() * w
+                })
+                .collect();
+            integer_numerators(&f)?
+        }
+    };
+    let pos = |x: &BigInt| x.sign() == Sign::Plus;
+    if fi.iter().all(|x| !pos(x)) {
+        return Some(true);
+    }
+    if pos(&fi[0]) || pos(&fi[p]) {
+        return Some(false);
+    }
+    if fi.iter().map(BigInt::bits).max().unwrap_or(0) > EXACT_RULE_MAX_BITS {
+        return None;
+    }
     let split_point = best_split(&fi);
     let mut stack = vec![(fi, Exact::of(0.0), Exact::of(1.0))];
     // whether some coefficients were rounded up (then an end coefficient > 0 refutes nothing)
     let mut rounded = false;
     let mut splits = 0usize;
     let half = Exact::of(0.5);
-    let pos = |x: &BigInt| x.sign() == Sign::Plus;
     while let Some((mut b, s0, s1)) = stack.pop() {
         // Long coefficients (extreme magnitudes, or many splits at a non-dyadic point) are
         // rounded up to [`EXACT_RULE_KEEP_BITS`] bits below the largest one (the same
@@ -1555,6 +1560,52 @@ fn exact_is_cheap(c: &NurbsCurve, k: usize, j: usize, t: f64) -> bool {
         && ok(len)
         && (k - p..=k).all(|i| ok(c.control_point(i)[j]) && ok(c.weight(i)))
         && kn[k - p + 1..=k + p].iter().all(|&u| ok((u - kn[k]) / len))
+}
+
+/// The integer coefficients of [`exact_bernstein_rule`] straight from the f64 data when span k
+/// is already a Bézier segment (its p knots on either side equal its ends, e.g. a clamped
+/// single-span curve): then the segment's homogeneous points are the control points
+/// (w_i P_i, w_i) themselves (Boehm insertion inserts nothing), and f_i = w_i (sign P_ij - t).
+/// Each f64 is m 2^e with integer m; all terms are brought to the smallest exponent
+/// (a common positive denominator), exactly. `None` for other spans.
+fn bezier_coefficients_direct(
+    c: &NurbsCurve,
+    k: usize,
+    j: usize,
+    sign: f64,
+    t: f64,
+) -> Option<Vec<BigInt>> {
+    let (p, kn) = (c.degree(), c.knots());
+    let bezier = kn[k + 1 - p..=k].iter().all(|&u| u == kn[k])
+        && kn[k + 1..=k + p].iter().all(|&u| u == kn[k + 1]);
+    if !bezier {
+        return None;
+    }
+    // (m, e) with x = m 2^e
+    let parts = |x: f64| -> Option<(BigInt, i64)> {
+        let q = Exact::of(x);
+        let q = q.value()?;
+        let e = -(q.denom().bits() as i64 - 1); // the denominator is a power of two
+        Some((q.numer().clone(), e))
+    };
+    let (tm, te) = parts(t)?;
+    // sign P_ij - t = (a, ea), then times w = (b, eb)
+    let terms: Vec<(BigInt, i64)> = (k - p..=k)
+        .map(|i| {
+            let (pm, pe) = parts(sign * c.control_point(i)[j])?;
+            let e = pe.min(te);
+            let a = (pm << (pe - e) as u64) - (&tm << (te - e) as u64);
+            let (wm, we) = parts(c.weight(i))?;
+            Some((a * wm, e + we))
+        })
+        .collect::<Option<_>>()?;
+    let e0 = terms.iter().map(|x| x.1).min()?;
+    Some(
+        terms
+            .into_iter()
+            .map(|(m, e)| m << (e - e0) as u64)
+            .collect(),
+    )
 }
 
 /// Integers N_i with f_i = N_i / D for one D > 0 (the least common multiple of the
@@ -2152,6 +2203,36 @@ mod tests {
                 Some(true),
                 "{good}"
             );
+        }
+    }
+
+    /// The direct integer coefficients of a Bézier span are the exact segment's (from exact
+    /// knot insertion) times one positive factor, for a rational curve and either side.
+    #[test]
+    fn direct_bezier_coefficients_match_the_exact_segment() {
+        let c = NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 1., 1., 1.],
+            vec![vec![0.1, -3.0], vec![1e-5, 2.5], vec![-7.25, 1.0]],
+            Some(vec![0.3, 1.7, 1e3]),
+        )
+        .unwrap();
+        for (j, sign, t) in [(0, 1.0, 0.2), (1, -1.0, 0.75), (1, 1.0, 1e-9)] {
+            let d = bezier_coefficients_direct(&c, 2, j, sign, t).unwrap();
+            let h: HSpline<Exact> = HSpline::from_curve(&c);
+            let seg = h.bezier_segment(2);
+            let f: Vec<Exact> = (0..3)
+                .map(|i| {
+                    let a = seg.pts[i * 3 + j].clone();
+                    let a = if sign < 0.0 { -a } else { a };
+                    a - Exact::of(t) * seg.pts[i * 3 + 2].clone()
+                })
+                .collect();
+            let e = integer_numerators(&f).unwrap();
+            for i in 0..3 {
+                assert_eq!(&d[i] * &e[0], &e[i] * &d[0]);
+                assert_eq!(d[i].sign(), e[i].sign());
+            }
         }
     }
 
