@@ -118,6 +118,19 @@
 //!
 //! Lowering first without exact arithmetic, then (if the exact stage did not certify) with it.
 //!
+//! # Straddles and the exact Bernstein rule
+//!
+//! A straddle (t inside a double-double enclosure of a value seen: the extremum is exactly a
+//! double or within ~2^-100 relative of one) cannot be lowered with double-double rules, so
+//! for degree <= [`EXACT_MAX_DEGREE`] (rational or not) it goes straight to
+//! [`exact_at_most`]: per span whose control points exceed t, the exact Bernstein
+//! coefficients of f = A - t W (the piece's numerator and weight in its local Bézier
+//! parameter, W > 0: f <= 0 iff g <= t), subdivided exactly, first at the candidate
+//! maximiser, where an exact tie is a double root of f ([`exact_bernstein_rule`]). It
+//! answers g <= t (the bound becomes t) or a curve value above t (the certificate), with no
+//! rounding. The same rule is the last lowering attempt when the box rules fail (degree 6,
+//! extreme weights, clustered knots).
+//!
 //! # Limits (bounded work)
 //!
 //! At most [`MAX_CANDIDATES`] candidates, [`NEWTON_STEPS`] double-double Newton steps, the
@@ -128,7 +141,10 @@
 //! [`MAX_PIECES`] Bézier halvings and [`MAX_EXACT_TRIES`] exact concavity arguments (above
 //! [`LOWER_MAX_DEGREE`] a lowering is tried only when a clamped end's value is the largest
 //! value seen, where the Bézier rule decides cheaply); no search at all above degree
-//! [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
+//! [`SEARCH_MAX_DEGREE`] (only the attained-value rule). The exact Bernstein rule: at most
+//! [`MAX_EXACT_SPANS`] spans and [`MAX_EXACT_SPLITS`] subdivisions per span, only spans whose
+//! data lie within 2^±[`EXACT_RULE_MAX_EXP`] (`exact_is_cheap`), coefficients rounded up above
+//! [`EXACT_RULE_ROUND_BITS`] bits. When these are spent the answer is
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
@@ -1695,7 +1711,7 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
     }
     for _ in 0..2 * NEWTON_STEPS {
         let (d1, d2) = (de_casteljau_eval(&f1, &s), de_casteljau_eval(&f2, &s));
-        if !(d2 < 0.0) || !d1.is_finite() {
+        if d2.is_nan() || d2 >= 0.0 || !d1.is_finite() {
             break;
         }
         let next = (s - d1 / d2).clamp(0.0, 1.0);
