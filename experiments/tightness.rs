@@ -3,8 +3,12 @@
 //! extremum, median <= 1 ulp), per strategy and per `gen` family.
 //!
 //! Run: `cargo run --release --features mpfr --bin tightness [-- --curves N --seed S
-//! --max-points M]` (defaults: 100 curves per family, seed 1, reference for curves with at most
-//! 400 control points). Deterministic given the seed. Prints Markdown tables.
+//! --max-points M --family F --strategies a,b --dump DIR]` (defaults: 100 curves per family,
+//! seed 1, reference for curves with at most 400 control points, every family and strategy).
+//! Deterministic given the seed. Prints Markdown tables. `--family` / `--strategies` restrict
+//! the run (and then write no plot); `--dump DIR` writes every curve with a non-optimal bound
+//! or a certification cost above 50% (of a verified strategy) as one JSON file to DIR, and
+//! a line per such bound or curve to stderr (for diagnosis).
 //!
 //! Columns: `ulps_outside` (`nurbs_box::testkit::reference::ulps_outside`) of every outer bound, in ulps
 //! of `NurbsCurve::coord_scale(j)`: positive = on the safe side, negative = a containment miss.
@@ -67,6 +71,9 @@ mod imp {
         curves: usize,
         seed: u64,
         max_points: usize,
+        family: Option<String>,
+        strategies: Option<Vec<String>>,
+        dump: Option<std::path::PathBuf>,
     }
 
     fn args() -> Args {
@@ -74,17 +81,29 @@ mod imp {
             curves: 100,
             seed: 1,
             max_points: 400,
+            family: None,
+            strategies: None,
+            dump: None,
         };
         let v: Vec<String> = std::env::args().skip(1).collect();
         let mut i = 0;
         while i < v.len() {
             let val = v.get(i + 1).and_then(|x| x.parse::<u64>().ok());
-            match (v[i].as_str(), val) {
-                ("--curves", Some(x)) => a.curves = x as usize,
-                ("--seed", Some(x)) => a.seed = x,
-                ("--max-points", Some(x)) => a.max_points = x as usize,
+            let text = v.get(i + 1).cloned();
+            match (v[i].as_str(), val, text) {
+                ("--curves", Some(x), _) => a.curves = x as usize,
+                ("--seed", Some(x), _) => a.seed = x,
+                ("--max-points", Some(x), _) => a.max_points = x as usize,
+                ("--family", _, Some(f)) => a.family = Some(f),
+                ("--strategies", _, Some(s)) => {
+                    a.strategies = Some(s.split(',').map(str::to_string).collect())
+                }
+                ("--dump", _, Some(d)) => a.dump = Some(d.into()),
                 _ => {
-                    eprintln!("usage: tightness [--curves N] [--seed S] [--max-points M]");
+                    eprintln!(
+                        "usage: tightness [--curves N] [--seed S] [--max-points M] [--family F] \
+                         [--strategies a,b] [--dump DIR]"
+                    );
                     std::process::exit(2);
                 }
             }
@@ -244,10 +263,69 @@ mod imp {
         acc.curves_missed += missed as usize;
     }
 
+    /// `--dump`: a line per non-optimal bound and per curve whose certification cost more
+    /// than half the time without it (verified strategies only), and the curve as JSON in
+    /// `dir` (named family-index.json).
+    fn dump(
+        dir: &std::path::Path,
+        (family, index, strategy): (&str, usize, &str),
+        c: &NurbsCurve,
+        e: &Enclosure,
+        rb: &ReferenceBox,
+        (t, t_off): (Duration, Duration),
+    ) {
+        use nurbs_box::testkit::reference::optimal_bound;
+        if !e.verified {
+            return;
+        }
+        let mut lines = Vec::new();
+        for (j, cb) in e.coords.iter().enumerate() {
+            let sc = c.coord_scale(j);
+            for (side, bound, exact, up, flag) in [
+                ("lo", cb.lo, &rb.lo[j], false, cb.optimal_lo),
+                ("hi", cb.hi, &rb.hi[j], true, cb.optimal_hi),
+            ] {
+                let opt = optimal_bound(exact, sc, up);
+                if bound != opt || !flag {
+                    lines.push(format!(
+                        "{family} {index} {strategy} coord {j} {side}: bound {bound:e} optimal \
+                         {opt:e} ({} steps) certified {flag}",
+                        ord(bound) - ord(opt)
+                    ));
+                }
+            }
+        }
+        let ratio = t.as_secs_f64() / t_off.as_secs_f64().max(1e-9);
+        if ratio > 1.5 {
+            lines.push(format!(
+                "{family} {index} {strategy} cost: {:.1} us with, {:.1} us without certification",
+                t.as_secs_f64() * 1e6,
+                t_off.as_secs_f64() * 1e6
+            ));
+        }
+        if lines.is_empty() {
+            return;
+        }
+        for l in &lines {
+            eprintln!("{l}");
+        }
+        let _ = std::fs::create_dir_all(dir);
+        let path = dir.join(format!("{family}-{index}.json"));
+        let _ = std::fs::write(path, nurbs_box::io::records::curve_to_json(c));
+    }
+
     pub fn main() {
         let a = args();
         let prov = Provenance::collect();
-        let strategies = all_strategies(None);
+        let strategies: Vec<_> = all_strategies(None)
+            .into_iter()
+            .filter(|s| {
+                a.strategies
+                    .as_ref()
+                    .is_none_or(|v| v.iter().any(|x| x == s.name()))
+            })
+            .collect();
+        let partial = a.family.is_some() || a.strategies.is_some();
         // None: moderate random curves; Some(None): the constructed ties
         let families: Vec<(String, Option<Option<Family>>)> =
             std::iter::once(("moderate".into(), None))
@@ -269,6 +347,9 @@ mod imp {
         let mut totals = vec![Acc::default(); strategies.len()];
         let mut skipped = 0usize;
         for (fi, (fname, fam)) in families.iter().enumerate() {
+            if a.family.as_ref().is_some_and(|f| f != fname) {
+                continue;
+            }
             let mut r = gen::rng(a.seed.wrapping_mul(1000).wrapping_add(fi as u64));
             let curves: Vec<NurbsCurve> = (0..a.curves)
                 .map(|_| match fam {
@@ -286,8 +367,11 @@ mod imp {
             let refs: Vec<ReferenceBox> = curves.par_iter().map(reference_box).collect();
             for (si, s) in strategies.iter().enumerate() {
                 let mut acc = Acc::default();
-                for (c, rb) in curves.iter().zip(&refs) {
+                for (ci, (c, rb)) in curves.iter().zip(&refs).enumerate() {
                     let (t, t_off, e) = time_enclose(s.as_ref(), c);
+                    if let Some(dir) = &a.dump {
+                        dump(dir, (fname, ci, s.name()), c, &e, rb, (t, t_off));
+                    }
                     acc.times.push(t);
                     acc.times_off.push(t_off);
                     measure(c, &e, rb, &mut acc);
@@ -312,6 +396,9 @@ mod imp {
              for newton and bezier: optimal 100%, certified >= 99.9%, 0 false certificates, \
              cert +% <= 20."
         );
+        if partial {
+            return;
+        }
         let ecdf: Vec<(String, Vec<f64>)> = strategies
             .iter()
             .zip(&totals)

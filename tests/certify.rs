@@ -134,6 +134,42 @@ fn every_bound_of_the_multiple_knot_family_is_certified() {
     }
 }
 
+/// A symmetric rational cubic whose x-minimum is exactly a double, at the double knot u = 0
+/// (C1 there, C'(0) = 0 by symmetry): at a knot of multiplicity 2 only N_3 and N_4 are
+/// nonzero (NURBS Book P2.2), and P_3 = P_4, w_3 = w_4, so C(0) = P_3 exactly. The bound
+/// equal to P_3.x is certified by the exact Bernstein rule (the double-double value at the
+/// knot straddles next_down of the bound above it, and the curve is rational of degree 3,
+/// beyond the exact evaluation of derivatives).
+#[test]
+fn rational_cubic_with_a_double_minimum_at_a_double_knot() {
+    let half = [
+        [0.91231080873693, -0.18112547312786065],
+        [-0.45353552625943383, -0.5086600121367724],
+        [-0.1792727421322451, 0.4308054482531678],
+        [-0.2686008584475572, -0.14660875951932173],
+    ];
+    let w = [
+        5.162492186311104,
+        3.5633988276681388,
+        8.2534904307448,
+        0.35703828603610216,
+    ];
+    let pts: Vec<Vec<f64>> = half
+        .iter()
+        .chain(half.iter().rev())
+        .map(|x| x.to_vec())
+        .collect();
+    let ws: Vec<f64> = w.iter().chain(w.iter().rev()).copied().collect();
+    let kn = vec![-1., -1., -1., -1., -0.5, 0., 0., 0.5, 1., 1., 1., 1.];
+    let c = NurbsCurve::new(3, kn, pts, Some(ws)).unwrap();
+    for s in ["newton", "bezier"] {
+        let e = strategy_by_name(s, None).unwrap().enclose(&c);
+        let cb = &e.coords[0];
+        assert_eq!(cb.lo, -0.2686008584475572, "{s}");
+        assert!(cb.optimal_lo, "{s}");
+    }
+}
+
 #[test]
 fn the_switch_turns_certification_off() {
     let c = bezier_curve(vec![vec![0.0], vec![0.75], vec![0.0]], None);
@@ -209,6 +245,35 @@ mod mpfr {
             }
         }
         (certified, optimal, total)
+    }
+
+    /// Curves whose bounds were one double above the optimal one and uncertified before the
+    /// exact Bernstein rule (`tests/data/certificate_hard_cases.jsonl`): every bound of
+    /// `newton` and `bezier` is MPFR's rounding of the exact extremum, and certified.
+    #[test]
+    fn hard_cases_are_optimal_and_certified() {
+        use nurbs_box::testkit::reference::optimal_bound;
+        let text = include_str!("data/certificate_hard_cases.jsonl");
+        for (i, line) in text.lines().enumerate() {
+            let c = nurbs_box::io::parse_curve(line.as_bytes()).unwrap();
+            check("hard case", &c).unwrap();
+            let rb = reference_box(&c);
+            for s in ["newton", "bezier"] {
+                let e = strategy_by_name(s, None).unwrap().enclose(&c);
+                for (j, cb) in e.coords.iter().enumerate() {
+                    let sc = c.coord_scale(j);
+                    let (lo, hi) = (
+                        optimal_bound(&rb.lo[j], sc, false),
+                        optimal_bound(&rb.hi[j], sc, true),
+                    );
+                    assert_eq!((cb.lo, cb.hi), (lo, hi), "case {i}: {s} coordinate {j}");
+                    assert!(
+                        cb.optimal_lo && cb.optimal_hi,
+                        "case {i}: {s} coordinate {j}: not certified"
+                    );
+                }
+            }
+        }
     }
 
     proptest! {

@@ -118,6 +118,19 @@
 //!
 //! Lowering first without exact arithmetic, then (if the exact stage did not certify) with it.
 //!
+//! # Straddles and the exact Bernstein rule
+//!
+//! A straddle (t inside a double-double enclosure of a value seen: the extremum is exactly a
+//! double or within ~2^-100 relative of one) cannot be lowered with double-double rules, so
+//! for degree <= [`EXACT_MAX_DEGREE`] (rational or not) it goes straight to
+//! [`exact_at_most`]: per span whose control points exceed t, the exact Bernstein
+//! coefficients of f = A - t W (the piece's numerator and weight in its local Bézier
+//! parameter, W > 0: f <= 0 iff g <= t), subdivided exactly, first at the candidate
+//! maximiser, where an exact tie is a double root of f ([`exact_bernstein_rule`]). It
+//! answers g <= t (the bound becomes t) or a curve value above t (the certificate), with no
+//! rounding. The same rule is the last lowering attempt when the box rules fail (degree 6,
+//! extreme weights, clustered knots).
+//!
 //! # Limits (bounded work)
 //!
 //! At most [`MAX_CANDIDATES`] candidates, [`NEWTON_STEPS`] double-double Newton steps, the
@@ -128,7 +141,10 @@
 //! [`MAX_PIECES`] Bézier halvings and [`MAX_EXACT_TRIES`] exact concavity arguments (above
 //! [`LOWER_MAX_DEGREE`] a lowering is tried only when a clamped end's value is the largest
 //! value seen, where the Bézier rule decides cheaply); no search at all above degree
-//! [`SEARCH_MAX_DEGREE`] (only the attained-value rule). When these are spent the answer is
+//! [`SEARCH_MAX_DEGREE`] (only the attained-value rule). The exact Bernstein rule: at most
+//! [`MAX_EXACT_SPANS`] spans and [`MAX_EXACT_SPLITS`] subdivisions per span, only spans whose
+//! data lie within 2^±[`EXACT_RULE_MAX_EXP`] (`exact_is_cheap`), coefficients rounded up above
+//! [`EXACT_RULE_ROUND_BITS`] bits. When these are spent the answer is
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
@@ -141,6 +157,10 @@ use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
 use crate::spline::knots::multiplicity;
 use inari::Interval;
+use num_bigint::{BigInt, Sign};
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, ToPrimitive};
 use std::cmp::Ordering;
 
 /// Candidates per side that are examined (in the strategy's order).
@@ -373,6 +393,8 @@ struct Evals<'a> {
     ddi0: Option<HSpline<Ddi>>,
     buf: Vec<Ddi>,
     exact: Option<CurveEval<Exact>>,
+    /// the homogeneous curve in exact rationals (Bézier segments for [`exact_bernstein_rule`])
+    hexact: Option<HSpline<Exact>>,
 }
 
 impl<'a> Evals<'a> {
@@ -386,6 +408,7 @@ impl<'a> Evals<'a> {
             ddi0: None,
             buf: Vec::new(),
             exact: None,
+            hexact: None,
         }
     }
 
@@ -505,6 +528,14 @@ impl<'a> Evals<'a> {
             EXACT_MAX_DEGREE
         };
         self.c.degree() <= max_degree
+    }
+
+    /// Whether [`exact_bernstein_rule`] is tried for this curve: degree at most
+    /// [`EXACT_MAX_DEGREE`], rational or not (the rule works on the homogeneous
+    /// coefficients, with no quotient rule, so a rational curve costs what a polynomial one of
+    /// one more row does).
+    fn exact_rule_possible(&self) -> bool {
+        self.c.degree() <= EXACT_MAX_DEGREE
     }
 
     /// C_j(u) exactly when u is a clamped end of the domain: the end control point
@@ -747,10 +778,11 @@ fn certify_side(
         // (above LOWER_MAX_DEGREE only when a clamped end's value is the largest value seen,
         // the likely maximum, which the Bézier rule decides with a few halvings of the end
         // spans)
+        let ev_rule_possible = ev.exact_rule_possible();
         let at_clamped_end = end_value.is_finite() && end_value >= nth_down(guess, 2);
         let lower = round < MAX_LOWERINGS
             && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end)
-            && (!d.straddle || ev.exact_possible())
+            && (!d.straddle || ev.exact_possible() || ev.exact_rule_possible())
             && (target >= nth_down(bound, within) || bound - target <= near_scale);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
             if !lower {
@@ -769,6 +801,26 @@ fn certify_side(
             (exact && goal < t && prove_at_most(ev, j, sign, (dn(t), t), cands, true, sc.boxes))
                 .then_some(t)
         };
+        // A straddle (some value within ~2^-100 relative of t) with exact arithmetic
+        // available: the exact Bernstein rule decides at once, on every span whose control
+        // points exceed t, either g <= t (the bound is lowered to t) or a value above t
+        // (the certificate). The double-double lowering cannot succeed here (every
+        // enclosure of the straddling value holds t) and is skipped.
+        if d.straddle && lower && ev.exact_rule_possible() {
+            match exact_at_most(cv.above(sign), j, sign, (dn(t), t), cands) {
+                Some(true) => {
+                    bound = t;
+                    continue;
+                }
+                // (a value of the curve above dn(t) is one above t when the curve evaluated is
+                // the enclosed one, exactly scaled, and t is scaled without rounding)
+                Some(false) if cv.up.is_none() && dn(t) == up(t) => {
+                    proved = true;
+                    break;
+                }
+                _ => {}
+            }
+        }
         if let Some(nb) = try_lower(cv.above(sign), false) {
             bound = nb;
             continue;
@@ -777,10 +829,28 @@ fn certify_side(
             proved = true;
             break;
         }
-        match try_lower(cv.above(sign), true) {
-            Some(nb) => bound = nb,
-            None => break,
+        if let Some(nb) = try_lower(cv.above(sign), true) {
+            bound = nb;
+            continue;
         }
+        // Last, the exact Bernstein rule for a bound the rules above could not lower (a degree
+        // above LOWER_MAX_DEGREE, extreme weights whose interval derivatives are wide, or
+        // clustered knots): the same targets as `try_lower`, without the degree limit.
+        let exact_ok = round < MAX_LOWERINGS
+            && !d.straddle
+            && ev_rule_possible
+            && (target >= nth_down(bound, within) || bound - target <= near_scale);
+        let goal = if target.is_finite() && target < t {
+            target
+        } else {
+            t
+        };
+        if exact_ok && exact_at_most(cv.above(sign), j, sign, (dn(goal), goal), cands) == Some(true)
+        {
+            bound = goal;
+            continue;
+        }
+        break;
     }
     if max_side {
         cb.hi = bound;
@@ -899,8 +969,11 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
         }
         best.push(top);
     }
-    // 2b. the same in the local parameter of the candidates' spans (Bézier form)
-    if bezier_search(ev, j, sign, t, cands, guess) {
+    // 2b. the same in the local parameter of the candidates' spans (Bézier form); not after
+    // a straddle on a curve that is not rescaled and that the exact Bernstein rule takes
+    // (which decides the straddle either way, `certify_side`)
+    let exact_next = straddle && ev.exact_rule_possible() && std::ptr::eq(ev.c, ev.orig);
+    if !exact_next && bezier_search(ev, j, sign, t, cands, guess) {
         out.proved = true;
         return out;
     }
@@ -1310,6 +1383,408 @@ fn bezier_rule(
     Some(out)
 }
 
+/// Spans per [`exact_at_most`] (beyond, `None`).
+const MAX_EXACT_SPANS: usize = 8;
+
+/// Whether g <= t on the whole domain (`Some(true)`), or some value of the curve exceeds t
+/// (`Some(false)`), decided by the strong convex hull of each span's control points (exact f64
+/// comparisons, as in [`prove_at_most`]), then the double-double Bézier rule ([`bezier_rule`]:
+/// its `None` is a rigorous enclosure of a piece's end value, a curve value, above t) and,
+/// on the spans these leave, the exact Bernstein rule ([`exact_bernstein_rule`]); `None`: undecided (more than [`MAX_EXACT_SPANS`] such
+/// spans, or a span undecided within its splits). `t` is on the evaluated curve's scale,
+/// `t_own` the same target in the enclosed curve's units (for its own control points).
+fn exact_at_most(
+    ev: &mut Evals,
+    j: usize,
+    sign: f64,
+    (t, t_own): (f64, f64),
+    cands: &[Extremum],
+) -> Option<bool> {
+    let c = ev.c;
+    let (p, n) = (c.degree(), c.num_points() - 1);
+    let kn = c.knots();
+    let mut spans: Vec<usize> = (p..=n)
+        .filter(|&k| kn[k] < kn[k + 1])
+        .filter(|&k| {
+            (k - p..=k)
+                .map(|i| sign * ev.orig.control_point(i)[j])
+                .fold(f64::NEG_INFINITY, f64::max)
+                > t_own
+        })
+        .collect();
+    if spans.len() > MAX_EXACT_SPANS {
+        return None;
+    }
+    let near = |k: usize| cands.iter().any(|x| x.u_lo <= kn[k + 1] && x.u_hi >= kn[k]);
+    spans.sort_by_key(|&k| !near(k));
+    let mut undecided = false;
+    let mut pieces = MAX_PIECES;
+    for k in spans {
+        // the double-double Bézier rule first on the spans away from the candidates: it
+        // decides them at a fraction of the exact rule's cost (near a candidate the value
+        // straddles t, which only the exact rule decides)
+        match (!near(k)).then(|| bezier_rule(ev, k, j, sign, (t, t_own), &mut pieces)) {
+            Some(None) => return Some(false),
+            Some(Some(rest)) if rest.is_empty() => continue,
+            _ => {}
+        }
+        match exact_bernstein_rule(ev, k, j, sign, t) {
+            Some(true) => {}
+            Some(false) => return Some(false),
+            None => undecided = true,
+        }
+    }
+    (!undecided).then_some(true)
+}
+
+/// Coefficients longer than this (numerator and denominator bits) are not tried by
+/// [`exact_bernstein_rule`] at all.
+const EXACT_RULE_MAX_BITS: u64 = 12_000;
+/// Largest binary exponent (in magnitude) of a span's data for [`exact_bernstein_rule`].
+const EXACT_RULE_MAX_EXP: i32 = 300;
+/// Pieces whose coefficients are longer than this are rounded up ([`exact_bernstein_rule`]).
+const EXACT_RULE_ROUND_BITS: u64 = 512;
+/// Bits kept below the largest coefficient when rounding up.
+const EXACT_RULE_KEEP_BITS: u64 = 256;
+
+/// Splits per span of [`exact_bernstein_rule`].
+const MAX_EXACT_SPLITS: usize = 48;
+
+/// The exact Bernstein rule of a lowering proof on span k: whether g <= t on the span's piece,
+/// decided in exact rational arithmetic. `Some(true)`: proved; `Some(false)`: a value of the
+/// piece exceeds t (t is not a bound); `None`: undecided within [`MAX_EXACT_SPLITS`] splits.
+///
+/// The piece is A(s) / W(s) (s in [0, 1] its local parameter; W = 1 for a polynomial curve)
+/// with A, W Bernstein polynomials whose coefficients are the span's Bézier segment
+/// ([`HSpline::bezier_segment`], Boehm knot insertion, NURBS Book A5.1 / A5.6; run on
+/// [`Exact`], so exact). All weights are > 0, so W(s) > 0 (a convex combination of positive
+/// segment weights) and g(s) <= t iff f(s) := sign A(s) - t W(s) <= 0: a polynomial with exact
+/// Bernstein coefficients f_i = sign A_i - t W_i. By the convex hull property of the Bernstein
+/// basis (B_i >= 0, sum B_i = 1; thesis sec. 4.2) f <= max_i f_i on [0, 1], and the same on
+/// every piece from exact de Casteljau subdivision (NURBS Book A1.5 at a rational point, no
+/// rounding). A piece whose coefficients are all <= 0 is proved; an end coefficient > 0 is a
+/// value f(s) > 0, i.e. a curve value (or a left limit of curve values) above t.
+///
+/// A tie, max g = t exactly, makes f touch 0 at the maximiser s* (a double root): no piece
+/// containing s* in its interior has all coefficients <= 0, but pieces with s* as an end do,
+/// once short enough (f(s*) = f'(s*) = 0 makes the first two coefficients 0 and the rest
+/// ~ f''(s*) h^2 < 0). So the piece is split at s* first: s* is chosen as the best (largest
+/// exact f) of the f64 maximiser of f's rounded coefficients (only to choose a point) and of
+/// exact Newton steps on f' from it (exact for a quadratic; rounded to dyadic grids of
+/// 2^-60 and 2^-200 for higher degrees, which hit a dyadic maximiser such as 1/2 exactly).
+/// The pieces next to s* are then halved towards it. A near-tie below t (f(s*) < 0 within
+/// 2^-100 relative) is decided the same way, with pieces of width ~ |f(s*) / f'(s*)|.
+fn exact_bernstein_rule(ev: &mut Evals, k: usize, j: usize, sign: f64, t: f64) -> Option<bool> {
+    let c = ev.c;
+    if !exact_is_cheap(c, k, j, t) {
+        return None;
+    }
+    let p = c.degree();
+    // The coefficients as integers over a common positive denominator, which is dropped
+    // (only signs matter): no gcd per operation, the cost of big rationals.
+    let fi = match bezier_coefficients_direct(c, k, j, sign, t) {
+        Some(fi) => fi,
+        None => {
+            let h = ev.hexact.get_or_insert_with(|| HSpline::from_curve(c));
+            let seg = h.bezier_segment(k);
+            let (hd, dim, rational) = (seg.hdim(), seg.dim, seg.rational);
+            let tt = Exact::of(t);
+            tt.value()?;
+            let f: Vec<Exact> = (0..=p)
+                .map(|i| {
+                    let a = seg.pts[i * hd + j].clone();
+                    let a = if sign < 0.0 { -a } else { a };
+                    let w = if rational {
+                        seg.pts[i * hd + dim].clone()
+                    } else {
+                        Exact::of(1.0)
+                    };
+                    a - tt.clone() * w
+                })
+                .collect();
+            integer_numerators(&f)?
+        }
+    };
+    let pos = |x: &BigInt| x.sign() == Sign::Plus;
+    if fi.iter().all(|x| !pos(x)) {
+        return Some(true);
+    }
+    if pos(&fi[0]) || pos(&fi[p]) {
+        return Some(false);
+    }
+    if fi.iter().map(BigInt::bits).max().unwrap_or(0) > EXACT_RULE_MAX_BITS {
+        return None;
+    }
+    let split_point = best_split(&fi);
+    let mut stack = vec![(fi, Exact::of(0.0), Exact::of(1.0))];
+    // whether some coefficients were rounded up (then an end coefficient > 0 refutes nothing)
+    let mut rounded = false;
+    let mut splits = 0usize;
+    let half = Exact::of(0.5);
+    while let Some((mut b, s0, s1)) = stack.pop() {
+        // Long coefficients (extreme magnitudes, or many splits at a non-dyadic point) are
+        // rounded up to [`EXACT_RULE_KEEP_BITS`] bits below the largest one (the same
+        // power of two divides every coefficient of the piece, a positive common factor):
+        // upper bounds of the Bernstein coefficients bound f from above on the piece
+        // (B_i >= 0), and de Casteljau's corner cuts at r in [0, 1] are convex combinations,
+        // so the pieces' coefficients computed from upper bounds bound the exact pieces'.
+        let long = b.iter().map(BigInt::bits).max().unwrap_or(0);
+        if long > EXACT_RULE_ROUND_BITS {
+            let d = BigInt::one() << (long - EXACT_RULE_KEEP_BITS);
+            b = b.iter().map(|x| x.div_ceil(&d)).collect();
+            rounded = true;
+        }
+        if b.iter().all(|x| !pos(x)) {
+            continue;
+        }
+        if pos(&b[0]) || pos(&b[p]) {
+            return if rounded { None } else { Some(false) };
+        }
+        splits += 1;
+        if splits > MAX_EXACT_SPLITS {
+            return None;
+        }
+        // split at s* when it lies strictly inside, else halve
+        let positive = |x: Exact| x.signum() == Some(Ordering::Greater);
+        let inside = split_point
+            .as_ref()
+            .filter(|x| positive((*x).clone() - s0.clone()) && positive(s1.clone() - (*x).clone()));
+        let r = match inside {
+            Some(x) => (x.clone() - s0.clone()) / (s1.clone() - s0.clone()),
+            None => half.clone(),
+        };
+        let m = s0.clone() + r.clone() * (s1.clone() - s0.clone());
+        let (l, rt) = split_integer(&b, r.value()?);
+        stack.push((rt, m.clone(), s1));
+        stack.push((l, s0, m));
+    }
+    Some(true)
+}
+
+/// Whether the data of span k (coordinate j and weights of its control points, its knots
+/// relative to the span's length, the target t) have binary exponents within
+/// +-[`EXACT_RULE_MAX_EXP`]: an f64 m 2^e is a rational of about 53 + |e| bits, and the
+/// exact Bézier segment of data spanning 2^+-1000 (range limits) has coefficients of
+/// thousands of bits, whose arithmetic costs milliseconds.
+fn exact_is_cheap(c: &NurbsCurve, k: usize, j: usize, t: f64) -> bool {
+    let p = c.degree();
+    let kn = c.knots();
+    let ok =
+        |x: f64| x == 0.0 || (x.is_finite() && exponent_of(x.abs()).abs() <= EXACT_RULE_MAX_EXP);
+    let len = kn[k + 1] - kn[k];
+    ok(t)
+        && ok(len)
+        && (k - p..=k).all(|i| ok(c.control_point(i)[j]) && ok(c.weight(i)))
+        && kn[k - p + 1..=k + p].iter().all(|&u| ok((u - kn[k]) / len))
+}
+
+/// The integer coefficients of [`exact_bernstein_rule`] straight from the f64 data when span k
+/// is already a Bézier segment (its p knots on either side equal its ends, e.g. a clamped
+/// single-span curve): then the segment's homogeneous points are the control points
+/// (w_i P_i, w_i) themselves (Boehm insertion inserts nothing), and f_i = w_i (sign P_ij - t).
+/// Each f64 is m 2^e with integer m; all terms are brought to the smallest exponent
+/// (a common positive denominator), exactly. `None` for other spans.
+fn bezier_coefficients_direct(
+    c: &NurbsCurve,
+    k: usize,
+    j: usize,
+    sign: f64,
+    t: f64,
+) -> Option<Vec<BigInt>> {
+    let (p, kn) = (c.degree(), c.knots());
+    let bezier = kn[k + 1 - p..=k].iter().all(|&u| u == kn[k])
+        && kn[k + 1..=k + p].iter().all(|&u| u == kn[k + 1]);
+    if !bezier {
+        return None;
+    }
+    // (m, e) with x = m 2^e
+    let parts = |x: f64| -> Option<(BigInt, i64)> {
+        let q = Exact::of(x);
+        let q = q.value()?;
+        let e = -(q.denom().bits() as i64 - 1); // the denominator is a power of two
+        Some((q.numer().clone(), e))
+    };
+    let (tm, te) = parts(t)?;
+    // sign P_ij - t = (a, ea), then times w = (b, eb)
+    let terms: Vec<(BigInt, i64)> = (k - p..=k)
+        .map(|i| {
+            let (pm, pe) = parts(sign * c.control_point(i)[j])?;
+            let e = pe.min(te);
+            let a = (pm << (pe - e) as u64) - (&tm << (te - e) as u64);
+            let (wm, we) = parts(c.weight(i))?;
+            Some((a * wm, e + we))
+        })
+        .collect::<Option<_>>()?;
+    let e0 = terms.iter().map(|x| x.1).min()?;
+    Some(
+        terms
+            .into_iter()
+            .map(|(m, e)| m << (e - e0) as u64)
+            .collect(),
+    )
+}
+
+/// Integers N_i with f_i = N_i / D for one D > 0 (the least common multiple of the
+/// denominators); `None` if some value is undefined.
+fn integer_numerators(f: &[Exact]) -> Option<Vec<BigInt>> {
+    let vals: Vec<&BigRational> = f.iter().map(Exact::value).collect::<Option<_>>()?;
+    let d = vals.iter().fold(BigInt::one(), |acc, q| acc.lcm(q.denom()));
+    Some(vals.iter().map(|q| q.numer() * (&d / q.denom())).collect())
+}
+
+/// De Casteljau subdivision (NURBS Book A1.5) of the Bernstein coefficients `b` (over a common
+/// positive denominator) at the rational r = m / n in (0, 1), n > 0, in integers: each corner
+/// cut (1 - r) x + r y is (n - m) x + m y over n times the denominator, and the two halves'
+/// coefficients from level l are multiplied by n^(p - l) to share the denominator n^p. Exact:
+/// the returned integers are the halves' coefficients times one positive factor each.
+fn split_integer(b: &[BigInt], r: &BigRational) -> (Vec<BigInt>, Vec<BigInt>) {
+    let p = b.len() - 1;
+    let (m, n) = (r.numer().clone(), r.denom().clone());
+    let nm = &n - &m;
+    let mut lvl = b.to_vec();
+    let mut left = vec![lvl[0].clone()];
+    let mut right = vec![lvl[p].clone()];
+    for l in 1..=p {
+        for i in 0..=p - l {
+            lvl[i] = &nm * &lvl[i] + &m * &lvl[i + 1];
+        }
+        left.push(lvl[0].clone());
+        right.push(lvl[p - l].clone());
+    }
+    // level l was scaled by n^l: bring every entry to n^p
+    let pow: Vec<BigInt> = (0..=p)
+        .scan(BigInt::one(), |acc, _| {
+            let v = acc.clone();
+            *acc *= &n;
+            Some(v)
+        })
+        .collect();
+    let left = left
+        .iter()
+        .enumerate()
+        .map(|(l, x)| x * &pow[p - l])
+        .collect();
+    // right[i] came from level p - i (the right half's coefficient i)
+    let mut right: Vec<BigInt> = right
+        .iter()
+        .enumerate()
+        .map(|(l, x)| x * &pow[p - l])
+        .collect();
+    right.reverse();
+    (left, right)
+}
+
+/// The split point s* of [`exact_bernstein_rule`] for the Bernstein coefficients `f` on [0, 1]:
+/// the candidate in (0, 1) with the largest exact value (`None` if none lies inside).
+fn best_split(fi: &[BigInt]) -> Option<Exact> {
+    // (the integer coefficients, the exact ones times a positive factor: the same signs,
+    // maximisers and double roots)
+    let ff: Vec<f64> = fi.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect();
+    let big = ff.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    // normalise (only to choose a point; f64 rounding is harmless here); coefficients
+    // beyond f64 are shifted first
+    let ff: Vec<f64> = if big.is_finite() && big > 0.0 {
+        ff.iter().map(|x| x / big).collect()
+    } else {
+        let shift = fi
+            .iter()
+            .map(BigInt::bits)
+            .max()
+            .unwrap_or(0)
+            .saturating_sub(60);
+        fi.iter()
+            .map(|x| (x >> shift).to_f64().unwrap_or(f64::NAN))
+            .collect()
+    };
+    if ff.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    let (f1, f2) = (hodograph(&ff), hodograph(&hodograph(&ff)));
+    let mut s = 0.5;
+    let mut best = de_casteljau_eval(&ff, &s);
+    for i in 1..SEARCH_SAMPLES {
+        let v = i as f64 / SEARCH_SAMPLES as f64;
+        let g = de_casteljau_eval(&ff, &v);
+        if g > best {
+            (s, best) = (v, g);
+        }
+    }
+    for _ in 0..2 * NEWTON_STEPS {
+        let (d1, d2) = (de_casteljau_eval(&f1, &s), de_casteljau_eval(&f2, &s));
+        if d2.is_nan() || d2 >= 0.0 || !d1.is_finite() {
+            break;
+        }
+        let next = (s - d1 / d2).clamp(0.0, 1.0);
+        if next == s {
+            break;
+        }
+        s = next;
+    }
+    let zero = BigRational::from_integer(BigInt::from(0));
+    let one = BigRational::one();
+    let inside = |x: &BigRational| *x > zero && *x < one;
+    let se = Exact::of(s).value()?.clone();
+    // exact Newton on f' from s (for a quadratic, f' is linear: the exact critical point)
+    let mut cands = Vec::new();
+    let h1: Vec<BigInt> = fi.windows(2).map(|w| &w[1] - &w[0]).collect();
+    let h2: Vec<BigInt> = h1.windows(2).map(|w| &w[1] - &w[0]).collect();
+    let p = fi.len() - 1;
+    if p >= 2 {
+        let (d1, sc1) = eval_integer(&h1, &se);
+        let (d2, sc2) = eval_integer(&h2, &se);
+        if d2.sign() == Sign::Minus {
+            // f' = p sum h1_i B_i, f'' = p (p - 1) sum h2_i B_i; step = f'/f''
+            let step = BigRational::new(d1 * &sc2, d2 * &sc1 * BigInt::from(p - 1));
+            let n = &se - step;
+            if p == 2 {
+                cands.push(n);
+            } else {
+                cands.push(se);
+                for bits in [60u32, 200] {
+                    // the nearest point of the grid 2^-bits
+                    let g = BigInt::one() << bits;
+                    let r = (&n * BigRational::from_integer(g.clone())).round();
+                    cands.push(r / BigRational::from_integer(g));
+                }
+            }
+        } else {
+            cands.push(se);
+        }
+    } else {
+        cands.push(se);
+    }
+    // the first with f = 0 exactly (a tie: split there), else the largest f
+    let mut best: Option<(BigRational, BigRational)> = None;
+    for x in cands.into_iter().filter(inside) {
+        let (v, sc) = eval_integer(fi, &x);
+        if v.sign() == Sign::NoSign {
+            return Some(Exact::from_ratio(x));
+        }
+        let v = BigRational::new(v, sc);
+        if best.as_ref().is_none_or(|(b, _)| v > *b) {
+            best = Some((v, x));
+        }
+    }
+    best.map(|(_, x)| Exact::from_ratio(x))
+}
+
+/// The value at the rational x = m / n (n > 0) of the Bernstein polynomial with integer
+/// coefficients `b`, as (v, n^p) with value v / n^p: de Casteljau in integers (each corner
+/// cut (n - m) a + m b over n).
+fn eval_integer(b: &[BigInt], x: &BigRational) -> (BigInt, BigInt) {
+    let (m, n) = (x.numer().clone(), x.denom().clone());
+    let nm = &n - &m;
+    let mut lvl = b.to_vec();
+    let mut scale = BigInt::one();
+    for l in 1..lvl.len() {
+        for i in 0..lvl.len() - l {
+            lvl[i] = &nm * &lvl[i] + &m * &lvl[i + 1];
+        }
+        scale *= &n;
+    }
+    (lvl.swap_remove(0), scale)
+}
+
 /// What one box of the branch and bound showed.
 enum BoxVerdict {
     /// g <= t on the box
@@ -1692,6 +2167,89 @@ mod tests {
         certify(&c, &mut forced);
         assert_eq!(forced.coords[0].hi, 0.5f64.next_up());
         assert!(forced.coords[0].optimal_hi);
+    }
+
+    /// The exact Bernstein rule decides exact ties both ways: a symmetric quadratic with the
+    /// double maximum 3/8 at u = 1/2 is <= 3/8 (the double root of f = g - 3/8 is split at),
+    /// not <= next_down(3/8); a symmetric cubic likewise (maximum (a + 3b)/4 at u = 1/2, hit
+    /// by the exact Newton step rounded to a dyadic grid); a quadratic whose maximiser
+    /// 1/3 is no double (P0 = 0, P1 = 1, P2 = -1: C = 2u(1-u) - u^2, max 1/3 at u = 1/3)
+    /// is <= RU(1/3) and not <= RD(1/3).
+    #[test]
+    fn exact_bernstein_rule_decides_ties() {
+        let cubic = |a: f64, b: f64| {
+            NurbsCurve::new(
+                3,
+                vec![0., 0., 0., 0., 1., 1., 1., 1.],
+                vec![vec![a], vec![b], vec![b], vec![a]],
+                None,
+            )
+            .unwrap()
+        };
+        // 1/3 rounds down in f64 (binary 0.0101...01|0101...)
+        let (third_dn, third_up) = (1.0f64 / 3.0, (1.0f64 / 3.0).next_up());
+        let cases = [
+            (quad(0.0, 0.75, 0.0), 0.375, 0.375f64.next_down()),
+            (cubic(-1.0, 3.0), 2.0, 2.0f64.next_down()),
+            (quad(0.0, 1.0, -1.0), third_up, third_dn),
+        ];
+        for (c, good, bad) in cases {
+            let mut ev = Evals::new(&c, &c, 0);
+            assert_eq!(
+                exact_bernstein_rule(&mut ev, c.degree(), 0, 1.0, good),
+                Some(true)
+            );
+            assert_eq!(
+                exact_bernstein_rule(&mut ev, c.degree(), 0, 1.0, bad),
+                Some(false)
+            );
+            // and the minimum side of -C (sign -1)
+            let neg = NurbsCurve::new(
+                c.degree(),
+                c.knots().to_vec(),
+                (0..c.num_points())
+                    .map(|i| vec![-c.control_point(i)[0]])
+                    .collect(),
+                None,
+            )
+            .unwrap();
+            let mut ev = Evals::new(&neg, &neg, 0);
+            assert_eq!(
+                exact_bernstein_rule(&mut ev, c.degree(), 0, -1.0, good),
+                Some(true),
+                "{good}"
+            );
+        }
+    }
+
+    /// The direct integer coefficients of a Bézier span are the exact segment's (from exact
+    /// knot insertion) times one positive factor, for a rational curve and either side.
+    #[test]
+    fn direct_bezier_coefficients_match_the_exact_segment() {
+        let c = NurbsCurve::new(
+            2,
+            vec![0., 0., 0., 1., 1., 1.],
+            vec![vec![0.1, -3.0], vec![1e-5, 2.5], vec![-7.25, 1.0]],
+            Some(vec![0.3, 1.7, 1e3]),
+        )
+        .unwrap();
+        for (j, sign, t) in [(0, 1.0, 0.2), (1, -1.0, 0.75), (1, 1.0, 1e-9)] {
+            let d = bezier_coefficients_direct(&c, 2, j, sign, t).unwrap();
+            let h: HSpline<Exact> = HSpline::from_curve(&c);
+            let seg = h.bezier_segment(2);
+            let f: Vec<Exact> = (0..3)
+                .map(|i| {
+                    let a = seg.pts[i * 3 + j].clone();
+                    let a = if sign < 0.0 { -a } else { a };
+                    a - Exact::of(t) * seg.pts[i * 3 + 2].clone()
+                })
+                .collect();
+            let e = integer_numerators(&f).unwrap();
+            for i in 0..3 {
+                assert_eq!(&d[i] * &e[0], &e[i] * &d[0]);
+                assert_eq!(d[i].sign(), e[i].sign());
+            }
+        }
     }
 
     /// An exact tie at an interior knot (a symmetric quintic, `extrema_at_knots`: the maximum

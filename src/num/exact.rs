@@ -31,6 +31,11 @@ impl Exact {
         Exact(ratio_of_f64(x))
     }
 
+    /// A rational as an exact value.
+    pub fn from_ratio(q: BigRational) -> Exact {
+        Exact(Some(q))
+    }
+
     /// The rational itself (`None` if undefined).
     pub fn value(&self) -> Option<&BigRational> {
         self.0.as_ref()
@@ -112,6 +117,40 @@ impl Exact {
             f * BigRational::from_integer(pow(g as u64))
         } else {
             f / BigRational::from_integer(pow((-g) as u64))
+        }))
+    }
+
+    /// The size of the value in bits: those of its numerator and denominator (0 if
+    /// undefined); a measure of what arithmetic on it costs.
+    pub fn bits(&self) -> u64 {
+        self.0
+            .as_ref()
+            .map_or(0, |q| q.numer().bits() + q.denom().bits())
+    }
+
+    /// An estimate e of log2 |value| (|value| within [2^(e-1), 2^(e+1)]); `None` if undefined
+    /// or zero.
+    pub fn log2_estimate(&self) -> Option<i64> {
+        let q = self.0.as_ref().filter(|q| !q.is_zero())?;
+        Some(q.numer().bits() as i64 - q.denom().bits() as i64)
+    }
+
+    /// The smallest multiple of 2^g that is >= the value (undefined stays undefined).
+    pub fn ceil_to(&self, g: i64) -> Exact {
+        let Some(q) = self.0.as_ref() else {
+            return Exact(None);
+        };
+        let pow = |k: u64| BigRational::from_integer(BigInt::one() << k);
+        let scaled = if g >= 0 {
+            q / pow(g as u64)
+        } else {
+            q * pow((-g) as u64)
+        };
+        let c = scaled.ceil();
+        Exact(Some(if g >= 0 {
+            c * pow(g as u64)
+        } else {
+            c / pow((-g) as u64)
         }))
     }
 
