@@ -639,7 +639,9 @@ impl BezierSubdivision {
         // Every piece was either bounded (<= upper) or pruned (<= attained <= max C), so
         // max C <= max(upper, attained).
         side.upper = side.upper.max(side.attained);
-        if loose(side.upper, side.attained, scale) {
+        if loose(side.upper, side.attained, scale)
+            || unproved_within_an_ulp(side.upper, side.attained, side.witness)
+        {
             let mut dseg = |k: usize| {
                 dsegs[k]
                     .get_or_insert_with(|| {
@@ -689,6 +691,17 @@ impl BezierSubdivision {
 /// proved (a strict double-double witness) instead of searching and lowering it.
 fn loose(bound: f64, attained: f64, scale: f64) -> bool {
     super::certify::far_below(bound, attained, scale, 1)
+}
+
+/// Whether a bound within an ulp of the scale above its attained value is still not shown to
+/// be the optimal double by the certificate's first rule (the attained value equal to it, or a
+/// strict witness at or above the double below it): an extremum whose enclosure spans two
+/// doubles of its own size, below the resolution of [`loose`]. [`refine_local`] then
+/// searches the pieces again in double double, which usually leaves such a witness; otherwise
+/// the certificate has to lower the bound itself, a proof in exact arithmetic that cost up to
+/// a millisecond on extreme weights.
+fn unproved_within_an_ulp(bound: f64, attained: f64, witness: f64) -> bool {
+    bound.is_finite() && bound > attained && witness < bound.next_down()
 }
 
 /// Pieces per side of the local refinement ([`refine_local`]).
