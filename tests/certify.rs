@@ -200,7 +200,10 @@ fn bezier_leaves_a_witness_within_an_ulp() {
         }
         // and the certified result keeps them
         let f = s.enclose(&c);
-        assert!(f.coords.iter().all(|cb| cb.optimal_lo && cb.optimal_hi), "case {i}");
+        assert!(
+            f.coords.iter().all(|cb| cb.optimal_lo && cb.optimal_hi),
+            "case {i}"
+        );
     }
 }
 
