@@ -701,7 +701,13 @@ fn loose(bound: f64, attained: f64, scale: f64) -> bool {
 /// the certificate has to lower the bound itself, a proof in exact arithmetic that cost up to
 /// a millisecond on extreme weights.
 fn unproved_within_an_ulp(bound: f64, attained: f64, witness: f64) -> bool {
-    bound.is_finite() && bound > attained && witness < bound.next_down()
+    // (only a gap of a few doubles of the bound's own size: an extremum tiny next to the
+    // coordinate's scale, e.g. ~1 among values ~1e308, is many doubles from its attained value
+    // and beyond what double double resolves)
+    bound.is_finite()
+        && bound > attained
+        && witness < bound.next_down()
+        && bound - attained <= 4.0 * crate::num::ulp(bound)
 }
 
 /// Pieces per side of the local refinement ([`refine_local`]).
