@@ -473,8 +473,8 @@ fn cartesian<S: Scalar>(q: Vec<S>, rational: bool) -> Vec<S> {
     crate::spline::bezier::cartesian(q, 1, rational)
 }
 
-/// The degree up to which [`restrict_hull_f64`] restricts (its error bound assumes n u tiny;
-/// the buffers stay on the stack below it).
+/// The degree up to which [`restrict_hull_f64`] restricts (its error bound assumes
+/// 11 n u < 2^-40; above it the caller restricts in `Mr`).
 const F64_RESTRICT_MAX: usize = 255;
 
 /// An enclosure of the range over [t0, t1] (0 <= t0 < t1 <= 1) of every polynomial whose
