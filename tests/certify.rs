@@ -260,6 +260,54 @@ mod mpfr {
         Ok(())
     }
 
+    /// The strict witnesses of the general paths (`newton`'s candidate values, `bezier`'s
+    /// critical-point estimates and piece ends, `bezier`'s local refinement), without the
+    /// certificate: on rational splines of the nasty families a witness w says the curve
+    /// reaches a value beyond w, so the exact maximum lies strictly above `witness_hi` and the
+    /// exact minimum strictly below `witness_lo` (256-bit reference).
+    #[test]
+    fn general_path_witnesses_are_strictly_inside_the_exact_range() {
+        use nurbs_box::testkit::gen::Family;
+        let mut r = gen::rng(77);
+        let mut seen = 0;
+        for f in [
+            Family::ExtremeWeights,
+            Family::ClusteredKnots,
+            Family::ExtremaAtKnots,
+            Family::ExtremeMagnitudes,
+            Family::Mixed,
+        ] {
+            for _ in 0..12 {
+                let c = f.curve(&mut r);
+                let rb = reference_box(&c);
+                for s in ["newton", "bezier"] {
+                    let e = drive_with(strategy_by_name(s, None).unwrap().as_ref(), &c, false);
+                    for (j, cb) in e.coords.iter().enumerate() {
+                        if cb.witness_hi.is_finite() {
+                            seen += 1;
+                            assert!(
+                                rb.hi[j] > cb.witness_hi,
+                                "{} {s} coordinate {j}: witness_hi {:e} not below the maximum",
+                                f.name(),
+                                cb.witness_hi
+                            );
+                        }
+                        if cb.witness_lo.is_finite() {
+                            seen += 1;
+                            assert!(
+                                rb.lo[j] < cb.witness_lo,
+                                "{} {s} coordinate {j}: witness_lo {:e} not above the minimum",
+                                f.name(),
+                                cb.witness_lo
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert!(seen > 100, "only {seen} witnesses");
+    }
+
     /// Every curve checked against MPFR (all strategies, [`check`]); newton's certified
     /// bounds, its bounds equal to the optimal double (MPFR's rounding of the exact extremum)
     /// and all its bounds.

@@ -353,7 +353,7 @@ impl Ddi {
                 }
             }
         }
-        let c = self.to_interval().inf();
+        let c = self.lower_end();
         if !c.is_finite() || self.is_entire() {
             return f64::NEG_INFINITY;
         }

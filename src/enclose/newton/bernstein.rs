@@ -201,17 +201,12 @@ impl SpanPoly {
     /// piece's values by the convex hull property with positive weights), else in `Mr`.
     pub(super) fn values(&self, t: T) -> Interval {
         if t.lo < t.hi {
-            if let Some(v) = self.values_f64(t.lo, t.hi) {
+            if let Some(v) = segment_values_f64(&self.seg, t.lo, t.hi) {
                 return v + iv::point(self.c);
             }
         }
         let q = Self::restrict(&self.seg, t.lo, t.hi);
         hull(&cartesian(q, self.seg.rational)) + iv::point(self.c)
-    }
-
-    /// The f64 part of [`SpanPoly::values`] (without the shift c): [`segment_values_f64`].
-    fn values_f64(&self, t0: f64, t1: f64) -> Option<Interval> {
-        segment_values_f64(&self.seg, t0, t1)
     }
 
     /// As [`SpanPoly::values`], and C_j at the parameter u(t_mid) (a real in the closed span:
