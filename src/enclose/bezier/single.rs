@@ -291,16 +291,10 @@ pub(crate) fn extremum(
     unique: bool,
     kind: CandidateKind,
 ) -> Extremum {
-    if a == 0.0 && b == 1.0 {
-        // (the local parameter is the curve's: u = t exactly)
-        return Extremum {
-            u_lo: t0,
-            u_hi: t1,
-            unique,
-            kind,
-        };
-    }
     let map = |t: f64| -> (f64, f64) {
+        if a == 0.0 && b == 1.0 {
+            return (t, t);
+        }
         let u = (Ddi::exact(a) + Ddi::exact(t) * Ddi::diff(b, a)).to_interval();
         (u.inf().max(a), u.sup().min(b))
     };
@@ -366,7 +360,7 @@ impl RawSide {
     /// A double-double enclosure of an attained value: its lower end is attained, the largest
     /// f64 strictly below it a witness.
     fn attain_ddi(&mut self, v: Ddi) {
-        self.attain(v.lower_end());
+        self.attain(v.to_interval().inf());
         self.witness = self.witness.max(v.strictly_below());
     }
     fn bound(&mut self, ub: f64, e: Extremum) {
@@ -449,10 +443,7 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
     k += 1;
     {
         let (mut r, nr) = root_estimates(deriv.b[0], deriv.b[1], deriv.b[2]);
-        // (at most two: one compare-and-swap sorts them)
-        if nr == 2 && r[1] < r[0] {
-            r.swap(0, 1);
-        }
+        r[..nr].sort_by(f64::total_cmp);
         for &ri in &r[..nr] {
             for t in [ri - H, ri + H] {
                 if t > z[k - 1] && t < 1.0 {
@@ -563,15 +554,15 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
             co.poly().x(Ddi::exact(m))
         };
         let e = extremum(a, b, t0, t1, true, CandidateKind::Critical);
-        let vb = xm.widen(corr);
+        let vb = xm.widen(corr).to_interval();
         let side = if is_max { &mut *hi } else { &mut *lo };
         side.point_evaluations += 1;
         if is_max {
             side.attain_ddi(xm);
-            side.bound(vb.upper_end(), e);
+            side.bound(vb.sup(), e);
         } else {
             side.attain_ddi(-xm);
-            side.bound(-vb.lower_end(), e);
+            side.bound(-vb.inf(), e);
         }
     }
     hi.derivative_evaluations = derivative_evaluations;
