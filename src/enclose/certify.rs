@@ -798,8 +798,16 @@ fn certify_side(
             if prove_at_most(ev, j, sign, (dn(goal), goal), cands, exact, sc.boxes) {
                 return Some(goal);
             }
-            (exact && goal < t && prove_at_most(ev, j, sign, (dn(t), t), cands, true, sc.boxes))
-                .then_some(t)
+            // (one ulp below the bound leads to a certificate only if some value seen can
+            // reach the next double below a bound lowered by at most the rounds left: with
+            // every value seen further below, that proof, often the costliest step of a
+            // failing certificate, is skipped; the bound stays as it is, still proved)
+            let reachable = target >= nth_down(bound, MAX_LOWERINGS - round + 1);
+            (exact
+                && goal < t
+                && reachable
+                && prove_at_most(ev, j, sign, (dn(t), t), cands, true, sc.boxes))
+            .then_some(t)
         };
         // A straddle (some value within ~2^-100 relative of t) with exact arithmetic
         // available: the exact Bernstein rule decides at once, on every span whose control

@@ -20,6 +20,7 @@ use crate::spline::eval::CurveEval;
 use crate::spline::knots::multiplicity;
 use crate::spline::tight::TightEval;
 use inari::Interval;
+use smallvec::SmallVec;
 use std::time::Instant;
 
 /// What to do with a knot span.
@@ -700,6 +701,7 @@ impl<'a> Engine<'a> {
         }
         let mut status = vec![Status::Covered; ns];
         let mut term = Termination::Converged;
+        let (mut cheap_lo, mut cheap_hi) = (acc.inner_lo, acc.inner_hi);
         let mut boxes: Vec<ZeroBox> = Vec::new();
         for &si in order {
             let (k, sa, sb) = self.spans[si];
@@ -715,7 +717,7 @@ impl<'a> Engine<'a> {
                 let (hmin, hmax) = self.local_hull(k);
                 // Values the curve attains on both sides (inner bounds): the span's values lie
                 // between them, so inside the final outer box, and the extremes are elsewhere.
-                if hmin >= acc.inner_lo && hmax <= acc.inner_hi {
+                if hmin >= cheap_lo.min(acc.inner_lo) && hmax <= cheap_hi.max(acc.inner_hi) {
                     continue;
                 }
             }
@@ -738,7 +740,7 @@ impl<'a> Engine<'a> {
                 let hi = crate::enclose::bezier::span_filter(c, &q, k, j, 1.0, false);
                 let lo = crate::enclose::bezier::span_filter(c, &q, k, j, -1.0, false);
                 if let (Some((ub, _)), Some((nlb, _))) = (hi, lo) {
-                    if -nlb >= acc.inner_lo && ub <= acc.inner_hi {
+                    if -nlb >= cheap_lo.min(acc.inner_lo) && ub <= cheap_hi.max(acc.inner_hi) {
                         self.stats.fast_exits += 1;
                         continue;
                     }
@@ -749,7 +751,8 @@ impl<'a> Engine<'a> {
                 self.poly = None;
                 let bp = self.s.bezier_pretest;
                 let (blo, bhi, inc, dec) = sp.bezier_points();
-                if bp && mode == SpanMode::Prune && blo >= acc.inner_lo && bhi <= acc.inner_hi {
+                let (clo, chi) = (cheap_lo.min(acc.inner_lo), cheap_hi.max(acc.inner_hi));
+                if bp && mode == SpanMode::Prune && blo >= clo && bhi <= chi {
                     // as the local-hull prune above, with the span's own Bézier hull
                     continue;
                 }
@@ -792,7 +795,8 @@ impl<'a> Engine<'a> {
             } else {
                 SpanParam::Global(U::new(sa, sb))
             };
-            let t = self.search(k, span, (acc.inner_lo, acc.inner_hi), &mut boxes);
+            let covered = (cheap_lo.min(acc.inner_lo), cheap_hi.max(acc.inner_hi));
+            let t = self.search(k, span, covered, &mut boxes);
             if term == Termination::Converged {
                 term = t;
             }
@@ -814,7 +818,32 @@ impl<'a> Engine<'a> {
                     unique: false,
                 });
             }
-            for zb in &boxes {
+            // Values the curve attains, from the cheap enclosures of this span's boxes too:
+            // a box's values all lie in v = [SpanPoly::values], and the curve takes a value in
+            // the (non-empty) box, so it attains a value >= inf v and one <= sup v.
+            let cheap: SmallVec<[Interval; 8]> = boxes
+                .iter()
+                .map(|zb| match (zb.x, self.span_poly(k)) {
+                    (SpanParam::Local(t), Some(sp)) => sp.values(t),
+                    _ => Interval::ENTIRE,
+                })
+                .collect();
+            for v in cheap.iter().filter(|v| !v.is_empty() && v.is_common_interval()) {
+                cheap_lo = cheap_lo.min(v.sup());
+                cheap_hi = cheap_hi.max(v.inf());
+            }
+            for (zb, v) in boxes.iter().zip(&cheap) {
+                // A box whose values lie strictly between values the curve attains holds
+                // neither a maximizer nor a minimizer of C_j (if u* in it maximized C_j, then
+                // max = C_j(u*) <= sup v < cheap_hi <= max), so the candidates elsewhere
+                // (evaluated, or kept by the same test) cover both extremes: it needs no tight
+                // evaluation (which builds the span's double-double Taylor data, the largest
+                // cost of a high-degree span).
+                let (clo, chi) = (cheap_lo.min(acc.inner_lo), cheap_hi.max(acc.inner_hi));
+                if !v.is_empty() && v.inf() > clo && v.sup() < chi {
+                    self.stats.fast_exits += 1;
+                    continue;
+                }
                 let (u, t) = match zb.x {
                     SpanParam::Global(u) => (u, None),
                     SpanParam::Local(t) => match self.local(k, t) {
