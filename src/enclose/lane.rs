@@ -299,14 +299,17 @@ fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
 ///    first Bézier point of span k + 1, whose local control values contain P_k at an inner
 ///    position, so that span is taken here (never skipped) and its bound, whether below the
 ///    attained value in step 2 or proved in step 3, covers C(u_{k+1}); the same on the left.
+///    For the same reason a span's key in the best-first order below is the largest of its
+///    inner control values and of those end values that no non-empty neighbour covers: a span
+///    whose inner values fall below the attained value once it has risen is left out.
 /// 2. The span with the largest bound above the attained value gets its f64 Bézier
-///    coefficients (local Boehm insertion, `bspline::clamp_span`) with the a-priori error bound
-///    of `bezier::span_filter` (`bezier::span_bounds`): an upper bound of the span and two
+///    coefficients (in closed form from the knot intervals, [`span_coefficients`]) within the
+///    a-priori error bound of `bezier::span_bounds`: an upper bound of the span and two
 ///    attained values (b_0 = C(u_k), b_p = C(u_{k+1}): the curve is continuous, no interior
 ///    knot has multiplicity above p). A span whose bound is at most the attained value is
 ///    done.
 /// 3. Otherwise the span's Bézier coefficients are enclosed in double-double (the same
-///    insertion in `Ddi`) and the root-isolating proof (`bezier::single`) bounds it, within two
+///    closed form in `Ddi`) and the root-isolating proof (`bezier::single`) bounds it, within two
 ///    ulps of the scale, or the lane gives up.
 /// 4. When no span's bound exceeds the attained value, the side's bound is the largest bound
 ///    of the spans proved in step 3 and the attained value (spans left over or done in step 2
