@@ -227,6 +227,41 @@ impl Scalar for Mr {
         Mr::checked(x, 0.0)
     }
 
+    /// (u - a) / (b - a) in plain f64 with an a-priori bound, instead of two `Mr` differences
+    /// and an `Mr` quotient (the knot ratios are half the work of a knot insertion at high
+    /// degree). With n = u - a and d = b - a (0 < d < 2^1022, |n| < 2^1022: no overflow; else
+    /// the default, which halves the operands), fl(n) = n (1 + δ1) and fl(d) = d (1 + δ2),
+    /// |δi| <= u, exactly so where the result is subnormal (a subtraction's subnormal result is
+    /// exact); q = fl(fl(n) / fl(d)) = (fl(n) / fl(d)) (1 + δ3) + η3, |δ3| <= u, |η3| <= 2^-1075
+    /// (an underflowing quotient). So |q - n/d| <= |n/d| ((1 + u)^2 / (1 - u) - 1) + η3
+    /// <= 3.01 u |n/d| + η3, and |n/d| <= (|q| + η3) / (1 - 3.01 u), hence
+    /// |q - n/d| <= 3.02 u |q| + 2 η3 <= 4 U1 |q| + ETA16, rounded up ([`up`], Lemma B of
+    /// [`crate::num::ddi`]). Exact (radius 0) where both differences are exact (their TwoSum
+    /// errors vanish) and the quotient's FMA residual is 0 with |n| >= 2^-897 (then a nonzero
+    /// residual, a multiple of ulp(q) ulp(d), cannot round to 0; as in the `Mr` quotient).
+    /// Tested against exact rationals (`knot_ratio_f64_encloses_exact_ratios`).
+    #[inline]
+    fn knot_ratio_f64(u: f64, a: f64, b: f64) -> Self {
+        const LIMIT: f64 = 4.494_232_837_155_79e307; // 2^1022
+        let (n, d) = (u - a, b - a);
+        if !(d > 0.0 && d < LIMIT && n.abs() < LIMIT) {
+            return crate::spline::bspline::knot_ratio(&Mr::from_f64(u), a, b);
+        }
+        let q = n / d;
+        let exact_diff = |x: f64, y: f64, s: f64| {
+            let yy = s - x;
+            (x - (s - yy)) + (-y - yy) == 0.0
+        };
+        if exact_diff(u, a, n)
+            && exact_diff(b, a, d)
+            && (-q).mul_add(d, n) == 0.0
+            && (n == 0.0 || n.abs() >= 1e-270)
+        {
+            return Mr::checked(q, 0.0);
+        }
+        Mr::checked(q, up(4.0 * U1 * q.abs() + ETA16))
+    }
+
     /// `lo + a (hi - lo)` as whichever of the thesis form `a (hi - lo) + lo` and the convex form
     /// `(1 - a) lo + a hi` has the smaller radius (both enclose it; see the `Ddi` impl: the
     /// convex form does not grow the radii along a corner-cutting chain).
@@ -282,6 +317,59 @@ impl Scalar for Mr {
 
 #[cfg(test)]
 mod tests {
+    /// `Mr::knot_ratio_f64` contains the exact (u - a) / (b - a) (rationals) for knots of every
+    /// magnitude (clustered, subnormal, near 2^1022, equal to u) and is about an ulp wide; a
+    /// bound of 1 ulp instead of 4 fails it.
+    #[test]
+    fn knot_ratio_f64_encloses_exact_ratios() {
+        use super::Mr;
+        use crate::num::exact::Exact;
+        use crate::num::Scalar;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let mut inexact = 0;
+        for k in 0..40_000 {
+            let scale = [1.0, 1e-300, 1e300, 4e-320, 1.0e-12, 3e307][k % 6];
+            let mut v: Vec<f64> = (0..3)
+                .map(|_| rng.random_range(-1.0..1.0) * scale + [0.0, 1.0, 0.1][k % 3])
+                .collect();
+            if k % 7 == 0 {
+                v[2] = v[0]; // u at a knot
+            }
+            v.sort_by(f64::total_cmp);
+            let (a, u, b) = if k % 2 == 0 {
+                (v[0], v[2], v[1])
+            } else {
+                (v[0], v[1], v[2])
+            };
+            let (a, u, b) = (a, u.clamp(a, b.max(a)), b.max(a));
+            if a >= b || !(b - a).is_finite() {
+                continue;
+            }
+            let z = Mr::knot_ratio_f64(u, a, b);
+            let ex = (Exact::of(u) - Exact::of(a)) / (Exact::of(b) - Exact::of(a));
+            // exactly inside [c - r, c + r] (not only its outward-rounded interval)
+            let off = ex - Exact::of(z.c);
+            assert_ne!(
+                off.cmp_f64(z.r),
+                Some(std::cmp::Ordering::Greater),
+                "{u} {a} {b}"
+            );
+            assert_ne!(
+                off.cmp_f64(-z.r),
+                Some(std::cmp::Ordering::Less),
+                "{u} {a} {b}"
+            );
+            assert!(off.cmp_f64(0.0).is_some(), "{u} {a} {b}: undefined");
+            assert!(
+                z.r <= 8.0 * f64::EPSILON * z.c.abs() + 1e-300,
+                "{u} {a} {b}: wide"
+            );
+            inexact += (z.r > 0.0) as usize;
+        }
+        assert!(inexact > 10_000, "only {inexact} inexact ratios checked");
+    }
+
     #[test]
     fn from_bounds_encloses_the_range() {
         let cases = [

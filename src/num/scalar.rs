@@ -91,6 +91,15 @@ pub trait Scalar:
     fn horner_step(acc: &Self, t: &Self, c: &Self) -> Self {
         acc.clone() * t.clone() + c.clone()
     }
+    /// The knot ratio (u - a) / (b - a) of Boehm's knot insertion (NURBS Book A5.1) for an f64
+    /// parameter u and knots a < b with u in [a, b]: by default
+    /// [`crate::spline::bspline::knot_ratio`] on the embedded u (which halves the operands
+    /// where the difference may overflow); `Mr` overrides it with one f64 quotient and its
+    /// a-priori error bound.
+    #[inline]
+    fn knot_ratio_f64(u: f64, a: f64, b: f64) -> Self {
+        crate::spline::bspline::knot_ratio(&Self::from_f64(u), a, b)
+    }
     /// An f64 interval that contains the value (outward rounded for `rug::Float`).
     fn to_interval(&self) -> Interval;
     /// A representative f64 (midpoint for intervals, nearest for MPFR).

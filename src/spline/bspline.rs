@@ -472,10 +472,9 @@ fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
         return;
     }
     let r = p - s;
-    let us = S::from_f64(u);
     for j in 1..=r {
         for i in 0..=p - j - s {
-            lerp_next(q, i, h, &knot_ratio(&us, t[j + i], t[i + p + 1]));
+            lerp_next(q, i, h, &S::knot_ratio_f64(u, t[j + i], t[i + p + 1]));
         }
     }
     t[0] = t[p - s];
@@ -507,12 +506,16 @@ fn knot_ins<S: Scalar>(
         qw[(i + r) * h..(i + r + 1) * h].clone_from_slice(&pw[i * h..(i + 1) * h]);
     }
     let mut rw: Vec<S> = pw[(k - p) * h..(k - s + 1) * h].to_vec();
-    let us = S::from_f64(u);
     let mut l = 0;
     for j in 1..=r {
         l = k - p + j;
         for i in 0..=p - j - s {
-            lerp_next(&mut rw, i, h, &knot_ratio(&us, up[l + i], up[i + k + 1]));
+            lerp_next(
+                &mut rw,
+                i,
+                h,
+                &S::knot_ratio_f64(u, up[l + i], up[i + k + 1]),
+            );
         }
         qw[l * h..(l + 1) * h].clone_from_slice(&rw[0..h]);
         let e = k + r - j - s;

@@ -263,13 +263,21 @@ impl SpanPoly {
         (lo, hi, inc, dec)
     }
 
-    /// Whether every coefficient enclosure of F contains 0 (and F is not exactly 0): the
-    /// rounding of the Bernstein form swamps F, so no box of the span can be excluded with it
+    /// Whether every coefficient enclosure of F contains 0 or lies within four of its radii of
+    /// it (and F is not exactly 0): the rounding of the Bernstein form swamps F, so no box of the
+    /// span can be excluded with it
     /// (e.g. a span of 1e-14 where the Bézier points agree to a few ulps and F, their
     /// differences, is below their rounding errors).
     pub(super) fn f_swamped(&self) -> bool {
         let zero = self.f.pts.iter().all(|x| x.mid() == 0.0 && x.rad() == 0.0);
-        !zero && self.f.pts.iter().all(|x| x.to_interval().contains(0.0))
+        // (within a few radii of 0 rather than containing it: a coefficient whose enclosure
+        // just misses 0 is as much noise, and then the subdivision cannot exclude boxes either)
+        !zero
+            && self
+                .f
+                .pts
+                .iter()
+                .all(|x| x.to_interval().contains(0.0) || x.mid().abs() <= 4.0 * x.rad())
     }
 
     /// Float first: f64 estimates of the zeros of F in (0, 1), from the midpoints of its
