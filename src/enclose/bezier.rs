@@ -628,7 +628,17 @@ impl BezierSubdivision {
                 // piece as it is.
                 let wmax = co.iter().fold(0.0f64, |m, x| m.max(x.wid()));
                 let (mlo, mhi) = crate::num::min_max(co.iter().map(|x| x.mid()));
-                if m <= s0 || m >= s1 || mhi - mlo <= 2.0 * wmax {
+                // (likewise a piece at a span end whose bound is within a few coefficient
+                // widths of the attained value: an extremum at the knot where C_j' vanishes,
+                // whose next-to-end coefficient equals the end coefficient up to the `Mr`
+                // rounding, so that halving cannot separate them; the refinement in double
+                // double, `refine_local`, takes over if that leaves the side loose)
+                let at_end = s0 == seg.a || s1 == seg.b;
+                if m <= s0
+                    || m >= s1
+                    || mhi - mlo <= 2.0 * wmax
+                    || (at_end && u - side.attained <= 8.0 * wmax)
+                {
                     self.finish(vals, j, sg, s0, s1, u, &mut side);
                     continue;
                 }
