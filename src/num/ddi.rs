@@ -92,7 +92,7 @@ pub(crate) fn dist_up(a: f64, b: f64) -> f64 {
 
 /// TwoSum (Knuth / Møller; Handbook Alg. 4.4): s + e = a + b exactly (no overflow).
 #[inline(always)]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
+pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bb = s - a;
     let e = (a - (s - bb)) + (b - bb);

@@ -20,7 +20,7 @@
 //! Anything non-finite (overflow, NaN, division by a set that may contain 0) gives
 //! [`Mr::ENTIRE`].
 
-use crate::num::ddi::{dist_up, up, Ddi, ETA16, U1};
+use crate::num::ddi::{dist_up, two_sum, up, Ddi, ETA16, U1};
 use crate::num::Scalar;
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -229,8 +229,8 @@ impl Scalar for Mr {
 
     /// (u - a) / (b - a) in plain f64 with an a-priori bound, instead of two `Mr` differences
     /// and an `Mr` quotient (the knot ratios are half the work of a knot insertion at high
-    /// degree). With n = u - a and d = b - a (0 < d < 2^1022, |n| < 2^1022: no overflow; else
-    /// the default, which halves the operands), fl(n) = n (1 + δ1) and fl(d) = d (1 + δ2),
+    /// degree). With n = u - a and d = b - a (0 < d < 2^1022, `bspline::may_overflow`: no
+    /// overflow; else the default, which halves the operands), fl(n) = n (1 + δ1) and fl(d) = d (1 + δ2),
     /// |δi| <= u, exactly so where the result is subnormal (a subtraction's subnormal result is
     /// exact); q = fl(fl(n) / fl(d)) = (fl(n) / fl(d)) (1 + δ3) + η3, |δ3| <= u, |η3| <= 2^-1075
     /// (an underflowing quotient). So |q - n/d| <= |n/d| ((1 + u)^2 / (1 - u) - 1) + η3
@@ -242,21 +242,13 @@ impl Scalar for Mr {
     /// Tested against exact rationals (`knot_ratio_f64_encloses_exact_ratios`).
     #[inline]
     fn knot_ratio_f64(u: f64, a: f64, b: f64) -> Self {
-        const LIMIT: f64 = 4.494_232_837_155_79e307; // 2^1022
-        let (n, d) = (u - a, b - a);
-        if !(d > 0.0 && d < LIMIT && n.abs() < LIMIT) {
+        let ((n, en), (d, ed)) = (two_sum(u, -a), two_sum(b, -a));
+        // (u in [a, b], so |n| <= d: no overflow once d is below 2^1022)
+        if d.is_nan() || d <= 0.0 || crate::spline::bspline::may_overflow(a, b) {
             return crate::spline::bspline::knot_ratio(&Mr::from_f64(u), a, b);
         }
         let q = n / d;
-        let exact_diff = |x: f64, y: f64, s: f64| {
-            let yy = s - x;
-            (x - (s - yy)) + (-y - yy) == 0.0
-        };
-        if exact_diff(u, a, n)
-            && exact_diff(b, a, d)
-            && (-q).mul_add(d, n) == 0.0
-            && (n == 0.0 || n.abs() >= 1e-270)
-        {
+        if en == 0.0 && ed == 0.0 && (-q).mul_add(d, n) == 0.0 && (n == 0.0 || n.abs() >= 1e-270) {
             return Mr::checked(q, 0.0);
         }
         Mr::checked(q, up(4.0 * U1 * q.abs() + ETA16))

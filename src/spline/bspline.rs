@@ -572,7 +572,7 @@ const HALF_MAX: f64 = 4.494_232_837_155_79e307; // 2^1022 exactly
 /// (an f64 difference that rounds to inf compares as >= too; a NaN cannot arise from finite
 /// knots, and would count as overflowing).
 #[inline]
-fn may_overflow(a: f64, b: f64) -> bool {
+pub(crate) fn may_overflow(a: f64, b: f64) -> bool {
     !(b - a).abs().lt(&HALF_MAX)
 }
 

@@ -271,13 +271,9 @@ impl SpanPoly {
     pub(super) fn f_swamped(&self) -> bool {
         let zero = self.f.pts.iter().all(|x| x.mid() == 0.0 && x.rad() == 0.0);
         // (within a few radii of 0 rather than containing it: a coefficient whose enclosure
-        // just misses 0 is as much noise, and then the subdivision cannot exclude boxes either)
-        !zero
-            && self
-                .f
-                .pts
-                .iter()
-                .all(|x| x.to_interval().contains(0.0) || x.mid().abs() <= 4.0 * x.rad())
+        // just misses 0 is as much noise, and then the subdivision cannot exclude boxes either;
+        // an ENTIRE coefficient has an infinite radius)
+        !zero && self.f.pts.iter().all(|x| x.mid().abs() <= 4.0 * x.rad())
     }
 
     /// Float first: f64 estimates of the zeros of F in (0, 1), from the midpoints of its

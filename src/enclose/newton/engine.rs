@@ -701,6 +701,8 @@ impl<'a> Engine<'a> {
         }
         let mut status = vec![Status::Covered; ns];
         let mut term = Termination::Converged;
+        // values the curve attains on both sides: the accumulator's inner bounds (kept up to
+        // date below after each candidate) and the cheap bounds of the Newton boxes
         let (mut cheap_lo, mut cheap_hi) = (acc.inner_lo, acc.inner_hi);
         let mut boxes: Vec<ZeroBox> = Vec::new();
         for &si in order {
@@ -717,7 +719,7 @@ impl<'a> Engine<'a> {
                 let (hmin, hmax) = self.local_hull(k);
                 // Values the curve attains on both sides (inner bounds): the span's values lie
                 // between them, so inside the final outer box, and the extremes are elsewhere.
-                if hmin >= cheap_lo.min(acc.inner_lo) && hmax <= cheap_hi.max(acc.inner_hi) {
+                if hmin >= cheap_lo && hmax <= cheap_hi {
                     continue;
                 }
             }
@@ -740,7 +742,7 @@ impl<'a> Engine<'a> {
                 let hi = crate::enclose::bezier::span_filter(c, &q, k, j, 1.0, false);
                 let lo = crate::enclose::bezier::span_filter(c, &q, k, j, -1.0, false);
                 if let (Some((ub, _)), Some((nlb, _))) = (hi, lo) {
-                    if -nlb >= cheap_lo.min(acc.inner_lo) && ub <= cheap_hi.max(acc.inner_hi) {
+                    if -nlb >= cheap_lo && ub <= cheap_hi {
                         self.stats.fast_exits += 1;
                         continue;
                     }
@@ -751,8 +753,7 @@ impl<'a> Engine<'a> {
                 self.poly = None;
                 let bp = self.s.bezier_pretest;
                 let (blo, bhi, inc, dec) = sp.bezier_points();
-                let (clo, chi) = (cheap_lo.min(acc.inner_lo), cheap_hi.max(acc.inner_hi));
-                if bp && mode == SpanMode::Prune && blo >= clo && bhi <= chi {
+                if bp && mode == SpanMode::Prune && blo >= cheap_lo && bhi <= cheap_hi {
                     // as the local-hull prune above, with the span's own Bézier hull
                     continue;
                 }
@@ -795,8 +796,7 @@ impl<'a> Engine<'a> {
             } else {
                 SpanParam::Global(U::new(sa, sb))
             };
-            let covered = (cheap_lo.min(acc.inner_lo), cheap_hi.max(acc.inner_hi));
-            let t = self.search(k, span, covered, &mut boxes);
+            let t = self.search(k, span, (cheap_lo, cheap_hi), &mut boxes);
             if term == Termination::Converged {
                 term = t;
             }
@@ -839,8 +839,7 @@ impl<'a> Engine<'a> {
                 // (evaluated, or kept by the same test) cover both extremes: it needs no tight
                 // evaluation (which builds the span's double-double Taylor data, the largest
                 // cost of a high-degree span).
-                let (clo, chi) = (cheap_lo.min(acc.inner_lo), cheap_hi.max(acc.inner_hi));
-                if !v.is_empty() && v.inf() > clo && v.sup() < chi {
+                if !v.is_empty() && v.inf() > cheap_lo && v.sup() < cheap_hi {
                     self.stats.fast_exits += 1;
                     continue;
                 }
@@ -862,6 +861,8 @@ impl<'a> Engine<'a> {
                 };
                 let (e, at, w) = self.eval_cand(&cd);
                 acc.add(&cd, e, at, w);
+                cheap_lo = cheap_lo.min(acc.inner_lo);
+                cheap_hi = cheap_hi.max(acc.inner_hi);
             }
         }
         // Knot rule (see the doc comment): smooth knots between two monotone spans.
