@@ -151,7 +151,7 @@
 use super::driver::{exponent, Rescaling};
 use super::{scale_outward, CandidateKind, CoordBox, Enclosure, Extremum};
 use crate::num::{iv, Ddi, Exact, Scalar};
-use crate::spline::bezier::{de_casteljau_eval, de_casteljau_split, hodograph};
+use crate::spline::bezier::{bernstein_value, de_casteljau_eval, de_casteljau_split, hodograph};
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
@@ -1062,7 +1062,8 @@ fn bezier_search(
                 }
             };
             let (s_lo, s_hi) = (local(lo, 0.0), local(hi, 1.0));
-            let value = |s: f64| de_casteljau_eval(&af, &s) / de_casteljau_eval(&wf, &s);
+            // (f64 values in O(p) operations, `bernstein_value`: only to choose s)
+            let value = |s: f64| bernstein_value(&af, s) / bernstein_value(&wf, s);
             // Newton from the largest f64 value among the candidate's midpoint and
             // SEARCH_SAMPLES + 1 points evenly over it (from the midpoint alone, a piece
             // that is convex there stops Newton at once)
@@ -1094,7 +1095,7 @@ fn bezier_search(
                 h /= 8.0;
             }
             for _ in 0..2 * NEWTON_STEPS {
-                let ev = |b: &[f64]| de_casteljau_eval(b, &s);
+                let ev = |b: &[f64]| bernstein_value(b, s);
                 let (wv, w1v, w2v) = (ev(&wf), ev(&w1), ev(&w2));
                 let g = ev(&af) / wv;
                 let g1 = (ev(&a1) - g * w1v) / wv;
@@ -1709,16 +1710,16 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
     }
     let (f1, f2) = (hodograph(&ff), hodograph(&hodograph(&ff)));
     let mut s = 0.5;
-    let mut best = de_casteljau_eval(&ff, &s);
+    let mut best = bernstein_value(&ff, s);
     for i in 1..SEARCH_SAMPLES {
         let v = i as f64 / SEARCH_SAMPLES as f64;
-        let g = de_casteljau_eval(&ff, &v);
+        let g = bernstein_value(&ff, v);
         if g > best {
             (s, best) = (v, g);
         }
     }
     for _ in 0..2 * NEWTON_STEPS {
-        let (d1, d2) = (de_casteljau_eval(&f1, &s), de_casteljau_eval(&f2, &s));
+        let (d1, d2) = (bernstein_value(&f1, s), bernstein_value(&f2, s));
         if d2.is_nan() || d2 >= 0.0 || !d1.is_finite() {
             break;
         }
