@@ -289,6 +289,7 @@ pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescali
                 knot_exp,
                 within: LOWER_WITHIN_ULPS_RESCALED,
                 boxes: MAX_BOXES_RESCALED,
+                exact_first: true,
             };
             for &max_side in which {
                 let mut cv = Curves {
@@ -340,6 +341,11 @@ struct Scaling {
     knot_exp: i32,
     within: usize,
     boxes: usize,
+    /// whether the first lowering proof has the exact rules already: on a rescaled curve
+    /// (extreme magnitudes) the double-double rules alone mostly spend their boxes where an
+    /// exact concavity argument decides at once, and a second run with them repeated the
+    /// whole branch and bound (range-limits family: 11% less certification work)
+    exact_first: bool,
 }
 
 impl Scaling {
@@ -348,6 +354,7 @@ impl Scaling {
         knot_exp: 0,
         within: LOWER_WITHIN_ULPS,
         boxes: MAX_BOXES,
+        exact_first: false,
     };
 }
 
@@ -784,6 +791,8 @@ fn certify_side(
             && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end)
             && (!d.straddle || ev.exact_possible() || ev.exact_rule_possible())
             && (target >= nth_down(bound, within) || bound - target <= near_scale);
+        // how the first lowering proof ended, and whether it had the exact rules
+        let first_run = std::cell::Cell::new(None);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
             if !lower {
                 return None;
@@ -795,8 +804,20 @@ fn certify_side(
             } else {
                 t
             };
-            if prove_at_most(ev, j, sign, (dn(goal), goal), cands, exact, sc.boxes) {
-                return Some(goal);
+            // (the run with exact rules only after one without them that could not decide a
+            // box or ran out of boxes: a refutation stands; on a rescaled curve the first run
+            // has the exact rules already, `Scaling::exact_first`, and is not repeated)
+            let first = first_run.get();
+            let skip = exact && first.is_some_and(|(r, ex)| ex || r == Lowering::Refuted);
+            if !skip {
+                let ex = exact || sc.exact_first;
+                let r = prove_at_most(ev, j, sign, (dn(goal), goal), cands, ex, sc.boxes);
+                if !exact {
+                    first_run.set(Some((r, ex)));
+                }
+                if r == Lowering::Proved {
+                    return Some(goal);
+                }
             }
             // (one ulp below the bound leads to a certificate only if some value seen can
             // reach the next double below a bound lowered by at most the rounds left: with
@@ -806,8 +827,9 @@ fn certify_side(
             (exact
                 && goal < t
                 && reachable
-                && prove_at_most(ev, j, sign, (dn(t), t), cands, true, sc.boxes))
-            .then_some(t)
+                && prove_at_most(ev, j, sign, (dn(t), t), cands, true, sc.boxes)
+                    == Lowering::Proved)
+                .then_some(t)
         };
         // A straddle (some value within ~2^-100 relative of t) with exact arithmetic
         // available: the exact Bernstein rule decides at once, on every span whose control
@@ -1187,7 +1209,7 @@ fn exact_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, d: &DdiOutcome) -> b
                 if d[2].signum() != Some(std::cmp::Ordering::Less) {
                     break 'levels;
                 }
-                let next = (u.clone() - d[1].clone() / d[2].clone()).truncate_to(scale, bits);
+                let next = Exact::newton_truncated(&u, &d[1], &d[2], scale, bits);
                 let Some(g) = ev.exact(j, sign, &next, 0) else {
                     break 'levels;
                 };
@@ -1201,10 +1223,23 @@ fn exact_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, d: &DdiOutcome) -> b
     false
 }
 
+/// How a lowering proof ([`prove_at_most`]) ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Lowering {
+    /// g <= t on the whole domain
+    Proved,
+    /// a value of g above t was met (rigorously): t is no bound, with or without exact rules
+    Refuted,
+    /// a box only an exact concavity argument could decide (none was allowed or left)
+    Stuck,
+    /// the box, depth or piece budget was spent
+    Spent,
+}
+
 /// Whether g <= t on the whole domain, proved by branch and bound over every span (the
 /// lowering branch of the Ziv loop; see the module docs for the rules). At most
-/// `max_boxes` boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; `false` when they
-/// are spent or a value above t is met.
+/// `max_boxes` boxes and [`MAX_EXACT_TRIES`] exact concavity arguments; anything but
+/// [`Lowering::Proved`] when they are spent or a value above t is met.
 fn prove_at_most(
     ev: &mut Evals,
     j: usize,
@@ -1213,10 +1248,10 @@ fn prove_at_most(
     cands: &[Extremum],
     exact: bool,
     max_boxes: usize,
-) -> bool {
+) -> Lowering {
     let c = ev.c;
     if c.degree() > SEARCH_MAX_DEGREE {
-        return false;
+        return Lowering::Spent;
     }
     let (p, n) = (c.degree(), c.num_points() - 1);
     let kn = c.knots();
@@ -1242,14 +1277,14 @@ fn prove_at_most(
         // the span's Bézier pieces first (exact values at clamped domain ends); what they
         // leave undecided goes to the box rules
         let Some(rest) = bezier_rule(ev, k, j, sign, (t, t_own), &mut pieces) else {
-            return false;
+            return Lowering::Refuted;
         };
         let mut stack: Vec<(f64, f64, u32)> =
             rest.into_iter().map(|(lo, hi)| (lo, hi, 0)).collect();
         while let Some((lo, hi, depth)) = stack.pop() {
             boxes += 1;
             if boxes > max_boxes {
-                return false;
+                return Lowering::Spent;
             }
             // the concavity rules only near a candidate of the strategy (where the extremum
             // is): elsewhere splitting is cheaper
@@ -1266,11 +1301,12 @@ fn prove_at_most(
                 &mut exact_tries,
             ) {
                 BoxVerdict::Below => {}
-                BoxVerdict::Above | BoxVerdict::Stuck => return false,
+                BoxVerdict::Above => return Lowering::Refuted,
+                BoxVerdict::Stuck => return Lowering::Stuck,
                 BoxVerdict::Split => {
                     let m = lo + 0.5 * (hi - lo);
                     if depth >= MAX_DEPTH || !(lo < m && m < hi) {
-                        return false;
+                        return Lowering::Spent;
                     }
                     stack.push((lo, m, depth + 1));
                     stack.push((m, hi, depth + 1));
@@ -1278,7 +1314,7 @@ fn prove_at_most(
             }
         }
     }
-    true
+    Lowering::Proved
 }
 
 /// The Bézier rule of the lowering proof on span k: whether g <= t on the span's piece, by the
@@ -1742,18 +1778,26 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
         let (d1, sc1) = eval_integer(&h1, &se);
         let (d2, sc2) = eval_integer(&h2, &se);
         if d2.sign() == Sign::Minus {
-            // f' = p sum h1_i B_i, f'' = p (p - 1) sum h2_i B_i; step = f'/f''
-            let step = BigRational::new(d1 * &sc2, d2 * &sc1 * BigInt::from(p - 1));
-            let n = &se - step;
+            // f' = p sum h1_i B_i, f'' = p (p - 1) sum h2_i B_i; step = f'/f'' = num / den
+            let (num, den) = (d1 * &sc2, d2 * &sc1 * BigInt::from(p - 1));
             if p == 2 {
-                cands.push(n);
+                cands.push(&se - BigRational::new(num, den));
             } else {
+                // the Newton point n = se - num / den = top / bot (bot > 0), unreduced: only
+                // its nearest points on the grids are needed
+                let (sn, sd) = (se.numer(), se.denom());
+                let (top, bot) = (sn * &den - &num * sd, sd * &den);
+                let (top, bot) = if bot.sign() == Sign::Minus {
+                    (-top, -bot)
+                } else {
+                    (top, bot)
+                };
                 cands.push(se);
-                for bits in [60u32, 200] {
-                    // the nearest point of the grid 2^-bits
-                    let g = BigInt::one() << bits;
-                    let r = (&n * BigRational::from_integer(g.clone())).round();
-                    cands.push(r / BigRational::from_integer(g));
+                for bits in [60u64, 200] {
+                    // the nearest point of the grid 2^-bits: floor((2 top 2^bits + bot) /
+                    // (2 bot)) / 2^bits, a dyadic rational in lowest terms without a gcd
+                    let r = ((top.clone() << (bits + 1)) + &bot).div_floor(&(&bot << 1u64));
+                    cands.push(crate::num::exact::dyadic(r, bits));
                 }
             }
         } else {
@@ -1762,19 +1806,19 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
     } else {
         cands.push(se);
     }
-    // the first with f = 0 exactly (a tie: split there), else the largest f
-    let mut best: Option<(BigRational, BigRational)> = None;
+    // the first with f = 0 exactly (a tie: split there), else the largest f (values v / sc
+    // with sc > 0, compared by cross products: no reduction)
+    let mut best: Option<(BigInt, BigInt, BigRational)> = None;
     for x in cands.into_iter().filter(inside) {
         let (v, sc) = eval_integer(fi, &x);
         if v.sign() == Sign::NoSign {
             return Some(Exact::from_ratio(x));
         }
-        let v = BigRational::new(v, sc);
-        if best.as_ref().is_none_or(|(b, _)| v > *b) {
-            best = Some((v, x));
+        if best.as_ref().is_none_or(|(bv, bsc, _)| &v * bsc > bv * &sc) {
+            best = Some((v, sc, x));
         }
     }
-    best.map(|(_, x)| Exact::from_ratio(x))
+    best.map(|(_, _, x)| Exact::from_ratio(x))
 }
 
 /// The value at the rational x = m / n (n > 0) of the Bernstein polynomial with integer
@@ -2039,13 +2083,13 @@ fn concave_at_most(
             if g2.signum() != Some(Ordering::Less) {
                 return None;
             }
-            // the Newton point and a dyadic on its other side: a bracket [m1, m2]
-            let newton = u.clone() - g1.clone() / g2.clone();
+            // the Newton point (on the grid) and a dyadic on its other side: a bracket [m1, m2]
+            let newton = Exact::newton_truncated(&u, g1, g2, scale, bits);
             let step = Exact::of(2f64.powi(scale - bits as i32));
             let other = if g1.signum() == Some(Ordering::Greater) {
-                newton.truncate_to(scale, bits) + step
+                newton.clone() + step
             } else {
-                newton.truncate_to(scale, bits)
+                newton.clone()
             };
             if inside(&other) {
                 let e = ev.exact_in(k, j, sign, &other, 2)?;
@@ -2070,7 +2114,7 @@ fn concave_at_most(
                     }
                 }
             }
-            let next = newton.truncate_to(scale, bits);
+            let next = newton;
             if !inside(&next) {
                 return None;
             }

@@ -107,18 +107,27 @@ impl Exact {
         };
         // grid step 2^g, g = scale_exp - bits: floor(q / 2^g) * 2^g
         let g = scale_exp as i64 - bits as i64;
-        let pow = |k: u64| BigInt::one() << k;
-        let scaled = if g >= 0 {
-            q / BigRational::from_integer(pow(g as u64))
-        } else {
-            q * BigRational::from_integer(pow((-g) as u64))
+        let (n, d) = signed_parts(q);
+        Exact(Some(floor_to_grid(n, &d, g)))
+    }
+
+    /// The Newton point u - g1 / g2 truncated as by [`Exact::truncate_to`], without forming the
+    /// quotient in lowest terms: with g1 / g2 = n / d (d > 0), u - n / d = (u_n d - n u_d) /
+    /// (u_d d) goes to the grid by one integer floor division (no gcd of the long numerators
+    /// of data spanning many binades). Undefined if an operand is, or g2 = 0.
+    pub fn newton_truncated(u: &Exact, g1: &Exact, g2: &Exact, scale_exp: i32, bits: u32) -> Exact {
+        let (Some(u), Some(x), Some(y)) = (u.value(), g1.value(), g2.value()) else {
+            return Exact(None);
         };
-        let f = scaled.floor();
-        Exact(Some(if g >= 0 {
-            f * BigRational::from_integer(pow(g as u64))
-        } else {
-            f / BigRational::from_integer(pow((-g) as u64))
-        }))
+        if y.is_zero() {
+            return Exact(None);
+        }
+        let (n, d) = (x.numer() * y.denom(), x.denom() * y.numer());
+        let (n, d) = if d.is_negative() { (-n, -d) } else { (n, d) };
+        let top = u.numer() * &d - n * u.denom();
+        let bot = u.denom() * d;
+        let g = scale_exp as i64 - bits as i64;
+        Exact(Some(floor_to_grid(top, &bot, g)))
     }
 
     /// The size of the value in bits: those of its numerator and denominator (0 if
@@ -141,23 +150,35 @@ impl Exact {
         let Some(q) = self.0.as_ref() else {
             return Exact(None);
         };
-        let pow = |k: u64| BigRational::from_integer(BigInt::one() << k);
-        let scaled = if g >= 0 {
-            q / pow(g as u64)
-        } else {
-            q * pow((-g) as u64)
-        };
-        let c = scaled.ceil();
-        Exact(Some(if g >= 0 {
-            c * pow(g as u64)
-        } else {
-            c / pow((-g) as u64)
-        }))
+        // ceil(q / 2^g) 2^g = -(floor(-q / 2^g) 2^g)
+        let (n, d) = signed_parts(q);
+        Exact(Some(-floor_to_grid(-n, &d, g)))
     }
 
     /// The sign of the value (`None` if undefined).
     pub fn signum(&self) -> Option<Ordering> {
         self.0.as_ref().map(|q| q.numer().sign().cmp(&Sign::NoSign))
+    }
+}
+
+/// (n, d) with q = n / d and d > 0.
+fn signed_parts(q: &BigRational) -> (BigInt, BigInt) {
+    if q.denom().is_negative() {
+        (-q.numer(), -q.denom())
+    } else {
+        (q.numer().clone(), q.denom().clone())
+    }
+}
+
+/// floor(top / (bot 2^g)) 2^g (bot > 0) in lowest terms: one integer floor division, the
+/// result a dyadic rational reduced by trailing zeros.
+fn floor_to_grid(top: BigInt, bot: &BigInt, g: i64) -> BigRational {
+    if g >= 0 {
+        let f = top.div_floor(&(bot << g as u64));
+        BigRational::from_integer(f << g as u64)
+    } else {
+        let f = (top << (-g) as u64).div_floor(bot);
+        dyadic(f, (-g) as u64)
     }
 }
 
@@ -253,7 +274,7 @@ fn pow2_exp(d: &BigInt) -> Option<u64> {
 }
 
 /// The reduced dyadic rational n / 2^e.
-fn dyadic(n: BigInt, e: u64) -> BigRational {
+pub(crate) fn dyadic(n: BigInt, e: u64) -> BigRational {
     if n.is_zero() {
         return BigRational::zero();
     }
@@ -520,5 +541,60 @@ mod tests {
         let n = (-t).truncate_to(0, 10);
         assert_eq!(n, Exact::of(-342.0 / 1024.0));
         assert_eq!(Exact::of(6.0).truncate_to(3, 1), Exact::of(4.0));
+    }
+
+    /// The grid roundings and the truncated Newton point equal the same operations written
+    /// with num-rational's reduced arithmetic (value, numerator and denominator), on dyadic and
+    /// non-dyadic operands of many magnitudes and on both sides of 0.
+    #[test]
+    fn grid_roundings_match_reduced_rational_arithmetic() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let pow = |g: i64| -> BigRational {
+            let p = BigRational::from_integer(BigInt::one() << g.unsigned_abs());
+            if g >= 0 {
+                p
+            } else {
+                p.recip()
+            }
+        };
+        let floor_ref = |q: &BigRational, g: i64| (q / pow(g)).floor() * pow(g);
+        let ceil_ref = |q: &BigRational, g: i64| (q / pow(g)).ceil() * pow(g);
+        let same = |a: Exact, b: BigRational| {
+            let a = a.0.expect("defined");
+            assert_eq!((a.numer(), a.denom()), (b.numer(), b.denom()));
+        };
+        for _ in 0..2000 {
+            let mut pick = || -> BigRational {
+                let x = r.random_range(-1.0..1.0) * 2f64.powi(r.random_range(-300..300));
+                let q = ratio_of_f64(x).unwrap();
+                match r.random_range(0..3) {
+                    0 => q,
+                    1 => {
+                        q / BigRational::from_integer(BigInt::from(r.random_range(1..1000) * 2 + 1))
+                    }
+                    _ => q * BigRational::new(BigInt::from(7), BigInt::from(-45)),
+                }
+            };
+            let (u, g1, g2) = (pick(), pick(), pick());
+            let (scale, bits) = (r.random_range(-400..400), r.random_range(0..300u32));
+            let g = scale as i64 - bits as i64;
+            let eu = Exact(Some(u.clone()));
+            same(eu.truncate_to(scale, bits), floor_ref(&u, g));
+            same(eu.ceil_to(g), ceil_ref(&u, g));
+            if !g2.is_zero() {
+                let n = Exact::newton_truncated(
+                    &eu,
+                    &Exact(Some(g1.clone())),
+                    &Exact(Some(g2.clone())),
+                    scale,
+                    bits,
+                );
+                same(n, floor_ref(&(&u - &g1 / &g2), g));
+            }
+        }
+        // a zero divisor is undefined
+        let z = Exact::of(0.0);
+        assert!(Exact::newton_truncated(&z, &z, &z, 0, 10).value().is_none());
     }
 }
