@@ -859,13 +859,12 @@ fn certify_side(
             proved = true;
             break;
         }
-        if let Some(nb) = try_lower(cv.above(sign), true) {
-            bound = nb;
-            continue;
-        }
-        // Last, the exact Bernstein rule for a bound the rules above could not lower (a degree
-        // above LOWER_MAX_DEGREE, extreme weights whose interval derivatives are wide, or
-        // clustered knots): the same targets as `try_lower`, without the degree limit.
+        // The exact Bernstein rule for a bound the box rules could not lower (a degree above
+        // LOWER_MAX_DEGREE, extreme weights whose interval derivatives are wide, or clustered
+        // knots): the same targets as `try_lower`, without the degree limit. Before the
+        // lowering proof with exact concavity rules when the first one ran out of boxes (its
+        // enclosures too wide: the exact rule does not depend on them, and a second branch
+        // and bound over the same boxes mostly ran out as well), after it otherwise.
         let exact_ok = round < MAX_LOWERINGS
             && !d.straddle
             && ev_rule_possible
@@ -875,7 +874,21 @@ fn certify_side(
         } else {
             t
         };
-        if exact_ok && exact_at_most(cv.above(sign), j, sign, (dn(goal), goal), cands) == Some(true)
+        let spent = first_run.get().is_some_and(|(r, _)| r == Lowering::Spent);
+        if exact_ok
+            && spent
+            && exact_at_most(cv.above(sign), j, sign, (dn(goal), goal), cands) == Some(true)
+        {
+            bound = goal;
+            continue;
+        }
+        if let Some(nb) = try_lower(cv.above(sign), true) {
+            bound = nb;
+            continue;
+        }
+        if exact_ok
+            && !spent
+            && exact_at_most(cv.above(sign), j, sign, (dn(goal), goal), cands) == Some(true)
         {
             bound = goal;
             continue;
