@@ -718,6 +718,9 @@ fn certify_side(
     let cands = &cands[..];
     let within = sc.within;
     let mut proved = false;
+    // the double-double value of the curve below g with the largest centre seen so far, in
+    // its scaled units (`DdiOutcome::top`)
+    let mut top_seen: Option<Ddi> = None;
     for round in 0..=MAX_LOWERINGS {
         if !bound.is_finite() {
             break;
@@ -765,7 +768,16 @@ fn certify_side(
             break;
         }
         let near_scale = within as f64 * crate::num::ulp(bound.abs().max(scale));
+        // (a value seen in an earlier round above the lowered target: that round's stage 2
+        // found it, and would find it again at the same points)
+        if top_seen.is_some_and(|g| g.is_above(up(t))) {
+            proved = true;
+            break;
+        }
         let d = ddi_stage(ev, j, sign, up(t), cands);
+        if let Some(g) = d.top {
+            keep_top(&mut top_seen, g);
+        }
         let guess = back(d.guess);
         if d.proved {
             proved = true;
@@ -903,6 +915,13 @@ fn certify_side(
     proved
 }
 
+/// Keep in `top` the enclosure with the larger centre.
+fn keep_top(top: &mut Option<Ddi>, g: Ddi) {
+    if top.is_none_or(|x| g.to_f64() > x.to_f64()) {
+        *top = Some(g);
+    }
+}
+
 /// What the double-double stage found.
 #[derive(Default)]
 struct DdiOutcome {
@@ -910,6 +929,9 @@ struct DdiOutcome {
     proved: bool,
     /// the largest upper end of a value seen
     guess: f64,
+    /// the value seen with the largest centre: some curve value lies in it, so it proves the
+    /// certificate for every later target it is above (after a lowering)
+    top: Option<Ddi>,
     /// whether some enclosure had t inside (undecided at double-double precision)
     straddle: bool,
     /// per candidate (centre of the best g, its u), for the exact stage
@@ -927,8 +949,11 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
         return out;
     }
     let guess = &mut out.guess;
-    // g(u) in double-double; the largest upper end seen goes to `guess`
-    let look = |ev: &mut Evals, u: f64, guess: &mut f64| -> Option<Ddi> {
+    let mut top = None;
+    let floor = &mut top;
+    // g(u) in double-double; the largest upper end seen goes to `guess`, the largest lower
+    // end to `floor`
+    let look = |ev: &mut Evals, u: f64, guess: &mut f64, floor: &mut Option<Ddi>| -> Option<Ddi> {
         // at a clamped end the value is the end control point, exactly (a point set: an exact
         // tie with t is then no straddle, and the lowering proof decides it exactly)
         // (rounded down to the evaluated curve's scale: a lower bound of the scaled value)
@@ -937,6 +962,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
             None => ev.ddi_value(j, sign, u)?,
         };
         *guess = guess.max(g.to_interval().sup());
+        keep_top(floor, g);
         Some(g)
     };
     let mut straddle = false;
@@ -959,7 +985,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
                     && lo <= u
                     && u <= hi
                     && multiplicity(kn, u) >= p
-                    && look(ev, u, guess).is_some_and(|g| g.is_above(t))
+                    && look(ev, u, guess, floor).is_some_and(|g| g.is_above(t))
                 {
                     out.proved = true;
                     return out;
@@ -968,7 +994,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
             continue;
         }
         let mid = (lo + 0.5 * (hi - lo)).clamp(lo, hi);
-        let Some(g) = look(ev, mid, guess) else {
+        let Some(g) = look(ev, mid, guess, floor) else {
             continue;
         };
         if g.is_above(t) {
@@ -997,7 +1023,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
                 if v < a || v > b {
                     continue;
                 }
-                let Some(g) = look(ev, v, guess) else {
+                let Some(g) = look(ev, v, guess, floor) else {
                     continue;
                 };
                 if g.is_above(t) {
@@ -1016,10 +1042,11 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
     // a straddle on a curve that is not rescaled and that the exact Bernstein rule takes
     // (which decides the straddle either way, `certify_side`)
     let exact_next = straddle && ev.exact_rule_possible() && std::ptr::eq(ev.c, ev.orig);
-    if !exact_next && bezier_search(ev, j, sign, t, cands, guess) {
+    if !exact_next && bezier_search(ev, j, sign, t, cands, guess, floor) {
         out.proved = true;
         return out;
     }
+    out.top = *floor;
     out.straddle = straddle;
     out.best = best;
     out
@@ -1049,6 +1076,7 @@ fn bezier_search(
     t: f64,
     cands: &[Extremum],
     guess: &mut f64,
+    floor: &mut Option<Ddi>,
 ) -> bool {
     let c = ev.c;
     let (p, n) = (c.degree(), c.num_points() - 1);
@@ -1174,6 +1202,7 @@ fn bezier_search(
                     }
                 };
                 *guess = guess.max(g.to_interval().sup());
+                keep_top(floor, g);
                 if g.is_above(t) {
                     return true;
                 }
