@@ -395,6 +395,8 @@ struct Evals<'a> {
     s: i32,
     iv: Option<CurveEval<Interval>>,
     ddi: Option<CurveEval<Ddi>>,
+    /// f64 evaluation with two derivative levels, only to choose Newton points
+    approx: Option<CurveEval<f64>>,
     /// the homogeneous curve alone in Ddi (no derivative control points: most certificates
     /// need one value, and the derivative levels cost several times that value)
     ddi0: Option<HSpline<Ddi>>,
@@ -412,6 +414,7 @@ impl<'a> Evals<'a> {
             s,
             iv: None,
             ddi: None,
+            approx: None,
             ddi0: None,
             buf: Vec::new(),
             exact: None,
@@ -437,16 +440,19 @@ impl<'a> Evals<'a> {
         Some(signed(x, sign))
     }
 
-    /// g, g', g'' (k = 2) or g alone (k = 0) at the f64 parameter u, g = sign * C_j, in Ddi.
-    fn ddi(&mut self, j: usize, sign: f64, u: f64, k: usize) -> Option<Vec<Ddi>> {
+    /// g, g', g'' (k = 2) or g alone (k = 0) at the f64 parameter u, g = sign * C_j, in plain
+    /// f64 (the same kernels, rounded: only to choose Newton points, whose values are then
+    /// enclosed; near a simple maximiser an error of a few ulps in u changes g by a second
+    /// order amount, far below the double-double enclosures' width).
+    fn approx(&mut self, j: usize, sign: f64, u: f64, k: usize) -> Option<Vec<f64>> {
         let c = self.c;
         let (a, b) = c.domain();
         if !(a <= u && u <= b) {
             return None;
         }
-        let e = self.ddi.get_or_insert_with(|| CurveEval::new(c, 2));
-        let v = e.coord_derivs_in_span(e.span(u), &Ddi::from_f64(u), k, j);
-        Some(v.into_iter().map(|d| signed(d, sign)).collect())
+        let e = self.approx.get_or_insert_with(|| CurveEval::new(c, 2));
+        let v = e.coord_derivs_in_span(e.span(u), &u, k, j);
+        Some(v.into_iter().map(|d| sign * d).collect())
     }
 
     /// g, g', g'' (k = 2) or g (k = 0) exactly at the rational parameter u of the domain, in
@@ -1006,10 +1012,10 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
         let mut top = (g.to_f64(), mid);
         if lo < hi {
             for _ in 0..NEWTON_STEPS {
-                let Some(d) = ev.ddi(j, sign, u, 2) else {
+                let Some(d) = ev.approx(j, sign, u, 2) else {
                     break;
                 };
-                let (d1, d2) = (d[1].to_f64(), d[2].to_f64());
+                let (d1, d2) = (d[1], d[2]);
                 if d2.is_nan() || d2 >= 0.0 || !d1.is_finite() {
                     break;
                 }
