@@ -152,7 +152,7 @@ use super::driver::{exponent, Rescaling};
 use super::{scale_outward, CandidateKind, CoordBox, Enclosure, Extremum};
 use crate::num::{iv, Ddi, Exact, Scalar};
 use crate::spline::bezier::{bernstein_value, de_casteljau_eval, de_casteljau_split, hodograph};
-use crate::spline::bspline::HSpline;
+use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
 use crate::spline::knots::multiplicity;
@@ -395,6 +395,9 @@ struct Evals<'a> {
     s: i32,
     iv: Option<CurveEval<Interval>>,
     ddi: Option<CurveEval<Ddi>>,
+    /// the double-double Bézier segments of the spans met so far (both sides, every round
+    /// and every lowering proof of the curve use the same span's segment)
+    ddi_segs: Vec<(usize, BezierSeg<Ddi>)>,
     /// f64 evaluation with two derivative levels, only to choose Newton points
     approx: Option<CurveEval<f64>>,
     /// the homogeneous curve alone in Ddi (no derivative control points: most certificates
@@ -414,6 +417,7 @@ impl<'a> Evals<'a> {
             s,
             iv: None,
             ddi: None,
+            ddi_segs: Vec::new(),
             approx: None,
             ddi0: None,
             buf: Vec::new(),
@@ -438,6 +442,19 @@ impl<'a> Evals<'a> {
         let v = h.eval_span_rows(h.span(u), &Ddi::from_f64(u), rows, &mut self.buf);
         let x = if h.rational { v[0] / v[1] } else { v[0] };
         Some(signed(x, sign))
+    }
+
+    /// The Bézier segment of span k in double-double (Boehm insertion on the homogeneous curve,
+    /// [`HSpline::bezier_segment`]), computed once per span and kept.
+    fn ddi_segment(&mut self, k: usize) -> BezierSeg<Ddi> {
+        if let Some((_, seg)) = self.ddi_segs.iter().find(|x| x.0 == k) {
+            return seg.clone();
+        }
+        let c = self.c;
+        let h = self.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
+        let seg = h.bezier_segment(k);
+        self.ddi_segs.push((k, seg.clone()));
+        seg
     }
 
     /// g, g', g'' (k = 2) or g alone (k = 0) at the f64 parameter u, g = sign * C_j, in plain
@@ -1098,8 +1115,7 @@ fn bezier_search(
                 return false;
             }
             done.push(k);
-            let h = ev.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
-            let seg = h.bezier_segment(k);
+            let seg = ev.ddi_segment(k);
             let hd = seg.hdim();
             let row = |r: usize| -> Vec<Ddi> { (0..=p).map(|i| seg.pts[i * hd + r]).collect() };
             let a = row(j);
@@ -1411,8 +1427,7 @@ fn bezier_rule(
         .knot_value(j, k, ub)
         .or_else(|| ev.clamped_end_value(j, ub))
         .map(|x| sign * x);
-    let h = ev.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
-    let seg = h.bezier_segment(k);
+    let seg = ev.ddi_segment(k);
     let (hd, dim, rational, p) = (seg.hdim(), seg.dim, seg.rational, seg.degree);
     let half = Ddi::exact(0.5);
     // a span whose parameter boxes the box rules cannot handle (its length or its knots
