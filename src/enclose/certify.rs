@@ -116,7 +116,12 @@
 //!   u = 1/2); only near the strategy's candidates;
 //! * a value above t' ends the attempt (t' is not a bound), otherwise the box is split.
 //!
-//! Lowering first without exact arithmetic, then (if the exact stage did not certify) with it.
+//! Lowering first without exact arithmetic, then (if the exact stage did not certify) with it;
+//! on a rescaled curve (extreme magnitudes) the first lowering proof has the exact rules
+//! already and is not repeated. A proof that met a value above its target is not repeated
+//! with exact rules (that value stands); one that ran out of boxes is followed by the exact
+//! Bernstein rule before the second branch and bound. A double-double value seen in one round
+//! proves a later round's lower target without the double-double stage running again.
 //!
 //! # Straddles and the exact Bernstein rule
 //!
@@ -128,8 +133,9 @@
 //! parameter, W > 0: f <= 0 iff g <= t), subdivided exactly, first at the candidate
 //! maximiser, where an exact tie is a double root of f ([`exact_bernstein_rule`]). It
 //! answers g <= t (the bound becomes t) or a curve value above t (the certificate), with no
-//! rounding. The same rule is the last lowering attempt when the box rules fail (degree 6,
-//! extreme weights, clustered knots).
+//! rounding. The same rule is a lowering attempt when the box rules fail (degree 6,
+//! extreme weights, clustered knots): before the exact branch and bound when the first one
+//! ran out of boxes, else last.
 //!
 //! # Limits (bounded work)
 //!
