@@ -350,7 +350,8 @@ struct Scaling {
     /// whether the first lowering proof has the exact rules already: on a rescaled curve
     /// (extreme magnitudes) the double-double rules alone mostly spend their boxes where an
     /// exact concavity argument decides at once, and a second run with them repeated the
-    /// whole branch and bound (range-limits family: 11% less certification work)
+    /// whole branch and bound (on the range-limits curves whose certificate costs most: 11%
+    /// fewer certification instructions)
     exact_first: bool,
 }
 
@@ -978,11 +979,11 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
         return out;
     }
     let guess = &mut out.guess;
-    let mut top = None;
-    let floor = &mut top;
-    // g(u) in double-double; the largest upper end seen goes to `guess`, the largest lower
-    // end to `floor`
-    let look = |ev: &mut Evals, u: f64, guess: &mut f64, floor: &mut Option<Ddi>| -> Option<Ddi> {
+    let mut seen_top = None;
+    let seen = &mut seen_top;
+    // g(u) in double-double; the largest upper end seen goes to `guess`, the value with the
+    // largest centre to `seen`
+    let look = |ev: &mut Evals, u: f64, guess: &mut f64, seen: &mut Option<Ddi>| -> Option<Ddi> {
         // at a clamped end the value is the end control point, exactly (a point set: an exact
         // tie with t is then no straddle, and the lowering proof decides it exactly)
         // (rounded down to the evaluated curve's scale: a lower bound of the scaled value)
@@ -991,7 +992,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
             None => ev.ddi_value(j, sign, u)?,
         };
         *guess = guess.max(g.to_interval().sup());
-        keep_top(floor, g);
+        keep_top(seen, g);
         Some(g)
     };
     let mut straddle = false;
@@ -1014,7 +1015,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
                     && lo <= u
                     && u <= hi
                     && multiplicity(kn, u) >= p
-                    && look(ev, u, guess, floor).is_some_and(|g| g.is_above(t))
+                    && look(ev, u, guess, seen).is_some_and(|g| g.is_above(t))
                 {
                     out.proved = true;
                     return out;
@@ -1023,7 +1024,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
             continue;
         }
         let mid = (lo + 0.5 * (hi - lo)).clamp(lo, hi);
-        let Some(g) = look(ev, mid, guess, floor) else {
+        let Some(g) = look(ev, mid, guess, seen) else {
             continue;
         };
         if g.is_above(t) {
@@ -1052,7 +1053,7 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
                 if v < a || v > b {
                     continue;
                 }
-                let Some(g) = look(ev, v, guess, floor) else {
+                let Some(g) = look(ev, v, guess, seen) else {
                     continue;
                 };
                 if g.is_above(t) {
@@ -1071,11 +1072,11 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
     // a straddle on a curve that is not rescaled and that the exact Bernstein rule takes
     // (which decides the straddle either way, `certify_side`)
     let exact_next = straddle && ev.exact_rule_possible() && std::ptr::eq(ev.c, ev.orig);
-    if !exact_next && bezier_search(ev, j, sign, t, cands, guess, floor) {
+    if !exact_next && bezier_search(ev, j, sign, t, cands, guess, seen) {
         out.proved = true;
         return out;
     }
-    out.top = *floor;
+    out.top = *seen;
     out.straddle = straddle;
     out.best = best;
     out
@@ -1097,7 +1098,8 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
 /// step is inclusion isotone), so A(s) / W(s) encloses the piece's value at some real u of the
 /// closed span. That is a curve value, or (at s = 1 before a jump) the left limit of curve
 /// values; either way some curve value exceeds t when the enclosure's lower end does.
-/// At most [`BEZIER_SEARCH_SPANS`] spans; the largest centre seen goes to `guess`.
+/// At most [`BEZIER_SEARCH_SPANS`] spans; the largest upper end seen goes to `guess`, the
+/// value with the largest centre to `top`.
 fn bezier_search(
     ev: &mut Evals,
     j: usize,
@@ -1105,7 +1107,7 @@ fn bezier_search(
     t: f64,
     cands: &[Extremum],
     guess: &mut f64,
-    floor: &mut Option<Ddi>,
+    top: &mut Option<Ddi>,
 ) -> bool {
     let c = ev.c;
     let (p, n) = (c.degree(), c.num_points() - 1);
@@ -1230,7 +1232,7 @@ fn bezier_search(
                     }
                 };
                 *guess = guess.max(g.to_interval().sup());
-                keep_top(floor, g);
+                keep_top(top, g);
                 if g.is_above(t) {
                     return true;
                 }

@@ -22,7 +22,9 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// An exact rational number, or *undefined* (the result of a division by zero).
+/// An exact rational number, or *undefined* (the result of a division by zero). A defined
+/// value has a positive denominator (the arithmetic below relies on it), and every result of
+/// the arithmetic is in lowest terms.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Exact(Option<BigRational>);
 
@@ -32,9 +34,13 @@ impl Exact {
         Exact(ratio_of_f64(x))
     }
 
-    /// A rational as an exact value.
+    /// A rational as an exact value (with a positive denominator).
     pub fn from_ratio(q: BigRational) -> Exact {
-        Exact(Some(q))
+        Exact(Some(if q.denom().is_negative() {
+            BigRational::new_raw(-q.numer(), -q.denom())
+        } else {
+            q
+        }))
     }
 
     /// The rational itself (`None` if undefined).
@@ -107,8 +113,7 @@ impl Exact {
         };
         // grid step 2^g, g = scale_exp - bits: floor(q / 2^g) * 2^g
         let g = scale_exp as i64 - bits as i64;
-        let (n, d) = signed_parts(q);
-        Exact(Some(floor_to_grid(n, &d, g)))
+        Exact(Some(floor_to_grid(q.numer().clone(), q.denom(), g)))
     }
 
     /// The Newton point u - g1 / g2 truncated as by [`Exact::truncate_to`], without forming the
@@ -151,22 +156,12 @@ impl Exact {
             return Exact(None);
         };
         // ceil(q / 2^g) 2^g = -(floor(-q / 2^g) 2^g)
-        let (n, d) = signed_parts(q);
-        Exact(Some(-floor_to_grid(-n, &d, g)))
+        Exact(Some(-floor_to_grid(-q.numer(), q.denom(), g)))
     }
 
     /// The sign of the value (`None` if undefined).
     pub fn signum(&self) -> Option<Ordering> {
         self.0.as_ref().map(|q| q.numer().sign().cmp(&Sign::NoSign))
-    }
-}
-
-/// (n, d) with q = n / d and d > 0.
-fn signed_parts(q: &BigRational) -> (BigInt, BigInt) {
-    if q.denom().is_negative() {
-        (-q.numer(), -q.denom())
-    } else {
-        (q.numer().clone(), q.denom().clone())
     }
 }
 
@@ -275,15 +270,11 @@ fn pow2_exp(d: &BigInt) -> Option<u64> {
 
 /// The reduced dyadic rational n / 2^e.
 pub(crate) fn dyadic(n: BigInt, e: u64) -> BigRational {
-    if n.is_zero() {
-        return BigRational::zero();
-    }
-    let z = n.trailing_zeros().unwrap_or(0).min(e);
-    // (n is divisible by 2^z: the shift is exact also for negative n)
-    BigRational::new_raw(n >> z, BigInt::one() << (e - z))
+    reduced(n, BigInt::one(), e)
 }
 
-/// x + y, or x - y (`neg`), by the dyadic fast path when both are dyadic.
+/// x + y, or x - y (`neg`), by the dyadic fast path when both are dyadic, else over the
+/// common denominator lcm(o_x, o_y) 2^max(e_x, e_y) (odd o).
 fn add_sub(x: BigRational, y: BigRational, neg: bool) -> BigRational {
     if let (Some(ex), Some(ey)) = (pow2_exp(x.denom()), pow2_exp(y.denom())) {
         let e = ex.max(ey);
@@ -291,12 +282,7 @@ fn add_sub(x: BigRational, y: BigRational, neg: bool) -> BigRational {
         let b = y.numer() << (e - ey);
         return dyadic(if neg { a - b } else { a + b }, e);
     }
-    if !(x.denom().is_positive() && y.denom().is_positive()) {
-        return if neg { x - y } else { x + y };
-    }
-    // x = n_x / (o_x 2^e_x), y = n_y / (o_y 2^e_y) with odd o: the common denominator
-    // lcm(o_x, o_y) 2^max(e_x, e_y) (a gcd of the odd parts, which are short: knot
-    // differences), then `reduced`
+    // (a gcd of the odd parts, which are short: products of knot differences' odd parts)
     let ((ox, ex), (oy, ey)) = (split2(x.denom()), split2(y.denom()));
     let e = ex.max(ey);
     let g = ox.gcd(&oy);
@@ -315,9 +301,10 @@ fn split2(d: &BigInt) -> (BigInt, u64) {
 /// n / (o 2^e) in lowest terms (o odd, > 0), as num-rational's `Ratio::new` would give it, but
 /// without its gcd of n and the whole denominator (Stein's binary gcd costs O(bits^2) on the
 /// ~2,000-bit numerators of data spanning 2^-1074 .. 2^1023): the common factor is
-/// 2^min(tz(n), e) times gcd(n, o) = gcd(n mod o, o), a gcd of the odd part's length (o odd:
-/// gcd(n, o 2^e) = gcd(n, o) gcd(n, 2^e)). Dividing both out leaves gcd = 1: n / g and o / g
-/// are coprime, and n / g keeps n's factors of two (g is odd).
+/// 2^min(tz(n), e) times gcd(n, o) = gcd(n mod o, o), a gcd of the odd part's length, none
+/// for o = 1 (o odd: gcd(n, o 2^e) = gcd(n, o) gcd(n, 2^e)). Dividing both out leaves gcd = 1:
+/// n / g and o / g are coprime, and n / g keeps n's factors of two (g is odd). The dyadic
+/// fast paths are its case o = 1 without splitting the denominators.
 fn reduced(n: BigInt, o: BigInt, e: u64) -> BigRational {
     if n.is_zero() {
         return BigRational::zero();
@@ -357,9 +344,6 @@ impl Mul for Exact {
             if let (Some(ex), Some(ey)) = (pow2_exp(x.denom()), pow2_exp(y.denom())) {
                 return Some(dyadic(x.numer() * y.numer(), ex + ey));
             }
-            if !(x.denom().is_positive() && y.denom().is_positive()) {
-                return Some(x * y);
-            }
             let ((ox, ex), (oy, ey)) = (split2(x.denom()), split2(y.denom()));
             Some(reduced(x.numer() * y.numer(), ox * oy, ex + ey))
         })
@@ -391,9 +375,6 @@ impl Div for Exact {
                 } else {
                     dyadic(n, (-k) as u64)
                 });
-            }
-            if !(x.denom().is_positive() && y.denom().is_positive()) {
-                return Some(x / y);
             }
             // (n_x / (o_x 2^e_x)) / (n_y / (o_y 2^e_y)) with n_y = ±o 2^t (o odd):
             // ±n_x o_y 2^e_y / (o_x o 2^(e_x + t))
@@ -487,9 +468,10 @@ mod tests {
     }
 
     /// The dyadic fast paths and the general operations (odd-part gcds only) give exactly
-    /// num-rational's reduced results, numerator and denominator.
+    /// num-rational's reduced results, numerator and denominator; a rational with a negative
+    /// denominator is taken with its sign moved up.
     #[test]
-    fn dyadic_fast_paths_agree_with_the_general_operations() {
+    fn arithmetic_matches_num_rational_in_lowest_terms() {
         use rand::{Rng, SeedableRng};
         let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(5);
         let pick = |r: &mut rand_chacha::ChaCha8Rng| -> f64 {
@@ -503,6 +485,13 @@ mod tests {
                 _ => r.random_range(-1.0..1.0) * 2f64.powi(r.random_range(-200..200)),
             }
         };
+        let minus_third =
+            Exact::from_ratio(BigRational::new_raw(BigInt::from(1), BigInt::from(-3)));
+        let sum = (minus_third + Exact::of(1.0)).0.expect("defined");
+        assert_eq!(
+            (sum.numer(), sum.denom()),
+            (&BigInt::from(2), &BigInt::from(3))
+        );
         for _ in 0..3000 {
             let (a, b) = (pick(&mut r), pick(&mut r));
             let (x, y) = (ratio_of_f64(a).unwrap(), ratio_of_f64(b).unwrap());
