@@ -57,6 +57,10 @@ use inari::Interval;
 use std::cmp::Ordering;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
+/// The degree from which the Bézier extraction of a span runs in double words
+/// ([`crate::num::dw`], about five times cheaper than with running bounds).
+pub(crate) const DW_MIN_DEGREE: usize = 6;
+
 /// Unit roundoff u = 2^-53.
 const U: f64 = 1.0 / 9_007_199_254_740_992.0;
 /// U1 = u (1 + 2^-50) >= u / (1 - u) (exact: 53-bit significand 1 + 2^-50).
@@ -102,7 +106,7 @@ pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
 /// TwoProd with FMA (Handbook Alg. 4.8): p + e = a b exactly unless |ab| < 2^-969, then within
 /// eta = 2^-1075.
 #[inline(always)]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
+pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
     let e = a.mul_add(b, -p);
     (p, e)
@@ -410,6 +414,19 @@ impl Ddi {
     #[inline]
     fn is_zero(&self) -> bool {
         self.hi == 0.0 && self.is_f64()
+    }
+
+    /// The centre `hi + lo` and the radius.
+    #[inline]
+    pub(crate) fn parts(&self) -> (f64, f64, f64) {
+        (self.hi, self.lo, self.rad)
+    }
+
+    /// The set with centre `hi + lo` and radius `rad` ([`Ddi::ENTIRE`] if a part is not finite
+    /// or the radius negative): the caller vouches that it encloses what it stands for.
+    #[inline]
+    pub(crate) fn from_parts(hi: f64, lo: f64, rad: f64) -> Ddi {
+        Ddi::checked(hi, lo, rad)
     }
 
     /// Build from parts; anything non-finite (or a negative/NaN radius) gives ENTIRE.
@@ -751,6 +768,14 @@ impl Scalar for Ddi {
     #[inline]
     fn from_f64(x: f64) -> Self {
         Ddi::exact(x)
+    }
+
+    /// From degree [`DW_MIN_DEGREE`] on, the extraction in double words with one a-priori
+    /// bound ([`crate::num::dw`]), where its guard holds. (Lower degrees keep the running
+    /// bounds, which keep exact results exact, e.g. the Bézier points of a dyadic cubic.)
+    #[inline]
+    fn clamp_span_fast(p: usize, h: usize, t: &mut [f64], q: &mut [Self]) -> bool {
+        p >= DW_MIN_DEGREE && crate::num::dw::clamp_span_dw(p, h, t, q)
     }
 
     /// The fused Horner step [`Ddi::mul_add`].

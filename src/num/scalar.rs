@@ -100,6 +100,14 @@ pub trait Scalar:
     fn knot_ratio_f64(u: f64, a: f64, b: f64) -> Self {
         crate::spline::bspline::knot_ratio(&Self::from_f64(u), a, b)
     }
+    /// The Bézier extraction of one span ([`crate::spline::bspline::clamp_span`]) by a faster
+    /// route of the type's own, with the same guarantee: `true` if `t` and `q` now hold the
+    /// result, `false` (nothing changed) for none. The default has none; `Ddi` computes in
+    /// double words and encloses the result with an a-priori bound ([`crate::num::dw`]).
+    #[inline]
+    fn clamp_span_fast(_p: usize, _h: usize, _t: &mut [f64], _q: &mut [Self]) -> bool {
+        false
+    }
     /// An f64 interval that contains the value (outward rounded for `rug::Float`).
     fn to_interval(&self) -> Interval;
     /// A representative f64 (midpoint for intervals, nearest for MPFR).

@@ -432,6 +432,9 @@ pub(crate) fn reverse_points<S: Clone>(h: usize, q: &mut [S]) {
 /// span's Bézier points. `t` is left in an unspecified state.
 #[inline]
 pub(crate) fn clamp_span<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
+    if S::clamp_span_fast(p, h, t, q) {
+        return;
+    }
     clamp_left(p, h, t, q);
     reverse_points(h, q);
     t.reverse();
