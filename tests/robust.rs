@@ -374,7 +374,9 @@ fn adversarial_curves_finish_quickly() {
     for (name, c) in cases {
         check_curve(name, &c, 3, Duration::from_secs(20));
     }
-    // the budget is reported: degree 150 exhausts newton's work budget
+    // the budget is reported: degree 150 exhausts newton's work budget; the side it leaves
+    // loose goes to the `bezier` search, which either resolves it (then the coordinate is
+    // converged, within the stopping gap, and the rescue is counted) or reports its own limit
     let c = curve(
         150,
         clamped(150, 151, 0.0, 1.0),
@@ -384,7 +386,16 @@ fn adversarial_curves_finish_quickly() {
     let e = nurbs_box::strategy_by_name("newton", None)
         .unwrap()
         .enclose(&c);
-    assert_eq!(e.termination(), Termination::WorkLimit);
+    let cb = &e.coords[0];
+    let gap = 2.0 * nurbs_box::num::ulp(c.coord_scale(0));
+    match e.termination() {
+        Termination::WorkLimit => {}
+        Termination::Converged => {
+            assert!(cb.stats.fast_fallbacks >= 1, "{:?}", cb.stats);
+            assert!(cb.gap() <= gap, "gap {} > {gap}", cb.gap());
+        }
+        t => panic!("termination {t:?}"),
+    }
 
     // above MAX_SEARCH_DEGREE: the control-point box at once, from every strategy
     let p = nurbs_box::enclose::MAX_SEARCH_DEGREE + 500;

@@ -1083,6 +1083,62 @@ pub(crate) fn fast_sides(c: &NurbsCurve, j: usize, max_gap: f64) -> [Option<(Sid
     out
 }
 
+/// The `bezier` search ([`BezierSubdivision::maximize`], with its double-double refinement)
+/// on the sides of coordinate j that another verified strategy left loose (`need`: [hi, lo]),
+/// merged into that strategy's result `cb`: both are enclosures of the same extrema, so the
+/// smaller upper bound, the larger attained value and the larger strict witness are all
+/// valid. Used by `newton` for the rare sides its search cannot resolve (a critical point of
+/// C_j' at a knot where the boxes straddling it stall, up to its box limit), which it would
+/// otherwise report hundreds of ulps loose. Counted as `fast_fallbacks`.
+pub(crate) fn tighten(c: &NurbsCurve, j: usize, cb: &mut CoordBox, need: [bool; 2]) {
+    let strategy = BezierSubdivision::default();
+    let mut ctx = Ctx::new(c, true);
+    for (k, sign) in [(0, 1.0), (1, -1.0)] {
+        if !need[k] {
+            continue;
+        }
+        let mut s = strategy.maximize(&mut ctx, j, sign);
+        s.upper = s.upper.max(s.attained);
+        let (bound, inner, witness, args) = if k == 0 {
+            (&mut cb.hi, &mut cb.inner_hi, &mut cb.witness_hi, &mut cb.argmax)
+        } else {
+            (&mut cb.lo, &mut cb.inner_lo, &mut cb.witness_lo, &mut cb.argmin)
+        };
+        // (sign-adjusted: the min side's values are those of -C_j)
+        let (up, at, wi) = (sign * s.upper, sign * s.attained, sign * s.witness);
+        let better = |x: f64, y: f64| if sign > 0.0 { x < y } else { x > y };
+        if better(up, *bound) {
+            *bound = up;
+            args.clear();
+            for (x, e) in &s.cands {
+                if *x >= s.attained {
+                    args.push(*e);
+                }
+            }
+            if args.is_empty() {
+                let (a, b) = c.domain();
+                args.push(Extremum {
+                    u_lo: a,
+                    u_hi: b,
+                    unique: false,
+                    kind: CandidateKind::Unresolved,
+                });
+            }
+        }
+        if better(*inner, at) {
+            *inner = at;
+        }
+        if better(*witness, wi) {
+            *witness = wi;
+        }
+        s.stats.fast_fallbacks += 1;
+        cb.stats.add(&s.stats);
+    }
+    // (the attained value stays between the bounds: clamp as the driver does)
+    cb.inner_lo = cb.inner_lo.min(cb.hi).max(cb.lo);
+    cb.inner_hi = cb.inner_hi.max(cb.lo).min(cb.hi);
+}
+
 /// The coordinate box from the two sign-adjusted sides (max side `hi`, min side `lo`) over the
 /// domain [a, b]: outer bounds, attained values, and the candidates reaching them.
 pub(crate) fn coord_box(

@@ -459,7 +459,8 @@ impl<'a> Evals<'a> {
         }
         let c = self.c;
         let h = self.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
-        let seg = h.bezier_segment(k);
+        // (running error bounds: near ties need every bit the double double has)
+        let seg = h.bezier_segment_tight(k);
         self.ddi_segs.push((k, seg.clone()));
         seg
     }

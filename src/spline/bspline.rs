@@ -243,11 +243,28 @@ impl<S: Scalar> HSpline<S> {
     /// (NURBS Book A5.1 CurveKnotIns applied locally; equivalent to A5.6 DecomposeCurve for one
     /// segment). Works for clamped and unclamped knot vectors alike. O(p^2).
     pub fn bezier_segment(&self, k: usize) -> BezierSeg<S> {
+        self.bezier_segment_by(k, true)
+    }
+
+    /// [`HSpline::bezier_segment`] without the type's faster route
+    /// ([`Scalar::clamp_span_fast`]): for `Ddi`, every corner cut with its own running error
+    /// bound (tighter than the double-word route's a-priori bound, which is sized for the
+    /// largest point; what the optimality certificate's double-double stage needs on near
+    /// ties at high degree).
+    pub fn bezier_segment_tight(&self, k: usize) -> BezierSeg<S> {
+        self.bezier_segment_by(k, false)
+    }
+
+    fn bezier_segment_by(&self, k: usize, fast: bool) -> BezierSeg<S> {
         let p = self.degree;
         let h = self.hdim();
         let mut q: Vec<S> = self.pts[(k - p) * h..(k + 1) * h].to_vec();
         let mut t: SmallVec<[f64; 24]> = SmallVec::from_slice(&self.knots[k - p..=k + p + 1]);
-        clamp_span(p, h, &mut t, &mut q);
+        if fast {
+            clamp_span(p, h, &mut t, &mut q);
+        } else {
+            clamp_span_by(p, h, &mut t, &mut q);
+        }
         BezierSeg {
             a: self.knots[k],
             b: self.knots[k + 1],
@@ -432,9 +449,13 @@ pub(crate) fn reverse_points<S: Clone>(h: usize, q: &mut [S]) {
 /// span's Bézier points. `t` is left in an unspecified state.
 #[inline]
 pub(crate) fn clamp_span<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
-    if S::clamp_span_fast(p, h, t, q) {
-        return;
+    if !S::clamp_span_fast(p, h, t, q) {
+        clamp_span_by(p, h, t, q);
     }
+}
+
+/// [`clamp_span`] by the generic corner cuts in `S` itself (no faster route).
+fn clamp_span_by<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
     clamp_left(p, h, t, q);
     reverse_points(h, q);
     t.reverse();

@@ -52,6 +52,14 @@ use std::sync::OnceLock;
 /// Highest derivative order kept in the Taylor coefficients.
 const ORDERS: usize = 3;
 
+/// From this degree on the span expansions start from the Bézier points with `Ddi`'s own
+/// running bounds ([`HSpline::bezier_segment_tight`]) rather than the double-word extraction's
+/// (`num::dw`, a few times wider): the power form amplifies the points' radii by up to 2^p,
+/// and above degree ~32 that difference shows in near-ties (measured: `tightness --family
+/// high_degree --curves 1000`, two seeds, no bound lost against the `Ddi` extraction with
+/// this threshold; with none, 2 to 4 of 3000).
+const TAYLOR_TIGHT_FROM: usize = 32;
+
 /// Most bisection levels in `coord_over` when the sign of C'' over the box is unknown.
 const MAX_BISECT: u32 = 4;
 
@@ -222,7 +230,16 @@ impl TightEval {
         let cell = if right { &slot.right } else { &slot.left };
         cell.get_or_init(|| {
             let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
-            let pts = slot.seg.get_or_init(|| hs.bezier_segment(k).pts);
+            // The power form amplifies the Bézier points' radii by up to (1 + 2s/len)^p <= 2^p
+            // (s <= len/2 from the nearer end): from degree TAYLOR_TIGHT_FROM on the points
+            // come from the extraction with `Ddi`'s own, tighter running bounds.
+            let pts = slot.seg.get_or_init(|| {
+                if hs.degree >= TAYLOR_TIGHT_FROM {
+                    hs.bezier_segment_tight(k).pts
+                } else {
+                    hs.bezier_segment(k).pts
+                }
+            });
             let (p, h) = (hs.degree, hs.hdim());
             let len = Ddi::diff(hs.knots[k + 1], hs.knots[k]);
             if right {

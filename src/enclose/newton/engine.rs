@@ -439,6 +439,7 @@ impl<'a> Engine<'a> {
         let mut splits = 0u32;
         while let Some((mut x0, mut x1)) = self.stack.pop() {
             boxes += 1;
+
             let keep = |x0: f64, x1: f64, unique: bool, out: &mut Vec<ZeroBox>| {
                 out.push(ZeroBox {
                     x: space.param(x0, x1),
@@ -527,6 +528,13 @@ impl<'a> Engine<'a> {
                     break;
                 }
                 let weak = stalled || (!unique && n1 - n0 > s.min_shrink * (x1 - x0));
+                if weak && s.fast_path && self.settled(k, space, (a, b), n0, n1) {
+                    // (no zero proved or excluded, but the curve's values over the box are
+                    // already known to the stopping gap: keep it whole instead of halving it
+                    // down to the tolerance)
+                    keep(n0, n1, false, out);
+                    break;
+                }
                 if weak && splits < s.max_splits && can_split(n0, n1) {
                     splits += 1;
                     self.split_box(n0, n1);
@@ -542,6 +550,32 @@ impl<'a> Engine<'a> {
             }
         }
         term
+    }
+
+    /// Whether the values of C_j over the box [x0, x1] (in `space`, of the span with bounds
+    /// `(a, b)` there) are known to within the stopping gap (two ulps of the coordinate scale)
+    /// by the tight enclosure ([`TightEval::coord_over`], a second-order Taylor form): then a
+    /// box on which the Newton step stalls (f(m) not separated from 0, e.g. next to a zero of
+    /// C_j' at a knot, where the derivative numerator cancels to rounding noise) is kept whole,
+    /// and its candidate (enclosed by the same form in `eval_cand`) is as tight as the
+    /// tolerance-sized boxes that halving it would produce, without the thousands of boxes.
+    /// Only boxes below 2^-20 of their span are tried (there the Taylor form is tight; on wider
+    /// boxes the test would cost an evaluation and fail).
+    fn settled(&mut self, k: usize, space: Space, (a, b): (f64, f64), x0: f64, x1: f64) -> bool {
+        if x1 - x0 > (b - a) * (1.0 / 1_048_576.0) || x1.is_nan() || x0.is_nan() {
+            return false;
+        }
+        let (u0, u1) = match space {
+            Space::Local => {
+                let kn = self.c.knots();
+                super::param::local_to_u(kn[k], kn[k + 1], x0, x1)
+            }
+            Space::Global => (x0, x1),
+        };
+        self.stats.point_evaluations += 1;
+        let v = self.tight.coord_over(self.j, u0, u1);
+        let gap = 2.0 * crate::num::ulp(self.c.coord_scale(self.j));
+        v.sup() - v.inf() <= gap
     }
 
     /// Float first, prove after ([`Newton::fast_path`], Bernstein search of span k over the

@@ -264,7 +264,26 @@ impl BoxEncloser for Newton {
             let first = [extreme_point(c, j, true), extreme_point(c, j, false)];
             let order = e.order_with_first(&first);
             modes.iter_mut().for_each(|m| *m = mode);
-            coords.push(e.coord(j, &order, modes));
+            let mut cb = e.coord(j, &order, modes);
+            if self.fast_path {
+                // A side the search left more than an ulp loose (it ran out of boxes, e.g. at a
+                // critical point of C_j' at a knot where the boxes straddling it stall): the
+                // `bezier` search with its double-double refinement takes it over.
+                let scale = c.coord_scale(j);
+                let need = [
+                    super::certify::far_below(cb.hi, cb.inner_hi, scale, 1),
+                    super::certify::far_below(-cb.lo, -cb.inner_lo, scale, 1),
+                ];
+                if need.contains(&true) {
+                    super::bezier::tighten(c, j, &mut cb, need);
+                    let tight = !super::certify::far_below(cb.hi, cb.inner_hi, scale, 1)
+                        && !super::certify::far_below(-cb.lo, -cb.inner_lo, scale, 1);
+                    if tight {
+                        cb.termination = super::Termination::Converged;
+                    }
+                }
+            }
+            coords.push(cb);
         }
         Enclosure {
             strategy: self.name(),
