@@ -69,6 +69,21 @@ fn symmetric_curves_with_double_extrema_at_one_half() {
 }
 
 #[test]
+fn a_double_minimum_at_two_thirds_is_certified() {
+    // x(t) = 0.1 + 2^-10 * 3 (3t - 2)^2 (2 - t): Bernstein coefficients 0.1 + 2^-10 (24, -4,
+    // -2, 3), all exact; the minimum is exactly 0.1 at t = 2/3, a parameter no dyadic grid
+    // holds (a double root of x - 0.1: the exact Bernstein rule splits at the rational root
+    // of gcd(f, f')); the maximum is the end value x(0)
+    let s = 1.0 / 1024.0;
+    let cs: Vec<f64> = [24.0, -4.0, -2.0, 3.0]
+        .iter()
+        .map(|k| 0.1 + k * s)
+        .collect();
+    let c = bezier_curve(cs.iter().map(|&x| vec![x]).collect(), None);
+    assert_optimal_certified("double minimum at 2/3", &c, &[0.1], &[cs[0]]);
+}
+
+#[test]
 fn rational_circle_extrema_at_knots() {
     // the 9-point circle (rounded weights 1/sqrt 2: an ellipse-like conic through the four
     // axis points at the double knots): extrema exactly ±1

@@ -166,7 +166,7 @@ use inari::Interval;
 use num_bigint::{BigInt, Sign};
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{One, ToPrimitive};
+use num_traits::{One, ToPrimitive, Zero};
 use std::cmp::Ordering;
 
 /// Candidates per side that are examined (in the strategy's order).
@@ -1890,7 +1890,89 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
             best = Some((v, sc, x));
         }
     }
+    // an exact tie at a rational parameter that no grid holds (the extremum a double at
+    // s* = 2/3, say): a double root of f, hence a root of gcd(f, f')
+    if let Some(r) = rational_double_root(fi).filter(inside) {
+        if eval_integer(fi, &r).0.sign() == Sign::NoSign {
+            return Some(Exact::from_ratio(r));
+        }
+    }
     best.map(|(_, _, x)| Exact::from_ratio(x))
+}
+
+/// The rational root of gcd(f, f') when that gcd is linear, f the Bernstein polynomial with
+/// integer coefficients `fi` (degree 2 ..= 8): a double root of f that is a rational number
+/// (a polynomial with rational coefficients whose repeated root is simple in the gcd has it
+/// rational). Only a split point for [`exact_bernstein_rule`]: whatever it returns, the rule's
+/// proof is the signs of exact coefficients. On the power form (a_k = binom(p, k) Δ^k f_0,
+/// Farin's monomial form of a Bézier curve) in exact rationals: for a cubic the rational
+/// roots of the quadratic f' (a square discriminant), else Euclid's algorithm for the gcd.
+fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
+    let p = fi.len().checked_sub(1)?;
+    if !(2..=8).contains(&p) {
+        return None;
+    }
+    let mut d = fi.to_vec();
+    let mut f: Vec<BigRational> = Vec::with_capacity(p + 1);
+    for k in 0..=p {
+        let b = BigInt::from(crate::num::binom(p, k) as u64);
+        f.push(BigRational::from_integer(b * &d[0]));
+        for i in 0..p - k {
+            d[i] = &d[i + 1] - &d[i];
+        }
+    }
+    let df: Vec<BigRational> = (1..=p)
+        .map(|k| &f[k] * BigRational::from_integer(BigInt::from(k)))
+        .collect();
+    if p == 3 {
+        // f' = c + b s + a s^2: a double root of f is a root of f', rational only if the
+        // discriminant is a rational square (checked on the integer numerators of a common
+        // denominator); the caller checks f = 0 there
+        if df[2].is_zero() {
+            return (!df[1].is_zero()).then(|| -&df[0] / &df[1]);
+        }
+        let den = df[0].denom() * df[1].denom() * df[2].denom();
+        let int = |x: &BigRational| (x * BigRational::from_integer(den.clone())).to_integer();
+        let (c0, b1, a2) = (int(&df[0]), int(&df[1]), int(&df[2]));
+        let disc = &b1 * &b1 - BigInt::from(4) * &a2 * &c0;
+        if disc.sign() == Sign::Minus {
+            return None;
+        }
+        let r = disc.sqrt();
+        if &r * &r != disc {
+            return None;
+        }
+        // both roots; the one nearer the middle first is irrelevant: the caller tests f there,
+        // so return the one where f vanishes if any
+        let two_a = BigInt::from(2) * &a2;
+        let roots = [(-&b1 + &r), (-&b1 - &r)].map(|n| BigRational::new(n, two_a.clone()));
+        return roots
+            .into_iter()
+            .find(|x| eval_integer(fi, x).0.sign() == Sign::NoSign);
+    }
+    let trim = |mut v: Vec<BigRational>| {
+        while v.last().is_some_and(|x| x.is_zero()) {
+            v.pop();
+        }
+        v
+    };
+    let (mut a, mut b) = (trim(f), trim(df));
+    while !b.is_empty() {
+        // a mod b (b's leading coefficient is non-zero after trimming)
+        let lead = b[b.len() - 1].clone();
+        while a.len() >= b.len() {
+            let q = &a[a.len() - 1] / &lead;
+            let off = a.len() - b.len();
+            for (i, bi) in b.iter().enumerate() {
+                a[off + i] -= &q * bi;
+            }
+            a.pop();
+            a = trim(a);
+        }
+        std::mem::swap(&mut a, &mut b);
+    }
+    // a is the gcd
+    (a.len() == 2).then(|| -&a[0] / &a[1])
 }
 
 /// The value at the rational x = m / n (n > 0) of the Bernstein polynomial with integer
