@@ -83,6 +83,40 @@ fn a_double_minimum_at_two_thirds_is_certified() {
     assert_optimal_certified("double minimum at 2/3", &c, &[0.1], &[cs[0]]);
 }
 
+/// A symmetric degree-6 curve (double knot at 0) whose maximum C(0) straddles a double in
+/// double double: above the degree of the certificate's box-rule lowering, the exact Bernstein
+/// rule lowers the bound to RU(max) and certifies it (before, the bound stayed one double
+/// above). Checked against the MPFR reference.
+#[cfg(feature = "mpfr")]
+#[test]
+fn a_straddling_maximum_at_a_degree_6_knot_is_lowered_and_certified() {
+    use nurbs_box::testkit::reference::{check_certificates, optimal_bound, reference_box};
+    let y = [
+        -48.002939617200546,
+        -48.000056590587064,
+        -47.97001617790882,
+        -47.994976893793364,
+        97.00587923440109,
+    ];
+    let pts: Vec<Vec<f64>> = y
+        .iter()
+        .chain(y.iter().rev().skip(1))
+        .map(|&v| vec![v])
+        .collect();
+    let mut knots = vec![-1.0; 7];
+    knots.extend([0.0, 0.0]);
+    knots.extend(vec![1.0; 7]);
+    let c = NurbsCurve::new(6, knots, pts, None).unwrap();
+    let rb = reference_box(&c);
+    let opt = optimal_bound(&rb.hi[0], c.coord_scale(0), true);
+    for s in ["newton", "bezier"] {
+        let e = strategy_by_name(s, None).unwrap().enclose(&c);
+        check_certificates(&c, &rb, &e).unwrap();
+        assert_eq!(e.coords[0].hi, opt, "{s}");
+        assert!(e.coords[0].optimal_hi, "{s}");
+    }
+}
+
 #[test]
 fn rational_circle_extrema_at_knots() {
     // the 9-point circle (rounded weights 1/sqrt 2: an ellipse-like conic through the four

@@ -405,10 +405,10 @@ impl<S: Scalar> Barycentric<'_, S> {
 /// (`coefficients`). `radius[j]` is a verified upper bound on max_l |b_lj - m_lj|.
 ///
 /// **Guarantee.** For every t in [u_0, u_g] and every coordinate j,
-/// |c_j(t) - curve_j(t)| <= radius[j], where c is the exact Lagrange curve: the difference is
+/// |c_j(t) - curve_j(t)| <= `radius[j]`, where c is the exact Lagrange curve: the difference is
 /// sum_l (b_lj - m_lj) B_l^g(s), and the Bernstein polynomials are non-negative and sum to one
 /// on [0, 1] (a partition of unity), so it is a convex combination of numbers of magnitude
-/// <= radius[j]. Hence a verified box [lo, hi] of `curve` widened to
+/// <= `radius[j]`. Hence a verified box [lo, hi] of `curve` widened to
 /// [lo - radius, hi + radius] (rounded outward) is a verified box of the Lagrange curve over
 /// [u_0, u_g]: [`LagrangeBezier::widen`] does that, [`LagrangeBezier::enclose`] encloses and
 /// widens in one call. `radius` is 0 exactly when every coefficient was computed exactly; then
@@ -441,7 +441,7 @@ impl LagrangeBezier {
     }
 }
 
-/// A box of a curve c̃ turned into a box of any curve c with |c_j - c̃_j| <= radius[j] on the
+/// A box of a curve c̃ turned into a box of any curve c with |c_j - c̃_j| <= `radius[j]` on the
 /// same domain: outer bounds move out by the radius, inner bounds (values the curve provably
 /// reaches) move in, all rounded outward in interval arithmetic so the statements stay exact:
 /// lo' = RD(lo - r), hi' = RU(hi + r), inner_lo' = RU(inner_lo + r), inner_hi' =

@@ -649,9 +649,7 @@ impl BezierSubdivision {
         // Every piece was either bounded (<= upper) or pruned (<= attained <= max C), so
         // max C <= max(upper, attained).
         side.upper = side.upper.max(side.attained);
-        if loose(side.upper, side.attained, scale)
-            || unproved_within_an_ulp(side.upper, side.attained, side.witness)
-        {
+        if needs_refinement(c, side.upper, side.attained, side.witness, scale) {
             let mut dseg = |k: usize| {
                 dsegs[k]
                     .get_or_insert_with(|| {
@@ -718,6 +716,35 @@ fn unproved_within_an_ulp(bound: f64, attained: f64, witness: f64) -> bool {
         && bound > attained
         && witness < bound.next_down()
         && bound - attained <= 4.0 * crate::num::ulp(bound)
+}
+
+/// Whether a bound more than an ulp of its own size above the attained value is beyond what
+/// the certificate corrects: it lowers bounds only up to degree
+/// [`super::certify::LOWER_MAX_DEGREE`], so above, a bound that is within the stopping gap of
+/// the scale but many doubles of a small extremum (a maximum ~4e-3 on a coordinate of scale 1)
+/// would stay that far from the optimal double. Only where double double resolves the
+/// extremum's doubles (their spacing at least 2^-80 of the scale).
+fn beyond_lowering(c: &NurbsCurve, bound: f64, attained: f64, scale: f64) -> bool {
+    let u = crate::num::ulp(bound);
+    c.degree() > super::certify::LOWER_MAX_DEGREE
+        && bound.is_finite()
+        && bound - attained > u
+        && u >= scale * (1.0 / 1_208_925_819_614_629_174_706_176.0)
+}
+
+/// Whether a side goes to the local refinement ([`refine_local`]): [`loose`] against the
+/// scale, [`unproved_within_an_ulp`], or [`beyond_lowering`]. Also `newton`'s test for handing
+/// a side to the `bezier` search ([`tighten`]).
+pub(crate) fn needs_refinement(
+    c: &NurbsCurve,
+    bound: f64,
+    attained: f64,
+    witness: f64,
+    scale: f64,
+) -> bool {
+    loose(bound, attained, scale)
+        || unproved_within_an_ulp(bound, attained, witness)
+        || beyond_lowering(c, bound, attained, scale)
 }
 
 /// Pieces per side of the local refinement ([`refine_local`]).

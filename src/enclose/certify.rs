@@ -142,7 +142,10 @@
 //! At most [`MAX_CANDIDATES`] candidates, [`NEWTON_STEPS`] double-double Newton steps, the
 //! exact stage only for the best candidate and degree <= [`EXACT_MAX_DEGREE`] (its exact
 //! Newton levels only for a value within 2^-96 of t, two exact Newton steps per level of
-//! [`ZIV_BITS`]); lowering only up to degree [`LOWER_MAX_DEGREE`], a lowering proof at most
+//! [`ZIV_BITS`]); lowering by the box rules only up to degree [`LOWER_MAX_DEGREE`] (a
+//! straddle goes to the exact Bernstein rule up to its own degree limit, and above
+//! [`LOWER_MAX_DEGREE`] the strategies refine a side more than an ulp of its bound loose
+//! themselves: `bezier`'s local refinement, which `newton` hands such sides to), a lowering proof at most
 //! [`MAX_BOXES`] boxes ([`MAX_BOXES_RESCALED`] for a curve the driver rescales),
 //! [`MAX_PIECES`] Bézier halvings and [`MAX_EXACT_TRIES`] exact concavity arguments (above
 //! [`LOWER_MAX_DEGREE`] a lowering is tried only when a clamped end's value is the largest
@@ -830,10 +833,10 @@ fn certify_side(
         // spans)
         let ev_rule_possible = ev.exact_rule_possible();
         let at_clamped_end = end_value.is_finite() && end_value >= nth_down(guess, 2);
-        let lower = round < MAX_LOWERINGS
-            && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end)
+        let may_lower = round < MAX_LOWERINGS
             && (!d.straddle || ev.exact_possible() || ev.exact_rule_possible())
             && (target >= nth_down(bound, within) || bound - target <= near_scale);
+        let lower = may_lower && (ev.c.degree() <= LOWER_MAX_DEGREE || at_clamped_end);
         // how the first lowering proof ended, and whether it had the exact rules
         let first_run = std::cell::Cell::new(None);
         let try_lower = |ev: &mut Evals, exact: bool| -> Option<f64> {
@@ -878,8 +881,10 @@ fn certify_side(
         // available: the exact Bernstein rule decides at once, on every span whose control
         // points exceed t, either g <= t (the bound is lowered to t) or a value above t
         // (the certificate). The double-double lowering cannot succeed here (every
-        // enclosure of the straddling value holds t) and is skipped.
-        if d.straddle && lower && ev.exact_rule_possible() {
+        // enclosure of the straddling value holds t) and is skipped. (Up to the exact rule's
+        // own degree limit, above LOWER_MAX_DEGREE too: its work is bounded by its own
+        // limits, not by the box rules' evaluations.)
+        if d.straddle && may_lower && ev.exact_rule_possible() {
             match exact_at_most(cv.above(sign), j, sign, (dn(t), t), cands) {
                 Some(true) => {
                     bound = t;

@@ -266,13 +266,20 @@ impl BoxEncloser for Newton {
             modes.iter_mut().for_each(|m| *m = mode);
             let mut cb = e.coord(j, &order, modes);
             if self.fast_path {
-                // A side the search left more than an ulp loose (it ran out of boxes, e.g. at a
-                // critical point of C_j' at a knot where the boxes straddling it stall): the
-                // `bezier` search with its double-double refinement takes it over.
+                // A side the search left more than an ulp of the scale loose (it ran out of
+                // boxes), or, above the degree where the certificate lowers bounds, more than
+                // an ulp of the bound or without a witness within one (`bezier`'s refinement
+                // test): the `bezier` search with its double-double refinement takes it over.
                 let scale = c.coord_scale(j);
+                let p = c.degree();
+                let high = p > super::certify::LOWER_MAX_DEGREE;
+                let test = |b: f64, a: f64, w: f64| {
+                    super::certify::far_below(b, a, scale, 1)
+                        || (high && super::bezier::needs_refinement(c, b, a, w, scale))
+                };
                 let need = [
-                    super::certify::far_below(cb.hi, cb.inner_hi, scale, 1),
-                    super::certify::far_below(-cb.lo, -cb.inner_lo, scale, 1),
+                    test(cb.hi, cb.inner_hi, cb.witness_hi),
+                    test(-cb.lo, -cb.inner_lo, -cb.witness_lo),
                 ];
                 if need.contains(&true) {
                     super::bezier::tighten(c, j, &mut cb, need);
