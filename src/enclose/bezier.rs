@@ -598,11 +598,20 @@ impl BezierSubdivision {
                 side.witness = side.witness.max(w);
                 push(s0, m0, &mut heap);
                 push(m1, s1, &mut heap);
-                let mid = sub_coeffs(&seg, m0, m1, sign);
-                let bm = (sg * vals.over(j, m0, m1)).sup().min(ub(&mid));
                 // Accept the middle piece when its bound is as good as the point evaluation at
-                // t* itself (further splitting cannot beat the evaluation accuracy).
-                if bm - v.sup() <= gap_tol.max(4.0 * f64::EPSILON * scale) {
+                // t* itself (further splitting cannot beat the evaluation accuracy). The tight
+                // enclosure over it (a Taylor form, about an ulp wide around t*) usually is;
+                // the `Mr` coefficients of the piece (a de Casteljau restriction in `Mr`, the
+                // costlier of the two) are computed only when it is not.
+                let accept = gap_tol.max(4.0 * f64::EPSILON * scale);
+                let over = (sg * vals.over(j, m0, m1)).sup();
+                let (bm, mid) = if over - v.sup() <= accept {
+                    (over, Vec::new())
+                } else {
+                    let mid = sub_coeffs(&seg, m0, m1, sign);
+                    (over.min(ub(&mid)), mid)
+                };
+                if bm - v.sup() <= accept {
                     side.bound(
                         bm,
                         Extremum {

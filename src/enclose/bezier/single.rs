@@ -292,8 +292,12 @@ pub(crate) fn extremum(
     kind: CandidateKind,
 ) -> Extremum {
     let map = |t: f64| -> (f64, f64) {
-        if a == 0.0 && b == 1.0 {
-            return (t, t);
+        // (the ends map exactly: u(0) = a, u(1) = b)
+        if t == 0.0 {
+            return (a, a);
+        }
+        if t == 1.0 || (a == 0.0 && b == 1.0) {
+            return if t == 1.0 { (b, b) } else { (t, t) };
         }
         let u = (Ddi::exact(a) + Ddi::exact(t) * Ddi::diff(b, a)).to_interval();
         (u.inf().max(a), u.sup().min(b))
@@ -360,7 +364,8 @@ impl RawSide {
     /// A double-double enclosure of an attained value: its lower end is attained, the largest
     /// f64 strictly below it a witness.
     fn attain_ddi(&mut self, v: Ddi) {
-        self.attain(v.to_interval().inf());
+        // (a NaN lower end, after an overflow, is ignored by `attain`)
+        self.attain(v.lower_end());
         self.witness = self.witness.max(v.strictly_below());
     }
     fn bound(&mut self, ub: f64, e: Extremum) {
@@ -554,16 +559,17 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
             co.poly().x(Ddi::exact(m))
         };
         let e = extremum(a, b, t0, t1, true, CandidateKind::Critical);
-        let vb = xm.widen(corr).to_interval();
-        let side = if is_max { &mut *hi } else { &mut *lo };
-        side.point_evaluations += 1;
-        if is_max {
-            side.attain_ddi(xm);
-            side.bound(vb.sup(), e);
+        // the side's upper end of x(m) ± corr (of -x for the min side), rounded outward; a NaN
+        // end (an overflow) bounds nothing, so it becomes +inf
+        let (side, v) = if is_max {
+            (&mut *hi, xm)
         } else {
-            side.attain_ddi(-xm);
-            side.bound(-vb.inf(), e);
-        }
+            (&mut *lo, -xm)
+        };
+        let ub = v.widen(corr).upper_end();
+        side.point_evaluations += 1;
+        side.attain_ddi(v);
+        side.bound(if ub.is_nan() { f64::INFINITY } else { ub }, e);
     }
     hi.derivative_evaluations = derivative_evaluations;
     Some(())
