@@ -220,20 +220,27 @@ impl NurbsCurve {
     }
 
     /// Verified enclosures of C at the two domain ends: exact point intervals of P_0 / P_n at a
-    /// clamped end (see [`NurbsCurve::clamped_ends`]), interval de Boor otherwise.
+    /// clamped end (see [`NurbsCurve::clamped_ends`]), de Boor in verified midpoint-radius
+    /// arithmetic otherwise (a few ulps wide at low degree, a few hundred at degree 40).
     pub fn end_values(&self) -> [Vec<Interval>; 2] {
         let (a, b) = self.domain();
         let cl = self.clamped_ends();
         let n = self.num_points() - 1;
+        // (the homogeneous spline built once, and only for an unclamped end; de Boor in
+        // midpoint-radius arithmetic, `Mr`: verified like inari's intervals, a few hundred
+        // ulps wide at degree 40 instead of one, at a twentieth of the cost)
+        let h = (!(cl[0] && cl[1])).then(|| HSpline::<crate::num::Mr>::from_curve(self));
         let at = |i: usize, u: f64, clamped: bool| -> Vec<Interval> {
-            if clamped {
-                self.control_point(i)
+            match (&h, clamped) {
+                (Some(h), false) => {
+                    let v: Vec<Interval> = h.eval(u).iter().map(|x| x.to_interval()).collect();
+                    project(v, self.dim(), self.is_rational())
+                }
+                _ => self
+                    .control_point(i)
                     .iter()
                     .map(|&x| iv::point(x))
-                    .collect()
-            } else {
-                let h = HSpline::<Interval>::from_curve(self);
-                project(h.eval(u), self.dim(), self.is_rational())
+                    .collect(),
             }
         };
         [at(0, a, cl[0]), at(n, b, cl[1])]
