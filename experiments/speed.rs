@@ -242,43 +242,24 @@ fn main() {
             }
         }
     }
-    let stream = |s: &dyn BoxEncloser| {
-        let opts = nurbs_box::io::batch::StreamOptions {
-            threads: 1,
-            ..Default::default()
-        };
-        let strategies = [strategy_by_name(s.name(), None).expect("registered")];
-        best(reps.min(5), &mut || {
-            let mut out = Vec::with_capacity(batch.len() * 2);
-            nurbs_box::io::batch::enclose_stream(
-                batch.as_slice(),
-                &mut out,
-                &strategies,
-                &opts,
-                false,
-            )
-            .expect("stream");
-            out.len() as f64
-        })
-    };
-    let th = stream(strategies[0].as_ref());
-    // (each strategy's ratio from runs alternating with `hull`'s: the same load for both)
+    // One pipeline run of the strategy named `name` over the batch, as a closure to time.
     let batch_ref = batch.as_slice();
-    let paired_stream = |s: &dyn BoxEncloser| {
+    let run = |name: &str| {
+        let st = [strategy_by_name(name, None).expect("registered")];
         let opts = nurbs_box::io::batch::StreamOptions {
             threads: 1,
             ..Default::default()
         };
-        let run = |name: &str| {
-            let st = [strategy_by_name(name, None).expect("registered")];
-            let opts = opts.clone();
-            move || {
-                let mut out = Vec::with_capacity(batch_ref.len() * 2);
-                nurbs_box::io::batch::enclose_stream(batch_ref, &mut out, &st, &opts, false)
-                    .expect("stream");
-                out.len() as f64
-            }
-        };
+        move || {
+            let mut out = Vec::with_capacity(batch_ref.len() * 2);
+            nurbs_box::io::batch::enclose_stream(batch_ref, &mut out, &st, &opts, false)
+                .expect("stream");
+            out.len() as f64
+        }
+    };
+    let th = best(reps.min(5), &mut run("hull"));
+    // (each strategy's ratio from runs alternating with `hull`'s: the same load for both)
+    let paired_stream = |s: &dyn BoxEncloser| {
         let (mut h, mut t) = (run("hull"), run(s.name()));
         paired(reps.min(5), &mut h, &mut t)
     };

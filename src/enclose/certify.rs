@@ -1898,18 +1898,16 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
     // an exact tie at a rational parameter that no grid holds (the extremum a double at
     // s* = 2/3, say): a double root of f, hence a root of gcd(f, f')
     if let Some(r) = rational_double_root(fi).filter(inside) {
-        if eval_integer(fi, &r).0.sign() == Sign::NoSign {
-            return Some(Exact::from_ratio(r));
-        }
+        return Some(Exact::from_ratio(r));
     }
     best.map(|(_, _, x)| Exact::from_ratio(x))
 }
 
-/// The rational root of gcd(f, f') when that gcd is linear, f the Bernstein polynomial with
-/// integer coefficients `fi` (degree 2 ..= 8): a double root of f that is a rational number
-/// (a polynomial with rational coefficients whose repeated root is simple in the gcd has it
-/// rational). Only a split point for [`exact_bernstein_rule`]: whatever it returns, the rule's
-/// proof is the signs of exact coefficients. On the power form (a_k = binom(p, k) Δ^k f_0,
+/// A rational double root of f, the Bernstein polynomial with integer coefficients `fi`
+/// (degree 2 ..= 8): the root of gcd(f, f') when that gcd is linear (a root of f and f', so
+/// f vanishes there exactly; rational arithmetic, no rounding). Only a split point for
+/// [`exact_bernstein_rule`]: whatever it returns, the rule's proof is the signs of exact
+/// coefficients. On the power form (a_k = binom(p, k) Δ^k f_0,
 /// Farin's monomial form of a Bézier curve) in exact rationals: for a cubic the rational
 /// roots of the quadratic f' (a square discriminant), else Euclid's algorithm for the gcd.
 fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
@@ -1929,13 +1927,10 @@ fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
     let df: Vec<BigRational> = (1..=p)
         .map(|k| &f[k] * BigRational::from_integer(BigInt::from(k)))
         .collect();
-    if p == 3 {
+    if p == 3 && !df[2].is_zero() {
         // f' = c + b s + a s^2: a double root of f is a root of f', rational only if the
         // discriminant is a rational square (checked on the integer numerators of a common
-        // denominator); the caller checks f = 0 there
-        if df[2].is_zero() {
-            return (!df[1].is_zero()).then(|| -&df[0] / &df[1]);
-        }
+        // denominator), and one where f vanishes too (else Euclid below, as for other degrees)
         let den = df[0].denom() * df[1].denom() * df[2].denom();
         let int = |x: &BigRational| (x * BigRational::from_integer(den.clone())).to_integer();
         let (c0, b1, a2) = (int(&df[0]), int(&df[1]), int(&df[2]));
@@ -1947,8 +1942,7 @@ fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
         if &r * &r != disc {
             return None;
         }
-        // both roots; the one nearer the middle first is irrelevant: the caller tests f there,
-        // so return the one where f vanishes if any
+        // (the root of f' where f vanishes too, if either is one)
         let two_a = BigInt::from(2) * &a2;
         let roots = [(-&b1 + &r), (-&b1 - &r)].map(|n| BigRational::new(n, two_a.clone()));
         return roots
@@ -2307,6 +2301,23 @@ fn exponent_of(x: f64) -> i32 {
 mod tests {
     use super::*;
     use crate::enclose::{BoxEncloser, Newton};
+
+    /// The rational double roots of Bernstein polynomials with integer coefficients: a cubic
+    /// (3t - 2)^2 (2 - t) (the quadratic f' branch), a quartic (3t - 1)^2 (t - 2)(t + 1)
+    /// (Euclid's gcd), none for simple roots (t = 1/2, 3/4) or a linear f'.
+    #[test]
+    fn rational_double_roots() {
+        let b = |v: &[i64]| v.iter().map(|&x| BigInt::from(x)).collect::<Vec<_>>();
+        let r = |n: i64, d: i64| BigRational::new(BigInt::from(n), BigInt::from(d));
+        assert_eq!(rational_double_root(&b(&[24, -4, -2, 3])), Some(r(2, 3)));
+        assert_eq!(
+            rational_double_root(&b(&[-24, 9, 20, -36, -96])),
+            Some(r(1, 3))
+        );
+        assert_eq!(rational_double_root(&b(&[18, -5, -2, 3])), None);
+        // f = 1 + 3t: f' constant, no root
+        assert_eq!(rational_double_root(&b(&[1, 2, 3, 4])), None);
+    }
 
     fn quad(p0: f64, p1: f64, p2: f64) -> NurbsCurve {
         NurbsCurve::new(

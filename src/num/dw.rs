@@ -68,8 +68,8 @@ use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A double word `hi + lo` (normalised: |lo| <= ulp(hi) / 2) with the extraction's running
-/// error bound `e` (module docs). Only [`Scalar::lerp`] maintains `e`; every other operation
-/// gives NaN there (no bound is claimed for it, and [`clamp_span_dw`] then falls back), so
+/// error bound `e` (module docs). Only [`Scalar::lerp`] maintains `e` (and negation, which
+/// is exact, keeps it); every other operation gives NaN there (no bound is claimed for it, and [`clamp_span_dw`] then falls back), so
 /// the type cannot silently produce an unproved radius.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Dw {
@@ -112,11 +112,12 @@ impl Sub for Dw {
 impl Neg for Dw {
     type Output = Dw;
     #[inline(always)]
+    /// Exact, so the bound stays.
     fn neg(self) -> Dw {
         Dw {
             hi: -self.hi,
             lo: -self.lo,
-            e: f64::NAN,
+            ..self
         }
     }
 }
@@ -133,9 +134,9 @@ impl Mul for Dw {
 
 impl Div for Dw {
     type Output = Dw;
-    /// The quotient by the steps of the knot ratio on double-word operands (not used by the
-    /// extraction, which divides knot differences only; no bound is claimed here).
-    #[inline]
+    /// The quotient q1 + r2 / yh of the module docs' knot ratio (its bound holds for the exact
+    /// double-word knot differences there; no bound is claimed for other operands).
+    #[inline(always)]
     fn div(self, y: Dw) -> Dw {
         let q1 = self.hi / y.hi;
         let r = (-q1).mul_add(y.hi, self.hi);
@@ -166,15 +167,11 @@ impl Scalar for Dw {
     /// The knot ratio of the module docs (exact double-word numerator and denominator).
     #[inline(always)]
     fn knot_ratio_f64(u: f64, a: f64, b: f64) -> Self {
-        let (nh, nl) = two_sum(u, -a);
-        let (dh, dl) = two_sum(b, -a);
-        let q1 = nh / dh;
-        let r = (-q1).mul_add(dh, nh);
-        let r2 = (-q1).mul_add(dl, r + nl);
-        // (its error, <= 12 u^2, is part of the corner cut's bound)
+        // exact double-word differences (TwoSum), then the quotient; its error, <= 12 u^2, is
+        // part of the corner cut's bound
         Dw {
             e: 0.0,
-            ..Dw::norm(q1, r2 / dh)
+            ..Dw::norm(u, -a) / Dw::norm(b, -a)
         }
     }
     /// Not an enclosure (no bound is carried): the nearest interval of hi + lo's two parts.

@@ -292,12 +292,15 @@ pub(crate) fn extremum(
     kind: CandidateKind,
 ) -> Extremum {
     let map = |t: f64| -> (f64, f64) {
-        // (the ends map exactly: u(0) = a, u(1) = b)
+        // (the ends map exactly: u(0) = a, u(1) = b; on [0, 1], u = t)
         if t == 0.0 {
             return (a, a);
         }
-        if t == 1.0 || (a == 0.0 && b == 1.0) {
-            return if t == 1.0 { (b, b) } else { (t, t) };
+        if t == 1.0 {
+            return (b, b);
+        }
+        if a == 0.0 && b == 1.0 {
+            return (t, t);
         }
         let u = (Ddi::exact(a) + Ddi::exact(t) * Ddi::diff(b, a)).to_interval();
         (u.inf().max(a), u.sup().min(b))
