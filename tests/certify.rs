@@ -151,6 +151,74 @@ fn a_small_extremum_above_degree_5_gets_the_optimal_double() {
     assert_optimal_hi_against_mpfr(&c);
 }
 
+/// Curves at the corners of the f64 range (`range_limits`) with an extremum ~1 (or ~1e-2) on
+/// a coordinate whose control values reach ~1e308: the strategies stop within an ulp of that
+/// scale, at a control value (the minimum of the first curve, -0.5476, lies at a local
+/// parameter ~1e-77 of a span ~4e307 wide). The certificate searches the spans again in their
+/// local parameter on the copy scaled for the side (`certify`'s local stage) and reaches the
+/// optimal double with a certificate. Before, the first curve's lower bound stayed at the
+/// control value -0.9116, the second's upper bound (its maximum is the clamped start value
+/// -8.222806890544998e-3) 208,781 doubles above it, both uncertified.
+const FAR_BELOW_THE_SCALE: [(&[u8], usize, bool, f64); 2] = [
+    (
+        br#"{"degree":4,"knots":[0.0,0.0,0.0,0.0,0.0,0.2853928442287943,2.7462668266513264,4.3880170283050603e+307,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308],"control_points":[[1.5815e-320],[-0.6548821751198259],[2.727e-321],[0.19499662868993584],[6.96e-321],[7.20910789981391e+307],[-0.9116402249419511],[2.406e-321]]}"#,
+        0,
+        false,
+        -0.6,
+    ),
+    (
+        br#"{"degree":4,"knots":[0.0,0.0,0.0,0.0,0.0,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308],"control_points":[[-0.008222806890544998,-2.3e-322,-1.35108482340792e+307],[-1.6111131018554346e+307,-2.184e-321,1.7976931348623157e+308],[-9.818129988719301e+307,4.93e-321,1.7976931348623157e+308],[7.737e-321,1.392e-320,-1.7976931348623157e+308],[-7.666701106640445e+307,-1.887e-321,2.6528075253233298e+306]],"weights":[0.5446579558931741,4.589256583636616,0.9833504116308278,2.5094635886278964,4.615310454501131]}"#,
+        0,
+        true,
+        -8.2228068905e-3,
+    ),
+];
+
+#[test]
+fn extrema_far_below_a_scale_near_f64_max_are_certified() {
+    for (i, (json, j, hi, beyond)) in FAR_BELOW_THE_SCALE.iter().enumerate() {
+        let c = nurbs_box::io::parse::parse_curve(json).unwrap();
+        for s in ["newton", "bezier"] {
+            let e = strategy_by_name(s, None).unwrap().enclose(&c);
+            let cb = &e.coords[*j];
+            let (b, ok) = if *hi {
+                (cb.hi, cb.optimal_hi)
+            } else {
+                (cb.lo, cb.optimal_lo)
+            };
+            assert!(ok, "curve {i}, {s}: bound {b:e} not certified");
+            // (beyond the control value the strategies stopped at)
+            assert!(
+                if *hi { b < *beyond } else { b > *beyond },
+                "curve {i}, {s}: bound {b:e}"
+            );
+        }
+    }
+}
+
+/// The same curves against the MPFR reference: the certified bounds are RD(min) / RU(max).
+#[cfg(feature = "mpfr")]
+#[test]
+fn extrema_far_below_a_scale_near_f64_max_agree_with_mpfr() {
+    use nurbs_box::testkit::reference::{check_certificates, optimal_bound, reference_box};
+    for (i, (json, j, hi, _)) in FAR_BELOW_THE_SCALE.iter().enumerate() {
+        let c = nurbs_box::io::parse::parse_curve(json).unwrap();
+        let rb = reference_box(&c);
+        let exact = if *hi { &rb.hi[*j] } else { &rb.lo[*j] };
+        let opt = optimal_bound(exact, c.coord_scale(*j), *hi);
+        for s in ["newton", "bezier"] {
+            let e = strategy_by_name(s, None).unwrap().enclose(&c);
+            check_certificates(&c, &rb, &e).unwrap();
+            let b = if *hi {
+                e.coords[*j].hi
+            } else {
+                e.coords[*j].lo
+            };
+            assert_eq!(b, opt, "curve {i}, {s}");
+        }
+    }
+}
+
 #[test]
 fn rational_circle_extrema_at_knots() {
     // the 9-point circle (rounded weights 1/sqrt 2: an ellipse-like conic through the four

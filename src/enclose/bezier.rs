@@ -759,7 +759,28 @@ pub(crate) fn needs_refinement(
 /// Pieces per side of the local refinement ([`refine_local`]).
 const REFINE_PIECES: usize = 256;
 
-/// A piece of the local refinement: span k over its local parameter range [t0, t1], its
+/// A piece of [`local_search`] whose points all lie within this distance is not split: the
+/// double-double points carry absolute error terms of a few 2^-1074 each (subnormal low
+/// parts), so near zero no split narrows them further.
+const RESOLVED_ABS: f64 = f64::from_bits(1 << 24); // 2^-1050 (subnormal: 2^24 times 2^-1074)
+
+/// Whether a piece of [`local_search`] with the sign-adjusted points `co` and a `gap` between
+/// its bound and the attained value is bounded by rounding alone: the point that sets the
+/// bound (the largest upper end) is at least half the gap wide, and that width is not small
+/// against the point itself (2^-10 of its magnitude: a value that cancelled, e.g. ~0 from terms
+/// ~1, whose enclosure no split narrows; points 2^-60 wide, e.g. from clustered knots, still
+/// narrow as the pieces shrink). Wide enclosures of other points (~2^-53 of 1e270
+/// next to an extremum ~1e-38) do not count: they narrow, or drop out of the bound, as the
+/// pieces shrink towards the extremum.
+fn rounding_bound(co: &[Ddi], gap: f64) -> bool {
+    let top = co
+        .iter()
+        .map(|x| x.to_interval())
+        .max_by(|a, b| a.sup().total_cmp(&b.sup()));
+    top.is_some_and(|i| 2.0 * i.wid() >= gap && i.wid() >= i.mag() * (1.0 / 1024.0))
+}
+
+/// A piece of the local search: span k over its local parameter range [t0, t1], its
 /// sign-adjusted Cartesian Bézier points (double-double) and their largest upper end `pri`.
 #[derive(Default)]
 struct LocalPiece {
@@ -776,57 +797,72 @@ fn total_key(x: f64) -> i64 {
     b ^ ((((b >> 63) as u64) >> 1) as i64)
 }
 
-/// The local refinement of a loose side ([`loose`]): the pieces of the branch and bound whose
-/// bounds exceed the attained value are searched again in the local parameter t in [0, 1] of
-/// their span, on the span's Bézier segment in double-double (`dseg(k)`: coordinate j's rows of
-/// [`HSpline::bezier_segment`], NURBS Book A5.6; thesis sec. 4.2), by the same best-first
-/// subdivision with splits at f64 critical-point estimates ([`critical`]) and exact f64 local
-/// parameters.
+/// The outcome of [`local_search`]: every piece left with a bound above the attained value
+/// (`bounds`: bound, span, local range, kind), the largest lower end of a value attained
+/// (`attained`, sign-adjusted) and the largest strict witness (`witness`: the curve exceeds it).
+pub(crate) struct LocalResult {
+    pub bounds: Vec<(f64, usize, f64, f64, CandidateKind)>,
+    pub attained: f64,
+    pub witness: f64,
+    pub stats: Stats,
+}
+
+impl LocalResult {
+    /// The bound of everything searched: max(largest piece bound, attained value).
+    pub fn upper(&self) -> f64 {
+        self.bounds
+            .iter()
+            .fold(self.attained, |m, x| m.max(x.0))
+    }
+}
+
+/// Best-first search for max sign * C_j over pieces of spans in their local parameter t in
+/// [0, 1], on the spans' Bézier segments in double-double (`segs`: span k, coordinate j's
+/// homogeneous rows of [`HSpline::bezier_segment`] with a = 0, b = 1; NURBS Book A5.6, thesis
+/// sec. 4.2), starting from the pieces `start` (span, t0, t1), with splits at f64
+/// critical-point estimates ([`critical`]) at exact f64 local parameters. `right_attained(k)`:
+/// whether span k's value at t = 1 is a curve value (not the left limit at a jump). Used by
+/// `bezier`'s local refinement ([`refine_local`]) and by the certificate's search of curves
+/// with extreme magnitudes (`certify`), at most `max_pieces` pieces.
 ///
-/// Why: pieces of the search in u are cut at f64 values of u. On a span a few thousand
-/// doubles of u wide (clustered knots) the maximiser lies between two of them, and no piece
-/// can resolve it; where extreme weights make the [`Mr`] points of a piece a few hundred ulps
-/// wide, the pieces stay "numerically flat" and are bounded as a whole. In t, f64 parameters
-/// are dense over the span, and double-double points are ~2^-100 relative narrow.
-///
-/// Soundness: the refined pieces cover the old ones (`u_to_local` rounds outward; on [t0, t1]
-/// the segment is the curve on the span's closed parameter range, its right end the left limit
-/// at a jump), each is bounded by the hull of its Cartesian Bézier points (convex hull
+/// Soundness: every piece is bounded by the hull of its Cartesian Bézier points (convex hull
 /// property, weights > 0; the de Casteljau splits at exact f64 t1 and at an enclosure of
 /// t0 / t1 enclose the exact sub-segment, [`BezierSeg::sub_points`]) or, when no inner point
-/// exceeds its end points, by its end values; values count as attained at t0 (a value of the
-/// span's piece at an exact parameter, or the first point of the span) and at t1 < 1 or at a
-/// span end that is no jump. The old bounds of the refined pieces are replaced only if the
-/// side's bound goes down.
-fn refine_local(
-    c: &NurbsCurve,
-    spans: &[usize],
+/// exceeds its end points, by its end values; a piece is dropped only when its bound is <= a
+/// value attained. Values count as attained at t0 (a value of the span's piece at an exact
+/// parameter, or the first point of the span) and at t1 < 1 or at a span end that is no jump,
+/// and at the split points (de Casteljau evaluation, [`BezierSeg::eval_local`]). So the
+/// maximum over the start pieces is <= [`LocalResult::upper`].
+///
+/// Splits: at the critical-point estimate when it lies inside the piece; otherwise (a maximiser
+/// at an end of the piece, where Newton converges to the end) 1/64 of the width from the end
+/// with the larger value, so that the piece next to the maximiser narrows by 64 per split and
+/// the overshoot of its inner points (second order in the width) by 4096; else at the middle.
+pub(crate) fn local_search(
+    p: usize,
     sign: f64,
-    dseg: &mut impl FnMut(usize) -> BezierSeg<Ddi>,
-    side: &mut Side,
-) {
-    let kn = c.knots();
-    let p = c.degree();
-    if p < 2 {
-        return;
-    }
-    let last = spans[spans.len() - 1];
-    let right_attained =
-        |k: usize| k == last || kn.iter().filter(|&&x| x == kn[k + 1]).count() <= p;
+    segs: &[(usize, BezierSeg<Ddi>)],
+    start: &[(usize, f64, f64)],
+    right_attained: &dyn Fn(usize) -> bool,
+    (attained, witness): (f64, f64),
+    max_pieces: usize,
+) -> LocalResult {
     let signed = |x: Ddi| if sign < 0.0 { -x } else { x };
-    let attained0 = side.attained;
-    let mut out = Side::new();
-    out.attained = side.attained;
-    out.witness = side.witness;
-    let mut segs: Vec<(usize, BezierSeg<Ddi>)> = Vec::new();
+    let mut out = LocalResult {
+        bounds: Vec::new(),
+        attained,
+        witness,
+        stats: Stats::default(),
+    };
+    let seg_of = |k: usize| &segs.iter().find(|s| s.0 == k).unwrap().1;
     // (the pieces, and a max-heap of (key of pri, index))
     let mut store: Vec<LocalPiece> = Vec::new();
     let mut heap = std::collections::BinaryHeap::new();
     type Heap = std::collections::BinaryHeap<(i64, usize)>;
-    let mut kept: SmallVec<[(f64, Extremum); 4]> = SmallVec::new();
     let ub = |co: &[Ddi]| co.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.to_interval().sup()));
     // a piece of span k's segment over [t0, t1]: its sign-adjusted Cartesian points, pushed
-    let push = |heap: &mut Heap, store: &mut Vec<LocalPiece>, seg: &BezierSeg<Ddi>, k, t0, t1| {
+    let push = |heap: &mut Heap, store: &mut Vec<LocalPiece>, k: usize, t0: f64, t1: f64| {
+        let seg = seg_of(k);
         let t1s = (t1 < 1.0).then(|| Ddi::exact(t1));
         let t0s = (t0 > 0.0).then(|| Ddi::exact(t0) / Ddi::exact(t1));
         let co: Vec<Ddi> = cartesian(seg.sub_points(t1s.as_ref(), t0s.as_ref()), 1, seg.rational)
@@ -842,47 +878,20 @@ fn refine_local(
             co,
         });
     };
-    for &(b, e) in &side.cands {
-        let k = spans
-            .iter()
-            .copied()
-            .find(|&k| kn[k] <= e.u_lo && e.u_hi <= kn[k + 1]);
-        let (true, Some(k)) = (b > attained0 && e.u_lo < e.u_hi, k) else {
-            kept.push((b, e));
-            continue;
-        };
-        if !segs.iter().any(|x| x.0 == k) {
-            let mut s = dseg(k);
-            // (the local parameter itself: `critical` then estimates t)
-            (s.a, s.b) = (0.0, 1.0);
-            segs.push((k, s));
+    for &(k, t0, t1) in start {
+        if t0 < t1 {
+            push(&mut heap, &mut store, k, t0, t1);
         }
-        let seg = &segs.iter().find(|x| x.0 == k).unwrap().1;
-        let (t0, t1) = crate::enclose::newton::u_to_local(kn[k], kn[k + 1], e.u_lo, e.u_hi);
-        if t0 >= t1 {
-            kept.push((b, e));
-            continue;
-        }
-        push(&mut heap, &mut store, seg, k, t0, t1);
     }
-    let attain = |out: &mut Side, v: Ddi| {
+    let attain = |out: &mut LocalResult, v: Ddi| {
         let iv = v.to_interval();
-        out.attain(iv);
+        // (an empty interval has inf = +inf and must never count as attained)
         if !iv.is_empty() {
+            if iv.inf() > out.attained {
+                out.attained = iv.inf();
+            }
             out.witness = out.witness.max(v.strictly_below());
         }
-    };
-    let bound = |out: &mut Side, b: f64, k: usize, t0: f64, t1: f64, kind| {
-        let (u_lo, u_hi) = crate::enclose::newton::local_to_u(kn[k], kn[k + 1], t0, t1);
-        out.bound(
-            b,
-            Extremum {
-                u_lo,
-                u_hi,
-                unique: false,
-                kind,
-            },
-        );
     };
     let mut pieces = 0usize;
     while let Some((_, i)) = heap.pop() {
@@ -890,7 +899,7 @@ fn refine_local(
             break;
         }
         let LocalPiece { pri, k, t0, t1, co } = std::mem::take(&mut store[i]);
-        let seg = &segs.iter().find(|s| s.0 == k).unwrap().1;
+        let seg = seg_of(k);
         pieces += 1;
         let (e0, e1) = (co[0], co[p]);
         attain(&mut out, e0);
@@ -903,20 +912,30 @@ fn refine_local(
             .fold(f64::NEG_INFINITY, |m, x| m.max(x.to_interval().sup()));
         if inner <= i0.inf().max(i1.inf()) {
             // the piece's maximum is an end value
-            bound(&mut out, i0.sup().max(i1.sup()), k, t0, t1, CandidateKind::Critical);
+            out.bounds
+                .push((i0.sup().max(i1.sup()), k, t0, t1, CandidateKind::Critical));
             continue;
         }
-        let m = critical(seg, t0, t1).unwrap_or(0.5 * t0 + 0.5 * t1);
+        let w = t1 - t0;
+        let m = critical(seg, t0, t1)
+            .filter(|&m| t0 < m && m < t1)
+            .unwrap_or(if i1.sup() >= i0.sup() {
+                t1 - w / 64.0
+            } else {
+                t0 + w / 64.0
+            });
         let lowest = co.iter().fold(f64::INFINITY, |m, x| m.min(x.to_interval().inf()));
         if pri <= out.attained.next_up()
             || pri <= lowest.next_up().next_up()
-            || pieces >= REFINE_PIECES
+            || pri - lowest <= RESOLVED_ABS
+            || rounding_bound(&co, pri - out.attained)
+            || pieces >= max_pieces
             || !(t0 < m && m < t1)
         {
             // optimal already (no double between the attained value and the bound), resolved
             // to rounding (all points within two doubles: a near-tie with a double, which only
             // the certificate's exact stages decide), out of pieces, or no f64 parameter inside
-            bound(&mut out, pri, k, t0, t1, CandidateKind::Unresolved);
+            out.bounds.push((pri, k, t0, t1, CandidateKind::Unresolved));
             continue;
         }
         let v = cartesian(seg.eval_local(&Ddi::exact(m)), 1, seg.rational)[0];
@@ -924,15 +943,98 @@ fn refine_local(
         out.stats.point_evaluations += 1;
         out.stats.subdivisions += 1;
         for (a, b) in [(t0, m), (m, t1)] {
-            push(&mut heap, &mut store, seg, k, a, b);
+            push(&mut heap, &mut store, k, a, b);
         }
     }
     // pieces left in the heap are bounded by their points (or pruned: <= attained)
     for (_, i) in heap {
         let x = &store[i];
         if x.pri > out.attained {
-            bound(&mut out, x.pri, x.k, x.t0, x.t1, CandidateKind::Unresolved);
+            out.bounds
+                .push((x.pri, x.k, x.t0, x.t1, CandidateKind::Unresolved));
         }
+    }
+    out
+}
+
+/// The local refinement of a loose side ([`loose`]): the pieces of the branch and bound whose
+/// bounds exceed the attained value are searched again in the local parameter t in [0, 1] of
+/// their span ([`local_search`], on the span's Bézier segment in double-double, `dseg(k)`:
+/// coordinate j's rows of [`HSpline::bezier_segment`]).
+///
+/// Why: pieces of the search in u are cut at f64 values of u. On a span a few thousand
+/// doubles of u wide (clustered knots) the maximiser lies between two of them, and no piece
+/// can resolve it; where extreme weights make the [`Mr`] points of a piece a few hundred ulps
+/// wide, the pieces stay "numerically flat" and are bounded as a whole. In t, f64 parameters
+/// are dense over the span, and double-double points are ~2^-100 relative narrow.
+///
+/// Soundness: the refined pieces cover the old ones (`u_to_local` rounds outward; on [t0, t1]
+/// the segment is the curve on the span's closed parameter range, its right end the left limit
+/// at a jump), and [`local_search`] bounds them. The old bounds of the refined pieces are
+/// replaced only if the side's bound goes down.
+fn refine_local(
+    c: &NurbsCurve,
+    spans: &[usize],
+    sign: f64,
+    dseg: &mut impl FnMut(usize) -> BezierSeg<Ddi>,
+    side: &mut Side,
+) {
+    let kn = c.knots();
+    let p = c.degree();
+    if p < 2 {
+        return;
+    }
+    let last = spans[spans.len() - 1];
+    let right_attained =
+        |k: usize| k == last || kn.iter().filter(|&&x| x == kn[k + 1]).count() <= p;
+    let mut segs: Vec<(usize, BezierSeg<Ddi>)> = Vec::new();
+    let mut kept: SmallVec<[(f64, Extremum); 4]> = SmallVec::new();
+    let mut start: Vec<(usize, f64, f64)> = Vec::new();
+    for &(b, e) in &side.cands {
+        let k = spans
+            .iter()
+            .copied()
+            .find(|&k| kn[k] <= e.u_lo && e.u_hi <= kn[k + 1]);
+        let (true, Some(k)) = (b > side.attained && e.u_lo < e.u_hi, k) else {
+            kept.push((b, e));
+            continue;
+        };
+        let (t0, t1) = crate::enclose::newton::u_to_local(kn[k], kn[k + 1], e.u_lo, e.u_hi);
+        if t0 >= t1 {
+            kept.push((b, e));
+            continue;
+        }
+        if !segs.iter().any(|x| x.0 == k) {
+            let mut s = dseg(k);
+            // (the local parameter itself: `critical` then estimates t)
+            (s.a, s.b) = (0.0, 1.0);
+            segs.push((k, s));
+        }
+        start.push((k, t0, t1));
+    }
+    let r = local_search(
+        p,
+        sign,
+        &segs,
+        &start,
+        &right_attained,
+        (side.attained, side.witness),
+        REFINE_PIECES,
+    );
+    let mut out = Side::new();
+    out.attained = r.attained;
+    out.witness = r.witness;
+    for &(b, k, t0, t1, kind) in &r.bounds {
+        let (u_lo, u_hi) = crate::enclose::newton::local_to_u(kn[k], kn[k + 1], t0, t1);
+        out.bound(
+            b,
+            Extremum {
+                u_lo,
+                u_hi,
+                unique: false,
+                kind,
+            },
+        );
     }
     for (b, e) in kept {
         out.bound(b, e);
@@ -944,7 +1046,7 @@ fn refine_local(
     }
     side.attained = side.attained.max(out.attained);
     side.witness = side.witness.max(out.witness);
-    side.stats.add(&out.stats);
+    side.stats.add(&r.stats);
 }
 
 /// The f64 span filter: `(upper bound, attained value)` of sign * C_j on span k from the f64

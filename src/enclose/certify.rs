@@ -225,6 +225,27 @@ const BEZIER_DEPTH_INTERIOR: u32 = 6;
 const MAX_DEPTH: u32 = 64;
 /// Exact concavity arguments per lowering proof.
 pub const MAX_EXACT_TRIES: usize = 4;
+/// Exact point values per lowering proof (the end of a monotone box whose double-double value
+/// holds the target): each costs a de Boor triangle in big rationals, milliseconds with knots
+/// near ±f64::MAX next to subnormal ones (2,000-bit numbers), where 256 boxes took 0.4 s.
+pub const MAX_EXACT_POINTS: usize = 16;
+
+/// What a lowering proof may still spend in exact arithmetic: concavity arguments
+/// ([`MAX_EXACT_TRIES`]) and point values ([`MAX_EXACT_POINTS`]).
+#[derive(Default)]
+struct ExactBudget {
+    tries: usize,
+    points: usize,
+}
+
+impl ExactBudget {
+    /// No exact arithmetic at all.
+    const SPENT: ExactBudget = ExactBudget {
+        tries: MAX_EXACT_TRIES,
+        points: MAX_EXACT_POINTS,
+    };
+}
+
 /// Candidates that go to the exact stage.
 const EXACT_CANDIDATES: usize = 1;
 
@@ -299,6 +320,7 @@ pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescali
                 within: LOWER_WITHIN_ULPS_RESCALED,
                 boxes: MAX_BOXES_RESCALED,
                 exact_first: true,
+                local: true,
             };
             for &max_side in which {
                 let mut cv = Curves {
@@ -356,6 +378,9 @@ struct Scaling {
     /// whole branch and bound (on the range-limits curves whose certificate costs most: 11%
     /// fewer certification instructions)
     exact_first: bool,
+    /// whether a bound many doubles of its own size above the attained value is searched
+    /// again span by span in the local parameter first ([`local_stage`]; rescaled curves)
+    local: bool,
 }
 
 impl Scaling {
@@ -365,6 +390,7 @@ impl Scaling {
         within: LOWER_WITHIN_ULPS,
         boxes: MAX_BOXES,
         exact_first: false,
+        local: false,
     };
 }
 
@@ -524,7 +550,7 @@ impl<'a> Evals<'a> {
         u: &Exact,
         k: usize,
     ) -> Option<Vec<Exact>> {
-        if !self.exact_possible() {
+        if !self.exact_possible() || !exact_value_is_cheap(self.c, span, u) {
             return None;
         }
         let c = self.c;
@@ -735,13 +761,13 @@ fn certify_side(
     let dn = |x: f64| scale_outward(x, -s, false);
     // (a scaled value seen, back in the curve's units: only to choose lowering targets)
     let back = |x: f64| scale_outward(x, s, true);
-    let (mut bound, inner, witness) = if max_side {
+    let (mut bound, mut inner, mut witness) = if max_side {
         (cb.hi, cb.inner_hi, cb.witness_hi)
     } else {
         (-cb.lo, -cb.inner_lo, -cb.witness_lo)
     };
     let all: &[Extremum] = if max_side { &cb.argmax } else { &cb.argmin };
-    let cands: Vec<Extremum> = all[..all.len().min(MAX_CANDIDATES)]
+    let mut cands: Vec<Extremum> = all[..all.len().min(MAX_CANDIDATES)]
         .iter()
         .map(|x| Extremum {
             u_lo: scale_outward(x.u_lo, -sc.knot_exp, false),
@@ -749,6 +775,34 @@ fn certify_side(
             ..*x
         })
         .collect();
+    // (0. on a rescaled curve, a bound many doubles of its own size above the attained value,
+    // within the strategy's tolerance of a scale near f64::MAX: the spans searched again in
+    // their local parameter on the copy scaled for this side, `local_stage`)
+    // (only where the strategy's gap is within `within` ulps of the scale, as for the search
+    // stages below: a loose bound such as the control hull's stays as it is)
+    let scale0 = back(cv.below(sign).c.coord_scale(j));
+    if sc.local
+        && bound.is_finite()
+        && far_below(bound, inner, 0.0, LOWER_WITHIN_ULPS)
+        && !far_below(bound, inner, scale0, sc.within)
+    {
+        if let Some(r) = local_stage(cv, j, sign, dn(inner)) {
+            // (bounds of the copy above g, rounded up; values of the copy below g, rounded down)
+            bound = bound.min(scale_outward(r.upper, s, true));
+            inner = inner.max(scale_outward(r.attained, s, false));
+            witness = witness.max(scale_outward(r.witness, s, false));
+            let found: Vec<Extremum> = r.cands.into_iter().take(MAX_CANDIDATES).collect();
+            cands.splice(0..0, found);
+            cands.truncate(MAX_CANDIDATES);
+            if max_side {
+                cb.inner_hi = cb.inner_hi.max(inner);
+                cb.witness_hi = cb.witness_hi.max(witness);
+            } else {
+                cb.inner_lo = cb.inner_lo.min(-inner);
+                cb.witness_lo = cb.witness_lo.min(-witness);
+            }
+        }
+    }
     let cands = &cands[..];
     let within = sc.within;
     let mut proved = false;
@@ -949,6 +1003,113 @@ fn certify_side(
         cb.lo = -bound;
     }
     proved
+}
+
+/// Spans per side searched by [`local_stage`] (more: the stage is skipped).
+const LOCAL_MAX_SPANS: usize = 32;
+/// Pieces per curve and side of [`local_stage`]'s search.
+const LOCAL_PIECES: usize = 512;
+
+/// What [`local_stage`] found, in the scaled units of the evaluated curves: a bound of g on
+/// the curve above it, a value attained and a strict witness on the curve below it, and the
+/// pieces (as parameter ranges of the evaluated curve) whose bounds exceed that value.
+struct LocalFound {
+    upper: f64,
+    attained: f64,
+    witness: f64,
+    cands: Vec<Extremum>,
+}
+
+/// The search stage for a bound of a rescaled curve that lies many doubles of its own size
+/// above the attained value: the strategies stop within an ulp of the coordinate scale, and a
+/// scale near f64::MAX leaves an extremum ~1 (or 1e-300) anywhere below it; the search in u
+/// cannot narrow such an extremum either where it lies at a local parameter ~1e-77 of a span
+/// ~1e307 wide. So every span whose control values exceed `attained` (g of the copy above g,
+/// scaled: a value the enclosed curve reaches, rounded down) is searched in its local
+/// parameter t in [0, 1] on its double-double Bézier segment ([`Evals::ddi_segment`]; the
+/// copy scaled for this side, so that values near the bound are near 1 and ~2^-100 relative
+/// narrow), by `bezier`'s local search ([`crate::enclose::bezier::local_search`]: best-first,
+/// convex hull bounds, splits at critical-point estimates). Its bound covers every span
+/// (a span left out has control values, which bound it by the convex hull property with
+/// weights > 0, at most `attained`); with two copies (rounded coordinates) the bound comes
+/// from the copy above g, the values and witness from a second search on the copy below g.
+/// `None` where the stage does not apply (degree < 2, too many spans, a non-finite bound).
+fn local_stage(cv: &mut Curves, j: usize, sign: f64, attained: f64) -> Option<LocalFound> {
+    let search = |ev: &mut Evals, attained: f64| {
+        let c = ev.c;
+        let (kn, p, n) = (c.knots(), c.degree(), c.num_points() - 1);
+        if p < 2 {
+            return None;
+        }
+        let last = (p..=n).rev().find(|&k| kn[k] < kn[k + 1])?;
+        let start: Vec<(usize, f64, f64)> = (p..=n)
+            .filter(|&k| kn[k] < kn[k + 1])
+            .filter(|&k| {
+                (k - p..=k)
+                    .map(|i| sign * c.control_point(i)[j])
+                    .fold(f64::NEG_INFINITY, f64::max)
+                    > attained
+            })
+            .map(|k| (k, 0.0, 1.0))
+            .collect();
+        if start.len() > LOCAL_MAX_SPANS {
+            return None;
+        }
+        let segs: Vec<(usize, BezierSeg<Ddi>)> = start
+            .iter()
+            .map(|&(k, _, _)| {
+                let mut s = ev.ddi_segment(k).coord(j);
+                (s.a, s.b) = (0.0, 1.0);
+                (k, s)
+            })
+            .collect();
+        let right_attained = |k: usize| k == last || multiplicity(kn, kn[k + 1]) <= p;
+        let r = crate::enclose::bezier::local_search(
+            p,
+            sign,
+            &segs,
+            &start,
+            &right_attained,
+            (attained, f64::NEG_INFINITY),
+            LOCAL_PIECES,
+        );
+        let upper = r.upper();
+        if !upper.is_finite() {
+            return None;
+        }
+        let mut cands: Vec<(f64, Extremum)> = r
+            .bounds
+            .iter()
+            .filter(|b| b.0 >= r.attained)
+            .filter_map(|&(b, k, t0, t1, kind)| {
+                let (u_lo, u_hi) = crate::enclose::newton::local_to_u(kn[k], kn[k + 1], t0, t1);
+                (u_lo <= u_hi).then_some((
+                    b,
+                    Extremum {
+                        u_lo,
+                        u_hi,
+                        unique: false,
+                        kind,
+                    },
+                ))
+            })
+            .collect();
+        cands.sort_by(|a, b| b.0.total_cmp(&a.0));
+        Some(LocalFound {
+            upper,
+            attained: r.attained,
+            witness: r.witness,
+            cands: cands.into_iter().map(|x| x.1).collect(),
+        })
+    };
+    let mut found = search(cv.above(sign), attained)?;
+    if cv.up.is_some() {
+        // (values of the copy above g are not values of the enclosed curve)
+        let below = search(cv.below(sign), attained)?;
+        found.attained = below.attained;
+        found.witness = below.witness;
+    }
+    Some(found)
 }
 
 /// Keep in `top` the enclosure with the larger centre.
@@ -1336,7 +1497,11 @@ fn prove_at_most(
     let mut boxes = 0usize;
     let mut pieces = MAX_PIECES;
     // (without `exact`: no exact evaluation at all)
-    let mut exact_tries = if exact { 0 } else { MAX_EXACT_TRIES };
+    let mut exact_tries = if exact {
+        ExactBudget::default()
+    } else {
+        ExactBudget::SPENT
+    };
     // spans nearest the candidates first: an early failure costs least
     let mut spans: Vec<usize> = (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect();
     let near = |k: usize| cands.iter().any(|x| x.u_lo <= kn[k + 1] && x.u_hi >= kn[k]);
@@ -1691,13 +1856,40 @@ fn exact_bernstein_rule(ev: &mut Evals, k: usize, j: usize, sign: f64, t: f64) -
 fn exact_is_cheap(c: &NurbsCurve, k: usize, j: usize, t: f64) -> bool {
     let p = c.degree();
     let kn = c.knots();
-    let ok =
-        |x: f64| x == 0.0 || (x.is_finite() && exponent_of(x.abs()).abs() <= EXACT_RULE_MAX_EXP);
+    let ok = short_dyadic;
     let len = kn[k + 1] - kn[k];
     ok(t)
         && ok(len)
         && (k - p..=k).all(|i| ok(c.control_point(i)[j]) && ok(c.weight(i)))
-        && kn[k - p + 1..=k + p].iter().all(|&u| ok((u - kn[k]) / len))
+        && kn[k - p + 1..=k + p]
+            .iter()
+            .all(|&u| ok(u) && ok((u - kn[k]) / len))
+}
+
+/// Whether x is 0 or a rational of at most about 53 + [`EXACT_RULE_MAX_EXP`] bits on either
+/// side of the binary point: its binary exponent within +-[`EXACT_RULE_MAX_EXP`] and its
+/// lowest set bit at or above 2^-(EXACT_RULE_MAX_EXP + 53) (a subnormal knot such as 6e-323,
+/// a 2^-1072 bit, makes every exact quotient with it a rational of over a thousand bits, however
+/// ordinary the f64 quotient looks).
+fn short_dyadic(x: f64) -> bool {
+    x == 0.0
+        || (x.is_finite()
+            && exponent_of(x.abs()).abs() <= EXACT_RULE_MAX_EXP
+            && super::driver::low_exp(x) >= -(EXACT_RULE_MAX_EXP + 53))
+}
+
+/// Whether an exact value of span k's piece at u ([`Evals::exact_in`]) is cheap enough: the
+/// span's 2p knots are short rationals ([`short_dyadic`]) and u has a binary exponent within
+/// +-[`EXACT_RULE_MAX_EXP`] (or is 0).
+/// The de Boor triangle's alphas are quotients of knot differences; knots near ±f64::MAX next
+/// to subnormal ones (2^±1074) make rationals of thousands of bits, and one value with
+/// derivatives cost milliseconds (a lowering proof on such a span took 0.4 s).
+fn exact_value_is_cheap(c: &NurbsCurve, k: usize, u: &Exact) -> bool {
+    let ok =
+        |x: f64| x == 0.0 || (x.is_finite() && exponent_of(x.abs()).abs() <= EXACT_RULE_MAX_EXP);
+    let p = c.degree();
+    let kn = c.knots();
+    ok(u.to_f64()) && kn[k + 1 - p..=k + p].iter().all(|&x| short_dyadic(x))
 }
 
 /// The integer coefficients of [`exact_bernstein_rule`] straight from the f64 data when span k
@@ -2019,7 +2211,7 @@ fn box_at_most(
     lo: f64,
     hi: f64,
     near_cand: bool,
-    exact_tries: &mut usize,
+    exact_tries: &mut ExactBudget,
 ) -> BoxVerdict {
     // f64 intervals first (natural and mean value forms): boxes away from the extremum end
     // here, at a fraction of the double-double cost
@@ -2038,8 +2230,7 @@ fn box_at_most(
     if g[0].is_at_most(t) {
         return BoxVerdict::Below;
     }
-    let exact_ok = *exact_tries < MAX_EXACT_TRIES;
-    let point_at_most = |ev: &mut Evals, u: f64| -> Option<bool> {
+    let point_at_most = |ev: &mut Evals, u: f64, budget: &mut ExactBudget| -> Option<bool> {
         if let Some(x) = ev
             .knot_value(j, k, u)
             .or_else(|| ev.clamped_end_value(j, u))
@@ -2055,9 +2246,10 @@ fn box_at_most(
         if v[0].is_above(t) {
             return Some(false);
         }
-        if !exact_ok {
+        if budget.points >= MAX_EXACT_POINTS {
             return None;
         }
+        budget.points += 1;
         let e = ev.exact_in(k, j, sign, &Exact::of(u), 0)?;
         Some(!e[0].gt_f64(t))
     };
@@ -2065,7 +2257,7 @@ fn box_at_most(
     if d1.inf() >= 0.0 || d1.sup() <= 0.0 {
         // monotone on the box: the maximum is at one end
         let end = if d1.inf() >= 0.0 { hi } else { lo };
-        return match point_at_most(ev, end) {
+        return match point_at_most(ev, end, exact_tries) {
             Some(true) => BoxVerdict::Below,
             Some(false) => BoxVerdict::Above,
             None => BoxVerdict::Stuck,
@@ -2097,12 +2289,12 @@ fn box_at_most(
             // the box is split (an exact tie at a critical point, e.g. a symmetric curve's
             // maximum at a knot). Only the exact rule below can; without exact tries left,
             // the proof stops here instead of halving towards u to the depth limit.
-            Concave::Straddle if *exact_tries >= MAX_EXACT_TRIES => return BoxVerdict::Stuck,
+            Concave::Straddle if exact_tries.tries >= MAX_EXACT_TRIES => return BoxVerdict::Stuck,
             _ => {}
         }
     }
-    if g[2].to_interval().sup() < 0.0 && *exact_tries < MAX_EXACT_TRIES {
-        *exact_tries += 1;
+    if g[2].to_interval().sup() < 0.0 && exact_tries.tries < MAX_EXACT_TRIES {
+        exact_tries.tries += 1;
         if let Some(v) =
             concave_at_most(ev, k, j, sign, t, lo, hi, gm[1].to_f64(), gm[2].to_f64(), m)
         {
@@ -2500,8 +2692,19 @@ mod tests {
         let t = 1.9312094010166787;
         let mut ev = Evals::new(&c, &c, 0);
         // (exact tries used up, then none used)
-        for (mut tries, stuck) in [(MAX_EXACT_TRIES, true), (0, false)] {
-            let v = box_at_most(&mut ev, 5, 0, 1.0, (t, t), -0.015625, 0.0, true, &mut tries);
+        for (tries, stuck) in [(MAX_EXACT_TRIES, true), (0, false)] {
+            let mut budget = ExactBudget { tries, points: 0 };
+            let v = box_at_most(
+                &mut ev,
+                5,
+                0,
+                1.0,
+                (t, t),
+                -0.015625,
+                0.0,
+                true,
+                &mut budget,
+            );
             assert!(if stuck {
                 matches!(v, BoxVerdict::Stuck)
             } else {
@@ -2512,5 +2715,27 @@ mod tests {
         let e = Newton::default().enclose(&c);
         assert_eq!(e.coords[0].hi, t);
         assert!(e.coords[0].optimal_hi);
+    }
+
+    /// The cost guard of exact arithmetic: a subnormal knot (a 2^-1072 bit) or one near
+    /// f64::MAX makes exact values of the spans next to it unavailable (rationals of thousands
+    /// of bits), ordinary knots do not; the Bernstein rule's guard likewise.
+    #[test]
+    fn exact_values_are_refused_next_to_range_limit_knots() {
+        assert!(short_dyadic(0.1) && short_dyadic(0.0) && short_dyadic(-3.5e50));
+        assert!(!short_dyadic(6e-323) && !short_dyadic(f64::MAX) && !short_dyadic(1e-200));
+        let mut kn = vec![0.0; 3];
+        kn.extend([6e-323, 0.5, 0.75]);
+        kn.extend([1.0; 3]);
+        let pts: Vec<Vec<f64>> = (0..6).map(|i| vec![i as f64, 1.0]).collect();
+        let c = NurbsCurve::new(2, kn, pts, None).unwrap();
+        let u = Exact::of(0.6);
+        // span [0.5, 0.75] (k = 4) reads knots 6e-323 .. 1; span [0.75, 1] (k = 5) does not
+        assert!(!exact_value_is_cheap(&c, 4, &u));
+        assert!(exact_value_is_cheap(&c, 5, &Exact::of(0.8)));
+        assert!(!exact_is_cheap(&c, 4, 0, 0.5));
+        let mut ev = Evals::new(&c, &c, 0);
+        assert!(ev.exact_in(4, 0, 1.0, &u, 0).is_none());
+        assert!(ev.exact_in(5, 0, 1.0, &Exact::of(0.8), 0).is_some());
     }
 }
