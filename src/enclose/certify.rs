@@ -225,6 +225,12 @@ const BEZIER_DEPTH_INTERIOR: u32 = 6;
 const MAX_DEPTH: u32 = 64;
 /// Exact concavity arguments per lowering proof.
 pub const MAX_EXACT_TRIES: usize = 4;
+/// Exact values (with derivatives, at f64 or dyadic parameters: [`Evals::exact_in`]) per
+/// evaluated curve, i.e. per coordinate (both sides, every round): a near-tie on a rational
+/// curve with extreme weights ran 96 of them at ~0.3 ms each through the exact stage's and the
+/// concavity rule's Newton levels.
+pub const MAX_EXACT_EVALS: usize = 24;
+
 /// Exact point values per lowering proof (the end of a monotone box whose double-double value
 /// holds the target): each costs a de Boor triangle in big rationals, milliseconds with knots
 /// near ±f64::MAX next to subnormal ones (2,000-bit numbers), where 256 boxes took 0.4 s.
@@ -443,6 +449,8 @@ struct Evals<'a> {
     exact: Option<CurveEval<Exact>>,
     /// the homogeneous curve in exact rationals (Bézier segments for [`exact_bernstein_rule`])
     hexact: Option<HSpline<Exact>>,
+    /// exact values computed so far ([`MAX_EXACT_EVALS`])
+    exact_evals: usize,
 }
 
 impl<'a> Evals<'a> {
@@ -459,6 +467,7 @@ impl<'a> Evals<'a> {
             buf: Vec::new(),
             exact: None,
             hexact: None,
+            exact_evals: 0,
         }
     }
 
@@ -550,9 +559,13 @@ impl<'a> Evals<'a> {
         u: &Exact,
         k: usize,
     ) -> Option<Vec<Exact>> {
-        if !self.exact_possible() || !exact_value_is_cheap(self.c, span, u) {
+        if !self.exact_possible()
+            || !exact_value_is_cheap(self.c, span, u)
+            || self.exact_evals >= MAX_EXACT_EVALS
+        {
             return None;
         }
+        self.exact_evals += 1;
         let c = self.c;
         let e = self.exact.get_or_insert_with(|| CurveEval::new(c, 2));
         let v = e.coord_derivs_in_span(span, u, k, j);
