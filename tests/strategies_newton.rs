@@ -203,6 +203,29 @@ proptest! {
     }
 }
 
+/// A curve whose first span becomes ~2e-308 wide under the driver's knot scaling (knots 0,
+/// 3.65 and f64::MAX, coordinates at ±f64::MAX and subnormal): newton's tight evaluation
+/// cannot resolve a span that narrow, and its search halved rounding noise to the box limit
+/// (2,000 boxes per side, ~70 ms). `newton` hands such curves to the `bezier` search: both
+/// coordinates converge, the fallback is counted, and the box contains the curve;
+/// `newton-thesis` keeps its own search.
+#[test]
+fn a_span_narrower_than_2_pow_minus_1000_goes_to_the_bezier_search() {
+    let c = nurbs_box::parse_curve(br#"{"degree":4,"knots":[0.0,0.0,0.0,0.0,0.0,3.653676333345482,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308],"control_points":[[1.724e-320,1.7976931348623157e+308],[0.627097708232319,-1.7976931348623157e+308],[1.0163e-320,-9.105236000704017e+307],[7.056733858144736e+307,1.7976931348623157e+308],[-0.4207904094255168,-9.826649768098349e+307],[1.0224651706552132e+308,1.7976931348623157e+308]]}"#).unwrap();
+    let e = nurbs_box::enclose::drive_with(&Newton::default(), &c, false);
+    for cb in &e.coords {
+        assert_eq!(cb.termination, nurbs_box::enclose::Termination::Converged);
+        assert!(cb.stats.fast_fallbacks > 0);
+        assert_eq!(cb.stats.newton_iterations, 0);
+    }
+    let ch = check_containment(&c, &e, &dense_params(&c, 200));
+    assert!(
+        ch.checked > 0 && ch.misses.is_empty(),
+        "{:?}",
+        ch.misses.first()
+    );
+}
+
 #[test]
 fn flat_and_discontinuous_random_curves_terminate() {
     // many seeds, cheap: just run everything once (termination, no panic)

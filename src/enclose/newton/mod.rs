@@ -237,6 +237,16 @@ impl BoxEncloser for Newton {
         } else {
             SpanMode::Search
         };
+        if self.fast_path && has_tiny_span(c) {
+            // (see `has_tiny_span`: the bezier search, whose local refinement works in each
+            // span's local parameter, as newton's own fallback for loose sides does)
+            let mut e = super::bezier::BezierSubdivision::default().enclose_prepared(c);
+            e.strategy = self.name();
+            for cb in &mut e.coords {
+                cb.stats.fast_fallbacks += 1;
+            }
+            return e;
+        }
         // Built only when some coordinate needs the search.
         let mut engine: Option<(Engine, Vec<SpanMode>)> = None;
         let (a, b) = c.domain();
@@ -311,3 +321,20 @@ fn extreme_point(c: &NurbsCurve, j: usize, max: bool) -> usize {
     }
     best
 }
+
+/// Whether some non-empty span of `c` is narrower than 2^-1000 (knots a few subnormals apart,
+/// or a span of ~1e-308 after the driver's knot scaling). The tight evaluation that the search
+/// uses to settle stalled boxes and to bound candidates ([`crate::spline::tight::TightEval`]:
+/// Taylor forms in u with radii of at least 2^-1000) cannot resolve such a span: its
+/// derivatives with respect to u are ~1e300, so every enclosure over a box there is wide, and
+/// the search halved rounding noise down to its box limit (2,000 boxes, ~70 ms for one
+/// range-limits curve). Such curves go to the `bezier` search (its local refinement runs in
+/// each span's local parameter), counted as `fast_fallbacks`; `newton-thesis` keeps its own
+/// search.
+fn has_tiny_span(c: &NurbsCurve) -> bool {
+    const TINY: f64 = 9.332636185032189e-302; // 2^-1000
+    let kn = c.knots();
+    let (p, n) = (c.degree(), c.num_points() - 1);
+    (p..=n).any(|k| kn[k] < kn[k + 1] && kn[k + 1] - kn[k] < TINY)
+}
+
