@@ -137,6 +137,24 @@
 //! extreme weights, clustered knots): before the exact branch and bound when the first one
 //! ran out of boxes, else last.
 //!
+//! # Extrema far below a scale near f64::MAX (the local stage)
+//!
+//! On a rescaled curve a strategy's bound can lie within its tolerance of the coordinate scale
+//! (an ulp of ~1e308 is ~2e292) but many doubles of its own size above the extremum: a minimum
+//! -0.5476 next to control values ~7e307, found at a local parameter ~1e-77 of a span ~4e307
+//! wide, where the strategy stopped at a control value -0.9116. Before the rounds above, such
+//! a side (more than [`LOWER_WITHIN_ULPS`] doubles of its bound above the attained value, but
+//! within the lowering window of the scale) is searched again ([`local_stage`]): every span whose
+//! control values exceed the attained value, in its local parameter, on its double-double
+//! Bézier segment of the copy scaled for this side (values near the bound ~1, ~2^-100
+//! relative narrow), by `bezier`'s best-first local search (convex hull bounds of de Casteljau
+//! pieces, splits at critical-point estimates; with rounded copies the bound from the copy
+//! above g, the attained value and witness from the copy below). Its bound lowers the side's
+//! bound (rounded up into the curve's units), its values raise the attained value and the
+//! witness, and its pieces become the first candidates; the rounds then certify, usually by
+//! the first rule. Sound for the same reasons as the strategies' own search: the pieces cover
+//! every span whose control hull is not already below a value attained.
+//!
 //! # Limits (bounded work)
 //!
 //! At most [`MAX_CANDIDATES`] candidates, [`NEWTON_STEPS`] double-double Newton steps, the
@@ -153,7 +171,11 @@
 //! [`SEARCH_MAX_DEGREE`] (only the attained-value rule). The exact Bernstein rule: at most
 //! [`MAX_EXACT_SPANS`] spans and [`MAX_EXACT_SPLITS`] subdivisions per span, only spans whose
 //! data lie within 2^±[`EXACT_RULE_MAX_EXP`] (`exact_is_cheap`), coefficients rounded up above
-//! [`EXACT_RULE_ROUND_BITS`] bits. When these are spent the answer is
+//! [`EXACT_RULE_ROUND_BITS`] bits. Exact values with derivatives only on spans whose knots
+//! are short rationals (`exact_value_is_cheap`: no knot near ±f64::MAX or with a subnormal
+//! bit, whose exact quotients have thousands of bits), at most [`MAX_EXACT_EVALS`] per
+//! evaluated curve and [`MAX_EXACT_POINTS`] box-end values per lowering proof. The local stage:
+//! at most [`LOCAL_MAX_SPANS`] spans and [`LOCAL_PIECES`] pieces. When these are spent the answer is
 //! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
@@ -1019,9 +1041,9 @@ fn certify_side(
 }
 
 /// Spans per side searched by [`local_stage`] (more: the stage is skipped).
-const LOCAL_MAX_SPANS: usize = 32;
+pub const LOCAL_MAX_SPANS: usize = 32;
 /// Pieces per curve and side of [`local_stage`]'s search.
-const LOCAL_PIECES: usize = 512;
+pub const LOCAL_PIECES: usize = 512;
 
 /// What [`local_stage`] found, in the scaled units of the evaluated curves: a bound of g on
 /// the curve above it, a value attained and a strict witness on the curve below it, and the
