@@ -152,7 +152,8 @@
 //! above g, the attained value and witness from the copy below). Its bound lowers the side's
 //! bound (rounded up into the curve's units), its values raise the attained value and the
 //! witness, and its pieces become the first candidates; the rounds then certify, usually by
-//! the first rule. Sound for the same reasons as the strategies' own search: the pieces cover
+//! the first rule (their search in the Bézier form, `bezier_search`, is skipped after it: the
+//! local stage searched the same spans in the same parameter, to more pieces). Sound for the same reasons as the strategies' own search: the pieces cover
 //! every span whose control hull is not already below a value attained.
 //!
 //! # Limits (bounded work)
@@ -810,6 +811,7 @@ fn certify_side(
             ..*x
         })
         .collect();
+    let mut local_done = false;
     // (0. on a rescaled curve, a bound many doubles of its own size above the attained value,
     // within the strategy's tolerance of a scale near f64::MAX: the spans searched again in
     // their local parameter on the copy scaled for this side, `local_stage`)
@@ -822,6 +824,7 @@ fn certify_side(
         && !far_below(bound, inner, scale0, sc.within)
     {
         if let Some(r) = local_stage(cv, j, sign, dn(inner)) {
+            local_done = true;
             // (bounds of the copy above g, rounded up; values of the copy below g, rounded down)
             bound = bound.min(scale_outward(r.upper, s, true));
             inner = inner.max(scale_outward(r.attained, s, false));
@@ -897,7 +900,7 @@ fn certify_side(
             proved = true;
             break;
         }
-        let d = ddi_stage(ev, j, sign, up(t), cands);
+        let d = ddi_stage(ev, j, sign, up(t), cands, local_done);
         if let Some(g) = d.top {
             keep_top(&mut top_seen, g);
         }
@@ -1172,7 +1175,14 @@ struct DdiOutcome {
 
 /// Stage 2 of the module docs: whether some u provably has g(u) > t, by double-double
 /// enclosures at the candidates and at f64 Newton points.
-fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) -> DdiOutcome {
+fn ddi_stage(
+    ev: &mut Evals,
+    j: usize,
+    sign: f64,
+    t: f64,
+    cands: &[Extremum],
+    local_done: bool,
+) -> DdiOutcome {
     let mut out = DdiOutcome {
         guess: f64::NEG_INFINITY,
         ..Default::default()
@@ -1273,8 +1283,9 @@ fn ddi_stage(ev: &mut Evals, j: usize, sign: f64, t: f64, cands: &[Extremum]) ->
     // 2b. the same in the local parameter of the candidates' spans (Bézier form); not after
     // a straddle on a curve that is not rescaled and that the exact Bernstein rule takes
     // (which decides the straddle either way, `certify_side`)
+    // (nor after the local stage, which searched every span in its local parameter already)
     let exact_next = straddle && ev.exact_rule_possible() && std::ptr::eq(ev.c, ev.orig);
-    if !exact_next && bezier_search(ev, j, sign, t, cands, guess, seen) {
+    if !exact_next && !local_done && bezier_search(ev, j, sign, t, cands, guess, seen) {
         out.proved = true;
         return out;
     }
