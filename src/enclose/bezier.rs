@@ -759,11 +759,6 @@ pub(crate) fn needs_refinement(
 /// Pieces per side of the local refinement ([`refine_local`]).
 const REFINE_PIECES: usize = 256;
 
-/// A piece of [`local_search`] whose points all lie within this distance is not split: the
-/// double-double points carry absolute error terms of a few 2^-1074 each (subnormal low
-/// parts), so near zero no split narrows them further.
-const RESOLVED_ABS: f64 = f64::from_bits(1 << 24); // 2^-1050 (subnormal: 2^24 times 2^-1074)
-
 /// Whether a piece of [`local_search`] with the sign-adjusted points `co` and a `gap` between
 /// its bound and the attained value is bounded by rounding alone: the point that sets the
 /// bound (the largest upper end) is at least half the gap wide, and that width is not small
@@ -834,10 +829,10 @@ impl LocalResult {
 /// and at the split points (de Casteljau evaluation, [`BezierSeg::eval_local`]). So the
 /// maximum over the start pieces is <= [`LocalResult::upper`].
 ///
-/// Splits: at the critical-point estimate when it lies inside the piece; otherwise (a maximiser
-/// at an end of the piece, where Newton converges to the end) 1/64 of the width from the end
-/// with the larger value, so that the piece next to the maximiser narrows by 64 per split and
-/// the overshoot of its inner points (second order in the width) by 4096; else at the middle.
+/// Splits: at the critical-point estimate ([`critical`], inside the piece), else at the middle.
+/// A piece is bounded as it is when it is optimal already, resolved to rounding (its points
+/// within two doubles, or its bound set by rounding alone: [`rounding_bound`]), or out of
+/// pieces.
 pub(crate) fn local_search(
     p: usize,
     sign: f64,
@@ -916,18 +911,10 @@ pub(crate) fn local_search(
                 .push((i0.sup().max(i1.sup()), k, t0, t1, CandidateKind::Critical));
             continue;
         }
-        let w = t1 - t0;
-        let m = critical(seg, t0, t1)
-            .filter(|&m| t0 < m && m < t1)
-            .unwrap_or(if i1.sup() >= i0.sup() {
-                t1 - w / 64.0
-            } else {
-                t0 + w / 64.0
-            });
+        let m = critical(seg, t0, t1).unwrap_or(0.5 * t0 + 0.5 * t1);
         let lowest = co.iter().fold(f64::INFINITY, |m, x| m.min(x.to_interval().inf()));
         if pri <= out.attained.next_up()
             || pri <= lowest.next_up().next_up()
-            || pri - lowest <= RESOLVED_ABS
             || rounding_bound(&co, pri - out.attained)
             || pieces >= max_pieces
             || !(t0 < m && m < t1)
@@ -1480,4 +1467,31 @@ mod tests {
         assert!(cb.hi >= 3.0 && cb.inner_hi <= 3.0, "{cb:?}");
         assert!(cb.lo <= 0.0 && cb.inner_lo >= 0.0, "{cb:?}");
     }
+
+    /// `local_search` on a piece whose values cancelled to rounding (every point an enclosure
+    /// [-1, 1] around an exact 0: no split narrows them) stops at once with a sound bound
+    /// ([`rounding_bound`]); without the rule it halved to its piece limit. Points that are
+    /// narrow against their size are split on: a quadratic with a maximum 1/4 at t = 1/2
+    /// is resolved to its double.
+    #[test]
+    fn local_search_stops_on_rounding_and_resolves_a_maximum() {
+        let seg = |pts: Vec<Ddi>| BezierSeg {
+            a: 0.0,
+            b: 1.0,
+            degree: 2,
+            dim: 1,
+            rational: false,
+            pts,
+        };
+        let wide = seg(vec![Ddi::from_bounds(-1.0, 1.0); 3]);
+        let r = local_search(2, 1.0, &[(0, wide)], &[(0, 0.0, 1.0)], &|_| true, (f64::NEG_INFINITY, f64::NEG_INFINITY), 512);
+        assert_eq!(r.stats.subdivisions, 0);
+        assert!(r.upper() >= 1.0);
+        // t (1 - t) in Bernstein form: 0, 1/2, 0; max 1/4 at t = 1/2
+        let bump = seg(vec![Ddi::exact(0.0), Ddi::exact(0.5), Ddi::exact(0.0)]);
+        let r = local_search(2, 1.0, &[(0, bump)], &[(0, 0.0, 1.0)], &|_| true, (f64::NEG_INFINITY, f64::NEG_INFINITY), 512);
+        assert!(r.upper() >= 0.25 && r.upper() <= 0.25f64.next_up());
+        assert!(r.attained <= 0.25 && r.witness < 0.25);
+    }
 }
+

@@ -817,11 +817,15 @@ fn certify_side(
     // their local parameter on the copy scaled for this side, `local_stage`)
     // (only where the strategy's gap is within `within` ulps of the scale, as for the search
     // stages below: a loose bound such as the control hull's stays as it is)
-    let scale0 = back(cv.below(sign).c.coord_scale(j));
     if sc.local
         && bound.is_finite()
         && far_below(bound, inner, 0.0, LOWER_WITHIN_ULPS)
-        && !far_below(bound, inner, scale0, sc.within)
+        && !far_below(
+            bound,
+            inner,
+            back(cv.below(sign).c.coord_scale(j)),
+            sc.within,
+        )
     {
         if let Some(r) = local_stage(cv, j, sign, dn(inner)) {
             local_done = true;
@@ -1912,30 +1916,27 @@ fn exact_is_cheap(c: &NurbsCurve, k: usize, j: usize, t: f64) -> bool {
             .all(|&u| ok(u) && ok((u - kn[k]) / len))
 }
 
-/// Whether x is 0 or a rational of at most about 53 + [`EXACT_RULE_MAX_EXP`] bits on either
-/// side of the binary point: its binary exponent within +-[`EXACT_RULE_MAX_EXP`] and its
-/// lowest set bit at or above 2^-(EXACT_RULE_MAX_EXP + 53) (a subnormal knot such as 6e-323,
-/// a 2^-1072 bit, makes every exact quotient with it a rational of over a thousand bits, however
-/// ordinary the f64 quotient looks).
+/// Whether x is 0 or a short rational: finite with a binary exponent within
+/// +-[`EXACT_RULE_MAX_EXP`], so at most about 53 + [`EXACT_RULE_MAX_EXP`] bits on either side
+/// of the binary point (its lowest set bit is at or above 2^-(EXACT_RULE_MAX_EXP + 53)). A
+/// knot near f64::MAX, or a subnormal one such as 6e-323 (a 2^-1072 bit), makes every exact
+/// quotient with it a rational of over a thousand bits, however ordinary the f64 quotient
+/// looks.
 fn short_dyadic(x: f64) -> bool {
-    x == 0.0
-        || (x.is_finite()
-            && exponent_of(x.abs()).abs() <= EXACT_RULE_MAX_EXP
-            && super::driver::low_exp(x) >= -(EXACT_RULE_MAX_EXP + 53))
+    x == 0.0 || (x.is_finite() && exponent_of(x.abs()).abs() <= EXACT_RULE_MAX_EXP)
 }
 
 /// Whether an exact value of span k's piece at u ([`Evals::exact_in`]) is cheap enough: the
 /// span's 2p knots are short rationals ([`short_dyadic`]) and u has a binary exponent within
-/// +-[`EXACT_RULE_MAX_EXP`] (or is 0).
+/// +-[`EXACT_RULE_MAX_EXP`] (or is 0; u itself may be a dyadic of the exact Newton levels,
+/// a few hundred bits).
 /// The de Boor triangle's alphas are quotients of knot differences; knots near ±f64::MAX next
 /// to subnormal ones (2^±1074) make rationals of thousands of bits, and one value with
 /// derivatives cost milliseconds (a lowering proof on such a span took 0.4 s).
 fn exact_value_is_cheap(c: &NurbsCurve, k: usize, u: &Exact) -> bool {
-    let ok =
-        |x: f64| x == 0.0 || (x.is_finite() && exponent_of(x.abs()).abs() <= EXACT_RULE_MAX_EXP);
     let p = c.degree();
     let kn = c.knots();
-    ok(u.to_f64()) && kn[k + 1 - p..=k + p].iter().all(|&x| short_dyadic(x))
+    short_dyadic(u.to_f64()) && kn[k + 1 - p..=k + p].iter().all(|&x| short_dyadic(x))
 }
 
 /// The integer coefficients of [`exact_bernstein_rule`] straight from the f64 data when span k
@@ -2783,5 +2784,10 @@ mod tests {
         let mut ev = Evals::new(&c, &c, 0);
         assert!(ev.exact_in(4, 0, 1.0, &u, 0).is_none());
         assert!(ev.exact_in(5, 0, 1.0, &Exact::of(0.8), 0).is_some());
+        // at most MAX_EXACT_EVALS per evaluated curve (one used above)
+        for _ in 1..MAX_EXACT_EVALS {
+            assert!(ev.exact_in(5, 0, 1.0, &Exact::of(0.8), 0).is_some());
+        }
+        assert!(ev.exact_in(5, 0, 1.0, &Exact::of(0.8), 0).is_none());
     }
 }
