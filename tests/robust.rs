@@ -936,3 +936,19 @@ fn a_panicking_strategy_becomes_an_error_record() {
     assert_eq!(lines[1]["strategy"], "hull");
     assert_eq!(lines[1]["hi"][0], 1.0);
 }
+
+/// A proptest finding: degree 1 with a double knot at 0 (a jump), subnormal knots and weights
+/// next to a weight of ~1e214, so that the homogeneous control point overflows. The piece left
+/// of the jump approaches the control value 1.9e94; its end coefficient overflowed to ENTIRE,
+/// which contains the next piece's value 0 at the knot, and `bezier`'s end rule took that
+/// value for the piece's limit (box [0, 0] for both `bezier` and `newton`, which hands such
+/// tiny spans to it, without the driver).
+#[test]
+fn subnormal_knots_and_weights_with_an_overflowing_homogeneous_point() {
+    let json = r#"{"degree":1,"knots":[-1.5e-323,-1e-323,-1e-323,0.0,0.0,5e-324,5e-324,0.5],"control_points":[[0.0,0.0],[0.0,0.0],[1.894462644243321e+94,0.0],[0.0,0.0],[-0.0,0.0],[0.0,0.0]],"weights":[5e-324,5e-324,9.489198112852437e+213,5e-324,5e-324,5e-324]}"#;
+    let c = nurbs_box::parse_curve(json.as_bytes()).unwrap();
+    let v = nurbs_box::testkit::robust::check_strategies(&raw_strategies(), &c, 6, &[0.0]);
+    assert!(v.is_empty(), "raw: {v:?}");
+    let v = check_all_strategies(&c, 6, &[0.0]);
+    assert!(v.is_empty(), "{v:?}");
+}
