@@ -483,6 +483,48 @@ proptest! {
     }
 }
 
+/// A magnitude for the jump curves below: tiny, moderate or huge, either sign (0 included).
+fn magnitude() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        prop::sample::select(vec![0.0, 5e-324, 1e-320, 1e-300, 1e300, 1.9e94, f64::MAX]),
+        -1e3..1e3f64,
+        (-308i32..=308, -1.0..1.0f64).prop_map(|(e, m)| m * 10f64.powi(e)),
+    ]
+}
+
+proptest! {
+    // (at most 64 cases also when PROPTEST_CASES asks for more: a case takes ~75 ms in a
+    // release build, every strategy with and without the driver in subnormal arithmetic)
+    #![proptest_config(ProptestConfig { cases: config(64).cases.min(64), ..config(64) })]
+
+    /// Curves with a jump (an interior knot of multiplicity p + 1) and weights whose products
+    /// with the control values overflow or underflow, next to spans as narrow as a few
+    /// subnormals: both one-sided limits at the jump must be in every verified box, with and
+    /// without the driver (the class of the end-coefficient fault in
+    /// `subnormal_knots_and_weights_with_an_overflowing_homogeneous_point`).
+    #[test]
+    fn jumps_next_to_overflowing_weights_stay_in_the_box(
+        p in 1usize..=3,
+        tiny in any::<bool>(),
+        xs in prop::collection::vec(magnitude(), 8),
+        ws in prop::collection::vec(prop::sample::select(vec![5e-324, 1e-300, 1.0, 3.0, 1e214, 1e300]), 8),
+    ) {
+        // clamped, p + 1 points on each side of the jump at 0
+        let np = 2 * (p + 1);
+        let (a, b) = if tiny { (-1e-323, 1e-323) } else { (-1.0, 1.0) };
+        let mut kn = vec![a; p + 1];
+        kn.extend(vec![0.0; p + 1]);
+        kn.extend(vec![b; p + 1]);
+        let pts: Vec<Vec<f64>> = (0..np).map(|i| vec![xs[i % xs.len()], 0.0]).collect();
+        let w: Vec<f64> = (0..np).map(|i| ws[i % ws.len()]).collect();
+        let c = NurbsCurve::new(p, kn, pts, Some(w)).unwrap();
+        let v = nurbs_box::testkit::robust::check_strategies(&raw_strategies(), &c, 6, &[0.0]);
+        prop_assert!(v.is_empty(), "raw: {:?}\n{}", v, nurbs_box::curve_to_json(&c));
+        let v = check_all_strategies(&c, 6, &[0.0]);
+        prop_assert!(v.is_empty(), "{:?}\n{}", v, nurbs_box::curve_to_json(&c));
+    }
+}
+
 proptest! {
     #![proptest_config(config(24))]
 
