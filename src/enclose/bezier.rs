@@ -143,6 +143,13 @@ impl<'a> Values<'a> {
     }
 }
 
+/// Whether the right end u_{k+1} of span k (`last`: the last non-empty span) is a value of
+/// span k's piece: unless it is a jump, a knot of multiplicity p + 1 inside the domain, where
+/// C(u_{k+1}) belongs to the next piece and span k's piece only approaches its end value.
+pub(crate) fn right_end_attained(kn: &[f64], p: usize, k: usize, last: usize) -> bool {
+    k == last || crate::spline::knots::multiplicity(kn, kn[k + 1]) <= p
+}
+
 /// An f64 estimate of a critical point of C_j in (s0, s1) on the coordinate segment `seg`:
 /// Newton's method on the numerator N = A' w - A w' of C_j' (N = A' if non-rational), using
 /// the midpoints of the interval coefficients (`Scalar::to_f64`). (A segment with a = 0,
@@ -449,14 +456,12 @@ impl BezierSubdivision {
                     }
                     let kn = c.knots();
                     let (u0, u1) = (kn[k], kn[k + 1]);
-                    // C(u1) = c_p unless u1 is a jump (multiplicity p + 1) inside the domain
-                    let last = k == spans[spans.len() - 1];
                     let seg = single::Segment {
                         c: &v[..=p],
                         a: u0,
                         b: u1,
                         end_kinds: [end_kind(c, u0), end_kind(c, u1)],
-                        right_attained: last || kn.iter().filter(|&&x| x == u1).count() <= p,
+                        right_attained: right_end_attained(kn, p, k, spans[spans.len() - 1]),
                     };
                     let i = if sign > 0.0 { 0 } else { 1 };
                     let mut need = [false; 2];
@@ -476,13 +481,9 @@ impl BezierSubdivision {
                 }
             }
             let seg = segs[k].get_or_insert_with(|| hs.bezier_segment(k)).coord(j);
-            // The last coefficient at the span's right end u_{k+1} is the left limit there:
-            // a value of the curve unless u_{k+1} is a knot of multiplicity p + 1 inside the
-            // domain (a jump: C(u_{k+1}) belongs to the next piece).
-            let right_attained = {
-                let kn = c.knots();
-                k == spans[spans.len() - 1] || kn.iter().filter(|&&x| x == kn[k + 1]).count() <= p
-            };
+            // The last coefficient at the span's right end is the left limit there: a value of
+            // the curve unless that end is a jump
+            let right_attained = right_end_attained(c.knots(), p, k, spans[spans.len() - 1]);
             // A piece pushed with its f64 bound only (`push` below) gets its `Mr` coefficients
             // when it comes first: it may still be pruned, which the cheap bound decided
             // without them for every piece left in the heap at the end.
@@ -531,22 +532,22 @@ impl BezierSubdivision {
             // would replace this piece's limit by it.)
             let seg_end = |s: f64, e: Interval, jump: bool, side: &mut Side| {
                 if e.sup() > side.attained {
-                    side.stats.point_evaluations += 1;
-                    let (v, w) = if jump {
-                        (Interval::EMPTY, f64::NEG_INFINITY)
-                    } else {
-                        vals.at(j, s, sign)
-                    };
-                    let v = v.intersection(e);
-                    // (empty: the jump, or enclosures of the same value that cannot be
-                    // disjoint; e bounds the piece either way)
-                    let v = if v.is_empty() {
+                    let v = if jump {
                         e
                     } else {
-                        // (C(s) is a value of the curve: its strict witness too)
-                        side.attain(v);
-                        side.witness = side.witness.max(w);
-                        v
+                        side.stats.point_evaluations += 1;
+                        let (v, w) = vals.at(j, s, sign);
+                        // (enclosures of the same value cannot be disjoint; if they were, e
+                        // bounds the piece all the same)
+                        let v = v.intersection(e);
+                        if v.is_empty() {
+                            e
+                        } else {
+                            // (C(s) is a value of the curve: its strict witness too)
+                            side.attain(v);
+                            side.witness = side.witness.max(w);
+                            v
+                        }
                     };
                     side.bound(
                         v.sup(),
@@ -993,8 +994,7 @@ fn refine_local(
         return;
     }
     let last = spans[spans.len() - 1];
-    let right_attained =
-        |k: usize| k == last || kn.iter().filter(|&&x| x == kn[k + 1]).count() <= p;
+    let right_attained = |k: usize| right_end_attained(kn, p, k, last);
     let mut segs: Vec<(usize, BezierSeg<Ddi>)> = Vec::new();
     let mut kept: SmallVec<[(f64, Extremum); 4]> = SmallVec::new();
     let mut start: Vec<(usize, f64, f64)> = Vec::new();

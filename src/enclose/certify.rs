@@ -153,8 +153,9 @@
 //! bound (rounded up into the curve's units), its values raise the attained value and the
 //! witness, and its pieces become the first candidates; the rounds then certify, usually by
 //! the first rule (their search in the Bézier form, `bezier_search`, is skipped after it: the
-//! local stage searched the same spans in the same parameter, to more pieces). Sound for the same reasons as the strategies' own search: the pieces cover
-//! every span whose control hull is not already below a value attained.
+//! local stage searched the same spans in the same parameter, to more pieces). Sound for the
+//! same reasons as the strategies' own search: the pieces cover every span whose control hull
+//! is not already below a value attained.
 //!
 //! # Limits (bounded work)
 //!
@@ -176,9 +177,8 @@
 //! and control values are short rationals (`exact_value_is_cheap`: no knot or value near
 //! ±f64::MAX or with a subnormal bit, whose exact quotients have thousands of bits), at most
 //! [`MAX_EXACT_EVALS`] per evaluated curve and [`MAX_EXACT_POINTS`] box-end values per lowering
-//! proof. The local stage:
-//! at most [`LOCAL_MAX_SPANS`] spans and [`LOCAL_PIECES`] pieces. When these are spent the answer is
-//! `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
+//! proof. The local stage: at most [`LOCAL_MAX_SPANS`] spans and [`LOCAL_PIECES`] pieces.
+//! When these are spent the answer is `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
 use super::driver::{exponent, Rescaling};
@@ -1106,7 +1106,7 @@ fn local_stage(cv: &mut Curves, j: usize, sign: f64, attained: f64) -> Option<Lo
                 (k, s)
             })
             .collect();
-        let right_attained = |k: usize| k == last || multiplicity(kn, kn[k + 1]) <= p;
+        let right_attained = |k: usize| crate::enclose::bezier::right_end_attained(kn, p, k, last);
         let r = crate::enclose::bezier::local_search(
             p,
             sign,
@@ -2237,6 +2237,7 @@ fn eval_integer(b: &[BigInt], x: &BigRational) -> (BigInt, BigInt) {
 }
 
 /// What one box of the branch and bound showed.
+#[derive(Debug)]
 enum BoxVerdict {
     /// g <= t on the box
     Below,
@@ -2809,5 +2810,34 @@ mod tests {
         assert!(exact_value_is_cheap(&c, 5, 1, &u));
         // (span k = 3, [0.25, 0.5], has control points 1..=3)
         assert!(exact_value_is_cheap(&c, 3, 0, &Exact::of(0.3)));
+    }
+
+    /// The box-end exact values of a lowering proof ([`MAX_EXACT_POINTS`]): a monotone box
+    /// whose end value equals the target exactly, a double reached at the non-dyadic local
+    /// parameter 1/3 (so its double-double enclosure holds the target), is decided below the
+    /// target by an exact value while the budget lasts, and left stuck when it is spent.
+    #[test]
+    fn box_end_exact_values_stop_at_their_budget() {
+        // x(u) = 9 (u / 3)^2 on [0, 3]: x(1) = 1 exactly, increasing
+        let c = NurbsCurve::new(
+            2,
+            vec![0.0, 0.0, 0.0, 3.0, 3.0, 3.0],
+            vec![vec![0.0], vec![0.0], vec![9.0]],
+            None,
+        )
+        .unwrap();
+        let mut ev = Evals::new(&c, &c, 0);
+        for (points, below) in [(0, true), (MAX_EXACT_POINTS, false)] {
+            let mut budget = ExactBudget { tries: 0, points };
+            let v = box_at_most(&mut ev, 2, 0, 1.0, (1.0, 1.0), 0.5, 1.0, true, &mut budget);
+            assert!(
+                if below {
+                    matches!(v, BoxVerdict::Below) && budget.points == 1
+                } else {
+                    matches!(v, BoxVerdict::Stuck) && budget.points == MAX_EXACT_POINTS
+                },
+                "points {points}: {v:?}"
+            );
+        }
     }
 }
