@@ -225,10 +225,15 @@ fn sub_coeffs(seg: &BezierSeg<Mr>, s0: f64, s1: f64, sign: f64) -> Vec<Interval>
     let t0 = (s0 > a).then(|| mr((p0 - pa) / (p1 - pa)));
     let pts = seg.sub_points(t1.as_ref(), t0.as_ref());
     let s = iv::point(sign);
-    cartesian(pts, 1, seg.rational)
-        .into_iter()
-        .map(|x| s * x.to_interval())
-        .collect()
+    // (the Cartesian coefficients x / w of the rows (w x, w) as in `cartesian`, written out:
+    // no intermediate vector)
+    if seg.rational {
+        pts.chunks_exact(2)
+            .map(|r| s * (r[0] / r[1]).to_interval())
+            .collect()
+    } else {
+        pts.iter().map(|x| s * x.to_interval()).collect()
+    }
 }
 
 /// An upper bound of sign * C_j over the piece [s0, s1] of the coordinate segment `seg` from

@@ -365,21 +365,25 @@ impl<S: Scalar> BezierSeg<S> {
     /// (s0 - a) / (s1 - a), keeps it tight); for every exact parameter in them each split
     /// encloses the exact sub-segment, so the result encloses the points over [t0, t1].
     pub fn sub_points(&self, t1: Option<&S>, t0_rel: Option<&S>) -> Vec<S> {
-        let pts = match t1 {
-            Some(t) => self.split_points(t).0,
-            None => self.pts.clone(),
-        };
-        match t0_rel {
-            Some(t) => {
-                BezierSeg {
-                    pts,
-                    ..self.clone_meta()
-                }
-                .split_points(t)
-                .1
-            }
-            None => pts,
+        let h = self.hdim();
+        // One-sided splits: the same corner cuts as `split_points` (so the same enclosures),
+        // without building the half that is dropped. The left part's point r is entry 0 of
+        // level r; the right part's point i is entry i of level p - i, which later levels
+        // (entries below it only) leave in place, so the right part is the triangle computed
+        // in place.
+        let mut b = self.pts.clone();
+        if let Some(t) = t1 {
+            let mut left = Vec::with_capacity(b.len());
+            left.extend_from_slice(&b[..h]);
+            crate::spline::bezier::de_casteljau_levels(&mut b, h, t, |_, lv| {
+                left.extend_from_slice(&lv[..h]);
+            });
+            b = left;
         }
+        if let Some(t) = t0_rel {
+            crate::spline::bezier::de_casteljau_levels(&mut b, h, t, |_, _| {});
+        }
+        b
     }
 
     /// de Casteljau split at local t into the segments over [0, t] and [t, 1] (the parameter
@@ -673,6 +677,55 @@ mod tests {
     use super::*;
     use crate::num::iv;
     use inari::Interval;
+
+    /// The one-sided splits of `sub_points` give exactly the points of the two full splits
+    /// they replace (the same corner cuts in the same order), for `Mr` and `Ddi`, rational and
+    /// polynomial, with and without either split.
+    #[test]
+    fn sub_points_equal_the_two_full_splits() {
+        use crate::num::ddi::Ddi;
+        use crate::num::mr::Mr;
+        fn check<S: Scalar + PartialEq + std::fmt::Debug>(seg: &BezierSeg<S>, t1: S, t0: S) {
+            let full = |t1: Option<&S>, t0: Option<&S>| {
+                let pts = t1.map_or(seg.pts.clone(), |t| seg.split_points(t).0);
+                match t0 {
+                    Some(t) => {
+                        BezierSeg {
+                            pts,
+                            ..seg.clone_meta()
+                        }
+                        .split_points(t)
+                        .1
+                    }
+                    None => pts,
+                }
+            };
+            for (a, b) in [
+                (Some(&t1), Some(&t0)),
+                (Some(&t1), None),
+                (None, Some(&t0)),
+                (None, None),
+            ] {
+                assert_eq!(seg.sub_points(a, b), full(a, b));
+            }
+        }
+        let rational = {
+            let c = cubic();
+            let pts = (0..c.num_points())
+                .map(|i| c.control_point(i).to_vec())
+                .collect();
+            let w = vec![1.0, 0.3, 2.5, 0.7, 1.1, 0.9];
+            NurbsCurve::new(3, c.knots().to_vec(), pts, Some(w)).unwrap()
+        };
+        for c in [cubic(), rational] {
+            for k in 3..=5 {
+                let seg = HSpline::<Mr>::from_curve(&c).bezier_segment(k);
+                check(&seg, Mr::from_bounds(0.7, 0.7 + 1e-15), Mr::from_f64(0.3));
+                let seg = HSpline::<Ddi>::from_curve(&c).bezier_segment(k);
+                check(&seg, Ddi::from_f64(0.7), Ddi::from_f64(1.0 / 3.0));
+            }
+        }
+    }
 
     fn cubic() -> NurbsCurve {
         NurbsCurve::new(
