@@ -401,6 +401,7 @@ impl BezierSubdivision {
             .collect();
         let ub = |c: &[Interval]| c.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.sup()));
         let mut pieces = 0usize;
+        let mut csegs: Vec<Option<BezierSeg<Mr>>> = vec![None; segs.len()];
         let cost = ((p + 1) as u64).pow(2);
         // a piece costs about four de Casteljau passes of (p + 1)^2 / 2 steps plus evaluations
         // (plus an allowance per span that also shrinks with the cost, as newton's: a fixed
@@ -485,7 +486,9 @@ impl BezierSubdivision {
                     }
                 }
             }
-            let seg = segs[k].get_or_insert_with(|| hs.bezier_segment(k)).coord(j);
+            // (coordinate j's rows of the span's segment, kept for the pieces that follow)
+            let seg = &*csegs[k]
+                .get_or_insert_with(|| segs[k].get_or_insert_with(|| hs.bezier_segment(k)).coord(j));
             // The last coefficient at the span's right end is the left limit there: a value of
             // the curve unless that end is a jump
             let right_attained = right_end_attained(c.knots(), p, k, spans[spans.len() - 1]);
