@@ -497,7 +497,7 @@ impl BezierSubdivision {
             // without them for every piece left in the heap at the end.
             if let Some((s0, s1, depth, co)) = &item.piece {
                 if co.is_empty() {
-                    let co = sub_coeffs(&seg, *s0, *s1, sign);
+                    let co = sub_coeffs(seg, *s0, *s1, sign);
                     heap.push(Item {
                         pri: ub(&co).min(item.pri),
                         span: k,
@@ -508,7 +508,7 @@ impl BezierSubdivision {
                 }
             }
             let Some((s0, s1, depth, co)) = item.piece else {
-                let co = sub_coeffs(&seg, seg.a, seg.b, sign);
+                let co = sub_coeffs(seg, seg.a, seg.b, sign);
                 side.attain(co[0]);
                 if right_attained {
                     side.attain(co[co.len() - 1]);
@@ -601,15 +601,15 @@ impl BezierSubdivision {
             }
             side.stats.subdivisions += 1;
             side.stats.derivative_evaluations += 1;
-            let crit = critical(&seg, s0, s1, false).filter(|&t| t - d > s0 && t + d < s1);
+            let crit = critical(seg, s0, s1, false).filter(|&t| t - d > s0 && t + d < s1);
             // (a child piece first enters with the bound of its f64 coefficients, restricted
             // with an a-priori error bound: `piece_bound_f64`; its `Mr` coefficients, which the
             // processing below needs, are computed only if it is taken from the heap)
             let push = |a: f64, b: f64, heap: &mut std::collections::BinaryHeap<Item>| {
-                let (pri, co) = match piece_bound_f64(&seg, a, b, sign) {
+                let (pri, co) = match piece_bound_f64(seg, a, b, sign) {
                     Some(pri) => (pri, Vec::new()),
                     None => {
-                        let co = sub_coeffs(&seg, a, b, sign);
+                        let co = sub_coeffs(seg, a, b, sign);
                         (ub(&co), co)
                     }
                 };
@@ -638,7 +638,7 @@ impl BezierSubdivision {
                 let (bm, mid) = if over - v.sup() <= accept {
                     (over, Vec::new())
                 } else {
-                    let mid = sub_coeffs(&seg, m0, m1, sign);
+                    let mid = sub_coeffs(seg, m0, m1, sign);
                     (over.min(ub(&mid)), mid)
                 };
                 if bm - v.sup() <= accept {
