@@ -46,6 +46,13 @@
 //!    x(B) ⊆ x(m) + x'(m) (B - m) + (x''(B) / 2) (B - m)^2 is evaluated in `Ddi` (x(m) as in step 1) and rounded
 //!    outward; x(m) is a value the curve attains (inner bound). With h = 2^-40 the correction
 //!    terms are ~2^-75 of the coordinate scale, so the bound is that of x(m), about one ulp.
+//!    5b. Where m is exactly the critical point (x'(m) = 0, checked in integers) and x(m)
+//!    is exactly a double d (the symmetric arcs of fonts and CAD data: the maximum of
+//!    P0 = P2 = a, P1 = b at m = 1/2 is (a + b) / 2), m is the bracket's only zero of x'
+//!    (step 4), so the extremum over the bracket is x(m) = d: bound and attained value at
+//!    once, and the bound is the optimal double (its certificate costs nothing). The check
+//!    runs only when the double-double x(m) holds a double (a near-tie, ~2^-46 of generic
+//!    cases).
 //! 6. The result is used only if each side's certified gap (bound minus attained value) is at
 //!    most `max_gap` (two ulps of the scale by default); otherwise — a root estimate too poor
 //!    for its bracket, a (near) double root, a flat coordinate — the caller runs the general
@@ -257,6 +264,56 @@ impl Coeffs<'_> {
     }
 }
 
+/// x(m) when m is exactly a critical point of x (x'(m) = 0) and x(m) is exactly a double,
+/// for exact f64 coefficients c_0 .. c_p (p = 2, 3) and an f64 m in (0, 1); `None` otherwise
+/// (or when `xm`, an enclosure of x(m), holds no double: the common case, decided without
+/// any big-integer work).
+///
+/// With c_i = C_i 2^-g (integers over one power of two), m = M 2^-k and 1 - m = (2^k - M) 2^-k
+/// (exact), x(m) = sum_i binom(p, i) C_i M^i (2^k - M)^(p-i) / 2^(g + kp) and
+/// x'(m) / p = sum_i binom(p-1, i) (C_{i+1} - C_i) M^i (2^k - M)^(p-1-i) / 2^(g + k(p-1))
+/// (Bernstein form and its hodograph; Farin, *Curves and Surfaces for CAGD*), both evaluated
+/// in integers, so the tests are exact.
+fn exact_critical_value(c: &[f64], m: f64, xm: Ddi) -> Option<f64> {
+    use num_bigint::BigInt;
+    // (the nearest double to the enclosure's centre lies in it only for a near-tie)
+    let d = xm.hi();
+    if !(d.is_finite() && xm.lo().abs() <= xm.rad()) || !(0.0 < m && m < 1.0) {
+        return None;
+    }
+    let p = c.len() - 1;
+    // x = n 2^-e exactly (n an integer, e >= 0 after scaling) as (n, e)
+    let dy = |x: f64| -> Option<(BigInt, u64)> {
+        let q = crate::num::Exact::of(x);
+        let q = q.value()?;
+        Some((q.numer().clone(), q.denom().bits() - 1))
+    };
+    let parts: Vec<(BigInt, u64)> = c.iter().map(|&x| dy(x)).collect::<Option<_>>()?;
+    let g = parts.iter().map(|x| x.1).max()?;
+    let ci: Vec<BigInt> = parts.iter().map(|(n, e)| n << (g - e)).collect();
+    let (mm, k) = dy(m)?;
+    let one_m = (BigInt::from(1) << k) - &mm;
+    // sum_i binom(n, i) v_i M^i (2^k - M)^(n - i)
+    let bern = |v: &[BigInt]| -> BigInt {
+        let n = v.len() - 1;
+        let mut binom = BigInt::from(1);
+        let mut sum = BigInt::from(0);
+        for (i, vi) in v.iter().enumerate() {
+            sum += &binom * vi * mm.pow(i as u32) * one_m.pow((n - i) as u32);
+            binom = binom * BigInt::from(n - i) / BigInt::from(i + 1);
+        }
+        sum
+    };
+    let diffs: Vec<BigInt> = ci.windows(2).map(|w| &w[1] - &w[0]).collect();
+    if bern(&diffs) != BigInt::from(0) {
+        return None;
+    }
+    // x(m) = N / 2^(g + kp) == d = n_d / 2^e_d  <=>  N 2^e_d == n_d 2^(g + kp)
+    let n = bern(&ci);
+    let (nd, ed) = dy(d)?;
+    ((n << ed) == (nd << (g + k * p as u64))).then_some(d)
+}
+
 /// f64 estimates of the real roots of b_0 + b_1 t + b_2 t^2 (at most two, unordered).
 pub(crate) fn root_estimates(b0: f64, b1: f64, b2: f64) -> ([f64; 2], usize) {
     let mut r = [0.0; 2];
@@ -370,6 +427,21 @@ impl RawSide {
         // (a NaN lower end, after an overflow, is ignored by `attain`)
         self.attain(v.lower_end());
         self.witness = self.witness.max(v.strictly_below());
+    }
+    /// The exact tie rule (module docs, step 5b) on the bracket with midpoint m and
+    /// double-double value `xm` of x(m) (`is_max`: this is the max side, else the side of -x):
+    /// whether it applied (then x(m) is this side's bound and attained value there).
+    #[cold]
+    #[inline(never)]
+    fn exact_tie(&mut self, c: &[f64], m: f64, xm: Ddi, is_max: bool, e: Extremum) -> bool {
+        let Some(d) = exact_critical_value(c, m, xm) else {
+            return false;
+        };
+        let d = if is_max { d } else { -d };
+        self.point_evaluations += 1;
+        self.attain(d);
+        self.bound(d, e);
+        true
     }
     fn bound(&mut self, ub: f64, e: Extremum) {
         if ub > self.upper {
@@ -569,6 +641,12 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
         } else {
             (&mut *lo, -xm)
         };
+        // An exact tie at m (module docs, step 5b): x'(m) = 0 and x(m) = d exactly, so the
+        // extremum over the bracket is d itself, a value the curve attains.
+        // (the cheap gate first: the double-double x(m) holds a double only near a tie)
+        if all_f64 && xm.lo().abs() <= xm.rad() && side.exact_tie(&fv[..=p], m, xm, is_max, e) {
+            continue;
+        }
         let ub = v.widen(corr).upper_end();
         side.point_evaluations += 1;
         side.attain_ddi(v);
@@ -660,6 +738,39 @@ mod tests {
         }
         // the bound is an error bound, not a vacuous one: a few hundred u of the scale at most
         assert!(worst < 1e-12, "{worst}");
+    }
+
+    /// Exact ties at the critical point (step 5b): symmetric quadratics and cubics with few-bit
+    /// control values get bound = attained value = the exact extremum, (a + b) / 2 and
+    /// (a + 3 b) / 4; a near-tie (the extremum ~2^-70 relative off a double) and a generic
+    /// arc keep a bound strictly above their attained value.
+    #[test]
+    fn exact_ties_at_the_critical_point_are_bound_exactly() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let mut fired = 0;
+        for _ in 0..200 {
+            let a = r.random_range(-4096i32..4096) as f64 / 64.0;
+            let b = a + r.random_range(1i32..4096) as f64 / 64.0;
+            for (c, v) in [(vec![a, b, a], (a + b) / 2.0), (vec![a, b, b, a], (a + 3.0 * b) / 4.0)] {
+                let [hi, lo] = sides(&c).unwrap();
+                assert_eq!((hi.upper, hi.attained), (v, v), "{c:?}");
+                fired += 1;
+                // the mirror image: the minimum
+                let m: Vec<f64> = c.iter().map(|x| -x).collect();
+                let [_, lo2] = sides(&m).unwrap();
+                assert_eq!((-lo2.upper, -lo2.attained), (-v, -v), "{m:?}");
+                // the other side is an end value (exact anyway)
+                assert_eq!(-lo.upper, a);
+            }
+        }
+        assert_eq!(fired, 400);
+        // near-tie: P0 = 2^-70, P1 = 1, P2 = 0: max (1 - 0) / (2 - 2^-70) ~ 1/2 + 2^-72, not a
+        // double; generic: max of (0, 1, 0.3) not a double
+        for c in [[2f64.powi(-70), 1.0, 0.0], [0.0, 1.0, 0.3]] {
+            let [hi, _] = sides(&c).unwrap();
+            assert!(hi.upper > hi.attained, "{c:?}");
+        }
     }
 
     #[test]
