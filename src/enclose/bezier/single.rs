@@ -278,7 +278,7 @@ fn exact_critical_value(c: &[f64], m: f64, xm: Ddi) -> Option<f64> {
     use num_bigint::BigInt;
     // (the nearest double to the enclosure's centre lies in it only for a near-tie)
     let d = xm.hi();
-    if !(d.is_finite() && xm.lo().abs() <= xm.rad()) || !(0.0 < m && m < 1.0) {
+    if !(d.is_finite() && xm.lo().abs() <= xm.rad() && 0.0 < m && m < 1.0) {
         return None;
     }
     let p = c.len() - 1;
