@@ -2018,7 +2018,7 @@ fn clamp_left_integer(p: usize, t: &mut [BigInt], q: &mut [BigInt]) -> Option<()
 /// Finite f64 values as integers over one common power of two 2^e0, and e0 (each x = m 2^e
 /// exactly, shifted to the smallest exponent: a positive common factor, no gcd); `None` for a
 /// value that is not finite.
-fn dyadic_integers(xs: impl Iterator<Item = f64>) -> Option<(Vec<BigInt>, i64)> {
+pub(crate) fn dyadic_integers(xs: impl Iterator<Item = f64>) -> Option<(Vec<BigInt>, i64)> {
     let parts: Vec<(BigInt, i64)> = xs
         .map(|x| {
             let q = Exact::of(x);
@@ -2033,15 +2033,6 @@ fn dyadic_integers(xs: impl Iterator<Item = f64>) -> Option<(Vec<BigInt>, i64)> 
         .map(|(m, e)| m << (e - e0) as u64)
         .collect();
     Some((ints, e0))
-}
-
-#[cfg(test)]
-/// Integers N_i with f_i = N_i / D for one D > 0 (the least common multiple of the
-/// denominators); `None` if some value is undefined.
-fn integer_numerators(f: &[Exact]) -> Option<Vec<BigInt>> {
-    let vals: Vec<&BigRational> = f.iter().map(Exact::value).collect::<Option<_>>()?;
-    let d = vals.iter().fold(BigInt::one(), |acc, q| acc.lcm(q.denom()));
-    Some(vals.iter().map(|q| q.numer() * (&d / q.denom())).collect())
 }
 
 /// De Casteljau subdivision (NURBS Book A1.5) of the Bernstein coefficients `b` (over a common
@@ -2277,7 +2268,7 @@ fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
 /// The value at the rational x = m / n (n > 0) of the Bernstein polynomial with integer
 /// coefficients `b`, as (v, n^p) with value v / n^p: de Casteljau in integers (each corner
 /// cut (n - m) a + m b over n).
-fn eval_integer(b: &[BigInt], x: &BigRational) -> (BigInt, BigInt) {
+pub(crate) fn eval_integer(b: &[BigInt], x: &BigRational) -> (BigInt, BigInt) {
     let (m, n) = (x.numer().clone(), x.denom().clone());
     let nm = &n - &m;
     let mut lvl = b.to_vec();
@@ -2748,6 +2739,14 @@ mod tests {
 
     /// The direct integer coefficients of a Bézier span are the exact segment's (from exact
     /// knot insertion) times one positive factor, for a rational curve and either side.
+    /// Integers N_i with f_i = N_i / D for one D > 0 (the least common multiple of the
+    /// denominators); `None` if some value is undefined.
+    fn integer_numerators(f: &[Exact]) -> Option<Vec<BigInt>> {
+        let vals: Vec<&BigRational> = f.iter().map(Exact::value).collect::<Option<_>>()?;
+        let d = vals.iter().fold(BigInt::one(), |acc, q| acc.lcm(q.denom()));
+        Some(vals.iter().map(|q| q.numer() * (&d / q.denom())).collect())
+    }
+
     /// The fraction-free integer extraction equals the rational one of `HSpline<Exact>` up to
     /// one positive factor (every ratio and every sign), on the spans of rational and
     /// polynomial splines of degree 2 to 5 with irregular, multiple and unclamped knots.

@@ -269,49 +269,31 @@ impl Coeffs<'_> {
 /// (or when `xm`, an enclosure of x(m), holds no double: the common case, decided without
 /// any big-integer work).
 ///
-/// With c_i = C_i 2^-g (integers over one power of two), m = M 2^-k and 1 - m = (2^k - M) 2^-k
-/// (exact), x(m) = sum_i binom(p, i) C_i M^i (2^k - M)^(p-i) / 2^(g + kp) and
-/// x'(m) / p = sum_i binom(p-1, i) (C_{i+1} - C_i) M^i (2^k - M)^(p-1-i) / 2^(g + k(p-1))
-/// (Bernstein form and its hodograph; Farin, *Curves and Surfaces for CAGD*), both evaluated
-/// in integers, so the tests are exact.
+/// With c_i = C_i 2^e_c (integers over one power of two), x(m) and x'(m) / p (the Bernstein
+/// polynomials with coefficients C_i and C_{i+1} - C_i, the hodograph; Farin, *Curves and
+/// Surfaces for CAGD*) are evaluated by de Casteljau in integers at the rational m
+/// (`certify::eval_integer`, the certificate's exact kernel), so the tests are exact.
 fn exact_critical_value(c: &[f64], m: f64, xm: Ddi) -> Option<f64> {
-    use num_bigint::BigInt;
+    use crate::enclose::certify::{dyadic_integers, eval_integer};
+    use num_bigint::Sign;
     // (the nearest double to the enclosure's centre lies in it only for a near-tie)
     let d = xm.hi();
     if !(d.is_finite() && xm.lo().abs() <= xm.rad() && 0.0 < m && m < 1.0) {
         return None;
     }
-    let p = c.len() - 1;
-    // x = n 2^-e exactly (n an integer, e >= 0 after scaling) as (n, e)
-    let dy = |x: f64| -> Option<(BigInt, u64)> {
-        let q = crate::num::Exact::of(x);
-        let q = q.value()?;
-        Some((q.numer().clone(), q.denom().bits() - 1))
-    };
-    let parts: Vec<(BigInt, u64)> = c.iter().map(|&x| dy(x)).collect::<Option<_>>()?;
-    let g = parts.iter().map(|x| x.1).max()?;
-    let ci: Vec<BigInt> = parts.iter().map(|(n, e)| n << (g - e)).collect();
-    let (mm, k) = dy(m)?;
-    let one_m = (BigInt::from(1) << k) - &mm;
-    // sum_i binom(n, i) v_i M^i (2^k - M)^(n - i)
-    let bern = |v: &[BigInt]| -> BigInt {
-        let n = v.len() - 1;
-        let mut binom = BigInt::from(1);
-        let mut sum = BigInt::from(0);
-        for (i, vi) in v.iter().enumerate() {
-            sum += &binom * vi * mm.pow(i as u32) * one_m.pow((n - i) as u32);
-            binom = binom * BigInt::from(n - i) / BigInt::from(i + 1);
-        }
-        sum
-    };
-    let diffs: Vec<BigInt> = ci.windows(2).map(|w| &w[1] - &w[0]).collect();
-    if bern(&diffs) != BigInt::from(0) {
+    // c_i = C_i 2^e_c; the Bernstein values at m in integers, v / s (s > 0)
+    let (ci, e_c) = dyadic_integers(c.iter().copied())?;
+    let m = crate::num::Exact::of(m);
+    let m = m.value()?;
+    let diffs: Vec<_> = ci.windows(2).map(|w| &w[1] - &w[0]).collect();
+    if eval_integer(&diffs, m).0.sign() != Sign::NoSign {
         return None;
     }
-    // x(m) = N / 2^(g + kp) == d = n_d / 2^e_d  <=>  N 2^e_d == n_d 2^(g + kp)
-    let n = bern(&ci);
-    let (nd, ed) = dy(d)?;
-    ((n << ed) == (nd << (g + k * p as u64))).then_some(d)
+    // x(m) = v 2^e_c / s == d = D 2^e_d  <=>  v 2^(e_c - e) == D s 2^(e_d - e), e the smaller
+    let (v, sc) = eval_integer(&ci, m);
+    let (dv, e_d) = dyadic_integers(std::iter::once(d))?;
+    let e = e_c.min(e_d);
+    ((v << (e_c - e) as u64) == ((&dv[0] * sc) << (e_d - e) as u64)).then_some(d)
 }
 
 /// f64 estimates of the real roots of b_0 + b_1 t + b_2 t^2 (at most two, unordered).

@@ -333,28 +333,16 @@ impl<'a> Engine<'a> {
             // boxes on both sides only reach it at an end.
             self.stats.point_evaluations += 1;
             let m = midpoint(lo, hi);
-            let kn = self.c.knots();
-            // (likewise C(hi) when hi is the knot u_{k+1} and the curve is continuous there, so
-            // that C(hi) is span k's piece's end value: a critical point at a knot reached by
-            // the box left of it, e.g. the symmetric maximum at a double knot)
-            let knot = if lo == kn[k] {
-                Some(lo)
-            } else {
-                let last = self.spans.last().map_or(k, |s| s.0);
-                (hi == kn[k + 1] && crate::enclose::bezier::right_end_attained(kn, self.p, k, last))
-                    .then_some(hi)
-            };
-            let at_knot = cd.t.is_some() && knot.is_some();
+            let at_knot = cd.t.is_some() && lo == self.c.knots()[k];
             let (vm, d) = self.tight.coord_at_tight(self.j, m);
             tight = d;
             let cm = [
                 vm,
-                match knot {
-                    Some(q) if at_knot => {
-                        self.stats.point_evaluations += 1;
-                        self.tight.coord_at(self.j, q)
-                    }
-                    _ => Interval::EMPTY,
+                if at_knot {
+                    self.stats.point_evaluations += 1;
+                    self.tight.coord_at(self.j, lo)
+                } else {
+                    Interval::EMPTY
                 },
             ];
             let mut enc = self.tight.coord_over(self.j, lo, hi);
