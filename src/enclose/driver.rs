@@ -106,12 +106,43 @@ pub(crate) fn low_exp(x: f64) -> i32 {
 const KNOT_MAX_EXP: i32 = 1019;
 
 /// x * 2^k (round to nearest; two steps so that 2^k itself never over/underflows).
-fn ldexp(x: f64, k: i32) -> f64 {
-    if (-1022..=1023).contains(&k) {
-        return x * 2f64.powi(k); // 2^k is a normal f64: one correctly rounded product
+fn ldexp(mut x: f64, mut k: i32) -> f64 {
+    if !x.is_finite() || x == 0.0 {
+        return x;
     }
-    let h = k / 2;
-    x * 2f64.powi(h) * 2f64.powi(k - h)
+    // upward: products by 2^1023 are exact until one overflows (and stays ±inf)
+    while k > 1023 {
+        x *= pow2(1023);
+        k -= 1023;
+    }
+    if k >= -1022 {
+        return x * pow2(k); // 2^k is a normal f64: one correctly rounded product
+    }
+    // downward below 2^-1022: exact steps that keep x normal (by 2^-1022 while |x| >= 1, then
+    // a step a with |x 2^a| >= 2^(e - 1 + a) >= 2^-1022 where |x| < 2^e), then the one
+    // rounding; a rest below 2^-1022 makes |x 2^k| < 2^(e + k) <= 2^-2043, which rounds to ±0
+    while k < -1022 && x.abs() >= 1.0 {
+        x *= pow2(-1022);
+        k += 1022;
+    }
+    if k >= -1022 {
+        return x * pow2(k);
+    }
+    let e = exponent(x); // <= 0 here: -1021 - e >= -1021
+    let a = k.max(-1021 - e);
+    let rest = k - a;
+    if rest < -1022 {
+        return x * 0.0;
+    }
+    x * pow2(a) * pow2(rest)
+}
+
+/// 2^k for -1022 <= k <= 1023 (a normal f64), built from its bits (`powi` is a library call
+/// with a loop, which showed in the profiles of rescaled curves).
+#[inline]
+fn pow2(k: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&k));
+    f64::from_bits(((k + 1023) as u64) << 52)
 }
 
 /// x * 2^k exactly, or `None` if the product is not exactly representable.
@@ -532,6 +563,49 @@ mod tests {
         assert_eq!(exponent(f64::from_bits(1)), -1073);
         assert_eq!(ldexp(1.0, 2000), f64::INFINITY);
         assert_eq!(ldexp(1.0, -2000), 0.0);
+        // against an exact reference (the result as a rational compared with x 2^k): every
+        // power of two and products near the subnormal range, in both directions
+        let tiny = f64::from_bits(1);
+        assert_eq!(ldexp(tiny, 2047), pow2(973));
+        assert_eq!(ldexp(tiny, 2097), pow2(1023));
+        assert_eq!(ldexp(tiny, 2098), f64::INFINITY);
+        assert_eq!(ldexp(f64::MAX, -2098), tiny);
+        assert_eq!(ldexp(f64::MAX, -2099), 0.0);
+        assert_eq!(ldexp(-f64::MAX, -3000), -0.0);
+        assert!(ldexp(-f64::MAX, -3000).is_sign_negative());
+        for k in -1022..=1023 {
+            assert_eq!(pow2(k), 2f64.powi(k));
+        }
+        // random doubles and exponents against the exact product x 2^k (rationals): y is
+        // one of its two neighbouring doubles, the nearer one (or the exact product)
+        use crate::num::exact::Exact;
+        use num_bigint::BigInt;
+        use num_rational::BigRational;
+        use num_traits::Signed;
+        use rand::Rng;
+        let pow2_exact = |k: i32| {
+            let p = BigInt::from(1) << k.unsigned_abs();
+            Exact::from_ratio(if k >= 0 {
+                BigRational::from_integer(p)
+            } else {
+                BigRational::new(BigInt::from(1), p)
+            })
+        };
+        let mut r = crate::testkit::gen::rng(5);
+        for _ in 0..20_000 {
+            let x = f64::from_bits(r.random_range(1..0x7fef_ffff_ffff_ffffu64));
+            let x = if r.random_bool(0.5) { -x } else { x };
+            let k = r.random_range(-2200..=2200);
+            let y = ldexp(x, k);
+            let ex = Exact::of(x) * pow2_exact(k);
+            let (lo, hi) = (ex.round_down(), ex.round_up());
+            assert!(y == lo || y == hi, "ldexp({x:e}, {k}) = {y:e}, not in [{lo:e}, {hi:e}]");
+            if lo.is_finite() && hi.is_finite() && lo != hi {
+                let dist = |v: f64| (ex.clone() - Exact::of(v)).value().unwrap().abs();
+                let other = if y == lo { hi } else { lo };
+                assert!(dist(y) <= dist(other), "ldexp({x:e}, {k}) = {y:e} not the nearest");
+            }
+        }
         // exact cases
         assert_eq!(scale_outward(3.0, -5, true), 3.0 / 32.0);
         // subnormal results: directed
