@@ -174,18 +174,28 @@ const FAR_BELOW_THE_SCALE: [(&[u8], usize, bool, f64); 2] = [
     ),
 ];
 
+/// The bound of coordinate j's side (`hi`) of the curve `json` and its certificate, per
+/// strategy (`newton`, `bezier`).
+fn side_bounds(json: &[u8], j: usize, hi: bool) -> Vec<(&'static str, f64, bool)> {
+    let c = nurbs_box::io::parse::parse_curve(json).unwrap();
+    ["newton", "bezier"]
+        .into_iter()
+        .map(|s| {
+            let e = strategy_by_name(s, None).unwrap().enclose(&c);
+            let cb = &e.coords[j];
+            if hi {
+                (s, cb.hi, cb.optimal_hi)
+            } else {
+                (s, cb.lo, cb.optimal_lo)
+            }
+        })
+        .collect()
+}
+
 #[test]
 fn extrema_far_below_a_scale_near_f64_max_are_certified() {
     for (i, (json, j, hi, beyond)) in FAR_BELOW_THE_SCALE.iter().enumerate() {
-        let c = nurbs_box::io::parse::parse_curve(json).unwrap();
-        for s in ["newton", "bezier"] {
-            let e = strategy_by_name(s, None).unwrap().enclose(&c);
-            let cb = &e.coords[*j];
-            let (b, ok) = if *hi {
-                (cb.hi, cb.optimal_hi)
-            } else {
-                (cb.lo, cb.optimal_lo)
-            };
+        for (s, b, ok) in side_bounds(json, *j, *hi) {
             assert!(ok, "curve {i}, {s}: bound {b:e} not certified");
             // (beyond the control value the strategies stopped at)
             assert!(
@@ -196,27 +206,94 @@ fn extrema_far_below_a_scale_near_f64_max_are_certified() {
     }
 }
 
+/// Every curve's certificates agree with the MPFR reference, and the bound of coordinate j's
+/// side (`hi`) is the optimal double RU(max) / RD(min).
+#[cfg(feature = "mpfr")]
+fn assert_optimal_against_mpfr<'a>(cases: impl Iterator<Item = (&'a [u8], usize, bool)>) {
+    use nurbs_box::testkit::reference::{check_certificates, optimal_bound, reference_box};
+    for (i, (json, j, hi)) in cases.enumerate() {
+        let c = nurbs_box::io::parse::parse_curve(json).unwrap();
+        let rb = reference_box(&c);
+        let exact = if hi { &rb.hi[j] } else { &rb.lo[j] };
+        let opt = optimal_bound(exact, c.coord_scale(j), hi);
+        for s in ["newton", "bezier"] {
+            let e = strategy_by_name(s, None).unwrap().enclose(&c);
+            check_certificates(&c, &rb, &e).unwrap();
+            let b = if hi { e.coords[j].hi } else { e.coords[j].lo };
+            assert_eq!(b, opt, "curve {i}, {s}");
+        }
+    }
+}
+
 /// The same curves against the MPFR reference: the certified bounds are RD(min) / RU(max).
 #[cfg(feature = "mpfr")]
 #[test]
 fn extrema_far_below_a_scale_near_f64_max_agree_with_mpfr() {
-    use nurbs_box::testkit::reference::{check_certificates, optimal_bound, reference_box};
-    for (i, (json, j, hi, _)) in FAR_BELOW_THE_SCALE.iter().enumerate() {
-        let c = nurbs_box::io::parse::parse_curve(json).unwrap();
-        let rb = reference_box(&c);
-        let exact = if *hi { &rb.hi[*j] } else { &rb.lo[*j] };
-        let opt = optimal_bound(exact, c.coord_scale(*j), *hi);
-        for s in ["newton", "bezier"] {
-            let e = strategy_by_name(s, None).unwrap().enclose(&c);
-            check_certificates(&c, &rb, &e).unwrap();
-            let b = if *hi {
-                e.coords[*j].hi
-            } else {
-                e.coords[*j].lo
-            };
-            assert_eq!(b, opt, "curve {i}, {s}");
+    assert_optimal_against_mpfr(FAR_BELOW_THE_SCALE.iter().map(|x| (x.0, x.1, x.2)));
+}
+/// Bounds that only the exact end game of the certificate decides (`range_limits` curves:
+/// the double-double stages run on copies scaled into the f64 range, which cannot hold a
+/// value ~1e-320 next to one ~1e308): coordinate, side (true: hi) and the optimal double's
+/// bits (from the MPFR reference at the curve's working precision; the last one also checked
+/// in exact rationals).
+const EXACT_END_GAME: [(&[u8], usize, bool, u64); 5] = [
+    // a polynomial cubic: subnormal knots, the maximum 1.421e-320 next to a control value
+    // -4.8e307
+    (
+        br#"{"degree":3,"knots":[0.0,0.0,0.0,0.0,7e-323,1.1e-322,1.5e-322,2.3e-322,3.16e-322,3.16e-322,3.16e-322,3.16e-322],"control_points":[[2.34e-321],[-0.5011590512132256],[0.8391278046333377],[-4.763579299675734e+307],[1.5183e-320],[1.9936e-320],[8.74e-322],[6.6e-322]]}"#,
+        0,
+        true,
+        0xb3c,
+    ),
+    // a rational cubic: subnormal control values, knots from 5.4e-323 to f64::MAX
+    (
+        br#"{"degree":3,"knots":[0.0,0.0,0.0,0.0,5.4e-323,0.4373005372605139,2.546806121900091,1.1420559768377089e+308,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308],"control_points":[[-1.5963e-320],[-9.496e-321],[-1.8196e-320],[-1.84e-320],[1.8947e-320],[-1.859e-320],[-1.869e-320],[-1.755e-320]],"weights":[0.0485030109752318,62.56100521625148,93.71103063095588,7.685393867894637,0.1386395149592389,55.21914449436262,56.097439256990384,0.12860355712948646]}"#,
+        0,
+        true,
+        0x8000000000000782,
+    ),
+    // a rational cubic: a minimum one double above a control value near -1.3e308, knots
+    // 2e-323 .. f64::MAX
+    (
+        br#"{"degree":3,"knots":[0.0,0.0,0.0,0.0,2e-323,7e-323,0.5635264701740272,0.8333234180575486,1.2475813279296588,3.5512234696737126,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308,1.7976931348623157e+308],"control_points":[[0.2742053305257328],[0.41693663372912937],[-1.2982792829882504e+308],[0.14172754596992831],[-1.7282728721030472e+308],[5.02e-321],[3.923e-321],[3.648067773483566e+307],[1.3557e-320],[-0.0705271362782387]],"weights":[70.24134573091209,121.54038197167246,0.027203368273654677,0.015782529394002275,0.0036478319293999704,0.0011138612660819699,940.1538352193618,355.9113881040946,0.9680435089172923,0.9114779880689429]}"#,
+        0,
+        false,
+        0xffe71c3206dec583,
+    ),
+    // a rational quadratic in 3-D: subnormal knots, the maximum 1.711e-320 next to values near
+    // f64::MAX
+    (
+        br#"{"degree":2,"knots":[0.0,0.0,0.0,1e-323,1.5e-322,1.8e-322,2.6e-322,2.7e-322,3.16e-322,3.16e-322,3.16e-322],"control_points":[[1.0645117215061689e+308,-1.7976931348623157e+308,9.9e-322],[1.2386e-320,-1.7976931348623157e+308,1.7554e-320],[1.9556828929240593e+307,1.7976931348623157e+308,-1.690528784570526e+308],[1.764e-320,-1.7976931348623157e+308,-0.8359093601325935],[-1.4342478145355377e+308,1.7976931348623157e+308,1e-321],[-8.094767384340252e+307,1.2289269421603761e+308,1.757e-320],[0.5986051038102955,1.7976931348623157e+308,-9.254328927582127e+307],[-4.7121610435040086e+306,1.7976931348623157e+308,-0.15872626346606866]],"weights":[0.0018116947235527522,318.78746952094724,0.05666043489783957,0.0012426408843952158,0.0010470863417213379,0.004307405805521296,23.614687647254232,0.23978314679685173]}"#,
+        2,
+        true,
+        0xd87,
+    ),
+    // an unclamped quadratic: knots from -9.7e307 to 1.5e308 (differences overflow), the
+    // maximum C(u_4) = 947.16 subnormal steps (in exact rationals) next to a control value
+    // -1.5e308
+    (
+        br#"{"degree":2,"knots":[-9.74053104205146e+307,-8.43241588934243e+307,-2.2369763000989835e+307,5e-324,5.628771303710523e+307,7.59871062937766e+307,1.523329288692575e+308],"control_points":[[1.678e-320,8.6e-322,-4.955e-321],[6.73e-321,-1.4893554232181983e+308,-1.976e-321],[1.013e-320,1.2263e-320,-4.12e-321],[5.83e-322,2.026e-321,1.9644e-320]]}"#,
+        1,
+        true,
+        0x3b4,
+    ),
+];
+
+#[test]
+fn bounds_at_the_range_limits_are_decided_by_the_exact_end_game() {
+    for (i, (json, j, hi, bits)) in EXACT_END_GAME.iter().enumerate() {
+        for (s, b, ok) in side_bounds(json, *j, *hi) {
+            assert_eq!(b.to_bits(), *bits, "curve {i}, {s}: bound {b:e}");
+            assert!(ok, "curve {i}, {s}: bound {b:e} not certified");
         }
     }
+}
+
+/// The same curves against the MPFR reference: every certificate agrees with it.
+#[cfg(feature = "mpfr")]
+#[test]
+fn the_exact_end_game_agrees_with_mpfr() {
+    assert_optimal_against_mpfr(EXACT_END_GAME.iter().map(|x| (x.0, x.1, x.2)));
 }
 
 #[test]

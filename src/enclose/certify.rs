@@ -157,6 +157,23 @@
 //! same reasons as the strategies' own search: the pieces cover every span whose control hull
 //! is not already below a value attained.
 //!
+//! # The exact end game
+//!
+//! Every stage above runs on copies of the curve scaled into the f64 range. A coordinate with
+//! values ~1e-320 next to values ~1e308 (or knots whose differences overflow) fits no single
+//! scaling: the copy's rounded control values blur the extremum by far more than its ulp. A
+//! bound these stages leave undecided, but within the lowering window of the scale, goes last
+//! to [`exact_endgame`], on the enclosed curve itself: each span's piece g = 2^d A / W as two
+//! integer Bernstein rows (exact, fraction-free Boehm insertion; [`span_rows_integer`]), A
+//! a lower bound of sup g (the attained value, then the exact values of the pieces at their
+//! ends), and t = RU(A) tried as the bound with the exact Bernstein rule on every span whose
+//! control values exceed t. All spans at most t: sup g <= t = RU(A) <= RU(sup g), so t is the
+//! optimal bound, certified. A value above t at a split point: the next, larger A. At most
+//! [`ENDGAME_ROUNDS`] rounds. (Where the rule rounds long coefficients up, it keeps each
+//! coefficient's leading bits rather than a fixed number below the largest one, so that the
+//! small coefficients that decide a piece near a subnormal extremum keep their signs, and a
+//! refutation at a piece's end is checked by the exact value there.)
+//!
 //! # Limits (bounded work)
 //!
 //! At most [`MAX_CANDIDATES`] candidates, [`NEWTON_STEPS`] double-double Newton steps, the
@@ -177,7 +194,9 @@
 //! and control values are short rationals (`exact_value_is_cheap`: no knot or value near
 //! ±f64::MAX or with a subnormal bit, whose exact quotients have thousands of bits), at most
 //! [`MAX_EXACT_EVALS`] per evaluated curve and [`MAX_EXACT_POINTS`] box-end values per lowering
-//! proof. The local stage: at most [`LOCAL_MAX_SPANS`] spans and [`LOCAL_PIECES`] pieces.
+//! proof. The local stage: at most [`LOCAL_MAX_SPANS`] spans and [`LOCAL_PIECES`] pieces. The
+//! end game: degree at most [`EXACT_MAX_DEGREE`], at most [`MAX_EXACT_SPANS`] spans and
+//! [`ENDGAME_ROUNDS`] rounds, each rule within [`MAX_EXACT_SPLITS`] splits.
 //! When these are spent the answer is `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
@@ -1037,12 +1056,177 @@ fn certify_side(
         }
         break;
     }
+    // (the end game in exact arithmetic on the enclosed curve itself, where the stages above,
+    // on copies scaled into the f64 range, could not decide: a nearly proved bound only)
+    if !proved && bound.is_finite() {
+        let own = cv.dn.orig;
+        if !far_below(bound, inner, own.coord_scale(j), sc.within) {
+            if let Some(t) = exact_endgame(own, j, sign, bound, inner) {
+                bound = t;
+                proved = true;
+            }
+        }
+    }
     if max_side {
         cb.hi = bound;
     } else {
         cb.lo = -bound;
     }
     proved
+}
+
+/// Rounds of [`exact_endgame`].
+pub const ENDGAME_ROUNDS: usize = 4;
+
+/// The end game of a certificate (the Ziv loop of the module docs, finished in exact
+/// arithmetic): for a bound that the double-double stages could not decide, on the enclosed
+/// curve `c` itself, whose data are exact in rational arithmetic at any magnitude (values at
+/// 1e-320 next to 1e308, knots whose differences overflow f64, which no scaling brings into the
+/// f64 range together).
+///
+/// With A an exact lower bound of sup g (the attained value `inner`, then the exact values of
+/// each span's piece at its ends and at the points where a round found g above its target),
+/// t = RU(A) is tried as the bound: the exact Bernstein rule ([`sign_rule`] on f = sign A_j -
+/// t W, [`span_rows_integer`]) on every span whose control values exceed t either proves g <= t
+/// on all of them (spans whose control values are <= t are bounded by them: convex hull
+/// property, weights > 0), so sup g <= t and, as A <= sup g and t = RU(A), t = RU(sup g): the
+/// optimal bound, certified; or it finds an exact value g(s) > t, the next A. At most
+/// [`ENDGAME_ROUNDS`] rounds over at most [`MAX_EXACT_SPANS`] spans of degree at most
+/// [`EXACT_MAX_DEGREE`], each rule within its split limit; `None` (the bound stays, not
+/// certified) otherwise. t is never above `bound` (A <= sup g <= bound, and `bound` is a double).
+fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) -> Option<f64> {
+    let (p, n) = (c.degree(), c.num_points() - 1);
+    let kn = c.knots();
+    if p > EXACT_MAX_DEGREE || !inner.is_finite() {
+        return None;
+    }
+    let top = |k: usize| {
+        (k - p..=k)
+            .map(|i| sign * c.control_point(i)[j])
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let spans: Vec<usize> = (p..=n)
+        .filter(|&k| kn[k] < kn[k + 1] && top(k) > inner)
+        .collect();
+    if spans.len() > MAX_EXACT_SPANS {
+        return None;
+    }
+    let rows: Vec<(usize, SpanRows)> = spans
+        .iter()
+        .map(|&k| Some((k, span_rows_integer(c, k, j, sign)?)))
+        .collect::<Option<_>>()?;
+    let mut best = Exact::of(inner).value()?.clone();
+    // (rationals compared by cross-multiplication, denominators > 0: `Ratio`'s comparison
+    // divides, a chain of big divisions on these unreduced values)
+    let raise = |best: &mut BigRational, g: BigRational| {
+        if g.numer() * best.denom() > best.numer() * g.denom() {
+            *best = g;
+        }
+    };
+    let zero = BigRational::from_integer(BigInt::from(0));
+    for (_, r) in &rows {
+        for s in [zero.clone(), BigRational::one()] {
+            if let Some(g) = r.value(&s) {
+                raise(&mut best, g);
+            }
+        }
+    }
+    for _ in 0..ENDGAME_ROUNDS {
+        let t = Exact::from_ratio(best.clone()).round_up();
+        if t.is_nan() || t > bound {
+            return None;
+        }
+        let mut raised = false;
+        for (k, r) in &rows {
+            if top(*k) <= t {
+                continue;
+            }
+            match sign_rule(r.minus(t)?) {
+                Rule::AtMost => {}
+                Rule::Above(s) => {
+                    // f(s) > 0: g(s) > t >= A, a larger exact lower bound
+                    raise(&mut best, r.value(&s)?);
+                    raised = true;
+                    break;
+                }
+                Rule::Undecided => return None,
+            }
+        }
+        if !raised {
+            return Some(t);
+        }
+    }
+    None
+}
+
+/// Span k's piece of g = sign C_j in integers ([`span_rows_integer`]): g(s) = 2^d A(s) / W(s)
+/// with A = sum a_i B_i, W = sum w_i B_i (Bernstein polynomials of degree p on s in [0, 1]),
+/// a and w the exact Bézier rows times one common positive factor.
+struct SpanRows {
+    a: Vec<BigInt>,
+    w: Vec<BigInt>,
+    d: i64,
+}
+
+impl SpanRows {
+    /// g(s) exactly at the rational s in [0, 1] (`None` if W(s) is not > 0: not a valid piece).
+    fn value(&self, s: &BigRational) -> Option<BigRational> {
+        let (va, _) = eval_integer(&self.a, s);
+        let (vw, _) = eval_integer(&self.w, s);
+        if vw.sign() != Sign::Plus {
+            return None;
+        }
+        // (unreduced: a gcd of the thousands of bits of range-limit data costs milliseconds,
+        // and comparisons do not need lowest terms)
+        let sh = self.d.unsigned_abs();
+        Some(if self.d >= 0 {
+            BigRational::new_raw(va << sh, vw)
+        } else {
+            BigRational::new_raw(va, vw << sh)
+        })
+    }
+
+    /// The integer coefficients of f = 2^d A - t W (times a positive factor): f <= 0 iff
+    /// g <= t on the piece (W > 0).
+    fn minus(&self, t: f64) -> Option<Vec<BigInt>> {
+        let (m, e_t) = dyadic_integers(std::iter::once(t))?;
+        let e0 = self.d.min(e_t);
+        let (sa, sw) = ((self.d - e0) as u64, (e_t - e0) as u64);
+        Some(
+            self.a
+                .iter()
+                .zip(&self.w)
+                .map(|(a, w)| (a << sa) - ((&m[0] * w) << sw))
+                .collect(),
+        )
+    }
+}
+
+/// The rows of span k's piece of g = sign C_j ([`SpanRows`]): the homogeneous values w_i sign
+/// P_ij and the weights w_i of the span's local control points as integers (each row over one
+/// power of two, exact), clamped together at both ends by fraction-free Boehm insertion
+/// ([`clamp_span_integer`]: the same positive factor for both rows).
+fn span_rows_integer(c: &NurbsCurve, k: usize, j: usize, sign: f64) -> Option<SpanRows> {
+    let p = c.degree();
+    let mut a = Vec::with_capacity(p + 1);
+    let mut w = Vec::with_capacity(p + 1);
+    for i in k - p..=k {
+        let (x, e_x) = dyadic_integers(std::iter::once(sign * c.control_point(i)[j]))?;
+        let (v, e_v) = dyadic_integers(std::iter::once(c.weight(i)))?;
+        a.push((&x[0] * &v[0], e_x + e_v));
+        w.push((v[0].clone(), e_v));
+    }
+    let common = |row: Vec<(BigInt, i64)>| -> Option<(Vec<BigInt>, i64)> {
+        let e0 = row.iter().map(|x| x.1).min()?;
+        Some((
+            row.into_iter().map(|(m, e)| m << (e - e0) as u64).collect(),
+            e0,
+        ))
+    };
+    let (mut a, e_a) = common(a)?;
+    let (mut w, e_w) = common(w)?;
+    clamp_span_integer(c, k, &mut [&mut a, &mut w])?;
+    Some(SpanRows { a, w, d: e_a - e_w })
 }
 
 /// Spans per side searched by [`local_stage`] (more: the stage is skipped).
@@ -1779,8 +1963,11 @@ const EXACT_RULE_MAX_BITS: u64 = 12_000;
 const EXACT_RULE_MAX_EXP: i32 = 300;
 /// Pieces whose coefficients are longer than this are rounded up ([`exact_bernstein_rule`]).
 const EXACT_RULE_ROUND_BITS: u64 = 512;
-/// Bits kept below the largest coefficient when rounding up.
+/// Significant bits kept of each coefficient when rounding up.
 const EXACT_RULE_KEEP_BITS: u64 = 256;
+/// Coefficients more than this many bits below a piece's largest one are rounded up to that
+/// granularity when rounding (so that a piece's coefficients stay within this many bits).
+const EXACT_RULE_SPREAD_BITS: u64 = 3072;
 
 /// Splits per span of [`exact_bernstein_rule`].
 const MAX_EXACT_SPLITS: usize = 48;
@@ -1818,17 +2005,47 @@ fn exact_bernstein_rule(ev: &mut Evals, k: usize, j: usize, sign: f64, t: f64) -
     // The coefficients as integers over a common positive denominator, which is dropped
     // (only signs matter): no gcd per operation, the cost of big rationals.
     let fi = bezier_coefficients_fraction_free(c, k, j, sign, t)?;
+    debug_assert_eq!(fi.len(), p + 1);
+    match sign_rule(fi) {
+        Rule::AtMost => Some(true),
+        Rule::Above(_) => Some(false),
+        Rule::Undecided => None,
+    }
+}
+
+/// What [`sign_rule`] showed for a Bernstein polynomial f on [0, 1].
+enum Rule {
+    /// f <= 0 on [0, 1]
+    AtMost,
+    /// f(s) > 0 at this s in [0, 1] (exactly)
+    Above(BigRational),
+    /// undecided within [`MAX_EXACT_SPLITS`] splits (or coefficients too long)
+    Undecided,
+}
+
+/// The sign rule of [`exact_bernstein_rule`] on the integer Bernstein coefficients `fi` of f
+/// (the exact ones times a positive factor): f <= 0 on [0, 1] when every coefficient of every
+/// piece of an exact subdivision is <= 0 (convex hull property), f(s) > 0 at a piece's end s
+/// whose end coefficient (the value there) is > 0. Where coefficients were rounded up, an end
+/// coefficient > 0 is checked by the exact value of f at that end (de Casteljau in integers).
+fn sign_rule(fi: Vec<BigInt>) -> Rule {
+    let p = fi.len() - 1;
     let pos = |x: &BigInt| x.sign() == Sign::Plus;
     if fi.iter().all(|x| !pos(x)) {
-        return Some(true);
+        return Rule::AtMost;
     }
-    if pos(&fi[0]) || pos(&fi[p]) {
-        return Some(false);
+    let end = |i: usize| BigRational::from_integer(BigInt::from(i));
+    if pos(&fi[0]) {
+        return Rule::Above(end(0));
+    }
+    if pos(&fi[p]) {
+        return Rule::Above(end(1));
     }
     if fi.iter().map(BigInt::bits).max().unwrap_or(0) > EXACT_RULE_MAX_BITS {
-        return None;
+        return Rule::Undecided;
     }
     let split_point = best_split(&fi);
+    let exact = fi.clone();
     let mut stack = vec![(fi, Exact::of(0.0), Exact::of(1.0))];
     // whether some coefficients were rounded up (then an end coefficient > 0 refutes nothing)
     let mut rounded = false;
@@ -1836,26 +2053,53 @@ fn exact_bernstein_rule(ev: &mut Evals, k: usize, j: usize, sign: f64, t: f64) -
     let half = Exact::of(0.5);
     while let Some((mut b, s0, s1)) = stack.pop() {
         // Long coefficients (extreme magnitudes, or many splits at a non-dyadic point) are
-        // rounded up to [`EXACT_RULE_KEEP_BITS`] bits below the largest one (the same
-        // power of two divides every coefficient of the piece, a positive common factor):
-        // upper bounds of the Bernstein coefficients bound f from above on the piece
-        // (B_i >= 0), and de Casteljau's corner cuts at r in [0, 1] are convex combinations,
-        // so the pieces' coefficients computed from upper bounds bound the exact pieces'.
+        // rounded up, each to [`EXACT_RULE_KEEP_BITS`] significant bits (but not finer than
+        // [`EXACT_RULE_SPREAD_BITS`] bits below the largest one), and then the power of two
+        // that divides all of them is divided out (a positive common factor): upper bounds of
+        // the Bernstein coefficients bound f from above on the piece (B_i >= 0), and de
+        // Casteljau's corner cuts at r in [0, 1] are convex combinations, so the pieces'
+        // coefficients computed from upper bounds bound the exact pieces'. (Relative, not
+        // absolute rounding: a coefficient far below the largest keeps its sign and size,
+        // which decide the pieces where the largest one's basis function vanishes, as at a
+        // value ~1e-320 next to a control value ~1e308.)
         let long = b.iter().map(BigInt::bits).max().unwrap_or(0);
         if long > EXACT_RULE_ROUND_BITS {
-            let d = BigInt::one() << (long - EXACT_RULE_KEEP_BITS);
-            b = b.iter().map(|x| x.div_ceil(&d)).collect();
+            let floor = long.saturating_sub(EXACT_RULE_SPREAD_BITS);
+            for x in b.iter_mut() {
+                let g = x.bits().saturating_sub(EXACT_RULE_KEEP_BITS).max(floor);
+                if g > 0 {
+                    // ceil(x / 2^g) 2^g (the shift of a negative BigInt rounds down)
+                    *x = -((-&*x) >> g) << g;
+                }
+            }
+            let tz = b
+                .iter()
+                .filter_map(|x| x.trailing_zeros())
+                .min()
+                .unwrap_or(0);
+            if tz > 0 {
+                b.iter_mut().for_each(|x| *x = &*x >> tz);
+            }
             rounded = true;
         }
         if b.iter().all(|x| !pos(x)) {
             continue;
         }
         if pos(&b[0]) || pos(&b[p]) {
-            return if rounded { None } else { Some(false) };
+            let at = if pos(&b[0]) { s0 } else { s1 };
+            let at = at.value().cloned();
+            // (rounded coefficients: the exact value of f at that end decides)
+            let above = at
+                .as_ref()
+                .is_some_and(|x| !rounded || eval_integer(&exact, x).0.sign() == Sign::Plus);
+            return match (above, at) {
+                (true, Some(x)) => Rule::Above(x),
+                _ => Rule::Undecided,
+            };
         }
         splits += 1;
         if splits > MAX_EXACT_SPLITS {
-            return None;
+            return Rule::Undecided;
         }
         // split at s* when it lies strictly inside, else halve
         let positive = |x: Exact| x.signum() == Some(Ordering::Greater);
@@ -1867,11 +2111,14 @@ fn exact_bernstein_rule(ev: &mut Evals, k: usize, j: usize, sign: f64, t: f64) -
             None => half.clone(),
         };
         let m = s0.clone() + r.clone() * (s1.clone() - s0.clone());
-        let (l, rt) = split_integer(&b, r.value()?);
+        let Some(r) = r.value() else {
+            return Rule::Undecided;
+        };
+        let (l, rt) = split_integer(&b, r);
         stack.push((rt, m.clone(), s1));
         stack.push((l, s0, m));
     }
-    Some(true)
+    Rule::AtMost
 }
 
 /// Whether the data of span k (coordinate j and weights of its control points, its knots
@@ -1957,21 +2204,30 @@ fn bezier_coefficients_fraction_free(
     for (x, e) in q.iter_mut().zip(&exps) {
         *x = &*x << (e - e0) as u64;
     }
+    clamp_span_integer(c, k, &mut [&mut q])?;
+    Some(q)
+}
+
+/// Clamps span k at both ends ([`clamp_left_integer`] from the left, then from the right on
+/// the reversed, negated knots): the rows of integer values of the span's local control
+/// points become the rows of its Bézier points, all times one common positive factor.
+fn clamp_span_integer(c: &NurbsCurve, k: usize, rows: &mut [&mut [BigInt]]) -> Option<()> {
+    let p = c.degree();
     let (mut kn, _) = dyadic_integers(c.knots()[k - p..=k + p + 1].iter().copied())?;
-    clamp_left_integer(p, &mut kn, &mut q)?;
-    q.reverse();
+    clamp_left_integer(p, &mut kn, rows)?;
+    rows.iter_mut().for_each(|q| q.reverse());
     kn.reverse();
     kn.iter_mut().for_each(|x| *x = -x.clone());
-    clamp_left_integer(p, &mut kn, &mut q)?;
-    q.reverse();
-    Some(q)
+    clamp_left_integer(p, &mut kn, rows)?;
+    rows.iter_mut().for_each(|q| q.reverse());
+    Some(())
 }
 
 /// `bspline::clamp_left` on one row of integers over a common positive denominator, with
 /// integer knots, fraction-free (see [`bezier_coefficients_fraction_free`]): the same cut
 /// points in the same order (point i of level l from points i and i + 1 of level l - 1),
 /// each value multiplied by one positive factor per level.
-fn clamp_left_integer(p: usize, t: &mut [BigInt], q: &mut [BigInt]) -> Option<()> {
+fn clamp_left_integer(p: usize, t: &mut [BigInt], rows: &mut [&mut [BigInt]]) -> Option<()> {
     let u = t[p].clone();
     let s = t[..=p].iter().rev().take_while(|&x| *x == u).count();
     if s >= p {
@@ -1992,21 +2248,27 @@ fn clamp_left_integer(p: usize, t: &mut [BigInt], q: &mut [BigInt]) -> Option<()
         for i in (0..=n).rev() {
             suf[i] = &suf[i + 1] * &den[i];
         }
-        for i in 0..=n {
-            let cut = (&t[i + p + 1] - &u) * &q[i] + (&u - &t[l + i]) * &q[i + 1];
-            q[i] = cut * (&pre[i] * &suf[i + 1]);
+        // (every row the same cuts and factors: their common positive factor stays one)
+        for q in rows.iter_mut() {
+            for i in 0..=n {
+                let cut = (&t[i + p + 1] - &u) * &q[i] + (&u - &t[l + i]) * &q[i + 1];
+                q[i] = cut * (&pre[i] * &suf[i + 1]);
+            }
+            for x in &mut q[n + 1..=p] {
+                *x = &*x * &pre[n + 1];
+            }
         }
-        for x in &mut q[n + 1..=p] {
-            *x = &*x * &pre[n + 1];
-        }
-        // (a common power of two out: a positive factor)
-        let tz = q
+        // (a common power of two out of every row: a positive factor)
+        let tz = rows
             .iter()
+            .flat_map(|q| q.iter())
             .filter_map(|x| x.trailing_zeros())
             .min()
             .unwrap_or(0);
         if tz > 0 {
-            q.iter_mut().for_each(|x| *x = &*x >> tz);
+            for q in rows.iter_mut() {
+                q.iter_mut().for_each(|x| *x = &*x >> tz);
+            }
         }
     }
     let first = t[p - s].clone();
@@ -2080,6 +2342,11 @@ fn split_integer(b: &[BigInt], r: &BigRational) -> (Vec<BigInt>, Vec<BigInt>) {
 /// The split point s* of [`exact_bernstein_rule`] for the Bernstein coefficients `f` on [0, 1]:
 /// the candidate in (0, 1) with the largest exact value (`None` if none lies inside).
 fn best_split(fi: &[BigInt]) -> Option<Exact> {
+    // (coefficients of thousands of bits, range-limit data: no exact quadratic critical point,
+    // whose numerator and denominator are as long and make every later split as costly (the
+    // grid points below instead), and no double-root search, whose gcds cost milliseconds)
+    let bits = fi.iter().map(BigInt::bits).max().unwrap_or(0);
+    let long = bits > EXACT_CRITICAL_MAX_BITS;
     // (the integer coefficients, the exact ones times a positive factor: the same signs,
     // maximisers and double roots)
     let ff: Vec<f64> = fi.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect();
@@ -2138,7 +2405,7 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
         if d2.sign() == Sign::Minus {
             // f' = p sum h1_i B_i, f'' = p (p - 1) sum h2_i B_i; step = f'/f'' = num / den
             let (num, den) = (d1 * &sc2, d2 * &sc1 * BigInt::from(p - 1));
-            if p == 2 {
+            if p == 2 && !long {
                 cands.push(&se - BigRational::new(num, den));
             } else {
                 // the Newton point n = se - num / den = top / bot (bot > 0), unreduced: only
@@ -2184,7 +2451,9 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
     // splits (a degree-5 span: ~8M instructions, against ~0.3M for the rest of the rule).
     let zero_at = |i: usize| fi[i].sign() == Sign::NoSign;
     let end_tie = p >= 1 && ((zero_at(0) && zero_at(1)) || (zero_at(p) && zero_at(p - 1)));
-    if let Some(r) = (!end_tie)
+    // (nor for coefficients of thousands of bits, range-limit data: the gcds of Euclid's
+    // rationals cost milliseconds there)
+    if let Some(r) = (!end_tie && bits <= DOUBLE_ROOT_MAX_BITS)
         .then(|| rational_double_root(fi))
         .flatten()
         .filter(inside)
@@ -2193,6 +2462,12 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
     }
     best.map(|(_, _, x)| Exact::from_ratio(x))
 }
+
+/// Coefficients longer than this are not searched for a rational double root ([`best_split`]).
+const DOUBLE_ROOT_MAX_BITS: u64 = 1024;
+/// A quadratic with coefficients longer than this is not split at its exact critical point
+/// ([`best_split`]).
+const EXACT_CRITICAL_MAX_BITS: u64 = 1024;
 
 /// A rational double root of f, the Bernstein polynomial with integer coefficients `fi`
 /// (degree 2 ..= 8): the root of gcd(f, f') when that gcd is linear (a root of f and f', so

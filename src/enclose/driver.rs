@@ -599,11 +599,17 @@ mod tests {
             let y = ldexp(x, k);
             let ex = Exact::of(x) * pow2_exact(k);
             let (lo, hi) = (ex.round_down(), ex.round_up());
-            assert!(y == lo || y == hi, "ldexp({x:e}, {k}) = {y:e}, not in [{lo:e}, {hi:e}]");
+            assert!(
+                y == lo || y == hi,
+                "ldexp({x:e}, {k}) = {y:e}, not in [{lo:e}, {hi:e}]"
+            );
             if lo.is_finite() && hi.is_finite() && lo != hi {
                 let dist = |v: f64| (ex.clone() - Exact::of(v)).value().unwrap().abs();
                 let other = if y == lo { hi } else { lo };
-                assert!(dist(y) <= dist(other), "ldexp({x:e}, {k}) = {y:e} not the nearest");
+                assert!(
+                    dist(y) <= dist(other),
+                    "ldexp({x:e}, {k}) = {y:e} not the nearest"
+                );
             }
         }
         // exact cases

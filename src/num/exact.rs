@@ -74,7 +74,12 @@ impl Exact {
         let Some(q) = self.0.as_ref() else {
             return f64::NAN;
         };
-        let below = |x: f64| -> bool { q < &ratio_of_f64(x).expect("finite") };
+        // (by cross-multiplication, denominators > 0: `Ratio`'s own comparison divides, a
+        // chain of big divisions for the unreduced rationals of the certificates' end game)
+        let below = |x: f64| -> bool {
+            let r = ratio_of_f64(x).expect("finite");
+            q.numer() * r.denom() < r.numer() * q.denom()
+        };
         let mut x = approx(q);
         if x == f64::INFINITY {
             x = f64::MAX;

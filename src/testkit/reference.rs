@@ -462,7 +462,17 @@ pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f6
     if diff.clone().abs() <= res {
         return 0.0;
     }
-    (diff / fl(ulp(scale))).to_f64()
+    // (a resolved distance never counts as 0: in ulps of a scale near f64::MAX, a distance of
+    // a few subnormal steps underflows f64; it keeps its sign as the smallest subnormal)
+    let q = (diff.clone() / fl(ulp(scale))).to_f64();
+    if q == 0.0 {
+        return if diff.is_sign_negative() {
+            -f64::from_bits(1)
+        } else {
+            f64::from_bits(1)
+        };
+    }
+    q
 }
 
 /// The optimal f64 bound of an exact extremum: RU(max) for an upper bound (`is_upper`),
@@ -1035,5 +1045,18 @@ mod tests {
         // below the reference's resolution: 0, not a miss
         let y = fl(1.0) + Float::with_val(mpfr_prec(), Float::i_exp(1, -250));
         assert_eq!(ulps_outside(1.0, &y, 1.0, true), 0.0);
+        // resolved but far below an ulp of a scale near f64::MAX (a subnormal extremum at 2400
+        // bits): not 0 (the quotient underflowed f64), and the optimal bound is RU, not the
+        // nearest double
+        with_mpfr_prec(2400, || {
+            let tiny = f64::from_bits(1);
+            let z = Float::with_val(2400, fl(947.0 * tiny) + fl(tiny) * 0.16f64);
+            let scale = 1.5e308;
+            let below = ulps_outside(947.0 * tiny, &z, scale, true);
+            assert!(below < 0.0, "{below:e}");
+            assert!(ulps_outside(948.0 * tiny, &z, scale, true) > 0.0);
+            assert_eq!(optimal_bound(&z, scale, true), 948.0 * tiny);
+            assert_eq!(optimal_bound(&z, scale, false), 947.0 * tiny);
+        });
     }
 }
