@@ -63,6 +63,8 @@ pub struct Simple<'a> {
     knots: &'a [f64],
     /// per coordinate the exact control-point range (min, max)
     range: [(f64, f64); MAX_DIM],
+    /// per coordinate the first indices of the smallest and of the largest control value
+    extreme_at: [(usize, usize); MAX_DIM],
 }
 
 /// The lane takes curves of dimension up to this (the result's inline storage holds three).
@@ -113,15 +115,18 @@ impl<'a> Simple<'a> {
         }
         let pts = c.points_flat();
         let mut range = [(0.0, 0.0); MAX_DIM];
-        for (j, r) in range.iter_mut().enumerate().take(d) {
+        let mut extreme_at = [(0, 0); MAX_DIM];
+        for (j, (r, at)) in range.iter_mut().zip(&mut extreme_at).enumerate().take(d) {
             let (mut lo, mut hi) = (pts[j], pts[j]);
             for i in 1..=n {
                 let x = pts[i * d + j];
                 if x < lo {
                     lo = x;
+                    at.0 = i;
                 }
                 if x > hi {
                     hi = x;
+                    at.1 = i;
                 }
             }
             let m = if -lo > hi { -lo } else { hi };
@@ -141,6 +146,7 @@ impl<'a> Simple<'a> {
             pts,
             knots: k,
             range,
+            extreme_at,
         })
     }
 }
@@ -351,7 +357,16 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
     // step 2 (the maximum is usually near it), which raises the attained value; then only
     // the spans with a control value above that attained value enter the heap, with their
     // control-value bounds. Spans left out have bound <= attained: they are done.
-    let i_max = (1..=n).fold(0, |b, i| if x(i) > x(b) { i } else { b });
+    // (the first index of the largest sign * P_ij: found with the range in `Simple::of`)
+    let i_max = if sign > 0.0 {
+        s.extreme_at[j].1
+    } else {
+        s.extreme_at[j].0
+    };
+    debug_assert_eq!(
+        i_max,
+        (1..=n).fold(0, |b, i| if x(i) > x(b) { i } else { b })
+    );
     let first = spans_of(i_max);
     let mut filtered: SmallVec<[(f64, usize); 4]> = SmallVec::new();
     if x(i_max) > attained {
