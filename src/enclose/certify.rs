@@ -2722,6 +2722,17 @@ fn concave_ddi(
     if d[0].is_above(t) {
         return Concave::Decided(false);
     }
+    // The Newton point stopped at an end of the box with the slope there pointing out of it:
+    // g' is decreasing on X (g'' < 0 there), so g'(lo) <= 0 gives g' <= 0 on all of X and
+    // max_X g = g(lo); likewise g'(hi) >= 0 gives max_X g = g(hi). (The critical point lies
+    // beyond that end, where no tangent pair inside X brackets it.)
+    let slope = d[1].to_interval();
+    if (u == lo && slope.sup() <= 0.0) || (u == hi && slope.inf() >= 0.0) {
+        if d[0].is_at_most(t) {
+            return Concave::Decided(true);
+        }
+        return Concave::Straddle;
+    }
     let mut step = (u.abs().max(hi - lo) * f64::EPSILON).max(f64::from_bits(1));
     for _ in 0..6 {
         let (m1, m2) = ((u - step).max(lo), (u + step).min(hi));
@@ -2898,6 +2909,28 @@ mod tests {
             None,
         )
         .unwrap()
+    }
+
+    /// The concavity rule on a box that the critical point lies beyond: on g = -1 + 4u - 4u^2
+    /// (maximum 0 at u = 1/2, g'' = -8) the boxes [0.6, 0.7] and [0.3, 0.4] have their
+    /// maxima g = -0.04 at the end nearer 1/2, where the slope points out of the box. No
+    /// tangent pair inside the box brackets the critical point, so only the end-slope rule
+    /// decides them (`Undecided` without it); a target below that end value is refuted.
+    #[test]
+    fn concavity_with_the_critical_point_beyond_the_box() {
+        let c = quad(-1.0, 1.0, -1.0);
+        let mut ev = Evals::new(&c, &c, 0);
+        for (lo, hi) in [(0.6, 0.7), (0.3, 0.4)] {
+            let m = lo + 0.5 * (hi - lo);
+            let gm = ev.ddi_in(2, 0, 1.0, Ddi::exact(m), 2);
+            let at_most =
+                |ev: &mut Evals, t: f64| match concave_ddi(ev, 2, 0, 1.0, t, lo, hi, m, &gm) {
+                    Concave::Decided(v) => Some(v),
+                    _ => None,
+                };
+            assert_eq!(at_most(&mut ev, -0.03), Some(true), "[{lo}, {hi}]");
+            assert_eq!(at_most(&mut ev, -0.05), Some(false), "[{lo}, {hi}]");
+        }
     }
 
     #[test]

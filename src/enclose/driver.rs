@@ -174,8 +174,13 @@ fn ldexp_directed(x: f64, k: i32, up: bool) -> f64 {
 /// x * 2^k rounded upward (`up`) or downward: a bound that is still a bound after scaling.
 ///
 /// The round-to-nearest product is exact unless it is subnormal (or zero from a non-zero x) or
-/// it overflowed; in those cases it is moved one step in the required direction, which covers
-/// the rounding error (at most half a subnormal step, or the overflow to ±inf).
+/// it overflowed. An overflow goes to ±inf or ±MAX by the direction. A subnormal (or zero)
+/// product y is compared with x exactly, by scaling it back (only a product scaled down,
+/// k < 0, can round, and y 2^-k then scales y up: exact, as y has at most 52 significant
+/// bits and |y 2^-k| is within a step of |x|); y is kept if it already lies on the required side, else moved one step:
+/// the result is RU(x 2^k) or RD(x 2^k), the tightest double on that side (a step further
+/// than the nearest when the nearest is on the right side anyway would lose one subnormal
+/// step of every bound restored into that range).
 pub fn scale_outward(x: f64, k: i32, up: bool) -> f64 {
     if !x.is_finite() || x == 0.0 || k == 0 {
         return x;
@@ -189,14 +194,11 @@ pub fn scale_outward(x: f64, k: i32, up: bool) -> f64 {
             (false, true) => -f64::MAX,
         };
     }
-    if y.abs() >= f64::MIN_POSITIVE || ldexp_exact(x, k).is_some() {
-        return y; // normal (so exact), or checked exact
+    if y.abs() >= f64::MIN_POSITIVE {
+        return y; // normal, so exact
     }
-    if up {
-        y.next_up()
-    } else {
-        y.next_down()
-    }
+    // (`ldexp_directed`: y if exact or on the required side, else one step towards it)
+    ldexp_directed(x, k, up)
 }
 
 /// The exponents of an exact power-of-two rescaling of a curve (see the module docs).
@@ -599,6 +601,9 @@ mod tests {
             let y = ldexp(x, k);
             let ex = Exact::of(x) * pow2_exact(k);
             let (lo, hi) = (ex.round_down(), ex.round_up());
+            // the directed scaling of bounds is exactly RD / RU (no step beyond them)
+            assert_eq!(scale_outward(x, k, false), lo, "RD({x:e} 2^{k})");
+            assert_eq!(scale_outward(x, k, true), hi, "RU({x:e} 2^{k})");
             assert!(
                 y == lo || y == hi,
                 "ldexp({x:e}, {k}) = {y:e}, not in [{lo:e}, {hi:e}]"
