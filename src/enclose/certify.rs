@@ -330,14 +330,27 @@ pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescali
         return;
     };
     for (j, cb) in e.coords.iter_mut().enumerate() {
+        // The first rule (an attained value equal to the bound, or a strict witness at or
+        // above next_down(bound)) needs no curve: a side it decides builds no scaled copies.
+        cb.optimal_hi = attained_rule(cb.hi, cb.inner_hi, cb.witness_hi);
+        cb.optimal_lo = attained_rule(-cb.lo, -cb.inner_lo, -cb.witness_lo);
+        let open = |max_side: bool| {
+            !if max_side {
+                cb.optimal_hi
+            } else {
+                cb.optimal_lo
+            }
+        };
         // one exponent per side (the same for both sides in most cases: one pair of curves)
         let e_m = exponent(c.coord_scale(j));
         let s_hi = coord_exponent(e_m, cb.hi, cb.inner_hi);
         let s_lo = coord_exponent(e_m, cb.lo, cb.inner_lo);
-        let sides: &[(i32, &[bool])] = if s_hi == s_lo {
-            &[(s_hi, &[true, false])]
-        } else {
-            &[(s_hi, &[true]), (s_lo, &[false])]
+        let sides: &[(i32, &[bool])] = match (open(true), open(false)) {
+            (false, false) => &[],
+            (true, false) => &[(s_hi, &[true])],
+            (false, true) => &[(s_lo, &[false])],
+            (true, true) if s_hi == s_lo => &[(s_hi, &[true, false])],
+            (true, true) => &[(s_hi, &[true]), (s_lo, &[false])],
         };
         for &(s, which) in sides {
             // the curve with coordinate j scaled down, rounded down, and a copy rounded up if
