@@ -8,7 +8,7 @@ use super::param::{midpoint, T, U};
 use crate::num::ddi::{up, Ddi};
 use crate::num::mr::Mr;
 use crate::num::{iv, Scalar};
-use crate::spline::bezier::de_casteljau_levels;
+use crate::spline::bezier::{bernstein_value_s, de_casteljau_levels};
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
 use inari::Interval;
@@ -130,7 +130,8 @@ impl SpanPoly {
     pub(super) fn f(&self, t: T) -> Interval {
         let (t0, t1) = (t.lo, t.hi);
         if t0 == t1 {
-            return self.f.eval_local(&Mr::from_f64(t0))[0].to_interval();
+            // (O(n) instead of de Casteljau's O(n^2): F has degree 2p - 2)
+            return bernstein_value_s(&self.f.pts, t0).to_interval();
         }
         // (the f64 restriction's error bound is relative to the largest coefficient: where it
         // cannot exclude 0, e.g. coefficients of very different magnitudes from extreme
@@ -158,7 +159,7 @@ impl SpanPoly {
     fn df_at(&self, t: f64) -> Interval {
         match value_f64(&self.df.pts, t) {
             Some((v, e)) if !v.contains(0.0) && e <= v.mig() * (1.0 / 1_073_741_824.0) => v,
-            _ => self.df.eval_local(&Mr::from_f64(t))[0].to_interval(),
+            _ => bernstein_value_s(&self.df.pts, t).to_interval(),
         }
     }
 
