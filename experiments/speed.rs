@@ -6,7 +6,7 @@
 //! `--out PATH` writes elsewhere, `--quick` uses fewer repetitions).
 //!
 //! Rows: random 2-D cubic Béziers (per curve, ratio to kurbo per curve), the thesis's largest
-//! case (1-D, p = 3, 101 control points) and one 2-D rational span of degree p (11 / 21 points)
+//! case (1-D, p = 3, 101 control points) and one 2-D rational span of degree p (p + 1 points, p = 2 .. 40)
 //! in "kurbo cubics" (the strategy's time divided by kurbo's time for one cubic), with the
 //! growth per span against p^2. The criterion bench `cargo bench --bench enclose` keeps the
 //! detailed groups.
@@ -180,7 +180,7 @@ fn main() {
     // One 2-D rational span of degree p: p + 1 control points (the bench's degree sweep uses
     // 11 points, i.e. several spans below p = 10; here one span each, to see the cost per span).
     let mut per_p: Vec<(usize, Vec<f64>)> = Vec::new();
-    for p in [2usize, 3, 5, 7, 10, 15, 20] {
+    for p in [2usize, 3, 5, 7, 10, 15, 20, 30, 40] {
         let c = nurbs_box::testkit::gen::thesis_curve_2d_nurbs_with(p + 1, p, 100 + p as u64)
             .expect("valid");
         // (per strategy its time in kurbo cubics, kurbo timed alternately with it)
