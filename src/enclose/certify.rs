@@ -934,7 +934,7 @@ fn certify_side(
             proved = true;
             break;
         }
-        let d = ddi_stage(ev, j, sign, up(t), cands, local_done);
+        let mut d = ddi_stage(ev, j, sign, up(t), cands, local_done);
         if let Some(g) = d.top {
             keep_top(&mut top_seen, g);
         }
@@ -1028,6 +1028,27 @@ fn certify_side(
         if let Some(nb) = try_lower(cv.above(sign), false) {
             bound = nb;
             continue;
+        }
+        // (the search in the Bézier form, put off by the double-double stage: now that the
+        // lowering proof failed)
+        if d.deferred {
+            let mut top = d.top;
+            let found = bezier_search(
+                cv.below(sign),
+                j,
+                sign,
+                up(t),
+                cands,
+                &mut d.guess,
+                &mut top,
+            );
+            if let Some(g) = top {
+                keep_top(&mut top_seen, g);
+            }
+            if found {
+                proved = true;
+                break;
+            }
         }
         if exact_stage(cv.below(sign), j, sign, up(t), &d) {
             proved = true;
@@ -1374,7 +1395,18 @@ struct DdiOutcome {
     straddle: bool,
     /// per candidate (centre of the best g, its u), for the exact stage
     best: Vec<(f64, f64)>,
+    /// whether the search in the Bézier form (`bezier_search`) was put off: a value seen
+    /// within [`NEAR_BITS`] bits of t below it, proved <= t (the candidates' Newton points
+    /// reached the extremum, which is then most likely <= t: the lowering proof decides
+    /// first, and the search runs only if it fails)
+    deferred: bool,
 }
+
+/// A value proved <= t but within 2^-NEAR_BITS ulps of t below it counts as having reached
+/// the extremum (`DdiOutcome::deferred`): f64 Newton points lie ~2^-106 relative below the
+/// maximum, and a search elsewhere cannot find a value above t unless the maximum exceeds t
+/// by less than that gap.
+const NEAR_BITS: i32 = 40;
 
 /// Stage 2 of the module docs: whether some u provably has g(u) > t, by double-double
 /// enclosures at the candidates and at f64 Newton points.
@@ -1411,6 +1443,9 @@ fn ddi_stage(
         Some(g)
     };
     let mut straddle = false;
+    // (a value proved <= t within 2^-NEAR_BITS ulps of it: `DdiOutcome::deferred`)
+    let near_t = t - crate::num::ulp(t) * 2f64.powi(-NEAR_BITS);
+    let mut near = false;
     let (a, b) = ev.c.domain();
     let p = ev.c.degree();
     // 2. double-double enclosures at chosen f64 parameters
@@ -1447,6 +1482,7 @@ fn ddi_stage(
             return out;
         }
         straddle |= !g.is_at_most(t);
+        near |= g.is_at_most(t) && g.to_interval().sup() >= near_t;
         let mut u = mid;
         let mut top = (g.to_f64(), mid);
         if lo < hi {
@@ -1476,6 +1512,7 @@ fn ddi_stage(
                     return out;
                 }
                 straddle |= !g.is_at_most(t);
+                near |= g.is_at_most(t) && g.to_interval().sup() >= near_t;
                 if g.to_f64() > top.0 {
                     top = (g.to_f64(), v);
                 }
@@ -1487,8 +1524,11 @@ fn ddi_stage(
     // a straddle on a curve that is not rescaled and that the exact Bernstein rule takes
     // (which decides the straddle either way, `certify_side`)
     // (nor after the local stage, which searched every span in its local parameter already)
+    // (and put off after a value seen near t: `DdiOutcome::deferred`)
     let exact_next = straddle && ev.exact_rule_possible() && std::ptr::eq(ev.c, ev.orig);
-    if !exact_next && !local_done && bezier_search(ev, j, sign, t, cands, guess, seen) {
+    let search = !exact_next && !local_done;
+    out.deferred = search && near && !straddle;
+    if search && !out.deferred && bezier_search(ev, j, sign, t, cands, guess, seen) {
         out.proved = true;
         return out;
     }
@@ -2298,23 +2338,43 @@ fn clamp_left_integer(p: usize, t: &mut [BigInt], rows: &mut [&mut [BigInt]]) ->
 }
 
 /// Finite f64 values as integers over one common power of two 2^e0, and e0 (each x = m 2^e
-/// exactly, shifted to the smallest exponent: a positive common factor, no gcd); `None` for a
-/// value that is not finite.
+/// exactly with an odd m or m = 0, from its bits; shifted to the smallest exponent: a positive
+/// common factor, no gcd); `None` for a value that is not finite.
 pub(crate) fn dyadic_integers(xs: impl Iterator<Item = f64>) -> Option<(Vec<BigInt>, i64)> {
-    let parts: Vec<(BigInt, i64)> = xs
-        .map(|x| {
-            let q = Exact::of(x);
-            let q = q.value()?;
-            // (the denominator of an f64 is a power of two)
-            Some((q.numer().clone(), -(q.denom().bits() as i64 - 1)))
-        })
-        .collect::<Option<_>>()?;
-    let e0 = parts.iter().map(|x| x.1).min()?;
+    // (few values per call: on the stack up to 8)
+    let parts: smallvec::SmallVec<[(i64, i64); 8]> = xs.map(dyadic_parts).collect::<Option<_>>()?;
+    let e0 = parts
+        .iter()
+        .filter(|x| x.0 != 0)
+        .map(|x| x.1)
+        .min()
+        .unwrap_or(0);
     let ints = parts
         .into_iter()
-        .map(|(m, e)| m << (e - e0) as u64)
+        .map(|(m, e)| BigInt::from(m) << (e - e0) as u64)
         .collect();
     Some((ints, e0))
+}
+
+/// A finite x as m 2^e exactly, m odd (or m = e = 0 for x = 0): the significand's bits with the
+/// implicit one (none for a subnormal, exponent -1074), trailing zeros moved to e.
+fn dyadic_parts(x: f64) -> Option<(i64, i64)> {
+    if !x.is_finite() {
+        return None;
+    }
+    if x == 0.0 {
+        return Some((0, 0));
+    }
+    let b = x.to_bits();
+    let (be, frac) = (((b >> 52) & 0x7ff) as i64, b & ((1u64 << 52) - 1));
+    let (m, e) = if be == 0 {
+        (frac, -1074)
+    } else {
+        (frac | (1u64 << 52), be - 1075)
+    };
+    let tz = m.trailing_zeros();
+    let m = (m >> tz) as i64;
+    Some((if x < 0.0 { -m } else { m }, e + tz as i64))
 }
 
 /// De Casteljau subdivision (NURBS Book A1.5) of the Bernstein coefficients `b` (over a common
@@ -2900,6 +2960,42 @@ mod tests {
     /// The rational double roots of Bernstein polynomials with integer coefficients: a cubic
     /// (3t - 2)^2 (2 - t) (the quadratic f' branch), a quartic (3t - 1)^2 (t - 2)(t + 1)
     /// (Euclid's gcd), none for simple roots (t = 1/2, 3/4) or a linear f'.
+    /// `dyadic_integers` from the bits agrees with exact rationals: every x is its integer
+    /// times 2^e0, on signed normals, subnormals, zeros, integers and values near f64::MAX.
+    #[test]
+    fn dyadic_integers_are_exact() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(21);
+        for _ in 0..2000 {
+            let xs: Vec<f64> = (0..r.random_range(1..6))
+                .map(|_| match r.random_range(0..6) {
+                    0 => 0.0,
+                    1 => f64::from_bits(r.random_range(1..1u64 << 52)),
+                    2 => r.random_range(-1000i64..1000) as f64,
+                    3 => f64::MAX * r.random_range(-1.0..1.0),
+                    _ => f64::from_bits(
+                        r.random::<u64>() & !(0x7ffu64 << 52) | (r.random_range(1..2046u64) << 52),
+                    ),
+                })
+                .collect();
+            let (ints, e0) = dyadic_integers(xs.iter().copied()).unwrap();
+            let scale = if e0 >= 0 {
+                BigRational::from_integer(BigInt::one() << e0 as u64)
+            } else {
+                BigRational::new(BigInt::one(), BigInt::one() << (-e0) as u64)
+            };
+            for (x, m) in xs.iter().zip(&ints) {
+                let q = Exact::of(*x);
+                assert_eq!(
+                    q.value().unwrap(),
+                    &(BigRational::from_integer(m.clone()) * &scale),
+                    "{x:e}"
+                );
+            }
+        }
+        assert!(dyadic_integers([1.0, f64::NAN].into_iter()).is_none());
+    }
+
     #[test]
     fn rational_double_roots() {
         let b = |v: &[i64]| v.iter().map(|&x| BigInt::from(x)).collect::<Vec<_>>();

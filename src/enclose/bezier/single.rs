@@ -46,13 +46,15 @@
 //!    x(B) ⊆ x(m) + x'(m) (B - m) + (x''(B) / 2) (B - m)^2 is evaluated in `Ddi` (x(m) as in step 1) and rounded
 //!    outward; x(m) is a value the curve attains (inner bound). With h = 2^-40 the correction
 //!    terms are ~2^-75 of the coordinate scale, so the bound is that of x(m), about one ulp.
-//!    5b. Where m is exactly the critical point (x'(m) = 0, checked in integers) and x(m)
-//!    is exactly a double d (the symmetric arcs of fonts and CAD data: the maximum of
-//!    P0 = P2 = a, P1 = b at m = 1/2 is (a + b) / 2), m is the bracket's only zero of x'
-//!    (step 4), so the extremum over the bracket is x(m) = d: bound and attained value at
-//!    once, and the bound is the optimal double (its certificate costs nothing). The check
-//!    runs only when the double-double x(m) holds a double (a near-tie, ~2^-46 of generic
-//!    cases).
+//!    5b. A near-tie: where the bound of a bracket and its values leave the optimal double
+//!    open (the attained value below the bound and no witness at d = next_down(bound): the
+//!    extremum M is within ~2^-80 relative of d, ~2^-27 of generic cases), the sign of M - d
+//!    is computed exactly in integers ([`bracket_max_cmp`]: M = x(t*) at the bracket's only
+//!    zero t* of x', by the pseudo-remainder of x - d by x'). M <= d lowers the bound to d
+//!    (M = d: d is attained as well, e.g. the maximum (a + b) / 2 of the symmetric arc P0 =
+//!    P2 = a, P1 = b at t = 1/2); M > d makes d a witness (the curve exceeds it). Either way
+//!    the bound is then the optimal double and its certificate costs nothing. At most twice
+//!    per bracket.
 //! 6. The result is used only if each side's certified gap (bound minus attained value) is at
 //!    most `max_gap` (two ulps of the scale by default); otherwise — a root estimate too poor
 //!    for its bracket, a (near) double root, a flat coordinate — the caller runs the general
@@ -64,6 +66,7 @@ use crate::num::ddi::{dist_up, up, Ddi, U1};
 use crate::num::horner;
 use crate::num::Scalar;
 use crate::spline::bezier::power_from_differences_in_place;
+use std::cmp::Ordering;
 
 /// Half-width (in the local parameter t in [0, 1]) of the test-point pairs around root
 /// estimates. The Taylor correction over such a bracket is about |x''| h^2 / 2, far below an
@@ -264,36 +267,89 @@ impl Coeffs<'_> {
     }
 }
 
-/// x(m) when m is exactly a critical point of x (x'(m) = 0) and x(m) is exactly a double,
-/// for exact f64 coefficients c_0 .. c_p (p = 2, 3) and an f64 m in (0, 1); `None` otherwise
-/// (or when `xm`, an enclosure of x(m), holds no double: the common case, decided without
-/// any big-integer work).
+/// The sign of M - d, M = max x over [t0, t1], for exact f64 coefficients c_0 .. c_p
+/// (p = 2, 3) of x and f64 t0 < t1 in [0, 1] where x'(t0) > 0 > x'(t1) and x' has exactly one
+/// root t* in [t0, t1] (step 4): then x increases up to t* and decreases after it, M = x(t*).
+/// Exact, in integers (`None` only for non-finite data):
 ///
-/// With c_i = C_i 2^e_c (integers over one power of two), x(m) and x'(m) / p (the Bernstein
-/// polynomials with coefficients C_i and C_{i+1} - C_i, the hodograph; Farin, *Curves and
-/// Surfaces for CAGD*) are evaluated by de Casteljau in integers at the rational m
-/// (`certify::eval_integer`, the certificate's exact kernel), so the tests are exact.
-fn exact_critical_value(c: &[f64], m: f64, xm: Ddi) -> Option<f64> {
-    use crate::enclose::certify::{dyadic_integers, eval_integer};
-    use num_bigint::Sign;
-    // (the nearest double to the enclosure's centre lies in it only for a near-tie)
-    let d = xm.hi();
-    if !(d.is_finite() && xm.lo().abs() <= xm.rad() && 0.0 < m && m < 1.0) {
-        return None;
+/// * c_i = C_i 2^e and d = D 2^e over one power of two (a positive factor, dropped); the power
+///   form f(t) = x(t) - d = f_0 + a_1 t + a_2 t^2 + a_3 t^3 (Farin, *Curves and Surfaces for
+///   CAGD*, monomial form of a Bézier curve: a_1 = p ΔC_0, a_2 = C(p, 2) Δ^2 C_0,
+///   a_3 = Δ^3 C_0, f_0 = C_0 - D) and x' = Q(t) = q_0 + q_1 t + q_2 t^2 = a_1 + 2 a_2 t + 3 a_3 t^2.
+/// * Q linear (q_2 = 0, a_2 != 0 since x' changes sign): t* = -a_1 / (2 a_2) and
+///   f(t*) = f_0 - a_1^2 / (4 a_2), so sign f(t*) = sign(4 a_2 f_0 - a_1^2) sign(a_2).
+/// * Q quadratic: the pseudo-remainder of f by Q, q_2^2 f = (q_2 a_3 t + b_2) Q + r_1 t + r_0
+///   (b_2 = q_2 a_2 - a_3 q_1, b_1 = q_2 a_1 - a_3 q_0, b_0 = q_2 f_0, r_1 = q_2 b_1 - b_2 q_1,
+///   r_0 = q_2 b_0 - b_2 q_0), so q_2^2 f(t*) = r_1 t* + r_0 = r_1 (t* - t_R) with
+///   t_R = -r_0 / r_1 (sign r_0 if r_1 = 0). Where t_R lies: at or left of t0 (then t_R < t*),
+///   at or right of t1 (t_R > t*), or inside, where Q > 0 on [t0, t*) and Q < 0 on (t*, t1],
+///   so the sign of r_1^2 Q(t_R) = q_2 r_0^2 - q_1 r_0 r_1 + q_0 r_1^2 tells (0: t_R = t*,
+///   f(t*) = 0, an exact tie).
+///
+/// Step 5b of the module docs; it runs only for a near-tie (~2^-27 of generic brackets).
+#[cold]
+#[inline(never)]
+fn bracket_max_cmp(c: &[f64], t0: f64, t1: f64, d: f64) -> Option<Ordering> {
+    use crate::enclose::certify::dyadic_integers;
+    use num_bigint::{BigInt, Sign};
+    let sgn = |x: &BigInt| match x.sign() {
+        Sign::Minus => Ordering::Less,
+        Sign::NoSign => Ordering::Equal,
+        Sign::Plus => Ordering::Greater,
+    };
+    let mul = |a: Ordering, b: Ordering| match (a, b) {
+        (Ordering::Equal, _) | (_, Ordering::Equal) => Ordering::Equal,
+        _ if a == b => Ordering::Greater,
+        _ => Ordering::Less,
+    };
+    let p = c.len().checked_sub(1)?;
+    let (ci, _) = dyadic_integers(c.iter().copied().chain(std::iter::once(d)))?;
+    let f0 = &ci[0] - &ci[p + 1];
+    let (d0, d1) = (&ci[1] - &ci[0], &ci[2] - &ci[1]);
+    let e0 = &d1 - &d0;
+    let (a1, a2, a3): (BigInt, BigInt, BigInt) = match p {
+        2 => (d0 * 2u32, e0, BigInt::from(0)),
+        3 => {
+            let e1 = (&ci[3] - &ci[2]) - &d1;
+            (d0 * 3u32, &e0 * 3u32, e1 - e0)
+        }
+        _ => return None,
+    };
+    let (q0, q1, q2): (BigInt, BigInt, BigInt) = (a1.clone(), &a2 * 2u32, &a3 * 3u32);
+    if q2.sign() == Sign::NoSign {
+        let v = &a2 * &f0 * 4u32 - &a1 * &a1;
+        return Some(mul(sgn(&v), sgn(&a2)));
     }
-    // c_i = C_i 2^e_c; the Bernstein values at m in integers, v / s (s > 0)
-    let (ci, e_c) = dyadic_integers(c.iter().copied())?;
-    let m = crate::num::Exact::of(m);
-    let m = m.value()?;
-    let diffs: Vec<_> = ci.windows(2).map(|w| &w[1] - &w[0]).collect();
-    if eval_integer(&diffs, m).0.sign() != Sign::NoSign {
-        return None;
+    let b2 = &q2 * &a2 - &a3 * &q1;
+    let b1 = &q2 * &a1 - &a3 * &q0;
+    let b0 = &q2 * &f0;
+    let r1 = &q2 * &b1 - &b2 * &q1;
+    let r0 = &q2 * &b0 - &b2 * &q0;
+    if r1.sign() == Sign::NoSign {
+        return Some(sgn(&r0));
     }
-    // x(m) = v 2^e_c / s == d = D 2^e_d  <=>  v 2^(e_c - e) == D s 2^(e_d - e), e the smaller
-    let (v, sc) = eval_integer(&ci, m);
-    let (dv, e_d) = dyadic_integers(std::iter::once(d))?;
-    let e = e_c.min(e_d);
-    ((v << (e_c - e) as u64) == ((&dv[0] * sc) << (e_d - e) as u64)).then_some(d)
+    // sign(t_R - t) = sign(-r_0 - r_1 t) sign(r_1), t = T 2^e an f64
+    let beside = |t: f64| -> Option<Ordering> {
+        let (ti, e) = dyadic_integers(std::iter::once(t))?;
+        let rt = &r1 * &ti[0];
+        let num = if e >= 0 {
+            -&r0 - (rt << e as u64)
+        } else {
+            -(&r0 << (-e) as u64) - rt
+        };
+        Some(mul(sgn(&num), sgn(&r1)))
+    };
+    // where t_R lies relative to t*
+    let at = if beside(t0)? != Ordering::Greater {
+        Ordering::Less
+    } else if beside(t1)? != Ordering::Less {
+        Ordering::Greater
+    } else {
+        let q_at = &q2 * &r0 * &r0 - &q1 * &r0 * &r1 + &q0 * &r1 * &r1;
+        sgn(&q_at).reverse()
+    };
+    // sign f(t*) = sign(r_1) sign(t* - t_R)
+    Some(mul(sgn(&r1), at.reverse()))
 }
 
 /// f64 estimates of the real roots of b_0 + b_1 t + b_2 t^2 (at most two, unordered).
@@ -409,21 +465,6 @@ impl RawSide {
         // (a NaN lower end, after an overflow, is ignored by `attain`)
         self.attain(v.lower_end());
         self.witness = self.witness.max(v.strictly_below());
-    }
-    /// The exact tie rule (module docs, step 5b) on the bracket with midpoint m and
-    /// double-double value `xm` of x(m) (`is_max`: this is the max side, else the side of -x):
-    /// whether it applied (then x(m) is this side's bound and attained value there).
-    #[cold]
-    #[inline(never)]
-    fn exact_tie(&mut self, c: &[f64], m: f64, xm: Ddi, is_max: bool, e: Extremum) -> bool {
-        let Some(d) = exact_critical_value(c, m, xm) else {
-            return false;
-        };
-        let d = if is_max { d } else { -d };
-        self.point_evaluations += 1;
-        self.attain(d);
-        self.bound(d, e);
-        true
     }
     fn bound(&mut self, ub: f64, e: Extremum) {
         if ub > self.upper {
@@ -623,15 +664,32 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
         } else {
             (&mut *lo, -xm)
         };
-        // An exact tie at m (module docs, step 5b): x'(m) = 0 and x(m) = d exactly, so the
-        // extremum over the bracket is d itself, a value the curve attains.
-        // (the cheap gate first: the double-double x(m) holds a double only near a tie)
-        if all_f64 && xm.lo().abs() <= xm.rad() && side.exact_tie(&fv[..=p], m, xm, is_max, e) {
-            continue;
-        }
-        let ub = v.widen(corr).upper_end();
+        let mut ub = v.widen(corr).upper_end();
         side.point_evaluations += 1;
         side.attain_ddi(v);
+        // A near-tie (module docs, step 5b): the bound and the values seen leave the optimal
+        // double open (the attained value below the bound, no witness at next_down(bound)).
+        // The exact sign of M - d for d = next_down(bound), M the bracket's maximum, decides:
+        // M <= d lowers the bound to d (M = d: also attained), M > d makes d a witness.
+        // (at most twice: the bound is at most two doubles above M here)
+        if all_f64 {
+            for _ in 0..2 {
+                let d = ub.next_down();
+                if !(ub.is_finite() && side.attained < ub && side.witness < d) {
+                    break;
+                }
+                let signed: [f64; 4] = std::array::from_fn(|i| if is_max { fv[i] } else { -fv[i] });
+                match bracket_max_cmp(&signed[..=p], t0, t1, d) {
+                    Some(Ordering::Less) => ub = d,
+                    Some(Ordering::Equal) => {
+                        ub = d;
+                        side.attain(d);
+                    }
+                    Some(Ordering::Greater) => side.witness = d,
+                    None => break,
+                }
+            }
+        }
         side.bound(if ub.is_nan() { f64::INFINITY } else { ub }, e);
     }
     hi.derivative_evaluations = derivative_evaluations;
@@ -753,6 +811,106 @@ mod tests {
             let [hi, _] = sides(&c).unwrap();
             assert!(hi.upper > hi.attained, "{c:?}");
         }
+    }
+
+    /// `bracket_max_cmp` (pseudo-remainder and root location) against an independent exact
+    /// computation: t* isolated by bisection on the sign of x' at rational points to a width
+    /// w = 2^-220, then M = x(t*) lies in [v, v + L w] with v the larger of the values at the
+    /// ends of that interval and L = |q_0| + |q_1| + |q_2| >= |x'| on [0, 1] (x rises up to t*
+    /// and falls after it). Near-tie quadratics and cubics (the extremum within 2^-60 ..
+    /// 2^-110 of a double, both sides) and random ones, d the doubles around M; and exact ties
+    /// (symmetric arcs), where M = d must come out as `Equal`.
+    #[test]
+    fn bracket_comparison_matches_bisection() {
+        use num_bigint::BigInt;
+        use num_rational::BigRational;
+        use num_traits::{Signed, ToPrimitive, Zero};
+        use rand::{Rng, SeedableRng};
+        let q = |x: f64| BigRational::from_float(x).unwrap();
+        // x(t) and x'(t) exactly (de Casteljau / hodograph in rationals)
+        let bern = |c: &[BigRational], t: &BigRational| -> BigRational {
+            let mut b = c.to_vec();
+            for k in 1..b.len() {
+                for i in 0..b.len() - k {
+                    b[i] = &b[i] * (BigRational::from_integer(1.into()) - t) + &b[i + 1] * t;
+                }
+            }
+            b[0].clone()
+        };
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(17);
+        let (mut decided, mut near) = (0, 0);
+        for it in 0..200 {
+            let p = if it % 2 == 0 { 2 } else { 3 };
+            let s = 2f64.powi(r.random_range(-30..=30)) * if r.random_bool(0.5) { 1.0 } else { -1.0 };
+            let mut e = || {
+                let m = r.random_range(1..=7) as f64;
+                m * 2f64.powi(-r.random_range(60..=110)) * if r.random_bool(0.5) { 1.0 } else { -1.0 }
+            };
+            let c: Vec<f64> = match (it % 4 < 2, p) {
+                (true, 2) => vec![s * e(), s, s * e()],
+                (true, _) => vec![s * e(), s, s, s * e()],
+                _ => (0..=p).map(|_| r.random_range(-1.0..1.0) * s.abs()).collect(),
+            };
+            // the max side of x or of -x, whichever has an interior maximum
+            for sg in [1.0, -1.0] {
+                let cs: Vec<f64> = c.iter().map(|x| sg * x).collect();
+                let cq: Vec<BigRational> = cs.iter().map(|&x| q(x)).collect();
+                let dq: Vec<BigRational> = cq.windows(2).map(|w| &w[1] - &w[0]).collect();
+                let dv = Deriv::from_f64(&cs);
+                let (roots, nr) = root_estimates(dv.b[0], dv.b[1], dv.b[2]);
+                for &rt in &roots[..nr] {
+                    let (t0, t1) = (rt - H, rt + H);
+                    if !(0.0 < t0 && t1 < 1.0) {
+                        continue;
+                    }
+                    // a max bracket with one root: x' > 0 at t0, < 0 at t1, the other root far
+                    let (a0, a1) = (bern(&dq, &q(t0)), bern(&dq, &q(t1)));
+                    if !(a0.is_positive() && a1.is_negative()) {
+                        continue;
+                    }
+                    if nr == 2 && (roots[0] - roots[1]).abs() < 1e-6 {
+                        continue;
+                    }
+                    let (mut lo, mut hi) = (q(t0), q(t1));
+                    for _ in 0..220 {
+                        let mid = (&lo + &hi) / BigRational::from_integer(2.into());
+                        if bern(&dq, &mid).is_positive() {
+                            lo = mid;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    let v = std::cmp::max(bern(&cq, &lo), bern(&cq, &hi));
+                    let lip: BigRational = dq.iter().map(|x| x.abs()).sum::<BigRational>()
+                        * BigRational::from_integer(BigInt::from(p));
+                    let top = &v + lip * (&hi - &lo);
+                    let m = v.to_f64().unwrap_or(0.0);
+                    for d in [m.next_down().next_down(), m.next_down(), m, m.next_up(), m.next_up().next_up()] {
+                        let dq_ = q(d);
+                        let want = if v > dq_ {
+                            Ordering::Greater
+                        } else if top < dq_ {
+                            Ordering::Less
+                        } else {
+                            continue; // undecided by the bisection (d within 2^-200 of M)
+                        };
+                        near += (((&v - &dq_).abs() / dq_.abs().max(BigRational::from_float(1e-300).unwrap()))
+                            < BigRational::from_float(2f64.powi(-58)).unwrap()) as usize;
+                        assert_eq!(bracket_max_cmp(&cs, t0, t1, d), Some(want), "{cs:?} [{t0}, {t1}] d = {d:e}");
+                        decided += 1;
+                    }
+                }
+            }
+        }
+        assert!(decided > 300 && near > 60, "{decided} {near}");
+        // exact ties: (a, b, a) has M = (a + b) / 2 at 1/2, (a, b, b, a) M = (a + 3 b) / 4
+        for (c, m) in [(vec![1.0, 3.0, 1.0], 2.0), (vec![0.5, 2.5, 2.5, 0.5], 2.0)] {
+            let (t0, t1) = (0.5 - H, 0.5 + H);
+            assert_eq!(bracket_max_cmp(&c, t0, t1, m), Some(Ordering::Equal));
+            assert_eq!(bracket_max_cmp(&c, t0, t1, m.next_up()), Some(Ordering::Less));
+            assert_eq!(bracket_max_cmp(&c, t0, t1, m.next_down()), Some(Ordering::Greater));
+        }
+        let _ = BigRational::zero();
     }
 
     #[test]
