@@ -2246,38 +2246,158 @@ fn bezier_coefficients_fraction_free(
     sign: f64,
     t: f64,
 ) -> Option<Vec<BigInt>> {
+    // (in i128 first, every operation checked: short data such as small integer knots and
+    // few-bit control values never needs more; an overflow, or an invalid span, repeats the
+    // same steps in BigInt)
+    if let Some(q) = bezier_coefficients_ff::<i128>(c, k, j, sign, t) {
+        return Some(q.into_iter().map(BigInt::from).collect());
+    }
+    bezier_coefficients_ff::<BigInt>(c, k, j, sign, t)
+}
+
+/// [`bezier_coefficients_fraction_free`] in the integer type `T` (`None` also where an
+/// operation overflows `T`).
+fn bezier_coefficients_ff<T: FfInt>(
+    c: &NurbsCurve,
+    k: usize,
+    j: usize,
+    sign: f64,
+    t: f64,
+) -> Option<Vec<T>> {
     let p = c.degree();
     // (the same coefficients as `span_rows_integer(..).minus(t)`, up to a positive factor,
     // but from one clamped row instead of two: the rule runs on every straddle, and the
     // two-row form cost the ties ~15% more certification time)
     // g_i = w_i (sign P_ij - t): (sign P_ij, t) over one power of two, the difference times
     // w_i (an integer over its own power of two), then all over the smallest one
-    let mut q = Vec::with_capacity(p + 1);
-    let mut exps = Vec::with_capacity(p + 1);
+    let mut q: Vec<T> = Vec::with_capacity(p + 1);
+    let mut exps: smallvec::SmallVec<[i64; 8]> = smallvec::SmallVec::new();
+    let (mt, et) = dyadic_parts(t)?;
     for i in k - p..=k {
-        let (d, e_d) = dyadic_integers([sign * c.control_point(i)[j], t].into_iter())?;
-        let (w, e_w) = dyadic_integers(std::iter::once(c.weight(i)))?;
-        q.push((&d[0] - &d[1]) * &w[0]);
-        exps.push(e_d + e_w);
+        // (sign P_ij - t over the smaller of the two exponents, times the weight's integer)
+        let (mx, ex) = dyadic_parts(sign * c.control_point(i)[j])?;
+        let (mw, ew) = dyadic_parts(c.weight(i))?;
+        let e_d = if mx == 0 {
+            et
+        } else if mt == 0 {
+            ex
+        } else {
+            ex.min(et)
+        };
+        let x = T::from_i64(mx).shl((ex - e_d).max(0) as u64)?;
+        let y = T::from_i64(mt).shl((et - e_d).max(0) as u64)?;
+        q.push(x.sub(&y)?.mul(&T::from_i64(mw))?);
+        exps.push(e_d + ew);
     }
     let e0 = *exps.iter().min()?;
     for (x, e) in q.iter_mut().zip(&exps) {
-        *x = &*x << (e - e0) as u64;
+        *x = x.shl((e - e0) as u64)?;
     }
     clamp_span_integer(c, k, &mut [&mut q])?;
     Some(q)
 }
 
+/// The integers of the fraction-free kernels ([`clamp_left_integer`]): `BigInt`, or `i128`
+/// with every operation checked (`None` on overflow), for short data.
+trait FfInt: Clone {
+    fn from_i64(x: i64) -> Self;
+    fn add(&self, o: &Self) -> Option<Self>;
+    fn sub(&self, o: &Self) -> Option<Self>;
+    fn mul(&self, o: &Self) -> Option<Self>;
+    fn neg(&self) -> Option<Self>;
+    /// self 2^k
+    fn shl(&self, k: u64) -> Option<Self>;
+    /// self / 2^k for a multiple of 2^k
+    fn shr_exact(&self, k: u64) -> Self;
+    /// the exponent of the largest power of two dividing self (`None` for 0)
+    fn trailing_zeros(&self) -> Option<u64>;
+    fn is_positive(&self) -> bool;
+    fn is_eq(&self, o: &Self) -> bool;
+}
+
+impl FfInt for BigInt {
+    fn from_i64(x: i64) -> Self {
+        BigInt::from(x)
+    }
+    fn add(&self, o: &Self) -> Option<Self> {
+        Some(self + o)
+    }
+    fn sub(&self, o: &Self) -> Option<Self> {
+        Some(self - o)
+    }
+    fn mul(&self, o: &Self) -> Option<Self> {
+        Some(self * o)
+    }
+    fn neg(&self) -> Option<Self> {
+        Some(-self)
+    }
+    fn shl(&self, k: u64) -> Option<Self> {
+        Some(self << k)
+    }
+    fn shr_exact(&self, k: u64) -> Self {
+        self >> k
+    }
+    fn trailing_zeros(&self) -> Option<u64> {
+        BigInt::trailing_zeros(self)
+    }
+    fn is_positive(&self) -> bool {
+        self.sign() == Sign::Plus
+    }
+    fn is_eq(&self, o: &Self) -> bool {
+        self == o
+    }
+}
+
+impl FfInt for i128 {
+    fn from_i64(x: i64) -> Self {
+        x as i128
+    }
+    fn add(&self, o: &Self) -> Option<Self> {
+        self.checked_add(*o)
+    }
+    fn sub(&self, o: &Self) -> Option<Self> {
+        self.checked_sub(*o)
+    }
+    fn mul(&self, o: &Self) -> Option<Self> {
+        self.checked_mul(*o)
+    }
+    fn neg(&self) -> Option<Self> {
+        self.checked_neg()
+    }
+    fn shl(&self, k: u64) -> Option<Self> {
+        // (exact only while no bit, the sign bit included, is shifted out)
+        if *self == 0 {
+            return Some(0);
+        }
+        let room = self.unsigned_abs().leading_zeros() as u64;
+        (k < room).then(|| self << k)
+    }
+    fn shr_exact(&self, k: u64) -> Self {
+        self >> k
+    }
+    fn trailing_zeros(&self) -> Option<u64> {
+        (*self != 0).then(|| i128::trailing_zeros(*self) as u64)
+    }
+    fn is_positive(&self) -> bool {
+        *self > 0
+    }
+    fn is_eq(&self, o: &Self) -> bool {
+        self == o
+    }
+}
+
 /// Clamps span k at both ends ([`clamp_left_integer`] from the left, then from the right on
 /// the reversed, negated knots): the rows of integer values of the span's local control
 /// points become the rows of its Bézier points, all times one common positive factor.
-fn clamp_span_integer(c: &NurbsCurve, k: usize, rows: &mut [&mut [BigInt]]) -> Option<()> {
+fn clamp_span_integer<T: FfInt>(c: &NurbsCurve, k: usize, rows: &mut [&mut [T]]) -> Option<()> {
     let p = c.degree();
-    let (mut kn, _) = dyadic_integers(c.knots()[k - p..=k + p + 1].iter().copied())?;
+    let (mut kn, _) = dyadic_ints::<T>(c.knots()[k - p..=k + p + 1].iter().copied())?;
     clamp_left_integer(p, &mut kn, rows)?;
     rows.iter_mut().for_each(|q| q.reverse());
     kn.reverse();
-    kn.iter_mut().for_each(|x| *x = -x.clone());
+    for x in kn.iter_mut() {
+        *x = x.neg()?;
+    }
     clamp_left_integer(p, &mut kn, rows)?;
     rows.iter_mut().for_each(|q| q.reverse());
     Some(())
@@ -2287,35 +2407,39 @@ fn clamp_span_integer(c: &NurbsCurve, k: usize, rows: &mut [&mut [BigInt]]) -> O
 /// integer knots, fraction-free (see [`bezier_coefficients_fraction_free`]): the same cut
 /// points in the same order (point i of level l from points i and i + 1 of level l - 1),
 /// each value multiplied by one positive factor per level.
-fn clamp_left_integer(p: usize, t: &mut [BigInt], rows: &mut [&mut [BigInt]]) -> Option<()> {
+fn clamp_left_integer<T: FfInt>(p: usize, t: &mut [T], rows: &mut [&mut [T]]) -> Option<()> {
     let u = t[p].clone();
-    let s = t[..=p].iter().rev().take_while(|&x| *x == u).count();
+    let s = t[..=p].iter().rev().take_while(|x| x.is_eq(&u)).count();
     if s >= p {
         return Some(());
     }
+    let one = T::from_i64(1);
     for l in 1..=p - s {
         let n = p - l - s;
-        let den: Vec<BigInt> = (0..=n).map(|i| &t[i + p + 1] - &t[l + i]).collect();
-        if den.iter().any(|d| d.sign() != Sign::Plus) {
+        let den: smallvec::SmallVec<[T; 8]> = (0..=n)
+            .map(|i| t[i + p + 1].sub(&t[l + i]))
+            .collect::<Option<_>>()?;
+        if den.iter().any(|d| !d.is_positive()) {
             return None;
         }
         // cofactor of den_i: the product of the level's other denominators
-        let mut pre = vec![BigInt::one(); n + 2];
+        let mut pre: smallvec::SmallVec<[T; 8]> = smallvec::smallvec![one.clone(); n + 2];
         for i in 0..=n {
-            pre[i + 1] = &pre[i] * &den[i];
+            pre[i + 1] = pre[i].mul(&den[i])?;
         }
-        let mut suf = vec![BigInt::one(); n + 2];
+        let mut suf: smallvec::SmallVec<[T; 8]> = smallvec::smallvec![one.clone(); n + 2];
         for i in (0..=n).rev() {
-            suf[i] = &suf[i + 1] * &den[i];
+            suf[i] = suf[i + 1].mul(&den[i])?;
         }
         // (every row the same cuts and factors: their common positive factor stays one)
         for q in rows.iter_mut() {
             for i in 0..=n {
-                let cut = (&t[i + p + 1] - &u) * &q[i] + (&u - &t[l + i]) * &q[i + 1];
-                q[i] = cut * (&pre[i] * &suf[i + 1]);
+                let left = t[i + p + 1].sub(&u)?.mul(&q[i])?;
+                let right = u.sub(&t[l + i])?.mul(&q[i + 1])?;
+                q[i] = left.add(&right)?.mul(&pre[i].mul(&suf[i + 1])?)?;
             }
             for x in &mut q[n + 1..=p] {
-                *x = &*x * &pre[n + 1];
+                *x = x.mul(&pre[n + 1])?;
             }
         }
         // (a common power of two out of every row: a positive factor)
@@ -2327,7 +2451,7 @@ fn clamp_left_integer(p: usize, t: &mut [BigInt], rows: &mut [&mut [BigInt]]) ->
             .unwrap_or(0);
         if tz > 0 {
             for q in rows.iter_mut() {
-                q.iter_mut().for_each(|x| *x = &*x >> tz);
+                q.iter_mut().for_each(|x| *x = x.shr_exact(tz));
             }
         }
     }
@@ -2341,6 +2465,11 @@ fn clamp_left_integer(p: usize, t: &mut [BigInt], rows: &mut [&mut [BigInt]]) ->
 /// exactly with an odd m or m = 0, from its bits; shifted to the smallest exponent: a positive
 /// common factor, no gcd); `None` for a value that is not finite.
 pub(crate) fn dyadic_integers(xs: impl Iterator<Item = f64>) -> Option<(Vec<BigInt>, i64)> {
+    dyadic_ints(xs)
+}
+
+/// [`dyadic_integers`] in the integer type `T` (`None` also where a value overflows `T`).
+fn dyadic_ints<T: FfInt>(xs: impl Iterator<Item = f64>) -> Option<(Vec<T>, i64)> {
     // (few values per call: on the stack up to 8)
     let parts: smallvec::SmallVec<[(i64, i64); 8]> = xs.map(dyadic_parts).collect::<Option<_>>()?;
     let e0 = parts
@@ -2351,8 +2480,8 @@ pub(crate) fn dyadic_integers(xs: impl Iterator<Item = f64>) -> Option<(Vec<BigI
         .unwrap_or(0);
     let ints = parts
         .into_iter()
-        .map(|(m, e)| BigInt::from(m) << (e - e0) as u64)
-        .collect();
+        .map(|(m, e)| T::from_i64(m).shl((e - e0) as u64))
+        .collect::<Option<_>>()?;
     Some((ints, e0))
 }
 
@@ -2945,11 +3074,8 @@ fn exponent_of(x: f64) -> i32 {
     if x.is_nan() || x <= 0.0 || !x.is_finite() {
         return 0;
     }
-    let mut e = x.log2().ceil() as i32;
-    while 2f64.powi(e) <= x {
-        e += 1;
-    }
-    e
+    // (x in [2^(e-1), 2^e), from the bits)
+    exponent(x)
 }
 
 #[cfg(test)]
@@ -2960,6 +3086,82 @@ mod tests {
     /// The rational double roots of Bernstein polynomials with integer coefficients: a cubic
     /// (3t - 2)^2 (2 - t) (the quadratic f' branch), a quartic (3t - 1)^2 (t - 2)(t + 1)
     /// (Euclid's gcd), none for simple roots (t = 1/2, 3/4) or a linear f'.
+    /// The i128 fraction-free Bézier coefficients are the BigInt ones wherever no operation
+    /// overflows (the same steps), and an overflow is reported, never wrapped: random
+    /// B-spline spans of degree 1..=5 with short data (small integer knots, few-bit values,
+    /// where i128 must succeed) and long data (53-bit knots and values, tiny weights).
+    #[test]
+    fn fraction_free_coefficients_agree_in_i128_and_bigint() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(33);
+        let (mut small, mut fell_back) = (0, 0);
+        for it in 0..1500 {
+            let p = r.random_range(1..=5usize);
+            let n = p + r.random_range(0..4usize);
+            let short = it % 2 == 0;
+            let mut kn: Vec<f64> = (0..n + p + 2)
+                .map(|_| {
+                    if short {
+                        r.random_range(0..12) as f64
+                    } else {
+                        r.random_range(-1.0..1.0)
+                    }
+                })
+                .collect();
+            kn.sort_by(f64::total_cmp);
+            let pts: Vec<Vec<f64>> = (0..=n)
+                .map(|_| {
+                    let x = if short {
+                        r.random_range(-4096..4096) as f64 / 64.0
+                    } else {
+                        r.random_range(-1e3..1e3)
+                    };
+                    vec![x]
+                })
+                .collect();
+            let w: Option<Vec<f64>> = (it % 3 == 0).then(|| {
+                (0..=n)
+                    .map(|_| {
+                        if short {
+                            r.random_range(1..8) as f64
+                        } else {
+                            r.random_range(1e-9..2.0)
+                        }
+                    })
+                    .collect()
+            });
+            let Ok(c) = NurbsCurve::new(p, kn.clone(), pts, w) else {
+                continue;
+            };
+            let t = if short {
+                1.5
+            } else {
+                r.random_range(-1e3..1e3)
+            };
+            for k in p..=n {
+                if kn[k] >= kn[k + 1] {
+                    continue;
+                }
+                let big = bezier_coefficients_ff::<BigInt>(&c, k, 0, 1.0, t);
+                match bezier_coefficients_ff::<i128>(&c, k, 0, 1.0, t) {
+                    Some(q) => {
+                        let q: Vec<BigInt> = q.into_iter().map(BigInt::from).collect();
+                        assert_eq!(Some(q), big, "p {p} k {k} {kn:?}");
+                        small += 1;
+                    }
+                    None => {
+                        assert!(
+                            !short || big.is_none(),
+                            "short data overflowed i128: {kn:?}"
+                        );
+                        fell_back += 1;
+                    }
+                }
+            }
+        }
+        assert!(small > 500 && fell_back > 100, "{small} {fell_back}");
+    }
+
     /// `dyadic_integers` from the bits agrees with exact rationals: every x is its integer
     /// times 2^e0, on signed normals, subnormals, zeros, integers and values near f64::MAX.
     #[test]
