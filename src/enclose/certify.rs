@@ -1446,6 +1446,14 @@ fn ddi_stage(
     // (a value proved <= t within 2^-NEAR_BITS ulps of it: `DdiOutcome::deferred`)
     let near_t = t - crate::num::ulp(t) * 2f64.powi(-NEAR_BITS);
     let mut near = false;
+    // (only where the doubles resolve u's span finely, 2^NEAR_BITS of them or more: in a
+    // span a few thousand doubles of u wide, e.g. at clustered knots, the f64 Newton points
+    // cannot reach the extremum, and the search in the local parameter can)
+    let fine = |c: &NurbsCurve, u: f64| {
+        let kn = c.knots();
+        let k = c.find_span(u);
+        crate::num::ulp(u) <= (kn[k + 1] - kn[k]) * 2f64.powi(-NEAR_BITS)
+    };
     let (a, b) = ev.c.domain();
     let p = ev.c.degree();
     // 2. double-double enclosures at chosen f64 parameters
@@ -1482,7 +1490,7 @@ fn ddi_stage(
             return out;
         }
         straddle |= !g.is_at_most(t);
-        near |= g.is_at_most(t) && g.to_interval().sup() >= near_t;
+        near |= g.is_at_most(t) && g.to_interval().sup() >= near_t && fine(ev.c, mid);
         let mut u = mid;
         let mut top = (g.to_f64(), mid);
         if lo < hi {
@@ -1512,7 +1520,7 @@ fn ddi_stage(
                     return out;
                 }
                 straddle |= !g.is_at_most(t);
-                near |= g.is_at_most(t) && g.to_interval().sup() >= near_t;
+                near |= g.is_at_most(t) && g.to_interval().sup() >= near_t && fine(ev.c, v);
                 if g.to_f64() > top.0 {
                     top = (g.to_f64(), v);
                 }

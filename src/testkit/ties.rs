@@ -13,6 +13,10 @@
 //!   = 1/2 + (e0 + e2)/4 + O(e^2), at a non-dyadic u* near 1/2; |e0|, |e2| ~ 2^-r with r in
 //!   60..=110 and random signs, so the extremum is within ~2^-r relative above or below the
 //!   double ±2^(k-1).
+//! * [`TieKind::NearTieCubic`]: P0 = e0, P1 = P2 = 1, P3 = e3 (times ±2^k), so that
+//!   x(t) = 3 t (1 - t) + e0 (1 - t)^3 + e3 t^3, with its maximum 3/4 + (e0 + e3)/8 + O(e^2)
+//!   near t = 1/2: within ~2^-r relative of the double ±3 2^(k-2) (r in 60..=110, random
+//!   signs), at a root of the quadratic x' (an irrational parameter in general).
 //! * [`TieKind::ScaledCircle`]: the 9-point rational circle (NURBS Book ex. 7.2) with centre
 //!   c and radius r of few bits: max x = c + r, min y = c - r, ... attained at knots.
 //! * [`TieKind::KnotCorner`]: a quadratic B-spline with a double interior knot (C0 there)
@@ -33,6 +37,8 @@ pub enum TieKind {
     SymmetricCubic,
     /// max within 2^-60 .. 2^-110 relative of a double, at a non-dyadic parameter
     NearTieQuadratic,
+    /// a cubic's max within 2^-60 .. 2^-110 relative of a double
+    NearTieCubic,
     /// rational circle: extrema exactly c ± r at knots
     ScaledCircle,
     /// maximum at a C0 knot, equal to a control point
@@ -43,10 +49,11 @@ pub enum TieKind {
 
 impl TieKind {
     /// All kinds.
-    pub const ALL: [TieKind; 6] = [
+    pub const ALL: [TieKind; 7] = [
         TieKind::SymmetricQuadratic,
         TieKind::SymmetricCubic,
         TieKind::NearTieQuadratic,
+        TieKind::NearTieCubic,
         TieKind::ScaledCircle,
         TieKind::KnotCorner,
         TieKind::UnclampedEnd,
@@ -58,6 +65,7 @@ impl TieKind {
             TieKind::SymmetricQuadratic => "sym_quadratic",
             TieKind::SymmetricCubic => "sym_cubic",
             TieKind::NearTieQuadratic => "near_tie",
+            TieKind::NearTieCubic => "near_tie_cubic",
             TieKind::ScaledCircle => "circle",
             TieKind::KnotCorner => "knot_corner",
             TieKind::UnclampedEnd => "unclamped_end",
@@ -92,7 +100,7 @@ impl TieKind {
                     None,
                 )
             }
-            TieKind::NearTieQuadratic => {
+            TieKind::NearTieQuadratic | TieKind::NearTieCubic => {
                 let s = 2f64.powi(rng.random_range(-20..=20));
                 let mut e = || {
                     let r = rng.random_range(60..=110);
@@ -103,14 +111,18 @@ impl TieKind {
                 let (e0, e2) = (e(), e());
                 let sign = if rng.random_bool(0.5) { -1.0 } else { 1.0 };
                 // 1-D plus a harmless second coordinate (a line)
-                bez(
-                    vec![
-                        vec![sign * s * e0, 0.0],
-                        vec![sign * s, 0.5],
-                        vec![sign * s * e2, 1.0],
-                    ],
-                    None,
-                )
+                let x = if self == TieKind::NearTieQuadratic {
+                    vec![e0, 1.0, e2]
+                } else {
+                    vec![e0, 1.0, 1.0, e2]
+                };
+                let n = x.len() - 1;
+                let pts = x
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &v)| vec![sign * s * v, i as f64 / n as f64])
+                    .collect();
+                bez(pts, None)
             }
             TieKind::ScaledCircle => {
                 let (cx, cy, r) = (few(rng, 12, 6), few(rng, 12, 6), few(rng, 12, 6).abs());

@@ -675,7 +675,11 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
         if all_f64 {
             for _ in 0..2 {
                 let d = ub.next_down();
-                if !(ub.is_finite() && side.attained < ub && side.witness < d) {
+                // (a near-tie only: the bracket's own value within two doubles of its bound; a
+                // wide bracket's loose bound is not one)
+                let own = v.lower_end();
+                if !(ub.is_finite() && side.attained < ub && side.witness < d && own >= d.next_down())
+                {
                     break;
                 }
                 let signed: [f64; 4] = std::array::from_fn(|i| if is_max { fv[i] } else { -fv[i] });
