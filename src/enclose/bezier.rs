@@ -454,7 +454,12 @@ impl BezierSubdivision {
                 // The root-isolating fast path on the span's double-double Bézier segment
                 // (non-rational, p = 2 or 3): a proven result for the whole span, or nothing.
                 if let Some(hd) = hd.as_ref() {
-                    let q = dsegs[k].get_or_insert_with(|| hd.bezier_segment(k));
+                    let q = dsegs[k].get_or_insert_with(|| {
+                        let mut q = hd.bezier_segment(k);
+                        // (end values that are exactly doubles made exact: `snap_exact_ends`)
+                        crate::spline::fraction_free::snap_exact_ends(c, k, &mut q.pts);
+                        q
+                    });
                     let h = q.hdim();
                     let mut v = [Ddi::exact(0.0); 4];
                     for (i, x) in v.iter_mut().enumerate().take(p + 1) {

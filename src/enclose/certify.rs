@@ -202,11 +202,16 @@
 
 use super::driver::{exponent, Rescaling};
 use super::{scale_outward, CandidateKind, CoordBox, Enclosure, Extremum};
+pub(crate) use crate::num::ffint::dyadic_integers;
+use crate::num::ffint::{clamp_span_ints, FfInt};
 use crate::num::{iv, Ddi, Exact, Scalar};
 use crate::spline::bezier::{bernstein_value, de_casteljau_eval, de_casteljau_split, hodograph};
 use crate::spline::bspline::{BezierSeg, HSpline};
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
+#[cfg(test)]
+use crate::spline::fraction_free::bezier_coefficients_ff;
+use crate::spline::fraction_free::bezier_coefficients_fraction_free;
 use crate::spline::knots::multiplicity;
 use inari::Interval;
 use num_bigint::{BigInt, Sign};
@@ -550,8 +555,10 @@ impl<'a> Evals<'a> {
         }
         let c = self.c;
         let h = self.ddi0.get_or_insert_with(|| HSpline::from_curve(c));
-        // (running error bounds: near ties need every bit the double double has)
-        let seg = h.bezier_segment_tight(k);
+        // (running error bounds: near ties need every bit the double double has; end values
+        // that are exactly doubles made exact, `snap_exact_ends`)
+        let mut seg = h.bezier_segment_tight(k);
+        crate::spline::fraction_free::snap_exact_ends(c, k, &mut seg.pts);
         self.ddi_segs.push((k, seg.clone()));
         seg
     }
@@ -2232,286 +2239,10 @@ fn exact_value_is_cheap(c: &NurbsCurve, k: usize, j: usize, u: &Exact) -> bool {
         && (k - p..=k).all(|i| short_dyadic(c.control_point(i)[j]) && short_dyadic(c.weight(i)))
 }
 
-/// The integer coefficients of [`exact_bernstein_rule`] for any span k: f_i = sign a_i - t w_i
-/// of the span's homogeneous Bézier points (a_i, w_i), times one positive factor, without a
-/// gcd. f is linear in the homogeneous rows, so it is the Bézier form of the single row
-/// g_i = w_i (sign P_ij - t) of the span's local control points (exact dyadic products). That
-/// row and the span's 2p + 2 local knots are brought to integers (each over one common power
-/// of two: the knots' ratios do not change), and the span is clamped at both ends by
-/// Boehm's insertion as [`crate::spline::bspline`]'s `clamp_left` does it (NURBS Book A5.1;
-/// thesis eq. 4.12), fraction-free: at insertion level l the cut points become
-/// ((t_b - u) q_i + (u - t_a) q_{i+1}) / (t_b - t_a), and instead of dividing, every point of
-/// the level is multiplied by the product of the level's denominators t_b - t_a > 0 (the cut
-/// ones by the product of the others), so all points keep one common positive denominator,
-/// which is dropped; a common power of two is divided out after each level. (As
-/// [`split_integer`] does for de Casteljau. The rationals of `HSpline<Exact>`, reduced by a
-/// gcd after every operation, cost ~100x more on a cubic span with 53-bit knots.) `None` for a
-/// non-positive denominator (not a valid span) or undefined data.
-fn bezier_coefficients_fraction_free(
-    c: &NurbsCurve,
-    k: usize,
-    j: usize,
-    sign: f64,
-    t: f64,
-) -> Option<Vec<BigInt>> {
-    // (in i128 first, every operation checked: short data such as small integer knots and
-    // few-bit control values never needs more; an overflow, or an invalid span, repeats the
-    // same steps in BigInt)
-    if let Some(q) = bezier_coefficients_ff::<i128>(c, k, j, sign, t) {
-        return Some(q.into_iter().map(BigInt::from).collect());
-    }
-    bezier_coefficients_ff::<BigInt>(c, k, j, sign, t)
-}
-
-/// [`bezier_coefficients_fraction_free`] in the integer type `T` (`None` also where an
-/// operation overflows `T`).
-fn bezier_coefficients_ff<T: FfInt>(
-    c: &NurbsCurve,
-    k: usize,
-    j: usize,
-    sign: f64,
-    t: f64,
-) -> Option<Vec<T>> {
-    let p = c.degree();
-    // (the same coefficients as `span_rows_integer(..).minus(t)`, up to a positive factor,
-    // but from one clamped row instead of two: the rule runs on every straddle, and the
-    // two-row form cost the ties ~15% more certification time)
-    // g_i = w_i (sign P_ij - t): (sign P_ij, t) over one power of two, the difference times
-    // w_i (an integer over its own power of two), then all over the smallest one
-    let mut q: Vec<T> = Vec::with_capacity(p + 1);
-    let mut exps: smallvec::SmallVec<[i64; 8]> = smallvec::SmallVec::new();
-    let (mt, et) = dyadic_parts(t)?;
-    for i in k - p..=k {
-        // (sign P_ij - t over the smaller of the two exponents, times the weight's integer)
-        let (mx, ex) = dyadic_parts(sign * c.control_point(i)[j])?;
-        let (mw, ew) = dyadic_parts(c.weight(i))?;
-        let e_d = if mx == 0 {
-            et
-        } else if mt == 0 {
-            ex
-        } else {
-            ex.min(et)
-        };
-        let x = T::from_i64(mx).shl((ex - e_d).max(0) as u64)?;
-        let y = T::from_i64(mt).shl((et - e_d).max(0) as u64)?;
-        q.push(x.sub(&y)?.mul(&T::from_i64(mw))?);
-        exps.push(e_d + ew);
-    }
-    let e0 = *exps.iter().min()?;
-    for (x, e) in q.iter_mut().zip(&exps) {
-        *x = x.shl((e - e0) as u64)?;
-    }
-    clamp_span_integer(c, k, &mut [&mut q])?;
-    Some(q)
-}
-
-/// The integers of the fraction-free kernels ([`clamp_left_integer`]): `BigInt`, or `i128`
-/// with every operation checked (`None` on overflow), for short data.
-trait FfInt: Clone {
-    fn from_i64(x: i64) -> Self;
-    fn add(&self, o: &Self) -> Option<Self>;
-    fn sub(&self, o: &Self) -> Option<Self>;
-    fn mul(&self, o: &Self) -> Option<Self>;
-    fn neg(&self) -> Option<Self>;
-    /// self 2^k
-    fn shl(&self, k: u64) -> Option<Self>;
-    /// self / 2^k for a multiple of 2^k
-    fn shr_exact(&self, k: u64) -> Self;
-    /// the exponent of the largest power of two dividing self (`None` for 0)
-    fn trailing_zeros(&self) -> Option<u64>;
-    fn is_positive(&self) -> bool;
-    fn is_eq(&self, o: &Self) -> bool;
-}
-
-impl FfInt for BigInt {
-    fn from_i64(x: i64) -> Self {
-        BigInt::from(x)
-    }
-    fn add(&self, o: &Self) -> Option<Self> {
-        Some(self + o)
-    }
-    fn sub(&self, o: &Self) -> Option<Self> {
-        Some(self - o)
-    }
-    fn mul(&self, o: &Self) -> Option<Self> {
-        Some(self * o)
-    }
-    fn neg(&self) -> Option<Self> {
-        Some(-self)
-    }
-    fn shl(&self, k: u64) -> Option<Self> {
-        Some(self << k)
-    }
-    fn shr_exact(&self, k: u64) -> Self {
-        self >> k
-    }
-    fn trailing_zeros(&self) -> Option<u64> {
-        BigInt::trailing_zeros(self)
-    }
-    fn is_positive(&self) -> bool {
-        self.sign() == Sign::Plus
-    }
-    fn is_eq(&self, o: &Self) -> bool {
-        self == o
-    }
-}
-
-impl FfInt for i128 {
-    fn from_i64(x: i64) -> Self {
-        x as i128
-    }
-    fn add(&self, o: &Self) -> Option<Self> {
-        self.checked_add(*o)
-    }
-    fn sub(&self, o: &Self) -> Option<Self> {
-        self.checked_sub(*o)
-    }
-    fn mul(&self, o: &Self) -> Option<Self> {
-        self.checked_mul(*o)
-    }
-    fn neg(&self) -> Option<Self> {
-        self.checked_neg()
-    }
-    fn shl(&self, k: u64) -> Option<Self> {
-        // (exact only while no bit, the sign bit included, is shifted out)
-        if *self == 0 {
-            return Some(0);
-        }
-        let room = self.unsigned_abs().leading_zeros() as u64;
-        (k < room).then(|| self << k)
-    }
-    fn shr_exact(&self, k: u64) -> Self {
-        self >> k
-    }
-    fn trailing_zeros(&self) -> Option<u64> {
-        (*self != 0).then(|| i128::trailing_zeros(*self) as u64)
-    }
-    fn is_positive(&self) -> bool {
-        *self > 0
-    }
-    fn is_eq(&self, o: &Self) -> bool {
-        self == o
-    }
-}
-
-/// Clamps span k at both ends ([`clamp_left_integer`] from the left, then from the right on
-/// the reversed, negated knots): the rows of integer values of the span's local control
-/// points become the rows of its Bézier points, all times one common positive factor.
+/// Clamps span k of `c` at both ends ([`clamp_span_ints`] on the span's 2p + 2 local knots).
 fn clamp_span_integer<T: FfInt>(c: &NurbsCurve, k: usize, rows: &mut [&mut [T]]) -> Option<()> {
     let p = c.degree();
-    let (mut kn, _) = dyadic_ints::<T>(c.knots()[k - p..=k + p + 1].iter().copied())?;
-    clamp_left_integer(p, &mut kn, rows)?;
-    rows.iter_mut().for_each(|q| q.reverse());
-    kn.reverse();
-    for x in kn.iter_mut() {
-        *x = x.neg()?;
-    }
-    clamp_left_integer(p, &mut kn, rows)?;
-    rows.iter_mut().for_each(|q| q.reverse());
-    Some(())
-}
-
-/// `bspline::clamp_left` on one row of integers over a common positive denominator, with
-/// integer knots, fraction-free (see [`bezier_coefficients_fraction_free`]): the same cut
-/// points in the same order (point i of level l from points i and i + 1 of level l - 1),
-/// each value multiplied by one positive factor per level.
-fn clamp_left_integer<T: FfInt>(p: usize, t: &mut [T], rows: &mut [&mut [T]]) -> Option<()> {
-    let u = t[p].clone();
-    let s = t[..=p].iter().rev().take_while(|x| x.is_eq(&u)).count();
-    if s >= p {
-        return Some(());
-    }
-    let one = T::from_i64(1);
-    for l in 1..=p - s {
-        let n = p - l - s;
-        let den: smallvec::SmallVec<[T; 8]> = (0..=n)
-            .map(|i| t[i + p + 1].sub(&t[l + i]))
-            .collect::<Option<_>>()?;
-        if den.iter().any(|d| !d.is_positive()) {
-            return None;
-        }
-        // cofactor of den_i: the product of the level's other denominators
-        let mut pre: smallvec::SmallVec<[T; 8]> = smallvec::smallvec![one.clone(); n + 2];
-        for i in 0..=n {
-            pre[i + 1] = pre[i].mul(&den[i])?;
-        }
-        let mut suf: smallvec::SmallVec<[T; 8]> = smallvec::smallvec![one.clone(); n + 2];
-        for i in (0..=n).rev() {
-            suf[i] = suf[i + 1].mul(&den[i])?;
-        }
-        // (every row the same cuts and factors: their common positive factor stays one)
-        for q in rows.iter_mut() {
-            for i in 0..=n {
-                let left = t[i + p + 1].sub(&u)?.mul(&q[i])?;
-                let right = u.sub(&t[l + i])?.mul(&q[i + 1])?;
-                q[i] = left.add(&right)?.mul(&pre[i].mul(&suf[i + 1])?)?;
-            }
-            for x in &mut q[n + 1..=p] {
-                *x = x.mul(&pre[n + 1])?;
-            }
-        }
-        // (a common power of two out of every row: a positive factor)
-        let tz = rows
-            .iter()
-            .flat_map(|q| q.iter())
-            .filter_map(|x| x.trailing_zeros())
-            .min()
-            .unwrap_or(0);
-        if tz > 0 {
-            for q in rows.iter_mut() {
-                q.iter_mut().for_each(|x| *x = x.shr_exact(tz));
-            }
-        }
-    }
-    let first = t[p - s].clone();
-    t[0] = first;
-    t[1..=p].iter_mut().for_each(|x| *x = u.clone());
-    Some(())
-}
-
-/// Finite f64 values as integers over one common power of two 2^e0, and e0 (each x = m 2^e
-/// exactly with an odd m or m = 0, from its bits; shifted to the smallest exponent: a positive
-/// common factor, no gcd); `None` for a value that is not finite.
-pub(crate) fn dyadic_integers(xs: impl Iterator<Item = f64>) -> Option<(Vec<BigInt>, i64)> {
-    dyadic_ints(xs)
-}
-
-/// [`dyadic_integers`] in the integer type `T` (`None` also where a value overflows `T`).
-fn dyadic_ints<T: FfInt>(xs: impl Iterator<Item = f64>) -> Option<(Vec<T>, i64)> {
-    // (few values per call: on the stack up to 8)
-    let parts: smallvec::SmallVec<[(i64, i64); 8]> = xs.map(dyadic_parts).collect::<Option<_>>()?;
-    let e0 = parts
-        .iter()
-        .filter(|x| x.0 != 0)
-        .map(|x| x.1)
-        .min()
-        .unwrap_or(0);
-    let ints = parts
-        .into_iter()
-        .map(|(m, e)| T::from_i64(m).shl((e - e0) as u64))
-        .collect::<Option<_>>()?;
-    Some((ints, e0))
-}
-
-/// A finite x as m 2^e exactly, m odd (or m = e = 0 for x = 0): the significand's bits with the
-/// implicit one (none for a subnormal, exponent -1074), trailing zeros moved to e.
-fn dyadic_parts(x: f64) -> Option<(i64, i64)> {
-    if !x.is_finite() {
-        return None;
-    }
-    if x == 0.0 {
-        return Some((0, 0));
-    }
-    let b = x.to_bits();
-    let (be, frac) = (((b >> 52) & 0x7ff) as i64, b & ((1u64 << 52) - 1));
-    let (m, e) = if be == 0 {
-        (frac, -1074)
-    } else {
-        (frac | (1u64 << 52), be - 1075)
-    };
-    let tz = m.trailing_zeros();
-    let m = (m >> tz) as i64;
-    Some((if x < 0.0 { -m } else { m }, e + tz as i64))
+    clamp_span_ints(p, &c.knots()[k - p..=k + p + 1], rows)
 }
 
 /// De Casteljau subdivision (NURBS Book A1.5) of the Bernstein coefficients `b` (over a common

@@ -8,6 +8,7 @@
 pub mod ddi;
 mod dw;
 pub mod exact;
+pub(crate) mod ffint;
 pub mod mr;
 mod poly;
 mod scalar;

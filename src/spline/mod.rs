@@ -7,6 +7,7 @@ pub(crate) mod bezier;
 pub(crate) mod bspline;
 pub(crate) mod curve;
 pub(crate) mod eval;
+pub(crate) mod fraction_free;
 pub mod knot_removal;
 pub(crate) mod knots;
 pub(crate) mod refine;

@@ -252,11 +252,15 @@ impl TightEval {
             // (s <= len/2 from the nearer end): from degree TAYLOR_TIGHT_FROM on the points
             // come from the extraction with `Ddi`'s own, tighter running bounds.
             let pts = slot.seg.get_or_init(|| {
-                if hs.degree >= TAYLOR_TIGHT_FROM {
+                let mut pts = if hs.degree >= TAYLOR_TIGHT_FROM {
                     hs.bezier_segment_tight(k).pts
                 } else {
                     hs.bezier_segment(k).pts
-                }
+                };
+                // (end points that are exactly doubles made exact: an extremum at an
+                // unclamped end or a knot is then not straddled)
+                crate::spline::fraction_free::snap_exact_ends(&self.curve, k, &mut pts);
+                pts
             });
             let (p, h) = (hs.degree, hs.hdim());
             let len = Ddi::diff(hs.knots[k + 1], hs.knots[k]);
