@@ -124,7 +124,8 @@ fn exact_end_values<T: FfInt>(
 /// enclosures of the exact ones. An end value whose enclosure holds the double h = hi and
 /// nothing else within 2^-40 ulps of h (lo = 0, a radius of a few subnormals: the data were
 /// exact and only the operations' underflow terms widened it) is checked exactly
-/// ([`exact_end_values`], in i128, else in big integers) and replaced by h where C_j there is
+/// (a control point at a knot of multiplicity >= p, else [`exact_end_values`] in i128) and
+/// replaced by h where C_j there is
 /// h: the enclosure loses nothing, and an extremum at an unclamped end or a knot that is
 /// exactly a double (the end value (P0 + P1) / 2 of a uniform quadratic) is then bound and
 /// attained value at once instead of straddled. Rational segments (homogeneous points w C,
@@ -153,13 +154,40 @@ pub fn snap_exact_ends(c: &NurbsCurve, k: usize, pts: &mut [Ddi]) {
     if n == 0 {
         return;
     }
-    let cands = &cands[..n];
-    let Some(exact) =
-        exact_end_values::<i128>(c, k, cands).or_else(|| exact_end_values::<BigInt>(c, k, cands))
-    else {
+    // At a knot of multiplicity >= p the piece's end value is a control point (NURBS Book
+    // eq. 2.5 / A5.1: the clamped span's end point is P_{k-p} at u_k, P_k at u_{k+1}): compared
+    // directly. Otherwise the integer clamp, in i128 only (data long enough to overflow it
+    // are left as they are: exact knot values of such data are rare, and big integers cost
+    // more than the straddle they would save).
+    let kn = c.knots();
+    let control = |i: usize, j: usize| {
+        let (u, at) = if i == 0 {
+            (kn[k], k - p)
+        } else {
+            (kn[k + 1], k)
+        };
+        (crate::spline::knots::multiplicity(kn, u) >= p).then(|| c.control_point(at)[j])
+    };
+    let mut rest = [(0usize, 0usize, 0.0f64); 8];
+    let mut m = 0;
+    for &(i, j, h) in &cands[..n] {
+        match control(i, j) {
+            Some(x) if x == h => pts[i * d + j] = Ddi::exact(h),
+            Some(_) => {}
+            None => {
+                rest[m] = (i, j, h);
+                m += 1;
+            }
+        }
+    }
+    let rest = &rest[..m];
+    if rest.is_empty() {
+        return;
+    }
+    let Some(exact) = exact_end_values::<i128>(c, k, rest) else {
         return;
     };
-    for (&(i, j, h), &x) in cands.iter().zip(&exact) {
+    for (&(i, j, h), &x) in rest.iter().zip(&exact) {
         if x {
             pts[i * d + j] = Ddi::exact(h);
         }
