@@ -317,6 +317,10 @@ fn bracket_max_cmp(c: &[f64], t0: f64, t1: f64, d: f64) -> Option<Ordering> {
     };
     let (q0, q1, q2): (BigInt, BigInt, BigInt) = (a1.clone(), &a2 * 2u32, &a3 * 3u32);
     if q2.sign() == Sign::NoSign {
+        // (a2 = 0 too would make x' constant, with no root to bracket: not a maximum here)
+        if a2.sign() == Sign::NoSign {
+            return None;
+        }
         let v = &a2 * &f0 * 4u32 - &a1 * &a1;
         return Some(mul(sgn(&v), sgn(&a2)));
     }
