@@ -2822,9 +2822,6 @@ mod tests {
     use super::*;
     use crate::enclose::{BoxEncloser, Newton};
 
-    /// The rational double roots of Bernstein polynomials with integer coefficients: a cubic
-    /// (3t - 2)^2 (2 - t) (the quadratic f' branch), a quartic (3t - 1)^2 (t - 2)(t + 1)
-    /// (Euclid's gcd), none for simple roots (t = 1/2, 3/4) or a linear f'.
     /// The i128 fraction-free Bézier coefficients are the BigInt ones wherever no operation
     /// overflows (the same steps), and an overflow is reported, never wrapped: random
     /// B-spline spans of degree 1..=5 with short data (small integer knots, few-bit values,
@@ -2937,6 +2934,9 @@ mod tests {
         assert!(dyadic_integers([1.0, f64::NAN].into_iter()).is_none());
     }
 
+    /// The rational double roots of Bernstein polynomials with integer coefficients: a cubic
+    /// (3t - 2)^2 (2 - t) (the quadratic f' branch), a quartic (3t - 1)^2 (t - 2)(t + 1)
+    /// (Euclid's gcd), none for simple roots (t = 1/2, 3/4) or a linear f'.
     #[test]
     fn rational_double_roots() {
         let b = |v: &[i64]| v.iter().map(|&x| BigInt::from(x)).collect::<Vec<_>>();

@@ -9,8 +9,9 @@ use crate::num::{ulp, Ddi};
 use crate::spline::curve::NurbsCurve;
 use num_bigint::BigInt;
 
-/// The integer coefficients of the certificate's exact Bernstein rule for any span k: f_i = sign a_i - t w_i
-/// of the span's homogeneous Bézier points (a_i, w_i), times one positive factor, without a
+/// The integer coefficients of the certificate's exact Bernstein rule for any span k:
+/// f_i = sign a_i - t w_i of the span's homogeneous Bézier points (a_i, w_i), times one
+/// positive factor, without a
 /// gcd. f is linear in the homogeneous rows, so it is the Bézier form of the single row
 /// g_i = w_i (sign P_ij - t) of the span's local control points (exact dyadic products). That
 /// row and the span's 2p + 2 local knots are brought to integers (each over one common power
@@ -20,9 +21,9 @@ use num_bigint::BigInt;
 /// ((t_b - u) q_i + (u - t_a) q_{i+1}) / (t_b - t_a), and instead of dividing, every point of
 /// the level is multiplied by the product of the level's denominators t_b - t_a > 0 (the cut
 /// ones by the product of the others), so all points keep one common positive denominator,
-/// which is dropped; a common power of two is divided out after each level. (As
-/// the certificate's `split_integer` does for de Casteljau. The rationals of `HSpline<Exact>`, reduced by a
-/// gcd after every operation, cost ~100x more on a cubic span with 53-bit knots.) `None` for a
+/// which is dropped; a common power of two is divided out after each level. (As the
+/// certificate's `split_integer` does for de Casteljau. The rationals of `HSpline<Exact>`,
+/// reduced by a gcd after every operation, cost ~100x more on a cubic span with 53-bit knots.) `None` for a
 /// non-positive denominator (not a valid span) or undefined data.
 pub(crate) fn bezier_coefficients_fraction_free(
     c: &NurbsCurve,
