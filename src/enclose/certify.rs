@@ -218,6 +218,7 @@ use num_bigint::{BigInt, Sign};
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, ToPrimitive, Zero};
+use smallvec::SmallVec;
 use std::cmp::Ordering;
 
 /// Candidates per side that are examined (in the strategy's order).
@@ -322,15 +323,39 @@ pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescali
         return;
     }
     let Some(r) = r else {
-        // moderate magnitudes (the common case): the curve itself
-        let mut ev = Evals::new(c, c, 0);
+        // moderate magnitudes (the common case): the curve itself. Each side's first round
+        // from the exact values at knots and ends and the scale ([`first_round`]); the
+        // evaluators only for the sides it leaves open.
+        let mut exact: SmallVec<[usize; 16]> = SmallVec::new();
+        knot_points(c, |i| exact.push(i));
+        let mut ev: Option<Evals> = None;
         for (j, cb) in e.coords.iter_mut().enumerate() {
-            let mut cv = Curves {
-                dn: &mut ev,
-                up: None,
-            };
-            cb.optimal_hi = certify_side(&mut cv, j, cb, true, &Scaling::NONE);
-            cb.optimal_lo = certify_side(&mut cv, j, cb, false, &Scaling::NONE);
+            let (mut xlo, mut xhi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for &i in &exact {
+                let x = c.control_point(i)[j];
+                xlo = xlo.min(x);
+                xhi = xhi.max(x);
+            }
+            let scale = c.coord_scale(j);
+            let quick_hi = first_round(cb.hi, cb.inner_hi, cb.witness_hi, xhi, scale);
+            let quick_lo = first_round(-cb.lo, -cb.inner_lo, -cb.witness_lo, -xlo, scale);
+            for (max_side, q) in [(true, quick_hi), (false, quick_lo)] {
+                let ok = match q {
+                    Some(ok) => ok,
+                    None => {
+                        let mut cv = Curves {
+                            dn: ev.get_or_insert_with(|| Evals::new(c, c, 0)),
+                            up: None,
+                        };
+                        certify_side(&mut cv, j, cb, max_side, &Scaling::NONE)
+                    }
+                };
+                if max_side {
+                    cb.optimal_hi = ok;
+                } else {
+                    cb.optimal_lo = ok;
+                }
+            }
         }
         return;
     };
@@ -735,16 +760,13 @@ impl<'a> Evals<'a> {
 
     /// The largest of sign * v over the exact values v of every span's piece at its ends that
     /// are knots of multiplicity >= p ([`Evals::knot_value`]): curve values, or left limits
-    /// of curve values at a jump; -inf if there are none.
+    /// of curve values at a jump; -inf if there are none ([`knot_points`]).
     fn max_knot_value(&self, j: usize, sign: f64) -> f64 {
-        let c = self.c;
-        let (kn, p, n) = (c.knots(), c.degree(), c.num_points() - 1);
-        (p..=n)
-            .filter(|&k| kn[k] < kn[k + 1])
-            .flat_map(|k| [(k, kn[k]), (k, kn[k + 1])])
-            .filter_map(|(k, u)| self.knot_value(j, k, u))
-            .map(|x| sign * x)
-            .fold(f64::NEG_INFINITY, f64::max)
+        let mut best = f64::NEG_INFINITY;
+        knot_points(self.c, |i| {
+            best = best.max(sign * self.orig.control_point(i)[j]);
+        });
+        best
     }
 
     /// g, g', g'' (k = 2) of the piece of span `span` over the interval `u` inside the closed
@@ -769,6 +791,59 @@ impl<'a> Evals<'a> {
             .map(|d| signed(d, sign))
             .collect()
     }
+}
+
+/// Calls `f(i)` for the index i of every control point that is the value of a span's piece at
+/// one of its ends that is a knot of multiplicity >= p ([`Evals::knot_value`]; the clamped
+/// ends among them).
+///
+/// One pass over the runs of equal knots (O(m), no search): a run kn[s..e] of the value u
+/// with e - s >= p ends the span k = s - 1 (kn[s - 1] < u = kn[s], the piece's value P_k)
+/// and starts the span k = e - 1 (kn[e - 1] = u < kn[e], the value P_{k-p}), each where
+/// p <= k <= n: exactly the pairs (span, end) of `knot_value` with multiplicity >= p.
+fn knot_points(c: &NurbsCurve, mut f: impl FnMut(usize)) {
+    let (kn, p, n) = (c.knots(), c.degree(), c.num_points() - 1);
+    let mut s = 0;
+    while s < kn.len() {
+        let mut e = s + 1;
+        while e < kn.len() && kn[e] == kn[s] {
+            e += 1;
+        }
+        if e - s >= p {
+            // (the span ending at u: k = s - 1)
+            if s > p && s - 1 <= n {
+                f(s - 1);
+            }
+            // (the span starting at u: k = e - 1, and kn[e] > u exists as k <= n)
+            if e > p && e - 1 <= n {
+                f(e - 1 - p);
+            }
+        }
+        s = e;
+    }
+}
+
+/// The first round of [`certify_side`] on a curve of moderate magnitudes (its own units, no
+/// scaling), decided per coordinate from O(m + n) data before anything is allocated: `bound`,
+/// `inner`, `witness` of the side (sign-adjusted), `exact` the largest sign-adjusted exact
+/// value at clamped ends and knots of multiplicity >= p ([`knot_points`]), `scale` the
+/// coordinate scale. `Some` exactly where round 0 of `certify_side` decides, with the same
+/// answer; `None` sends the side to `certify_side`. Round 0 checks, in this order: a finite
+/// bound; rules 1 and 1b (`attained_rule`); rule 1c (`exact` above t = next_down(bound));
+/// rule 1d, the left limit at a jump knot u, which never holds once 1c has failed: the left
+/// piece's value at u is P_k (u has multiplicity > p >= p, [`Evals::knot_value`]), one of the
+/// exact values, and its double-double enclosure lies above t only if P_k > t; then the
+/// refusal of a loose bound (`far_below` with the attained and exact values), after which
+/// nothing else runs: the local stage is for rescaled curves only, and the end game refuses
+/// the same bound (the same test with `inner` alone, on the same scale of the same curve).
+fn first_round(bound: f64, inner: f64, witness: f64, exact: f64, scale: f64) -> Option<bool> {
+    if !bound.is_finite() {
+        return Some(false);
+    }
+    if attained_rule(bound, inner, witness) || exact > bound.next_down() {
+        return Some(true);
+    }
+    far_below(bound, inner.max(exact), scale, LOWER_WITHIN_ULPS).then_some(false)
 }
 
 fn signed(x: Ddi, sign: f64) -> Ddi {
@@ -839,6 +914,19 @@ fn certify_side(
     } else {
         (-cb.lo, -cb.inner_lo, -cb.witness_lo)
     };
+    // The exact values at clamped ends and at knots of multiplicity >= p (control points of
+    // the curve itself, compared in its own units), and the coordinate scale: properties of
+    // the curve, the same in every round.
+    let (end_value, scale) = {
+        let ev = cv.below(sign);
+        let (a, b) = ev.c.domain();
+        let end_value = [a, b]
+            .into_iter()
+            .filter_map(|u| ev.clamped_end_value(j, u))
+            .map(|x| sign * x)
+            .fold(ev.max_knot_value(j, sign), f64::max);
+        (end_value, back(ev.c.coord_scale(j)))
+    };
     let all: &[Extremum] = if max_side { &cb.argmax } else { &cb.argmin };
     let mut cands: Vec<Extremum> = all[..all.len().min(MAX_CANDIDATES)]
         .iter()
@@ -903,14 +991,7 @@ fn certify_side(
         // (1c. a clamped end's value, exactly the end control point, above t: after a
         // lowering the end value is often the new bound's witness)
         // (and the same for the values at knots of multiplicity >= p, control points too)
-        // (exact control points of the curve itself, compared in its own units)
         let ev = cv.below(sign);
-        let (a, b) = ev.c.domain();
-        let end_value = [a, b]
-            .into_iter()
-            .filter_map(|u| ev.clamped_end_value(j, u))
-            .map(|x| sign * x)
-            .fold(ev.max_knot_value(j, sign), f64::max);
         if end_value > t {
             proved = true;
             break;
@@ -928,7 +1009,6 @@ fn certify_side(
             proved = true;
             break;
         }
-        let scale = back(ev.c.coord_scale(j));
         // (an exact end or knot value counts as attained here: a maximum at a knot of
         // multiplicity >= p that the strategy did not record is nearly proved as well)
         if far_below(bound, inner.max(end_value), scale, within) {
@@ -2896,6 +2976,146 @@ mod tests {
             }
         }
         assert!(small > 500 && fell_back > 100, "{small} {fell_back}");
+    }
+
+    /// The one-pass `max_knot_value` equals the definition span by span (every span's two
+    /// ends through `knot_value`, which looks up each knot's multiplicity): degrees 1..=5,
+    /// knot vectors drawn from a few values (multiplicities up to p + 1 and beyond, clamped,
+    /// unclamped and jump knots), both signs, every coordinate.
+    #[test]
+    fn max_knot_value_matches_the_span_by_span_definition() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(41);
+        let (mut checked, mut found) = (0, 0);
+        for _ in 0..3000 {
+            let p = r.random_range(1..=5usize);
+            let n = p + r.random_range(0..6usize);
+            let mut kn: Vec<f64> = (0..n + p + 2)
+                .map(|_| r.random_range(0..5) as f64)
+                .collect();
+            kn.sort_by(f64::total_cmp);
+            let pts: Vec<Vec<f64>> = (0..=n)
+                .map(|_| vec![r.random_range(-9.0..9.0), r.random_range(-9.0..9.0)])
+                .collect();
+            let Ok(c) = NurbsCurve::new(p, kn.clone(), pts, None) else {
+                continue;
+            };
+            let ev = Evals::new(&c, &c, 0);
+            for j in 0..2 {
+                for sign in [1.0, -1.0] {
+                    let want = (p..=n)
+                        .filter(|&k| kn[k] < kn[k + 1])
+                        .flat_map(|k| [(k, kn[k]), (k, kn[k + 1])])
+                        .filter_map(|(k, u)| ev.knot_value(j, k, u))
+                        .map(|x| sign * x)
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    let got = ev.max_knot_value(j, sign);
+                    assert_eq!(
+                        got.to_bits(),
+                        want.to_bits(),
+                        "p {p} {kn:?} j {j} sign {sign}"
+                    );
+                    checked += 1;
+                    found += usize::from(want.is_finite());
+                }
+            }
+        }
+        assert!(
+            checked > 5000 && found > 1000 && found < checked,
+            "{checked} {found}"
+        );
+    }
+
+    /// The per-coordinate first round of the moderate path ([`first_round`] from the exact
+    /// knot values) decides every side exactly as `certify_side` itself does: the same flags
+    /// and the same bounds, for `hull`, `bezier` and `newton` on every test family, ties and
+    /// jump knots included.
+    #[test]
+    fn first_round_agrees_with_certify_side() {
+        use crate::enclose::{drive_with, strategy_by_name};
+        use crate::testkit::gen::{self, Family};
+        let mut r = gen::rng(57);
+        let (mut sides, mut quick, mut moved) = (0, 0, 0);
+        let mut curves: Vec<NurbsCurve> = Vec::new();
+        for f in Family::ALL {
+            curves.extend((0..25).map(|_| f.curve(&mut r)));
+        }
+        curves.extend((0..40).map(|_| crate::testkit::ties::tie_curve(&mut r).1));
+        for name in ["hull", "bezier", "newton"] {
+            let s = strategy_by_name(name, None).unwrap();
+            for c in curves.iter().filter(|c| Rescaling::of(c).is_none()) {
+                let e0 = drive_with(s.as_ref(), c, false);
+                let mut fast = e0.clone();
+                certify_with(c, &mut fast, None);
+                let mut slow = e0.clone();
+                let mut ev = Evals::new(c, c, 0);
+                for (j, cb) in slow.coords.iter_mut().enumerate() {
+                    let mut cv = Curves {
+                        dn: &mut ev,
+                        up: None,
+                    };
+                    cb.optimal_hi = certify_side(&mut cv, j, cb, true, &Scaling::NONE);
+                    cb.optimal_lo = certify_side(&mut cv, j, cb, false, &Scaling::NONE);
+                }
+                for (j, (a, b)) in fast.coords.iter().zip(&slow.coords).enumerate() {
+                    let what = format!("{name} coordinate {j} of {c:?}");
+                    assert_eq!(
+                        (a.optimal_lo, a.optimal_hi),
+                        (b.optimal_lo, b.optimal_hi),
+                        "{what}"
+                    );
+                    assert_eq!(
+                        (a.lo.to_bits(), a.hi.to_bits()),
+                        (b.lo.to_bits(), b.hi.to_bits()),
+                        "{what}"
+                    );
+                    let c0 = &e0.coords[j];
+                    let scale = c.coord_scale(j);
+                    for (sign, bound, inner, wit) in [
+                        (1.0, c0.hi, c0.inner_hi, c0.witness_hi),
+                        (-1.0, -c0.lo, -c0.inner_lo, -c0.witness_lo),
+                    ] {
+                        sides += 1;
+                        let ex = max_exact(c, j, sign);
+                        quick += usize::from(first_round(bound, inner, wit, ex, scale).is_some());
+                    }
+                    // bounds moved around the refusal threshold (k ulps of the scale above
+                    // the attained value): the first round and the whole side agree
+                    if name == "newton" && j == 0 {
+                        let u = crate::num::ulp(c0.hi.abs().max(scale));
+                        for k in [1.0, 3.0, 5.0, 7.0, 8.5, 9.0, 16.0] {
+                            let mut cb = c0.clone();
+                            cb.hi = (cb.inner_hi + k * u).max(cb.inner_hi);
+                            let ex = max_exact(c, 0, 1.0);
+                            let q = first_round(cb.hi, cb.inner_hi, cb.witness_hi, ex, scale);
+                            let mut cv = Curves {
+                                dn: &mut ev,
+                                up: None,
+                            };
+                            let full = certify_side(&mut cv, 0, &mut cb, true, &Scaling::NONE);
+                            if let Some(x) = q {
+                                assert_eq!(x, full, "k {k}: {c:?}");
+                                moved += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // (most sides are decided by the first round: a test that reaches the other branch too)
+        assert!(
+            sides > 1500 && quick > sides / 2 && quick < sides,
+            "{sides} {quick}"
+        );
+        assert!(moved > 300, "{moved}");
+    }
+
+    /// The largest sign-adjusted exact knot or end value of coordinate j (the test's own
+    /// reduction over [`knot_points`]).
+    fn max_exact(c: &NurbsCurve, j: usize, sign: f64) -> f64 {
+        let mut m = f64::NEG_INFINITY;
+        knot_points(c, |i| m = m.max(sign * c.control_point(i)[j]));
+        m
     }
 
     /// `dyadic_integers` from the bits agrees with exact rationals: every x is its integer
