@@ -314,6 +314,12 @@ pub fn certify(c: &NurbsCurve, e: &mut Enclosure) {
 /// [`certify`] with the driver's rescaling of `c` (`Rescaling::of(c)`, computed once by the
 /// driver): the proofs run on the rescaled curve(s) (module docs, "Extreme magnitudes").
 pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescaling>) {
+    certify_with_first(c, e, r, true);
+}
+
+/// [`certify_with`], with the first rounds decided before the evaluators and scaled copies
+/// are built (`first`, the default) or inside [`certify_side`] only (the tests' reference).
+fn certify_with_first(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescaling>, first: bool) {
     let verified = e.verified;
     if !verified {
         for cb in &mut e.coords {
@@ -322,23 +328,29 @@ pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescali
         }
         return;
     }
+    // the exact values at clamped ends and knots of multiplicity >= p: (min, max) per coordinate
+    let mut exact: SmallVec<[usize; 16]> = SmallVec::new();
+    knot_points(c, |i| exact.push(i));
+    let exact_range = |j: usize| {
+        exact
+            .iter()
+            .map(|&i| c.control_point(i)[j])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x), hi.max(x))
+            })
+    };
     let Some(r) = r else {
         // moderate magnitudes (the common case): the curve itself. Each side's first round
         // from the exact values at knots and ends and the scale ([`first_round`]); the
         // evaluators only for the sides it leaves open.
-        let mut exact: SmallVec<[usize; 16]> = SmallVec::new();
-        knot_points(c, |i| exact.push(i));
         let mut ev: Option<Evals> = None;
         for (j, cb) in e.coords.iter_mut().enumerate() {
-            let (mut xlo, mut xhi) = (f64::INFINITY, f64::NEG_INFINITY);
-            for &i in &exact {
-                let x = c.control_point(i)[j];
-                xlo = xlo.min(x);
-                xhi = xhi.max(x);
-            }
+            let (xlo, xhi) = exact_range(j);
             let scale = c.coord_scale(j);
-            let quick_hi = first_round(cb.hi, cb.inner_hi, cb.witness_hi, xhi, scale);
-            let quick_lo = first_round(-cb.lo, -cb.inner_lo, -cb.witness_lo, -xlo, scale);
+            let quick_hi =
+                first_round(cb.hi, cb.inner_hi, cb.witness_hi, xhi, scale).filter(|_| first);
+            let quick_lo =
+                first_round(-cb.lo, -cb.inner_lo, -cb.witness_lo, -xlo, scale).filter(|_| first);
             for (max_side, q) in [(true, quick_hi), (false, quick_lo)] {
                 let ok = match q {
                     Some(ok) => ok,
@@ -364,13 +376,29 @@ pub(crate) fn certify_with(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescali
         // above next_down(bound)) needs no curve: a side it decides builds no scaled copies.
         cb.optimal_hi = attained_rule(cb.hi, cb.inner_hi, cb.witness_hi);
         cb.optimal_lo = attained_rule(-cb.lo, -cb.inner_lo, -cb.witness_lo);
-        let open = |max_side: bool| {
-            !if max_side {
-                cb.optimal_hi
-            } else {
-                cb.optimal_lo
+        // (and, before any scaled copy is built, what round 0 of `certify_side` decides from
+        // the curve's own data: [`rescaled_first_round`])
+        let (xlo, xhi) = exact_range(j);
+        let scale = c.coord_scale(j);
+        let mut decided = [cb.optimal_hi, cb.optimal_lo];
+        for (max_side, (bound, inner, x)) in [
+            (true, (cb.hi, cb.inner_hi, xhi)),
+            (false, (-cb.lo, -cb.inner_lo, -xlo)),
+        ] {
+            let k = usize::from(!max_side);
+            if decided[k] || !first {
+                continue;
             }
-        };
+            if let Some(ok) = rescaled_first_round(bound, inner, x, scale) {
+                decided[k] = true;
+                if max_side {
+                    cb.optimal_hi = ok;
+                } else {
+                    cb.optimal_lo = ok;
+                }
+            }
+        }
+        let open = |max_side: bool| !decided[usize::from(!max_side)];
         // one exponent per side (the same for both sides in most cases: one pair of curves)
         let e_m = exponent(c.coord_scale(j));
         let s_hi = coord_exponent(e_m, cb.hi, cb.inner_hi);
@@ -844,6 +872,34 @@ fn first_round(bound: f64, inner: f64, witness: f64, exact: f64, scale: f64) -> 
         return Some(true);
     }
     far_below(bound, inner.max(exact), scale, LOWER_WITHIN_ULPS).then_some(false)
+}
+
+/// The part of round 0 of [`certify_side`] that a rescaled curve's side can decide from the
+/// curve's own data, before its scaled copies are built (the attained rule checked already):
+/// `bound`, `inner` of the side (sign-adjusted), `exact` the largest sign-adjusted exact value
+/// at clamped ends and knots of multiplicity >= p of the curve itself ([`knot_points`]),
+/// `scale` its coordinate scale. Both answers are sound on their own: a bound that is not
+/// finite is not certified; an exact curve value above next_down(bound) proves bound =
+/// RU(max) (rule 1c); and a bound more than [`LOWER_WITHIN_ULPS_RESCALED`] ulps of 2 `scale`
+/// above every attained and exact value is refused, as `certify_side` refuses it: its scale,
+/// the scaled copy's scale scaled back and rounded up, is below 2 `scale` (the copy's largest
+/// coordinate is near 1, rounded by at most an ulp), so its refusal test holds as well, the
+/// local stage (which needs a bound within that test) does not run, and the end game refuses
+/// it on the curve's own scale. `None`: the full certificate decides.
+fn rescaled_first_round(bound: f64, inner: f64, exact: f64, scale: f64) -> Option<bool> {
+    if !bound.is_finite() {
+        return Some(false);
+    }
+    if exact > bound.next_down() {
+        return Some(true);
+    }
+    far_below(
+        bound,
+        inner.max(exact),
+        2.0 * scale,
+        LOWER_WITHIN_ULPS_RESCALED,
+    )
+    .then_some(false)
 }
 
 fn signed(x: Ddi, sign: f64) -> Ddi {
@@ -3048,15 +3104,8 @@ mod tests {
                 let mut fast = e0.clone();
                 certify_with(c, &mut fast, None);
                 let mut slow = e0.clone();
+                certify_with_first(c, &mut slow, None, false);
                 let mut ev = Evals::new(c, c, 0);
-                for (j, cb) in slow.coords.iter_mut().enumerate() {
-                    let mut cv = Curves {
-                        dn: &mut ev,
-                        up: None,
-                    };
-                    cb.optimal_hi = certify_side(&mut cv, j, cb, true, &Scaling::NONE);
-                    cb.optimal_lo = certify_side(&mut cv, j, cb, false, &Scaling::NONE);
-                }
                 for (j, (a, b)) in fast.coords.iter().zip(&slow.coords).enumerate() {
                     let what = format!("{name} coordinate {j} of {c:?}");
                     assert_eq!(
@@ -3108,6 +3157,59 @@ mod tests {
             "{sides} {quick}"
         );
         assert!(moved > 300, "{moved}");
+    }
+
+    /// On rescaled curves (extreme magnitudes, the corners of the f64 range) the first round
+    /// decided before the scaled copies are built changes no flag and no bound of the full
+    /// certificate: `hull`, `bezier` and `newton`.
+    #[test]
+    fn rescaled_first_round_agrees_with_the_full_certificate() {
+        use crate::enclose::{drive_with, strategy_by_name};
+        use crate::testkit::gen::{self, Family};
+        let mut r = gen::rng(58);
+        let mut curves: Vec<NurbsCurve> = Vec::new();
+        for f in [Family::ExtremeMagnitudes, Family::RangeLimits] {
+            curves.extend((0..40).map(|_| f.curve(&mut r)));
+        }
+        let (mut sides, mut decided) = (0, 0);
+        for name in ["hull", "bezier", "newton"] {
+            let s = strategy_by_name(name, None).unwrap();
+            for c in &curves {
+                let Some(rs) = Rescaling::of(c) else { continue };
+                let e0 = drive_with(s.as_ref(), c, false);
+                let mut fast = e0.clone();
+                certify_with_first(c, &mut fast, Some(&rs), true);
+                let mut slow = e0.clone();
+                certify_with_first(c, &mut slow, Some(&rs), false);
+                for (j, (a, b)) in fast.coords.iter().zip(&slow.coords).enumerate() {
+                    let what = format!("{name} coordinate {j} of {c:?}");
+                    assert_eq!(
+                        (a.optimal_lo, a.optimal_hi),
+                        (b.optimal_lo, b.optimal_hi),
+                        "{what}"
+                    );
+                    assert_eq!(
+                        (a.lo.to_bits(), a.hi.to_bits()),
+                        (b.lo.to_bits(), b.hi.to_bits()),
+                        "{what}"
+                    );
+                    let c0 = &e0.coords[j];
+                    let scale = c.coord_scale(j);
+                    for (sign, bound, inner) in
+                        [(1.0, c0.hi, c0.inner_hi), (-1.0, -c0.lo, -c0.inner_lo)]
+                    {
+                        sides += 1;
+                        let ex = max_exact(c, j, sign);
+                        decided +=
+                            usize::from(rescaled_first_round(bound, inner, ex, scale).is_some());
+                    }
+                }
+            }
+        }
+        assert!(
+            sides > 300 && decided > 30 && decided < sides,
+            "{sides} {decided}"
+        );
     }
 
     /// The largest sign-adjusted exact knot or end value of coordinate j (the test's own
