@@ -416,9 +416,12 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
         }
         next = next.max(i + p + 1);
     }
-    let mut heap = std::collections::BinaryHeap::from(spans.into_vec());
+    // best first: the spans sorted by key, the largest taken from the end (the order of a
+    // max-heap on the same tuples, kept on the stack: a filtered span goes back at its sorted
+    // place)
+    spans.sort_unstable();
     let gap = max_gap(s, j);
-    while let Some((bk, k, filtered)) = heap.pop() {
+    while let Some((bk, k, filtered)) = spans.pop() {
         if bk <= key(attained) {
             break;
         }
@@ -429,7 +432,8 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
             let (ub, at) = filter(k)?;
             attained = attained.max(at);
             if ub > attained {
-                heap.push((key(ub), k, true));
+                let item = (key(ub), k, true);
+                spans.insert(spans.partition_point(|x| *x < item), item);
             }
             continue;
         }
