@@ -171,7 +171,10 @@ impl NurbsCurve {
     /// Number of control points n + 1.
     #[inline]
     pub fn num_points(&self) -> usize {
-        self.points.len() / self.dim
+        // (validation fixes m + 1 = n + p + 2 knots, and nothing changes a curve after it:
+        // no integer division by the dimension on this hot path)
+        debug_assert_eq!(self.knots.len() - self.degree - 1, self.points.len() / self.dim);
+        self.knots.len() - self.degree - 1
     }
     /// The knot vector u_0 .. u_m.
     #[inline]
