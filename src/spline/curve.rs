@@ -173,7 +173,10 @@ impl NurbsCurve {
     pub fn num_points(&self) -> usize {
         // (validation fixes m + 1 = n + p + 2 knots, and nothing changes a curve after it:
         // no integer division by the dimension on this hot path)
-        debug_assert_eq!(self.knots.len() - self.degree - 1, self.points.len() / self.dim);
+        debug_assert_eq!(
+            self.knots.len() - self.degree - 1,
+            self.points.len() / self.dim
+        );
         self.knots.len() - self.degree - 1
     }
     /// The knot vector u_0 .. u_m.
