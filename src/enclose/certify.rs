@@ -1762,8 +1762,16 @@ fn bezier_search(
                 }
             };
             let (s_lo, s_hi) = (local(lo, 0.0), local(hi, 1.0));
-            // (f64 values in O(p) operations, `bernstein_value`: only to choose s)
-            let value = |s: f64| bernstein_value(&af, s) / bernstein_value(&wf, s);
+            // (f64 values in O(p) operations, `bernstein_value`: only to choose s; W = 1 without
+            // weights)
+            let value = |s: f64| {
+                let a = bernstein_value(&af, s);
+                if w.is_some() {
+                    a / bernstein_value(&wf, s)
+                } else {
+                    a
+                }
+            };
             // Newton from the largest f64 value among the candidate's midpoint and
             // SEARCH_SAMPLES + 1 points evenly over it (from the midpoint alone, a piece
             // that is convex there stops Newton at once)
@@ -1796,7 +1804,11 @@ fn bezier_search(
             }
             for _ in 0..2 * NEWTON_STEPS {
                 let ev = |b: &[f64]| bernstein_value(b, s);
-                let (wv, w1v, w2v) = (ev(&wf), ev(&w1), ev(&w2));
+                let (wv, w1v, w2v) = if w.is_some() {
+                    (ev(&wf), ev(&w1), ev(&w2))
+                } else {
+                    (1.0, 0.0, 0.0)
+                };
                 let g = ev(&af) / wv;
                 let g1 = (ev(&a1) - g * w1v) / wv;
                 let g2 = (ev(&a2) - 2.0 * g1 * w1v - g * w2v) / wv;
