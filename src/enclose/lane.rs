@@ -580,41 +580,49 @@ fn span_coefficients_by_insertion<S: Scalar>(s: &Simple, j: usize, k: usize) -> 
     q
 }
 
-/// The hull sides `[max, min]` of coordinate j: control-point box, attained end values.
-fn hull_sides(s: &Simple, j: usize) -> [SideOut; 2] {
+/// The `hull` coordinate box of coordinate j, written directly: the control-point box (convex
+/// hull property, thesis prop. 2.1; exact), the end control points as attained values (a
+/// clamped end is a control point), each bound's extremum the support of the first control
+/// point that attains it (`Simple::extreme_at`; the whole domain for a single segment). The
+/// driver's facts hold by construction (the bounds are the control-point range, the inner
+/// bounds end values inside it).
+fn hull_coord(s: &Simple, j: usize) -> CoordBox {
     let (lo, hi) = s.range[j];
     let (e0, e1) = (s.pts[j], s.pts[s.n * s.d + j]);
-    // the support of the extreme control point (the whole domain for a single segment)
-    let arg = |m: f64| {
+    let arg = |i: usize| {
         let (mut u_lo, mut u_hi) = (s.a, s.b);
         if s.n > s.p {
-            if let Some(i) = (0..=s.n).find(|&i| s.pts[i * s.d + j] == m) {
-                u_lo = s.knots[i].max(s.a);
-                u_hi = s.knots[i + s.p + 1].min(s.b);
-            }
+            u_lo = s.knots[i].max(s.a);
+            u_hi = s.knots[i + s.p + 1].min(s.b);
         }
-        Extremum {
+        let mut args = Extrema::new();
+        args.push(Extremum {
             u_lo,
             u_hi,
             unique: false,
             kind: CandidateKind::ControlPoint,
-        }
-    };
-    let side = |upper: f64, attained: f64, at: f64, evals: u32| {
-        let mut args = Extrema::new();
-        args.push(arg(at));
-        SideOut {
-            data: SideData {
-                upper,
-                attained,
-                witness: f64::NEG_INFINITY,
-                args,
-            },
-            counts: [0, 0, 0, evals],
-        }
+        });
+        args
     };
     let (emax, emin) = if e0 > e1 { (e0, e1) } else { (e1, e0) };
-    [side(hi, emax, hi, 2), side(-lo, -emin, lo, 0)]
+    let (i_min, i_max) = s.extreme_at[j];
+    CoordBox {
+        lo,
+        hi,
+        inner_lo: emin,
+        inner_hi: emax,
+        argmin: arg(i_min),
+        argmax: arg(i_max),
+        stats: Stats {
+            point_evaluations: 2,
+            ..Stats::default()
+        },
+        termination: Termination::Direct,
+        optimal_lo: false,
+        optimal_hi: false,
+        witness_lo: f64::INFINITY,
+        witness_hi: f64::NEG_INFINITY,
+    }
 }
 
 /// The enclosure of a [`Simple`] curve by a strategy named `name` answering with `lane`, with
@@ -636,10 +644,15 @@ pub fn enclose_into(
     e.coords.clear();
     for j in 0..s.d {
         let clock = Clock::start();
-        let ([hi, lo], term) = match lane {
-            Lane::Hull => (hull_sides(s, j), Termination::Direct),
+        let [hi, lo] = match lane {
+            Lane::Hull => {
+                let mut cb = hull_coord(s, j);
+                cb.stats.time_total = clock.elapsed();
+                e.coords.push(cb);
+                continue;
+            }
             Lane::Tight => match tight_sides(s, j) {
-                Some(sides) => (sides, Termination::Converged),
+                Some(sides) => sides,
                 None => return false,
             },
         };
@@ -652,8 +665,12 @@ pub fn enclose_into(
             time_total: clock.elapsed(),
             ..Stats::default()
         };
-        e.coords
-            .push(CoordBox::from_sides(hi.data, lo.data, stats, term));
+        e.coords.push(CoordBox::from_sides(
+            hi.data,
+            lo.data,
+            stats,
+            Termination::Converged,
+        ));
     }
     let mut open = false;
     for (j, cb) in e.coords.iter_mut().enumerate() {
@@ -681,6 +698,46 @@ mod tests {
     use crate::num::exact::Exact;
     use crate::testkit::gen::{self, Family};
     use std::cmp::Ordering;
+
+    /// `hull_coord` against its definition: the bounds the exact control-point range, the
+    /// inner bounds the end control points, each bound's extremum the support of the first
+    /// control point equal to it (searched here), on single segments and splines of several
+    /// families, with repeated extreme values (flat coordinates).
+    #[test]
+    fn hull_coordinates_match_their_definition() {
+        let mut r = gen::rng(23);
+        let mut checked = 0;
+        for fam in [
+            Family::ClampedUniform,
+            Family::MultipleKnots,
+            Family::FlatCoordinates,
+            Family::Mixed,
+        ] {
+            for _ in 0..400 {
+                let c = fam.curve(&mut r);
+                let Some(s) = Simple::of(&c) else { continue };
+                for j in 0..s.d {
+                    let cb = hull_coord(&s, j);
+                    let (lo, hi) = c.coord_range(j, 0..=s.n);
+                    assert_eq!((cb.lo, cb.hi), (lo, hi));
+                    let (e0, e1) = (c.control_point(0)[j], c.control_point(s.n)[j]);
+                    assert_eq!((cb.inner_lo, cb.inner_hi), (e0.min(e1), e0.max(e1)));
+                    for (m, args) in [(lo, &cb.argmin), (hi, &cb.argmax)] {
+                        let i = (0..=s.n).find(|&i| c.control_point(i)[j] == m).unwrap();
+                        let (u_lo, u_hi) = if s.n > s.p {
+                            (s.knots[i].max(s.a), s.knots[i + s.p + 1].min(s.b))
+                        } else {
+                            (s.a, s.b)
+                        };
+                        assert_eq!(args.len(), 1);
+                        assert_eq!((args[0].u_lo, args[0].u_hi), (u_lo, u_hi), "{fam:?} {c:?}");
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 200, "{checked}");
+    }
 
     /// The closed form equals the exact insertion in rational arithmetic (so the formula is
     /// right), its f64 values are within the a-priori bound of `bezier::span_bounds` of the
