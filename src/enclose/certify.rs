@@ -3092,6 +3092,29 @@ mod tests {
             checked > 5000 && found > 1000 && found < checked,
             "{checked} {found}"
         );
+        // and at the corners of the f64 range (knots at +-f64::MAX and a few subnormals apart,
+        // unclamped vectors), where runs of equal knots sit next to overflowing differences
+        let mut r = crate::testkit::gen::rng(43);
+        for _ in 0..300 {
+            let c = crate::testkit::gen::Family::RangeLimits.curve(&mut r);
+            let (kn, p, n) = (c.knots(), c.degree(), c.num_points() - 1);
+            let ev = Evals::new(&c, &c, 0);
+            for j in 0..c.dim() {
+                for sign in [1.0, -1.0] {
+                    let want = (p..=n)
+                        .filter(|&k| kn[k] < kn[k + 1])
+                        .flat_map(|k| [(k, kn[k]), (k, kn[k + 1])])
+                        .filter_map(|(k, u)| ev.knot_value(j, k, u))
+                        .map(|x| sign * x)
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    assert_eq!(
+                        ev.max_knot_value(j, sign).to_bits(),
+                        want.to_bits(),
+                        "{c:?}"
+                    );
+                }
+            }
+        }
     }
 
     /// The per-coordinate first round of the moderate path ([`first_round`] from the exact
