@@ -26,7 +26,7 @@
 use super::bezier::single::{raw_sides_into, RawSide, Segment};
 use super::bezier::{end_kind, span_bounds};
 use super::driver::apply_facts;
-use super::driver::{exponent, COORD_WINDOW};
+use super::driver::COORD_WINDOW;
 use super::{certify, CandidateKind, Clock, CoordBox, Enclosure, Extrema, Extremum};
 use super::{SideData, Stats, Termination};
 use crate::num::ddi::Ddi;
@@ -67,6 +67,28 @@ pub struct Simple<'a> {
     extreme_at: [(usize, usize); MAX_DIM],
 }
 
+/// 2^k for -1022 <= k <= 1023, exactly (the biased exponent field).
+const fn pow2(k: i32) -> f64 {
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// `exponent(x) > KNOT_EXP` (`driver::exponent`: |x| in [2^(e-1), 2^e)) as one comparison with
+/// a power of two: |x| >= 2^KNOT_EXP (exact).
+#[inline]
+fn beyond_knot_window(x: f64) -> bool {
+    const LIMIT: f64 = pow2(KNOT_EXP);
+    x.abs() >= LIMIT
+}
+
+/// `exponent(m).abs() > COORD_WINDOW` for m > 0 as two comparisons with powers of two:
+/// e > W iff m >= 2^W, e < -W iff m < 2^(-W-1) (exact; subnormal m lie below).
+#[inline]
+fn beyond_coord_window(m: f64) -> bool {
+    const HI: f64 = pow2(COORD_WINDOW);
+    const LO: f64 = pow2(-COORD_WINDOW - 1);
+    !(LO..HI).contains(&m)
+}
+
 /// The lane takes curves of dimension up to this (the result's inline storage holds three).
 const MAX_DIM: usize = 4;
 
@@ -90,7 +112,7 @@ impl<'a> Simple<'a> {
             return None;
         }
         if n == p {
-            if exponent(a) > KNOT_EXP || exponent(b) > KNOT_EXP {
+            if beyond_knot_window(a) || beyond_knot_window(b) {
                 return None;
             }
         } else {
@@ -131,7 +153,7 @@ impl<'a> Simple<'a> {
             }
             let m = if -lo > hi { -lo } else { hi };
             // (a NaN or infinite coordinate is rejected by validation; checked again)
-            if !m.is_finite() || (m != 0.0 && exponent(m).abs() > COORD_WINDOW) {
+            if !m.is_finite() || (m != 0.0 && beyond_coord_window(m)) {
                 return None;
             }
             *r = (lo, hi);
@@ -698,6 +720,31 @@ mod tests {
     use crate::num::exact::Exact;
     use crate::testkit::gen::{self, Family};
     use std::cmp::Ordering;
+
+    /// The windows by comparisons equal the exponent tests they replace: powers of two and
+    /// their neighbours around both thresholds, subnormals, the extremes and random values.
+    #[test]
+    fn window_comparisons_match_the_exponent_tests() {
+        use crate::enclose::driver::exponent;
+        let mut xs = vec![f64::MIN_POSITIVE, f64::from_bits(1), f64::MAX, 1.0, 0.75];
+        for k in [-82, -81, -80, -79, 79, 80, 81, 999, 1000, 1001] {
+            let p = 2f64.powi(k);
+            xs.extend([p, p.next_up(), p.next_down(), 1.5 * p]);
+        }
+        let mut r = gen::rng(29);
+        use rand::Rng;
+        xs.extend((0..2000).map(|_| f64::from_bits(r.random_range(1..0x7ff0_0000_0000_0000u64))));
+        for x in xs {
+            assert_eq!(
+                beyond_coord_window(x),
+                exponent(x).abs() > COORD_WINDOW,
+                "{x:e}"
+            );
+            for y in [x, -x] {
+                assert_eq!(beyond_knot_window(y), exponent(y) > KNOT_EXP, "{y:e}");
+            }
+        }
+    }
 
     /// `hull_coord` against its definition: the bounds the exact control-point range, the
     /// inner bounds the end control points, each bound's extremum the support of the first
