@@ -295,3 +295,30 @@ fn single_segments_allocate_nothing_in_the_lane() {
         );
     }
 }
+
+/// The thesis's largest case (a 1-D cubic spline of 101 points) allocates nothing in the lane
+/// for `bezier` and `newton` either, certificates included: its spans are ordered best first
+/// on the stack and its candidates fit the side's inline buffer (before, a binary heap was
+/// built from a fresh vector and the candidates of the proved spans spilled to the heap on
+/// every side). (The minimum over five calls, as above.)
+#[test]
+fn the_thesis_spline_allocates_nothing_in_the_lane() {
+    use nurbs_box::enclose::strategy_by_name;
+    let c = gen::thesis_curve_1d(101, 3, 101).unwrap();
+    assert!(Simple::of(&c).is_some());
+    for name in ["hull", "bezier", "newton"] {
+        let s = strategy_by_name(name, None).unwrap();
+        let count = (0..5)
+            .map(|_| {
+                let before = allocs();
+                let e = drive(s.as_ref(), &c);
+                let n = allocs() - before;
+                assert_eq!(e.stats().fast_fallbacks, 0, "{name}: left the lane");
+                drop(e);
+                n
+            })
+            .min()
+            .unwrap();
+        assert_eq!(count, 0, "{name}: {count} allocations");
+    }
+}

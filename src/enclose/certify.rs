@@ -346,11 +346,11 @@ fn certify_with_first(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescaling>, 
         let mut ev: Option<Evals> = None;
         for (j, cb) in e.coords.iter_mut().enumerate() {
             let (xlo, xhi) = exact_range(j);
-            let scale = c.coord_scale(j);
+            let window = (c.coord_scale(j), LOWER_WITHIN_ULPS);
             let quick_hi =
-                first_round(cb.hi, cb.inner_hi, cb.witness_hi, xhi, scale).filter(|_| first);
+                first_round(cb.hi, cb.inner_hi, cb.witness_hi, xhi, window).filter(|_| first);
             let quick_lo =
-                first_round(-cb.lo, -cb.inner_lo, -cb.witness_lo, -xlo, scale).filter(|_| first);
+                first_round(-cb.lo, -cb.inner_lo, -cb.witness_lo, -xlo, window).filter(|_| first);
             for (max_side, q) in [(true, quick_hi), (false, quick_lo)] {
                 let ok = match q {
                     Some(ok) => ok,
@@ -377,19 +377,19 @@ fn certify_with_first(c: &NurbsCurve, e: &mut Enclosure, r: Option<&Rescaling>, 
         cb.optimal_hi = attained_rule(cb.hi, cb.inner_hi, cb.witness_hi);
         cb.optimal_lo = attained_rule(-cb.lo, -cb.inner_lo, -cb.witness_lo);
         // (and, before any scaled copy is built, what round 0 of `certify_side` decides from
-        // the curve's own data: [`rescaled_first_round`])
+        // the curve's own data: [`first_round`] on twice the curve's scale)
         let (xlo, xhi) = exact_range(j);
-        let scale = c.coord_scale(j);
+        let window = (2.0 * c.coord_scale(j), LOWER_WITHIN_ULPS_RESCALED);
         let mut decided = [cb.optimal_hi, cb.optimal_lo];
-        for (max_side, (bound, inner, x)) in [
-            (true, (cb.hi, cb.inner_hi, xhi)),
-            (false, (-cb.lo, -cb.inner_lo, -xlo)),
+        for (max_side, (bound, inner, witness, x)) in [
+            (true, (cb.hi, cb.inner_hi, cb.witness_hi, xhi)),
+            (false, (-cb.lo, -cb.inner_lo, -cb.witness_lo, -xlo)),
         ] {
             let k = usize::from(!max_side);
             if decided[k] || !first {
                 continue;
             }
-            if let Some(ok) = rescaled_first_round(bound, inner, x, scale) {
+            if let Some(ok) = first_round(bound, inner, witness, x, window) {
                 decided[k] = true;
                 if max_side {
                     cb.optimal_hi = ok;
@@ -851,55 +851,42 @@ fn knot_points(c: &NurbsCurve, mut f: impl FnMut(usize)) {
     }
 }
 
-/// The first round of [`certify_side`] on a curve of moderate magnitudes (its own units, no
-/// scaling), decided per coordinate from O(m + n) data before anything is allocated: `bound`,
-/// `inner`, `witness` of the side (sign-adjusted), `exact` the largest sign-adjusted exact
-/// value at clamped ends and knots of multiplicity >= p ([`knot_points`]), `scale` the
-/// coordinate scale. `Some` exactly where round 0 of `certify_side` decides, with the same
-/// answer; `None` sends the side to `certify_side`. Round 0 checks, in this order: a finite
-/// bound; rules 1 and 1b (`attained_rule`); rule 1c (`exact` above t = next_down(bound));
-/// rule 1d, the left limit at a jump knot u, which never holds once 1c has failed: the left
-/// piece's value at u is P_k (u has multiplicity > p >= p, [`Evals::knot_value`]), one of the
-/// exact values, and its double-double enclosure lies above t only if P_k > t; then the
-/// refusal of a loose bound (`far_below` with the attained and exact values), after which
-/// nothing else runs: the local stage is for rescaled curves only, and the end game refuses
-/// the same bound (the same test with `inner` alone, on the same scale of the same curve).
-fn first_round(bound: f64, inner: f64, witness: f64, exact: f64, scale: f64) -> Option<bool> {
+/// The first round of [`certify_side`], decided per coordinate from O(m + n) data before any
+/// evaluator or scaled copy is built: `bound`, `inner`, `witness` of the side (sign-adjusted),
+/// `exact` the largest sign-adjusted exact value of the curve itself at clamped ends and knots
+/// of multiplicity >= p ([`knot_points`]), `scale` and `within` the refusal's scale and window.
+/// `None` sends the side to `certify_side`. Round 0 checks, in this order: a finite bound;
+/// rules 1 and 1b (`attained_rule`); rule 1c (`exact` above t = next_down(bound)); rule 1d, the
+/// left limit at a jump knot u, which never holds once 1c has failed: the left piece's value
+/// at u is P_k (u has multiplicity > p >= p, [`Evals::knot_value`]), one of the exact values,
+/// and its double-double enclosure lies above t only if P_k > t; then the refusal of a loose
+/// bound (`far_below` with the attained and exact values).
+///
+/// * A curve of moderate magnitudes (its own units, `scale` its coordinate scale, window
+///   [`LOWER_WITHIN_ULPS`]): `Some` exactly where round 0 decides, with the same answer; after
+///   a refusal nothing else runs (the local stage is for rescaled curves only, and the end
+///   game refuses the same bound: the same test with `inner` alone, on the same scale).
+/// * A rescaled curve (`scale` twice the curve's own, window [`LOWER_WITHIN_ULPS_RESCALED`]):
+///   the answers are sound on their own (a bound that is not finite is not certified, an exact
+///   curve value above next_down(bound) proves bound = RU(max)), and a refusal here is one of
+///   `certify_side` as well: its scale, the scaled copy's scale scaled back and rounded up, is
+///   below twice the curve's (the copy's largest coordinate is near 1, rounded by at most an
+///   ulp), so its refusal test holds, the local stage (which needs a bound within that test)
+///   does not run, and the end game refuses the bound on the curve's own scale.
+fn first_round(
+    bound: f64,
+    inner: f64,
+    witness: f64,
+    exact: f64,
+    (scale, within): (f64, usize),
+) -> Option<bool> {
     if !bound.is_finite() {
         return Some(false);
     }
     if attained_rule(bound, inner, witness) || exact > bound.next_down() {
         return Some(true);
     }
-    far_below(bound, inner.max(exact), scale, LOWER_WITHIN_ULPS).then_some(false)
-}
-
-/// The part of round 0 of [`certify_side`] that a rescaled curve's side can decide from the
-/// curve's own data, before its scaled copies are built (the attained rule checked already):
-/// `bound`, `inner` of the side (sign-adjusted), `exact` the largest sign-adjusted exact value
-/// at clamped ends and knots of multiplicity >= p of the curve itself ([`knot_points`]),
-/// `scale` its coordinate scale. Both answers are sound on their own: a bound that is not
-/// finite is not certified; an exact curve value above next_down(bound) proves bound =
-/// RU(max) (rule 1c); and a bound more than [`LOWER_WITHIN_ULPS_RESCALED`] ulps of 2 `scale`
-/// above every attained and exact value is refused, as `certify_side` refuses it: its scale,
-/// the scaled copy's scale scaled back and rounded up, is below 2 `scale` (the copy's largest
-/// coordinate is near 1, rounded by at most an ulp), so its refusal test holds as well, the
-/// local stage (which needs a bound within that test) does not run, and the end game refuses
-/// it on the curve's own scale. `None`: the full certificate decides.
-fn rescaled_first_round(bound: f64, inner: f64, exact: f64, scale: f64) -> Option<bool> {
-    if !bound.is_finite() {
-        return Some(false);
-    }
-    if exact > bound.next_down() {
-        return Some(true);
-    }
-    far_below(
-        bound,
-        inner.max(exact),
-        2.0 * scale,
-        LOWER_WITHIN_ULPS_RESCALED,
-    )
-    .then_some(false)
+    far_below(bound, inner.max(exact), scale, within).then_some(false)
 }
 
 fn signed(x: Ddi, sign: f64) -> Ddi {
@@ -915,17 +902,17 @@ fn signed(x: Ddi, sign: f64) -> Ddi {
 /// scale): `Some(true)` by the first rule of the module docs, `Some(false)` where
 /// [`certify_side`] answers `false` at once (the attained value more than
 /// [`LOWER_WITHIN_ULPS`] ulps of the scale below the bound: no search, no lowering), `None`
-/// where the full certification must decide. For a curve without interior jumps (whose
-/// left-limit rule never applies) this is exactly the first round of [`certify_side`]'s
-/// checks before its search stages.
+/// where the full certification must decide: [`first_round`] without the exact knot values
+/// (the lane's clamped ends are among its attained values already; a side that an interior
+/// knot's exact value would decide is left to the full certification, which has them).
 pub(crate) fn quick(bound: f64, inner: f64, witness: f64, scale: f64) -> Option<bool> {
-    if !bound.is_finite() {
-        return Some(false);
-    }
-    if attained_rule(bound, inner, witness) {
-        return Some(true);
-    }
-    far_below(bound, inner, scale, LOWER_WITHIN_ULPS).then_some(false)
+    first_round(
+        bound,
+        inner,
+        witness,
+        f64::NEG_INFINITY,
+        (scale, LOWER_WITHIN_ULPS),
+    )
 }
 
 /// The first rule: an attained value equal to the bound, or a strict witness at or above
@@ -973,15 +960,10 @@ fn certify_side(
     // The exact values at clamped ends and at knots of multiplicity >= p (control points of
     // the curve itself, compared in its own units), and the coordinate scale: properties of
     // the curve, the same in every round.
+    // (a clamped end is a run of p equal knots at the domain's end: `max_knot_value` counts it)
     let (end_value, scale) = {
         let ev = cv.below(sign);
-        let (a, b) = ev.c.domain();
-        let end_value = [a, b]
-            .into_iter()
-            .filter_map(|u| ev.clamped_end_value(j, u))
-            .map(|x| sign * x)
-            .fold(ev.max_knot_value(j, sign), f64::max);
-        (end_value, back(ev.c.coord_scale(j)))
+        (ev.max_knot_value(j, sign), back(ev.c.coord_scale(j)))
     };
     let all: &[Extremum] = if max_side { &cb.argmax } else { &cb.argmin };
     let mut cands: Vec<Extremum> = all[..all.len().min(MAX_CANDIDATES)]
@@ -3078,6 +3060,13 @@ mod tests {
                         .map(|x| sign * x)
                         .fold(f64::NEG_INFINITY, f64::max);
                     let got = ev.max_knot_value(j, sign);
+                    // (a clamped end's value is among them: `certify_side` relies on it)
+                    let (a, b) = c.domain();
+                    for u in [a, b] {
+                        if let Some(x) = ev.clamped_end_value(j, u) {
+                            assert!(sign * x <= got, "clamped end {u} missing: {kn:?}");
+                        }
+                    }
                     assert_eq!(
                         got.to_bits(),
                         want.to_bits(),
@@ -3141,19 +3130,8 @@ mod tests {
                 let mut slow = e0.clone();
                 certify_with_first(c, &mut slow, None, false);
                 let mut ev = Evals::new(c, c, 0);
-                for (j, (a, b)) in fast.coords.iter().zip(&slow.coords).enumerate() {
-                    let what = format!("{name} coordinate {j} of {c:?}");
-                    assert_eq!(
-                        (a.optimal_lo, a.optimal_hi),
-                        (b.optimal_lo, b.optimal_hi),
-                        "{what}"
-                    );
-                    assert_eq!(
-                        (a.lo.to_bits(), a.hi.to_bits()),
-                        (b.lo.to_bits(), b.hi.to_bits()),
-                        "{what}"
-                    );
-                    let c0 = &e0.coords[j];
+                assert_same_certificates(name, c, &fast, &slow);
+                for (j, c0) in e0.coords.iter().enumerate() {
                     let scale = c.coord_scale(j);
                     for (sign, bound, inner, wit) in [
                         (1.0, c0.hi, c0.inner_hi, c0.witness_hi),
@@ -3161,7 +3139,8 @@ mod tests {
                     ] {
                         sides += 1;
                         let ex = max_exact(c, j, sign);
-                        quick += usize::from(first_round(bound, inner, wit, ex, scale).is_some());
+                        let q = first_round(bound, inner, wit, ex, (scale, LOWER_WITHIN_ULPS));
+                        quick += usize::from(q.is_some());
                     }
                     // bounds moved around the refusal threshold (k ulps of the scale above
                     // the attained value): the first round and the whole side agree
@@ -3171,7 +3150,8 @@ mod tests {
                             let mut cb = c0.clone();
                             cb.hi = (cb.inner_hi + k * u).max(cb.inner_hi);
                             let ex = max_exact(c, 0, 1.0);
-                            let q = first_round(cb.hi, cb.inner_hi, cb.witness_hi, ex, scale);
+                            let window = (scale, LOWER_WITHIN_ULPS);
+                            let q = first_round(cb.hi, cb.inner_hi, cb.witness_hi, ex, window);
                             let mut cv = Curves {
                                 dn: &mut ev,
                                 up: None,
@@ -3216,27 +3196,19 @@ mod tests {
                 certify_with_first(c, &mut fast, Some(&rs), true);
                 let mut slow = e0.clone();
                 certify_with_first(c, &mut slow, Some(&rs), false);
-                for (j, (a, b)) in fast.coords.iter().zip(&slow.coords).enumerate() {
-                    let what = format!("{name} coordinate {j} of {c:?}");
-                    assert_eq!(
-                        (a.optimal_lo, a.optimal_hi),
-                        (b.optimal_lo, b.optimal_hi),
-                        "{what}"
-                    );
-                    assert_eq!(
-                        (a.lo.to_bits(), a.hi.to_bits()),
-                        (b.lo.to_bits(), b.hi.to_bits()),
-                        "{what}"
-                    );
-                    let c0 = &e0.coords[j];
+                assert_same_certificates(name, c, &fast, &slow);
+                for (j, c0) in e0.coords.iter().enumerate() {
                     let scale = c.coord_scale(j);
-                    for (sign, bound, inner) in
-                        [(1.0, c0.hi, c0.inner_hi), (-1.0, -c0.lo, -c0.inner_lo)]
-                    {
+                    for (sign, bound, inner, wit) in [
+                        (1.0, c0.hi, c0.inner_hi, c0.witness_hi),
+                        (-1.0, -c0.lo, -c0.inner_lo, -c0.witness_lo),
+                    ] {
                         sides += 1;
                         let ex = max_exact(c, j, sign);
-                        decided +=
-                            usize::from(rescaled_first_round(bound, inner, ex, scale).is_some());
+                        let window = (2.0 * scale, LOWER_WITHIN_ULPS_RESCALED);
+                        let attained = attained_rule(bound, inner, wit);
+                        let q = first_round(bound, inner, wit, ex, window);
+                        decided += usize::from(!attained && q.is_some());
                     }
                 }
             }
@@ -3245,6 +3217,24 @@ mod tests {
             sides > 300 && decided > 30 && decided < sides,
             "{sides} {decided}"
         );
+    }
+
+    /// The flags and bounds of two certificates of the same enclosure agree, coordinate by
+    /// coordinate.
+    fn assert_same_certificates(name: &str, c: &NurbsCurve, a: &Enclosure, b: &Enclosure) {
+        for (j, (a, b)) in a.coords.iter().zip(&b.coords).enumerate() {
+            let what = format!("{name} coordinate {j} of {c:?}");
+            assert_eq!(
+                (a.optimal_lo, a.optimal_hi),
+                (b.optimal_lo, b.optimal_hi),
+                "{what}"
+            );
+            assert_eq!(
+                (a.lo.to_bits(), a.hi.to_bits()),
+                (b.lo.to_bits(), b.hi.to_bits()),
+                "{what}"
+            );
+        }
     }
 
     /// The largest sign-adjusted exact knot or end value of coordinate j (the test's own

@@ -140,8 +140,8 @@ fn ldexp(mut x: f64, mut k: i32) -> f64 {
 /// 2^k for -1022 <= k <= 1023 (a normal f64), built from its bits (`powi` is a library call
 /// with a loop, which showed in the profiles of rescaled curves).
 #[inline]
-fn pow2(k: i32) -> f64 {
-    debug_assert!((-1022..=1023).contains(&k));
+pub(crate) const fn pow2(k: i32) -> f64 {
+    debug_assert!(-1022 <= k && k <= 1023);
     f64::from_bits(((k + 1023) as u64) << 52)
 }
 

@@ -26,7 +26,7 @@
 use super::bezier::single::{raw_sides_into, RawSide, Segment};
 use super::bezier::{end_kind, span_bounds};
 use super::driver::apply_facts;
-use super::driver::COORD_WINDOW;
+use super::driver::{pow2, COORD_WINDOW};
 use super::{certify, CandidateKind, Clock, CoordBox, Enclosure, Extrema, Extremum};
 use super::{SideData, Stats, Termination};
 use crate::num::ddi::Ddi;
@@ -65,11 +65,6 @@ pub struct Simple<'a> {
     range: [(f64, f64); MAX_DIM],
     /// per coordinate the first indices of the smallest and of the largest control value
     extreme_at: [(usize, usize); MAX_DIM],
-}
-
-/// 2^k for -1022 <= k <= 1023, exactly (the biased exponent field).
-const fn pow2(k: i32) -> f64 {
-    f64::from_bits(((k + 1023) as u64) << 52)
 }
 
 /// `exponent(x) > KNOT_EXP` (`driver::exponent`: |x| in [2^(e-1), 2^e)) as one comparison with
@@ -348,7 +343,9 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
     let mut attained = x(0).max(x(n));
     let mut upper = f64::NEG_INFINITY;
     let mut witness = f64::NEG_INFINITY;
-    let mut cands: SmallVec<[(f64, Extremum); 4]> = SmallVec::new();
+    // (the two ends, then up to three per proved span and one per end-coefficient span: 16
+    // inline keep a spline of the thesis's size off the heap)
+    let mut cands: SmallVec<[(f64, Extremum); 16]> = SmallVec::new();
     for (u, v) in [(s.a, x(0)), (s.b, x(n))] {
         cands.push((v, end(u)));
     }
