@@ -107,6 +107,18 @@ impl Mr {
         Mr::checked(c, up(r))
     }
 
+    /// An enclosure of the set of a [`Ddi`] (centre hi + lo, radius rad): centre hi, radius
+    /// up(|lo| + rad) >= |lo| + rad (Lemma B of `ddi.rs`: a sum of nonnegative f64), so
+    /// [hi - r, hi + r] contains [hi + lo - rad, hi + lo + rad]. A single f64 (lo = rad = 0)
+    /// stays exact; ENTIRE stays ENTIRE.
+    pub fn from_ddi(x: Ddi) -> Mr {
+        let (hi, lo, rad) = x.parts();
+        if lo == 0.0 && rad == 0.0 {
+            return Mr::checked(hi, 0.0);
+        }
+        Mr::checked(hi, up(lo.abs() + rad))
+    }
+
     /// Centre.
     #[inline]
     pub fn mid(&self) -> f64 {
@@ -312,6 +324,40 @@ mod tests {
     /// `Mr::knot_ratio_f64` contains the exact (u - a) / (b - a) (rationals) for knots of every
     /// magnitude (clustered, subnormal, near 2^1022, equal to u) and is about an ulp wide; a
     /// bound of 1 ulp instead of 4 fails it.
+    /// `Mr::from_ddi` contains the set of the `Ddi` (its outward rounding contains the
+    /// `Ddi`'s), and keeps single doubles exact and ENTIRE entire. (A radius without |lo|
+    /// fails it.)
+    #[test]
+    fn from_ddi_contains_the_set() {
+        use super::Mr;
+        use crate::num::ddi::Ddi;
+        use crate::num::Scalar;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
+        for _ in 0..20_000 {
+            let x = rng.random_range(-1e3..1e3) * 10f64.powi(rng.random_range(-300..300));
+            let y = rng.random_range(-1.0..1.0);
+            // a double-double with a low part and a radius (a product or a quotient of doubles)
+            let d = match rng.random_range(0..3) {
+                0 => Ddi::exact(x) * Ddi::exact(y),
+                1 => Ddi::exact(x) / Ddi::exact(3.0),
+                // (an exact double-word: radius 0, the low part alone must be covered)
+                _ => Ddi::exact(x) + Ddi::exact(y * 1e-20 * x),
+            };
+            let m = Mr::from_ddi(d);
+            // exactly: [hi + lo - rad, hi + lo + rad] within [c - r, c + r], i.e.
+            // |hi + lo - c| + rad <= r (signs of exact sums)
+            let (hi, lo, rad) = d.parts();
+            let (c, r) = (m.mid(), m.rad());
+            for s in [1.0, -1.0] {
+                let excess = crate::num::ddi::sum_sign(&[s * hi, s * lo, -s * c, rad, -r]);
+                assert_ne!(excess, Some(std::cmp::Ordering::Greater), "{d:?} {m:?}");
+            }
+        }
+        assert_eq!(Mr::from_ddi(Ddi::exact(0.1)), Mr::from_f64(0.1));
+        assert_eq!(Mr::from_ddi(Ddi::ENTIRE).rad(), f64::INFINITY);
+    }
+
     #[test]
     fn knot_ratio_f64_encloses_exact_ratios() {
         use super::Mr;

@@ -58,7 +58,7 @@ const ORDERS: usize = 3;
 /// and above degree ~32 that difference shows in near-ties (measured: `tightness --family
 /// high_degree --curves 1000`, two seeds, no bound lost against the `Ddi` extraction with
 /// this threshold; with none, 2 to 4 of 3000).
-const TAYLOR_TIGHT_FROM: usize = 32;
+pub(crate) const TAYLOR_TIGHT_FROM: usize = 32;
 
 /// Most bisection levels in `coord_over` when the sign of C'' over the box is unknown.
 const MAX_BISECT: u32 = 4;
@@ -242,30 +242,42 @@ impl TightEval {
         })
     }
 
+    /// The double-double Bézier points of span k of the homogeneous curve (row-major: p + 1
+    /// points of `dim + rational` rows, (w_i P_i, w_i) or P_i), each enclosing the exact one
+    /// (Boehm knot insertion, NURBS Book A5.1, via [`HSpline::bezier_segment`]), built on first
+    /// use and shared: by the span's two Taylor expansions and by the Newton strategy's
+    /// per-coordinate Bernstein forms (`newton::bernstein::SpanPoly`), which before each ran
+    /// their own knot insertion.
+    pub(crate) fn span_points(&self, k: usize) -> &[Ddi] {
+        let slot = &self.spans[k];
+        slot.seg.get_or_init(|| {
+            let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
+            // The power form amplifies the Bézier points' radii by up to (1 + 2s/len)^p <= 2^p
+            // (s <= len/2 from the nearer end): from degree TAYLOR_TIGHT_FROM on the points
+            // come from the extraction with `Ddi`'s own, tighter running bounds.
+            let mut pts = if hs.degree >= TAYLOR_TIGHT_FROM {
+                hs.bezier_segment_tight(k).pts
+            } else {
+                hs.bezier_segment(k).pts
+            };
+            // (end points that are exactly doubles made exact: an extremum at an
+            // unclamped end or a knot is then not straddled)
+            crate::spline::fraction_free::snap_exact_ends(&self.curve, k, &mut pts);
+            pts
+        })
+    }
+
     /// Taylor data of span k at its left (`right == false`) or right end.
     fn taylor(&self, k: usize, right: bool) -> Option<&Taylor> {
         let slot = &self.spans[k];
         let cell = if right { &slot.right } else { &slot.left };
         cell.get_or_init(|| {
+            let pts = self.span_points(k);
             let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
-            // The power form amplifies the Bézier points' radii by up to (1 + 2s/len)^p <= 2^p
-            // (s <= len/2 from the nearer end): from degree TAYLOR_TIGHT_FROM on the points
-            // come from the extraction with `Ddi`'s own, tighter running bounds.
-            let pts = slot.seg.get_or_init(|| {
-                let mut pts = if hs.degree >= TAYLOR_TIGHT_FROM {
-                    hs.bezier_segment_tight(k).pts
-                } else {
-                    hs.bezier_segment(k).pts
-                };
-                // (end points that are exactly doubles made exact: an extremum at an
-                // unclamped end or a knot is then not straddled)
-                crate::spline::fraction_free::snap_exact_ends(&self.curve, k, &mut pts);
-                pts
-            });
             let (p, h) = (hs.degree, hs.hdim());
             let len = Ddi::diff(hs.knots[k + 1], hs.knots[k]);
             if right {
-                let mut q = pts.clone();
+                let mut q = pts.to_vec();
                 crate::spline::bspline::reverse_points(h, &mut q);
                 Taylor::from_bezier(&q, p, h, len, -1.0)
             } else {
@@ -628,7 +640,7 @@ impl NurbsCurve {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;

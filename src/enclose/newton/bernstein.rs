@@ -49,19 +49,45 @@ pub(super) struct SpanPoly {
     df: BezierSeg<Mr>,
     /// an enclosure of F'' over the span (hull of its Bernstein coefficients)
     d2: Interval,
-    /// the segment of `seg` in double-double, built on the first [`SpanPoly::values_tight`]
-    /// (knot insertion in `Ddi` costs more than the rest of a candidate's evaluation)
+    /// the segment of `seg` in double-double: the shifted rows of the span's shared `Ddi`
+    /// points where those were given, else built on the first [`SpanPoly::values_tight`] (knot
+    /// insertion in `Ddi` costs more than the rest of a candidate's evaluation)
     dseg: std::cell::OnceCell<BezierSeg<Ddi>>,
 }
 
 impl SpanPoly {
     /// The form of coordinate j of `c` on span k; `pair` from [`pair_coefficients`] (rational;
-    /// empty: F is left unknown, ENTIRE).
-    pub(super) fn new(c: &NurbsCurve, j: usize, k: usize, pair: &[Mr]) -> Self {
+    /// empty: F is left unknown, ENTIRE). `pts`: the span's double-double Bézier points, every
+    /// row (`TightEval::span_points`), shared by the coordinates and the candidates'
+    /// evaluations ([`shifted_from_points`]); `None`: the shifted rows' own knot insertion in
+    /// `Mr` ([`shifted_segment`]).
+    pub(super) fn new(
+        c: &NurbsCurve,
+        j: usize,
+        k: usize,
+        pair: &[Mr],
+        pts: Option<&[Ddi]>,
+    ) -> Self {
         let p = c.degree();
         let rational = c.is_rational();
         let shift = span_shift((k - p..=k).map(|i| c.control_point(i)[j]).collect());
-        let seg = shifted_segment(c, j, k, shift);
+        let dseg = std::cell::OnceCell::new();
+        let seg = match pts {
+            Some(pts) => {
+                let d = shifted_from_points(c, j, k, shift, pts);
+                let seg = BezierSeg {
+                    a: d.a,
+                    b: d.b,
+                    degree: p,
+                    dim: 1,
+                    rational,
+                    pts: d.pts.iter().map(|&x| Mr::from_ddi(x)).collect(),
+                };
+                let _ = dseg.set(d);
+                seg
+            }
+            None => shifted_segment(c, j, k, shift),
+        };
         let q = &seg.pts;
         let fco: Vec<Mr> = if rational && pair.is_empty() {
             // degree above BERNSTEIN_MAX_DEGREE: F unknown
@@ -110,7 +136,7 @@ impl SpanPoly {
             df: poly(dco),
             d2,
             seg,
-            dseg: std::cell::OnceCell::new(),
+            dseg,
         }
     }
 
@@ -441,6 +467,47 @@ fn shifted_segment<S: Scalar>(c: &NurbsCurve, j: usize, k: usize, shift: f64) ->
     local.bezier_segment(p)
 }
 
+/// The homogeneous Bézier segment of the shifted piece C_j - c on span k of `c`, rows
+/// ((x - c) w, w) (rational) or x - c, from the span's double-double Bézier points `pts` (every
+/// row of the homogeneous curve, [`crate::spline::tight::TightEval::span_points`]): knot
+/// insertion is linear in the control points, so the shifted piece's Bézier points are
+/// A_i - c W_i (A_i, W_i the points of the rows w x_j and w; x_i - c without weights), each
+/// enclosed by one `Ddi` operation (a fused multiply-add: about 2^-100 relative to |A_i|, so a
+/// flat run's points come out within that of 0, where the former insertion of the shifted
+/// points in `Mr` gave exact zeros and a few hundred ulps elsewhere).
+fn shifted_from_points(
+    c: &NurbsCurve,
+    j: usize,
+    k: usize,
+    shift: f64,
+    pts: &[Ddi],
+) -> BezierSeg<Ddi> {
+    let p = c.degree();
+    let rational = c.is_rational();
+    let h = c.dim() + rational as usize;
+    let neg = Ddi::exact(-shift);
+    let mut out = Vec::with_capacity((p + 1) * (1 + rational as usize));
+    for i in 0..=p {
+        let a = pts[i * h + j];
+        if rational {
+            let w = pts[i * h + h - 1];
+            out.push(w.mul_add(neg, a));
+            out.push(w);
+        } else {
+            out.push(a + neg);
+        }
+    }
+    let kn = c.knots();
+    BezierSeg {
+        a: kn[k],
+        b: kn[k + 1],
+        degree: p,
+        dim: 1,
+        rational,
+        pts: out,
+    }
+}
+
 /// The values over the local box [t0, t1] (0 <= t0 < t1 <= 1) of the one-coordinate segment
 /// `seg` (rows x w, w or x): its rows restricted in f64 with the a-priori bound of
 /// [`restrict_hull_f64`] (each restricted homogeneous coefficient within E_row of the exact
@@ -685,6 +752,69 @@ mod tests {
         NurbsCurve::new(p, knots, x.iter().map(|&v| vec![v]).collect(), w).unwrap()
     }
 
+    /// The Bernstein forms from the span's shared double-double points and from the shifted
+    /// rows' own knot insertion in `Mr` enclose the same exact points: every Bézier point, F
+    /// and F' coefficient and double-double point of the one intersects that of the other, on
+    /// random curves of degree 1..=10 (both extraction routes of `Ddi`) with flat runs.
+    /// (Fails if a row, the weight index or the shift's sign is wrong.)
+    #[test]
+    fn shared_points_give_the_same_forms() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(21);
+        let meet = |a: Interval, b: Interval| !a.intersection(b).is_empty();
+        let mut checked = 0;
+        for _ in 0..150 {
+            let dim = rng.random_range(1..=3usize);
+            let c0 = crate::spline::tight::tests::random_curve(&mut rng, dim);
+            // flat runs: some control values repeated
+            let mut pts: Vec<Vec<f64>> = (0..c0.num_points())
+                .map(|i| c0.control_point(i).to_vec())
+                .collect();
+            for i in 1..pts.len() {
+                if rng.random_bool(0.3) {
+                    let j = rng.random_range(0..dim);
+                    pts[i][j] = pts[i - 1][j];
+                }
+            }
+            let w = c0
+                .is_rational()
+                .then(|| (0..c0.num_points()).map(|i| c0.weight(i)).collect());
+            let c = NurbsCurve::new(c0.degree(), c0.knots().to_vec(), pts, w).unwrap();
+            let p = c.degree();
+            let pair = if c.is_rational() {
+                pair_coefficients(p)
+            } else {
+                Vec::new()
+            };
+            let tight = crate::spline::tight::TightEval::new(&c);
+            for k in p..c.num_points() {
+                if c.knots()[k] == c.knots()[k + 1] {
+                    continue;
+                }
+                for j in 0..dim {
+                    let a = SpanPoly::new(&c, j, k, &pair, Some(tight.span_points(k)));
+                    let b = SpanPoly::new(&c, j, k, &pair, None);
+                    assert_eq!(a.c, b.c);
+                    for (x, y) in [(&a.seg, &b.seg), (&a.f, &b.f), (&a.df, &b.df)] {
+                        assert_eq!(x.pts.len(), y.pts.len());
+                        for (u, v) in x.pts.iter().zip(&y.pts) {
+                            assert!(meet(u.to_interval(), v.to_interval()), "{c:?} k={k} j={j}");
+                        }
+                    }
+                    let (da, db) = (
+                        a.dseg.get().expect("set from the shared points"),
+                        shifted_segment::<Ddi>(&c, j, k, b.c),
+                    );
+                    for (u, v) in da.pts.iter().zip(&db.pts) {
+                        assert!(meet(u.to_interval(), v.to_interval()), "{c:?} k={k} j={j}");
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 300, "{checked}");
+    }
+
     #[test]
     fn span_poly_derivative_numerator_matches_f64() {
         // F(t) against A_t W - A W_t (rational) / A_t / p (polynomial) from f64 de Boor
@@ -709,7 +839,8 @@ mod tests {
                 if a == b {
                     continue;
                 }
-                let sp = SpanPoly::new(&c, 0, k, &pair);
+                let tight = crate::spline::tight::TightEval::new(&c);
+                let sp = SpanPoly::new(&c, 0, k, &pair, Some(tight.span_points(k)));
                 for i in 0..=10 {
                     let t = i as f64 / 10.0;
                     let u = a + (b - a) * t;
