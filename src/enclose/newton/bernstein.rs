@@ -5,7 +5,7 @@
 //! curve parameter u ([`SpanPoly::to_u`]).
 
 use super::param::{midpoint, T, U};
-use crate::num::ddi::{up, Ddi};
+use crate::num::ddi::{dist_up, up, Ddi};
 use crate::num::mr::Mr;
 use crate::num::{iv, Scalar};
 use crate::spline::bezier::{bernstein_value_s, de_casteljau_levels};
@@ -254,6 +254,75 @@ impl SpanPoly {
         (over + sh, at + sh)
     }
 
+    /// The piece C_j over the box t = [t0, t1] of the local parameter (t0 < t1), about one ulp
+    /// wide near a critical point, from the span's double-double points alone (no Taylor
+    /// expansion of the span, which costs O(p^2) double-double operations per row): `(enc, v,
+    /// v0)` with
+    ///
+    /// * v: the piece at the midpoint t_m of the box (an f64 strictly inside it, so u(t_m) is
+    ///   a parameter inside the span: a value the curve attains), in `Ddi`: c + A(t_m) / W(t_m)
+    ///   (rational) or c + A(t_m) from the shifted rows by the VS algorithm
+    ///   ([`bernstein_value_s`], every step an enclosure);
+    /// * enc ⊇ C_j(t) for every t in [t0, t1]: by the mean value theorem
+    ///   C_j(t) = C_j(t_m) + C_j'(ξ)(t - t_m) with ξ in the box and |t - t_m| <= r (r an upper
+    ///   bound of both distances, [`dist_up`]), and dC_j/dt = F / W^2 (rational; F the
+    ///   derivative numerator of the form) or p F (polynomial): |C_j'(ξ)| <= |F([t0, t1])| /
+    ///   wmin^2 (or p |F|), with F([t0, t1]) from [`restrict_hull_f64`] and wmin > 0 a lower bound
+    ///   of the weights on the span (their Bézier points' lower ends: convex hull property).
+    ///   So enc = v + [-e, e] with e an upper bound of r |F| / wmin^2 (or r p |F|) (outward
+    ///   interval arithmetic; the widening in `Ddi`, then one outward rounding). Near a zero of F, |F| over a box of width w is
+    ///   about |F'| w, so e ~ |F'| w^2: far below an ulp for the converged boxes;
+    /// * v0: the piece at t = 0 (the first Bézier point, exact where `TightEval` snapped it):
+    ///   the curve's value at the span's start u_k (right-continuous).
+    ///
+    /// `None` where the double-double points were not given (degrees from
+    /// `SHARED_POINTS_BELOW`) or a weight bound is not positive.
+    pub(super) fn tight_over(&self, t: T, p: usize) -> Option<(Interval, Ddi, Ddi)> {
+        let seg = self.dseg.get()?;
+        let (t0, t1) = (t.lo, t.hi);
+        let tm = midpoint(t0, t1);
+        if !(t0 < tm && tm < t1) {
+            return None;
+        }
+        let r = dist_up(tm, t0).max(dist_up(t1, tm));
+        let h = if seg.rational { 2 } else { 1 };
+        let row = |i: usize| -> SmallVec<[Ddi; 32]> {
+            seg.pts.iter().skip(i).step_by(h).copied().collect()
+        };
+        let shift = Ddi::exact(self.c);
+        // |F| over the box: the f64 restriction's hull with its a-priori bound (a magnitude is
+        // all that is needed here, so no sharper form where that hull holds 0), else `Mr`'s
+        let fm = match restrict_hull_f64(&self.f.pts, t0, t1) {
+            Some((v, _, _)) => v.mag(),
+            None => hull(&Self::restrict(&self.f, t0, t1)).mag(),
+        };
+        let (v, v0, e) = if seg.rational {
+            let (x, w) = (row(0), row(1));
+            let wmin = self.seg.pts.iter().skip(1).step_by(2).fold(f64::INFINITY, |m, w| {
+                m.min((w.to_interval()).inf())
+            });
+            if wmin.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                return None;
+            }
+            let v = bernstein_value_s(&x, tm) / bernstein_value_s(&w, tm) + shift;
+            let v0 = x[0] / w[0] + shift;
+            let e = iv::point(r) * iv::point(fm) / (iv::point(wmin) * iv::point(wmin));
+            (v, v0, e.sup())
+        } else {
+            let x = row(0);
+            let v = bernstein_value_s(&x, tm) + shift;
+            let e = iv::point(r) * iv::point(fm) * iv::point(p as f64);
+            (v, x[0] + shift, e.sup())
+        };
+        if v.is_entire() || !e.is_finite() {
+            return None;
+        }
+        // (widened in double-double, then rounded outward once: a tiny e does not cost the
+        // extra ulp on each side that adding it in f64 intervals would)
+        let enc = v.widen(e).to_interval();
+        Some((enc, v, v0))
+    }
+
     /// The box of the curve parameter u that contains u(t) for every t in the box t = [t0, t1]
     /// of this span [a, b] = [u_k, u_{k+1}], rounded outward and clamped to the closed span
     /// ([`super::param::local_to_u`]).
@@ -316,11 +385,14 @@ impl SpanPoly {
     /// method safeguarded by bisection; pieces with more changes are halved (to width 2^-20,
     /// then located like one-change pieces: a near-double zero), at most 8 (max + 1) pieces.
     pub(super) fn zero_estimates(&self, out: &mut Vec<f64>, max: usize) -> bool {
-        let c: Vec<f64> = self.f.pts.iter().map(|x| x.mid()).collect();
-        if c.len() < 2 || !c.iter().all(|x| x.is_finite()) {
+        let c: SmallVec<[f64; 64]> = self.f.pts.iter().map(|x| x.mid()).collect();
+        let len = c.len();
+        if len < 2 || !c.iter().all(|x| x.is_finite()) {
             return false;
         }
-        let dc = crate::spline::bezier::hodograph(&c);
+        // the hodograph n (c_{i+1} - c_i) (as `bezier::hodograph` computes it in f64)
+        let nf = (len - 1) as f64;
+        let dc: SmallVec<[f64; 64]> = c.windows(2).map(|w| nf * (w[1] - w[0])).collect();
         let changes = |v: &[f64]| {
             let mut n = 0;
             let mut last = 0.0f64;
@@ -334,11 +406,21 @@ impl SpanPoly {
             }
             n
         };
-        let mut stack = vec![(0.0f64, 1.0f64, c.clone())];
+        // Pieces (t0, t1, where their coefficients start in `arena`), last in first out: the
+        // piece popped is always the one stored last, so its storage is freed by truncating
+        // (no allocation per piece for the usual degrees).
+        let mut stack: SmallVec<[(f64, f64, usize); 16]> = SmallVec::new();
+        let mut arena: SmallVec<[f64; 512]> = SmallVec::from_slice(&c);
+        stack.push((0.0, 1.0, 0));
+        let mut v: SmallVec<[f64; 64]> = SmallVec::new();
         // (at most 8 (max + 1) pieces examined: noise-level coefficients of a nearly flat F
         // would otherwise split without end; then no estimates, the search runs as before)
         let mut pieces = 0;
-        while let Some((t0, t1, v)) = stack.pop() {
+        while let Some((t0, t1, start)) = stack.pop() {
+            debug_assert_eq!(start + len, arena.len());
+            v.clear();
+            v.extend_from_slice(&arena[start..]);
+            arena.truncate(start);
             pieces += 1;
             if pieces > 8 * (max + 1) {
                 return false;
@@ -354,10 +436,14 @@ impl SpanPoly {
                 out.push(locate(&c, &dc, t0, t1, polygon_crossing(&v, t0, t1)));
                 continue;
             }
-            let (l, r) = crate::spline::bezier::de_casteljau_split(&v, 1, &0.5);
+            // the halves at 1/2 (right stored first, so the left one is popped first)
             let m = 0.5 * (t0 + t1);
-            stack.push((m, t1, r));
-            stack.push((t0, m, l));
+            let r0 = arena.len();
+            arena.resize(r0 + 2 * len, 0.0);
+            let (right, left) = arena[r0..].split_at_mut(len);
+            halve(&mut v, left, right);
+            stack.push((m, t1, r0));
+            stack.push((t0, m, r0 + len));
         }
         out.sort_by(f64::total_cmp);
         true
@@ -368,6 +454,23 @@ impl SpanPoly {
     pub(super) fn f_signs(&self) -> (bool, bool) {
         let h = hull(&self.f.pts);
         (h.inf() >= 0.0, h.sup() <= 0.0)
+    }
+}
+
+/// de Casteljau's split at 1/2 (NURBS Book A1.5) of the f64 Bernstein coefficients `b`
+/// (overwritten) into `left` (over [0, 1/2]) and `right` (over [1/2, 1]), each step
+/// fl(fl(0.5 fl(hi - lo)) + lo) as `Scalar::lerp` for f64 (so the halves are those of
+/// `bezier::de_casteljau_split`); for the estimates of [`SpanPoly::zero_estimates`].
+fn halve(b: &mut [f64], left: &mut [f64], right: &mut [f64]) {
+    let n = b.len() - 1;
+    left[0] = b[0];
+    right[n] = b[n];
+    for r in 1..=n {
+        for i in 0..=n - r {
+            b[i] = 0.5 * (b[i + 1] - b[i]) + b[i];
+        }
+        left[r] = b[0];
+        right[n - r] = b[n - r];
     }
 }
 
@@ -752,6 +855,19 @@ mod tests {
         NurbsCurve::new(p, knots, x.iter().map(|&v| vec![v]).collect(), w).unwrap()
     }
 
+    /// The pair coefficients of `c` (empty without weights) and its non-empty spans.
+    fn pair_and_spans(c: &NurbsCurve) -> (Vec<Mr>, Vec<usize>) {
+        let p = c.degree();
+        let pair = if c.is_rational() {
+            pair_coefficients(p)
+        } else {
+            Vec::new()
+        };
+        let kn = c.knots();
+        let spans = (p..c.num_points()).filter(|&k| kn[k] < kn[k + 1]).collect();
+        (pair, spans)
+    }
+
     /// The Bernstein forms from the span's shared double-double points and from the shifted
     /// rows' own knot insertion in `Mr` enclose the same exact points: every Bézier point, F
     /// and F' coefficient and double-double point of the one intersects that of the other, on
@@ -780,17 +896,9 @@ mod tests {
                 .is_rational()
                 .then(|| (0..c0.num_points()).map(|i| c0.weight(i)).collect());
             let c = NurbsCurve::new(c0.degree(), c0.knots().to_vec(), pts, w).unwrap();
-            let p = c.degree();
-            let pair = if c.is_rational() {
-                pair_coefficients(p)
-            } else {
-                Vec::new()
-            };
+            let (pair, spans) = pair_and_spans(&c);
             let tight = crate::spline::tight::TightEval::new(&c);
-            for k in p..c.num_points() {
-                if c.knots()[k] == c.knots()[k + 1] {
-                    continue;
-                }
+            for k in spans {
                 for j in 0..dim {
                     let a = SpanPoly::new(&c, j, k, &pair, Some(tight.span_points(k)));
                     let b = SpanPoly::new(&c, j, k, &pair, None);
@@ -813,6 +921,68 @@ mod tests {
             }
         }
         assert!(checked > 300, "{checked}");
+    }
+
+    /// `SpanPoly::tight_over` encloses the piece on its box: at random parameters of random
+    /// boxes (widths from 2^-50 to 1/2) the piece's value by double-double de Casteljau on the
+    /// shifted rows (an independent enclosure of the exact value, about 2^-100 wide) lies in
+    /// `enc`, its value at the box's midpoint meets `v`, and `v0` is the first Bézier point.
+    /// (Fails with the mean-value term e left out: `enc` is then the midpoint's value alone.)
+    #[test]
+    fn tight_over_encloses_the_piece() {
+        use crate::spline::bezier::de_casteljau_eval_in_place;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(22);
+        let piece = |sp: &SpanPoly, t: f64| -> Ddi {
+            let seg = sp.dseg.get().unwrap();
+            let h = if seg.rational { 2 } else { 1 };
+            let mut x: Vec<Ddi> = seg.pts.iter().step_by(h).copied().collect();
+            let xv = de_casteljau_eval_in_place(&mut x, &Ddi::exact(t));
+            let v = if seg.rational {
+                let mut w: Vec<Ddi> = seg.pts.iter().skip(1).step_by(2).copied().collect();
+                xv / de_casteljau_eval_in_place(&mut w, &Ddi::exact(t))
+            } else {
+                xv
+            };
+            v + Ddi::exact(sp.c)
+        };
+        let (mut boxes, mut wide) = (0, 0);
+        for _ in 0..200 {
+            let dim = rng.random_range(1..=2usize);
+            let c = crate::spline::tight::tests::random_curve(&mut rng, dim);
+            let p = c.degree();
+            let (pair, spans) = pair_and_spans(&c);
+            let tight = crate::spline::tight::TightEval::new(&c);
+            for k in spans {
+                let sp = SpanPoly::new(&c, 0, k, &pair, Some(tight.span_points(k)));
+                for _ in 0..4 {
+                    let w = 2f64.powf(rng.random_range(-50.0..-1.0));
+                    let t0 = rng.random_range(0.0..1.0 - w);
+                    let t = T::new(t0, t0 + w);
+                    let Some((enc, v, v0)) = sp.tight_over(t, p) else {
+                        continue;
+                    };
+                    boxes += 1;
+                    wide += (w > 1e-3) as usize;
+                    let tm = midpoint(t.lo, t.hi);
+                    let at = piece(&sp, tm);
+                    assert!(!at.to_interval().intersection(v.to_interval()).is_empty());
+                    for i in 0..=8 {
+                        let s = (t.lo + (t.hi - t.lo) * i as f64 / 8.0).clamp(t.lo, t.hi);
+                        let x = piece(&sp, s);
+                        assert!(
+                            enc.contains(x.hi()),
+                            "{c:?} k={k} t={t:?} s={s} enc=[{}, {}] x={x:?}",
+                            enc.inf(),
+                            enc.sup()
+                        );
+                    }
+                    let first = piece(&sp, 0.0);
+                    assert!(!first.to_interval().intersection(v0.to_interval()).is_empty());
+                }
+            }
+        }
+        assert!(boxes > 500 && wide > 100, "{boxes} {wide}");
     }
 
     #[test]

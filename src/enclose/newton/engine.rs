@@ -12,7 +12,7 @@ use super::param::{can_split, midpoint, Space, SpanParam, T, U};
 use super::{DerivForm, Newton, Split, BERNSTEIN_MAX_DEGREE, EVALS_PER_SPAN, WORK_PER_SPAN};
 use crate::enclose::{CandidateKind, CoordBox, Stats, Termination};
 use crate::num::ddi::Ddi;
-use crate::num::iv;
+use crate::num::{iv, Scalar};
 use crate::num::mr::Mr;
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
@@ -330,6 +330,31 @@ impl<'a> Engine<'a> {
             let (v, d) = self.tight.coord_at_tight(self.j, lo);
             tight = d;
             (v, [v, Interval::EMPTY])
+        } else if let Some((enc, v, v0)) = cd
+            .t
+            .zip(self.span_poly(k))
+            .and_then(|(t, sp)| sp.tight_over(t, self.p))
+            .filter(|(enc, ..)| enc.sup() <= enc.inf().next_up().next_up())
+        {
+            // A box of the Bernstein search in span k's local parameter t, enclosed from the
+            // span's double-double points by the mean value form around its midpoint
+            // (`SpanPoly::tight_over`; about one ulp wide on a converged box, so the Taylor
+            // expansions of the span that the form below builds are not needed). The curve
+            // attains v (a parameter inside the span) and, at the span's start u_k, v0 (as
+            // `coord_at(lo)` below, for a box that starts at the knot).
+            self.stats.point_evaluations += 1;
+            tight = Some(v);
+            let at_knot = lo == self.c.knots()[k];
+            let cm = [
+                v.to_interval(),
+                if at_knot {
+                    self.stats.point_evaluations += 1;
+                    v0.to_interval()
+                } else {
+                    Interval::EMPTY
+                },
+            ];
+            (enc, cm)
         } else {
             // C over the box (TightEval: second-order Taylor form around the midpoint m,
             // about one ulp wide near a critical point); m is in [lo, hi) inside span k, where
