@@ -58,8 +58,14 @@ use std::cmp::Ordering;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// The degree from which the Bézier extraction of a span runs in double words
-/// ([`crate::num::dw`], about five times cheaper than with running bounds).
-pub(crate) const DW_MIN_DEGREE: usize = 6;
+/// ([`crate::num::dw`], about five times cheaper than with running bounds at high degree).
+/// Every degree that needs an insertion: at degrees 2 to 5 the extraction with running bounds
+/// was the largest single cost of `newton` on ordinary B-splines (callgrind, `clamped_uniform`
+/// -12.5% instructions with double words, `bezier` -6.4%), and the running bounds' one
+/// advantage there, exact Bézier points of dyadic data, showed in no bound or certificate
+/// (`tightness`: 100% optimal and certified on every family, `ties` included; the span's end
+/// points are made exact by `fraction_free::snap_exact_ends` either way).
+pub(crate) const DW_MIN_DEGREE: usize = 2;
 
 /// Unit roundoff u = 2^-53.
 const U: f64 = 1.0 / 9_007_199_254_740_992.0;
@@ -771,8 +777,7 @@ impl Scalar for Ddi {
     }
 
     /// From degree [`DW_MIN_DEGREE`] on, the extraction in double words with one a-priori
-    /// bound ([`crate::num::dw`]), where its guard holds. (Lower degrees keep the running
-    /// bounds, which keep exact results exact, e.g. the Bézier points of a dyadic cubic.)
+    /// bound ([`crate::num::dw`]), where its guard holds (else the running bounds of `Ddi`).
     #[inline]
     fn clamp_span_fast(p: usize, h: usize, t: &mut [f64], q: &mut [Self]) -> bool {
         p >= DW_MIN_DEGREE && crate::num::dw::clamp_span_dw(p, h, t, q)
