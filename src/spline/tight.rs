@@ -58,7 +58,7 @@ const ORDERS: usize = 3;
 /// and above degree ~32 that difference shows in near-ties (measured: `tightness --family
 /// high_degree --curves 1000`, two seeds, no bound lost against the `Ddi` extraction with
 /// this threshold; with none, 2 to 4 of 3000).
-pub(crate) const TAYLOR_TIGHT_FROM: usize = 32;
+const TAYLOR_TIGHT_FROM: usize = 32;
 
 /// Most bisection levels in `coord_over` when the sign of C'' over the box is unknown.
 const MAX_BISECT: u32 = 4;
@@ -82,6 +82,9 @@ struct SpanSlot {
     right: OnceLock<Option<Taylor>>,
     /// the span's double-double Bézier points, shared by both expansions
     seg: OnceLock<Vec<Ddi>>,
+    /// from degree [`TAYLOR_TIGHT_FROM`] on, the same points from the cheaper extraction
+    /// ([`TightEval::bezier_points`]; below it `seg` serves both)
+    fast: OnceLock<Vec<Ddi>>,
 }
 
 /// The generic evaluators per coordinate (coordinate j as a 1-D NURBS curve with the same
@@ -245,26 +248,43 @@ impl TightEval {
     /// The double-double Bézier points of span k of the homogeneous curve (row-major: p + 1
     /// points of `dim + rational` rows, (w_i P_i, w_i) or P_i), each enclosing the exact one
     /// (Boehm knot insertion, NURBS Book A5.1, via [`HSpline::bezier_segment`]), built on first
-    /// use and shared: by the span's two Taylor expansions and by the Newton strategy's
-    /// per-coordinate Bernstein forms (`newton::bernstein::SpanPoly`), which before each ran
-    /// their own knot insertion.
-    pub(crate) fn span_points(&self, k: usize) -> &[Ddi] {
+    /// use and shared by the span's two Taylor expansions.
+    fn span_points(&self, k: usize) -> &[Ddi] {
         let slot = &self.spans[k];
         slot.seg.get_or_init(|| {
-            let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
             // The power form amplifies the Bézier points' radii by up to (1 + 2s/len)^p <= 2^p
             // (s <= len/2 from the nearer end): from degree TAYLOR_TIGHT_FROM on the points
             // come from the extraction with `Ddi`'s own, tighter running bounds.
-            let mut pts = if hs.degree >= TAYLOR_TIGHT_FROM {
-                hs.bezier_segment_tight(k).pts
-            } else {
-                hs.bezier_segment(k).pts
-            };
-            // (end points that are exactly doubles made exact: an extremum at an
-            // unclamped end or a knot is then not straddled)
-            crate::spline::fraction_free::snap_exact_ends(&self.curve, k, &mut pts);
-            pts
+            self.extract(k, self.curve.degree() < TAYLOR_TIGHT_FROM)
         })
+    }
+
+    /// The span's double-double Bézier points as [`TightEval::span_points`], for uses that do
+    /// not go through the power form (convex combinations such as de Casteljau or the VS
+    /// algorithm keep the points' radii, Σ B_i r_i <= max r_i): from the double-word
+    /// extraction with its a-priori bound at every degree (`num::dw`, where its guard holds),
+    /// cached; below [`TAYLOR_TIGHT_FROM`] the very points of the expansions. The Newton
+    /// strategy's per-coordinate Bernstein forms and candidate values start from them
+    /// (`newton::bernstein::SpanPoly`), instead of each coordinate's own knot insertion.
+    pub(crate) fn bezier_points(&self, k: usize) -> &[Ddi] {
+        if self.curve.degree() < TAYLOR_TIGHT_FROM {
+            return self.span_points(k);
+        }
+        self.spans[k].fast.get_or_init(|| self.extract(k, true))
+    }
+
+    /// The extraction of span k's points (`fast`: the type's faster route, the double words
+    /// of `num::dw`; else running bounds), its end points that are exactly doubles made exact
+    /// (an extremum at an unclamped end or a knot is then not straddled).
+    fn extract(&self, k: usize, fast: bool) -> Vec<Ddi> {
+        let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
+        let mut pts = if fast {
+            hs.bezier_segment(k).pts
+        } else {
+            hs.bezier_segment_tight(k).pts
+        };
+        crate::spline::fraction_free::snap_exact_ends(&self.curve, k, &mut pts);
+        pts
     }
 
     /// Taylor data of span k at its left (`right == false`) or right end.

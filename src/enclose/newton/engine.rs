@@ -23,12 +23,6 @@ use inari::Interval;
 use smallvec::SmallVec;
 use std::time::Instant;
 
-/// Below this degree the Bernstein forms of a span start from the span's shared double-double
-/// Bézier points (`TightEval::span_points`, built with the double-word extraction from degree
-/// 6); from it on (where `TightEval` extracts with running bounds, several times the cost of
-/// one coordinate's insertion in `Mr`) each coordinate inserts its own shifted rows in `Mr`.
-const SHARED_POINTS_BELOW: usize = crate::spline::tight::TAYLOR_TIGHT_FROM;
-
 /// What to do with a knot span.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum SpanMode {
@@ -815,10 +809,8 @@ impl<'a> Engine<'a> {
             }
             if want_poly {
                 // (the span's double-double points, shared with the other coordinates and
-                // the candidates, below the degree where those come from the costlier
-                // extraction with running bounds; measured: newton on the `mixed` family -6%
-                // instructions, `high_degree` +2% with them at every degree)
-                let pts = (self.p < SHARED_POINTS_BELOW).then(|| self.tight.span_points(k));
+                // the candidates' values: `TightEval::bezier_points`)
+                let pts = Some(self.tight.bezier_points(k));
                 let sp = SpanPoly::new(self.c, self.j, k, &self.pair, pts);
                 self.poly = None;
                 let bp = self.s.bezier_pretest;
