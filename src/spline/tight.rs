@@ -425,11 +425,34 @@ impl TightEval {
             }
         }
         let k = self.curve.find_span(u);
-        let v = self.ddi_at(j, k, u);
+        let kn = self.curve.knots();
+        let v = if u == kn[k] || u == kn[k + 1] {
+            self.end_value(j, k, u == kn[k + 1])
+        } else {
+            self.ddi_at(j, k, u)
+        };
         if !v.is_entire() {
             return (v.to_interval(), Some(v));
         }
         (self.generic_at(j, k, u), None)
+    }
+
+    /// `C_j` at an end of span k (the right end if `right`), in `Ddi`: the piece there is its
+    /// first (last) Bézier point, x / w or x ([`TightEval::bezier_points`]; the value the
+    /// expansion at that end gives, s = 0, without building it). At u = u_k this is the
+    /// curve's value (the span found for u_k is the one starting there: right-continuous);
+    /// the right end is asked for only at the domain's end, the limit from the left.
+    fn end_value(&self, j: usize, k: usize, right: bool) -> Ddi {
+        let pts = self.bezier_points(k);
+        let (p, d) = (self.curve.degree(), self.curve.dim());
+        let h = d + self.curve.is_rational() as usize;
+        let i = if right { p } else { 0 };
+        let x = pts[i * h + j];
+        if self.curve.is_rational() {
+            x / pts[i * h + d]
+        } else {
+            x
+        }
     }
 
     /// Fallback for `coord_at`: generic de Boor in `Ddi`, then in intervals.
@@ -938,6 +961,50 @@ pub(crate) mod tests {
                 );
             }
         }
+    }
+
+    /// Values at knots come from the span's end Bézier points (`TightEval::end_value`): on
+    /// random curves they meet the span expansion's value (`ddi_at`) and interval de Boor's
+    /// (`generic_at`, an independent kernel) at every knot of the domain, and stay within two
+    /// ulps. (Fails with the wrong end point or row.)
+    #[test]
+    fn knot_values_are_the_span_end_points() {
+        let mut rng = ChaCha8Rng::seed_from_u64(31);
+        let mut checked = 0;
+        for _ in 0..300 {
+            let dim = rng.random_range(1..=3usize);
+            let c = random_curve(&mut rng, dim);
+            let t = TightEval::new(&c);
+            let (a, b) = c.domain();
+            let mut us: Vec<f64> = c
+                .knots()
+                .iter()
+                .copied()
+                .filter(|&u| a <= u && u <= b)
+                .collect();
+            us.dedup();
+            for &u in &us {
+                let k = c.find_span(u);
+                for j in 0..dim {
+                    let (v, d) = t.coord_at_tight(j, u);
+                    let Some(d) = d else { continue };
+                    let meet = |x: Interval| !x.intersection(v).is_empty();
+                    assert!(meet(t.ddi_at(j, k, u).to_interval()), "{c:?} u={u} j={j}");
+                    assert!(meet(t.generic_at(j, k, u)), "{c:?} u={u} j={j}");
+                    let scale = (0..c.num_points())
+                        .map(|i| c.control_point(i)[j].abs())
+                        .fold(0.0, f64::max);
+                    // (two: a value that is exactly a double with a radius of a few subnormals,
+                    // from a division, rounds out to both neighbours)
+                    assert!(
+                        ulps(d.to_interval(), scale) <= 2.0,
+                        "{c:?} u={u} j={j} {d:?}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 1000, "{checked}");
     }
 
     #[test]
