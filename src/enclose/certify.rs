@@ -3034,6 +3034,15 @@ mod tests {
     /// unclamped and jump knots), both signs, every coordinate.
     #[test]
     fn max_knot_value_matches_the_span_by_span_definition() {
+        // the definition: the largest sign * value over both ends of every non-empty span
+        fn span_by_span(ev: &Evals, kn: &[f64], p: usize, n: usize, j: usize, sign: f64) -> f64 {
+            (p..=n)
+                .filter(|&k| kn[k] < kn[k + 1])
+                .flat_map(|k| [(k, kn[k]), (k, kn[k + 1])])
+                .filter_map(|(k, u)| ev.knot_value(j, k, u))
+                .map(|x| sign * x)
+                .fold(f64::NEG_INFINITY, f64::max)
+        }
         use rand::{Rng, SeedableRng};
         let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(41);
         let (mut checked, mut found) = (0, 0);
@@ -3053,12 +3062,7 @@ mod tests {
             let ev = Evals::new(&c, &c, 0);
             for j in 0..2 {
                 for sign in [1.0, -1.0] {
-                    let want = (p..=n)
-                        .filter(|&k| kn[k] < kn[k + 1])
-                        .flat_map(|k| [(k, kn[k]), (k, kn[k + 1])])
-                        .filter_map(|(k, u)| ev.knot_value(j, k, u))
-                        .map(|x| sign * x)
-                        .fold(f64::NEG_INFINITY, f64::max);
+                    let want = span_by_span(&ev, &kn, p, n, j, sign);
                     let got = ev.max_knot_value(j, sign);
                     // (a clamped end's value is among them: `certify_side` relies on it)
                     let (a, b) = c.domain();
@@ -3090,12 +3094,7 @@ mod tests {
             let ev = Evals::new(&c, &c, 0);
             for j in 0..c.dim() {
                 for sign in [1.0, -1.0] {
-                    let want = (p..=n)
-                        .filter(|&k| kn[k] < kn[k + 1])
-                        .flat_map(|k| [(k, kn[k]), (k, kn[k + 1])])
-                        .filter_map(|(k, u)| ev.knot_value(j, k, u))
-                        .map(|x| sign * x)
-                        .fold(f64::NEG_INFINITY, f64::max);
+                    let want = span_by_span(&ev, kn, p, n, j, sign);
                     assert_eq!(
                         ev.max_knot_value(j, sign).to_bits(),
                         want.to_bits(),

@@ -321,12 +321,9 @@ impl Scalar for Mr {
 
 #[cfg(test)]
 mod tests {
-    /// `Mr::knot_ratio_f64` contains the exact (u - a) / (b - a) (rationals) for knots of every
-    /// magnitude (clustered, subnormal, near 2^1022, equal to u) and is about an ulp wide; a
-    /// bound of 1 ulp instead of 4 fails it.
-    /// `Mr::from_ddi` contains the set of the `Ddi` (its outward rounding contains the
-    /// `Ddi`'s), and keeps single doubles exact and ENTIRE entire. (A radius without |lo|
-    /// fails it.)
+    /// `Mr::from_ddi` contains the set of the `Ddi` (checked exactly, by the signs of exact
+    /// sums), and keeps single doubles exact and ENTIRE entire. (A radius without |lo| fails
+    /// it.)
     #[test]
     fn from_ddi_contains_the_set() {
         use super::Mr;
@@ -358,6 +355,9 @@ mod tests {
         assert_eq!(Mr::from_ddi(Ddi::ENTIRE).rad(), f64::INFINITY);
     }
 
+    /// `Mr::knot_ratio_f64` contains the exact (u - a) / (b - a) (rationals) for knots of every
+    /// magnitude (clustered, subnormal, near 2^1022, equal to u) and is about an ulp wide; a
+    /// bound of 1 ulp instead of 4 fails it.
     #[test]
     fn knot_ratio_f64_encloses_exact_ratios() {
         use super::Mr;

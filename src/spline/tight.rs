@@ -261,9 +261,11 @@ impl TightEval {
     fn span_points(&self, k: usize) -> &[Ddi] {
         let slot = &self.spans[k];
         slot.seg.get_or_init(|| {
-            // The power form amplifies the Bézier points' radii by up to (1 + 2s/len)^p <= 2^p
-            // (s <= len/2 from the nearer end): from degree TAYLOR_TIGHT_FROM on the points
-            // come from the extraction with `Ddi`'s own, tighter running bounds.
+            // The power form amplifies the Bézier points' radii by up to (1 + 2s/len)^p: 2^p
+            // from the nearer end (s <= len/2), 3^p from the left end below ONE_END_BELOW
+            // (s <= len; 3^15 ~ 2^24 on the double-word radii of p 2^-99 of the scale). From
+            // degree TAYLOR_TIGHT_FROM on the points come from the extraction with `Ddi`'s own,
+            // tighter running bounds.
             self.extract(k, self.curve.degree() < TAYLOR_TIGHT_FROM)
         })
     }

@@ -9,7 +9,7 @@ use crate::num::ddi::{dist_up, up, Ddi};
 use crate::num::mr::Mr;
 use crate::num::{iv, Scalar};
 use crate::spline::bezier::{bernstein_value_s, de_casteljau_levels};
-use crate::spline::bspline::{BezierSeg, HSpline};
+use crate::spline::bspline::BezierSeg;
 use crate::spline::curve::NurbsCurve;
 use inari::Interval;
 use smallvec::SmallVec;
@@ -50,43 +50,28 @@ pub(super) struct SpanPoly {
     /// an enclosure of F'' over the span (hull of its Bernstein coefficients)
     d2: Interval,
     /// the segment of `seg` in double-double: the shifted rows of the span's shared `Ddi`
-    /// points where those were given, else built on the first [`SpanPoly::values_tight`] (knot
-    /// insertion in `Ddi` costs more than the rest of a candidate's evaluation)
-    dseg: std::cell::OnceCell<BezierSeg<Ddi>>,
+    /// points ([`shifted_from_points`]), of which `seg` is the `Mr` rounding
+    dseg: BezierSeg<Ddi>,
 }
 
 impl SpanPoly {
     /// The form of coordinate j of `c` on span k; `pair` from [`pair_coefficients`] (rational;
     /// empty: F is left unknown, ENTIRE). `pts`: the span's double-double Bézier points, every
     /// row (`TightEval::bezier_points`), shared by the coordinates and the candidates'
-    /// evaluations ([`shifted_from_points`]); `None`: the shifted rows' own knot insertion in
-    /// `Mr` ([`shifted_segment`]).
-    pub(super) fn new(
-        c: &NurbsCurve,
-        j: usize,
-        k: usize,
-        pair: &[Mr],
-        pts: Option<&[Ddi]>,
-    ) -> Self {
+    /// evaluations ([`shifted_from_points`]; before, each coordinate ran its own knot
+    /// insertion of its shifted rows in `Mr`).
+    pub(super) fn new(c: &NurbsCurve, j: usize, k: usize, pair: &[Mr], pts: &[Ddi]) -> Self {
         let p = c.degree();
         let rational = c.is_rational();
         let shift = span_shift((k - p..=k).map(|i| c.control_point(i)[j]).collect());
-        let dseg = std::cell::OnceCell::new();
-        let seg = match pts {
-            Some(pts) => {
-                let d = shifted_from_points(c, j, k, shift, pts);
-                let seg = BezierSeg {
-                    a: d.a,
-                    b: d.b,
-                    degree: p,
-                    dim: 1,
-                    rational,
-                    pts: d.pts.iter().map(|&x| Mr::from_ddi(x)).collect(),
-                };
-                let _ = dseg.set(d);
-                seg
-            }
-            None => shifted_segment(c, j, k, shift),
+        let dseg = shifted_from_points(c, j, k, shift, pts);
+        let seg = BezierSeg {
+            a: dseg.a,
+            b: dseg.b,
+            degree: p,
+            dim: 1,
+            rational,
+            pts: dseg.pts.iter().map(|&x| Mr::from_ddi(x)).collect(),
         };
         let q = &seg.pts;
         let fco: Vec<Mr> = if rational && pair.is_empty() {
@@ -239,11 +224,9 @@ impl SpanPoly {
     /// As [`SpanPoly::values`], and C_j at the parameter u(t_mid) (a real in the closed span:
     /// a value of the piece there), in double-double intervals ([`Ddi`]): for the candidate
     /// boxes, where the few hundred ulps of the Mr points would show in the bounds.
-    pub(super) fn values_tight(&self, c: &NurbsCurve, j: usize, t: T) -> (Interval, Interval) {
+    pub(super) fn values_tight(&self, t: T) -> (Interval, Interval) {
         let (t0, t1) = (t.lo, t.hi);
-        let seg = self
-            .dseg
-            .get_or_init(|| shifted_segment(c, j, self.k, self.c));
+        let seg = &self.dseg;
         let r = self.seg.rational;
         let over = hull(&cartesian(Self::restrict(seg, t0, t1), r));
         let at = hull(&cartesian(
@@ -267,18 +250,19 @@ impl SpanPoly {
     ///   C_j(t) = C_j(t_m) + C_j'(ξ)(t - t_m) with ξ in the box and |t - t_m| <= r (r an upper
     ///   bound of both distances, [`dist_up`]), and dC_j/dt = F / W^2 (rational; F the
     ///   derivative numerator of the form) or p F (polynomial): |C_j'(ξ)| <= |F([t0, t1])| /
-    ///   wmin^2 (or p |F|), with F([t0, t1]) from [`restrict_hull_f64`] and wmin > 0 a lower bound
-    ///   of the weights on the span (their Bézier points' lower ends: convex hull property).
-    ///   So enc = v + [-e, e] with e an upper bound of r |F| / wmin^2 (or r p |F|) (outward
-    ///   interval arithmetic; the widening in `Ddi`, then one outward rounding). Near a zero of F, |F| over a box of width w is
-    ///   about |F'| w, so e ~ |F'| w^2: far below an ulp for the converged boxes;
+    ///   wmin^2 (or p |F|), with F([t0, t1]) from [`restrict_hull_f64`] and wmin > 0 a lower
+    ///   bound of the weights on the span (their Bézier points' lower ends: convex hull
+    ///   property). So enc = v + [-e, e] with e an upper bound of r |F| / wmin^2 (or r p |F|)
+    ///   (outward interval arithmetic; the widening in `Ddi`, then one outward rounding). Near
+    ///   a zero of F, |F| over a box of width w is about |F'| w, so e ~ |F'| w^2: far below an
+    ///   ulp for the converged boxes;
     /// * v0: the piece at t = 0 (the first Bézier point, exact where `TightEval` snapped it):
     ///   the curve's value at the span's start u_k (right-continuous).
     ///
-    /// `None` where the double-double points were not given (degrees from
-    /// `SHARED_POINTS_BELOW`) or a weight bound is not positive.
-    pub(super) fn tight_over(&self, t: T, p: usize) -> Option<(Interval, Ddi, Ddi)> {
-        let seg = self.dseg.get()?;
+    /// `None` where a weight bound is not positive or something overflowed.
+    pub(super) fn tight_over(&self, t: T) -> Option<(Interval, Ddi, Ddi)> {
+        let seg = &self.dseg;
+        let p = seg.degree;
         let (t0, t1) = (t.lo, t.hi);
         let tm = midpoint(t0, t1);
         if !(t0 < tm && tm < t1) {
@@ -390,9 +374,7 @@ impl SpanPoly {
         if len < 2 || !c.iter().all(|x| x.is_finite()) {
             return false;
         }
-        // the hodograph n (c_{i+1} - c_i) (as `bezier::hodograph` computes it in f64)
-        let nf = (len - 1) as f64;
-        let dc: SmallVec<[f64; 64]> = c.windows(2).map(|w| nf * (w[1] - w[0])).collect();
+        let dc = crate::spline::bezier::hodograph(&c);
         let changes = |v: &[f64]| {
             let mut n = 0;
             let mut last = 0.0f64;
@@ -458,20 +440,17 @@ impl SpanPoly {
 }
 
 /// de Casteljau's split at 1/2 (NURBS Book A1.5) of the f64 Bernstein coefficients `b`
-/// (overwritten) into `left` (over [0, 1/2]) and `right` (over [1/2, 1]), each step
-/// fl(fl(0.5 fl(hi - lo)) + lo) as `Scalar::lerp` for f64 (so the halves are those of
-/// `bezier::de_casteljau_split`); for the estimates of [`SpanPoly::zero_estimates`].
+/// (overwritten) into `left` (over [0, 1/2]) and `right` (over [1/2, 1]): the shared kernel's
+/// levels written to caller buffers (`bezier::de_casteljau_split` without its allocations), for
+/// the estimates of [`SpanPoly::zero_estimates`].
 fn halve(b: &mut [f64], left: &mut [f64], right: &mut [f64]) {
     let n = b.len() - 1;
     left[0] = b[0];
     right[n] = b[n];
-    for r in 1..=n {
-        for i in 0..=n - r {
-            b[i] = 0.5 * (b[i + 1] - b[i]) + b[i];
-        }
+    de_casteljau_levels(b, 1, &0.5, |r, b| {
         left[r] = b[0];
         right[n - r] = b[n - r];
-    }
+    });
 }
 
 /// How close (in t in [0, 1]) an estimate of [`locate`] needs to be: far below the half-width
@@ -539,35 +518,6 @@ fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64, start: f64) -> f64 {
         t = nt;
     }
     t
-}
-
-/// The homogeneous Bézier segment of the shifted piece C_j - c on span k of `c`: rows
-/// ((x_i - c) w_i, w_i) (rational) or x_i - c, by Boehm knot insertion on the p + 1 local
-/// control points ([`HSpline::bezier_segment`]). Each x_i - c is exact for x_i = c (and
-/// within a factor 2 of c, Sterbenz), else enclosed by S.
-fn shifted_segment<S: Scalar>(c: &NurbsCurve, j: usize, k: usize, shift: f64) -> BezierSeg<S> {
-    let p = c.degree();
-    let rational = c.is_rational();
-    let cs = S::from_f64(shift);
-    let mut pts = Vec::with_capacity((p + 1) * (1 + rational as usize));
-    for i in k - p..=k {
-        let x = S::from_f64(c.control_point(i)[j]) - cs.clone();
-        if rational {
-            let w = S::from_f64(c.weight(i));
-            pts.push(x * w.clone());
-            pts.push(w);
-        } else {
-            pts.push(x);
-        }
-    }
-    let local = HSpline {
-        degree: p,
-        knots: c.knots()[k - p..=k + p + 1].to_vec(),
-        dim: 1,
-        rational,
-        pts,
-    };
-    local.bezier_segment(p)
 }
 
 /// The homogeneous Bézier segment of the shifted piece C_j - c on span k of `c`, rows
@@ -849,10 +799,39 @@ fn pair_coefficients_uncached(p: usize) -> Vec<Mr> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spline::bspline::HSpline;
     use crate::spline::eval::CurveEval;
 
     fn curve1(p: usize, knots: Vec<f64>, x: &[f64], w: Option<Vec<f64>>) -> NurbsCurve {
         NurbsCurve::new(p, knots, x.iter().map(|&v| vec![v]).collect(), w).unwrap()
+    }
+
+    /// The reference for [`shifted_from_points`]: the shifted piece's homogeneous Bézier
+    /// segment by Boehm knot insertion of the shifted local control points ((x_i - c) w_i, w_i)
+    /// or x_i - c in S ([`HSpline::bezier_segment`]), the route `SpanPoly` took before.
+    fn shifted_segment<S: Scalar>(c: &NurbsCurve, j: usize, k: usize, shift: f64) -> BezierSeg<S> {
+        let p = c.degree();
+        let rational = c.is_rational();
+        let cs = S::from_f64(shift);
+        let mut pts = Vec::with_capacity((p + 1) * (1 + rational as usize));
+        for i in k - p..=k {
+            let x = S::from_f64(c.control_point(i)[j]) - cs.clone();
+            if rational {
+                let w = S::from_f64(c.weight(i));
+                pts.push(x * w.clone());
+                pts.push(w);
+            } else {
+                pts.push(x);
+            }
+        }
+        let local = HSpline {
+            degree: p,
+            knots: c.knots()[k - p..=k + p + 1].to_vec(),
+            dim: 1,
+            rational,
+            pts,
+        };
+        local.bezier_segment(p)
     }
 
     /// The pair coefficients of `c` (empty without weights) and its non-empty spans.
@@ -868,10 +847,11 @@ mod tests {
         (pair, spans)
     }
 
-    /// The Bernstein forms from the span's shared double-double points and from the shifted
-    /// rows' own knot insertion in `Mr` enclose the same exact points: every Bézier point, F
-    /// and F' coefficient and double-double point of the one intersects that of the other, on
-    /// random curves of degree 1..=10 (both extraction routes of `Ddi`) with flat runs.
+    /// The form's Bézier points from the span's shared double-double points enclose the same
+    /// exact points as the shifted rows' own knot insertion (`shifted_segment`, in `Mr` and in
+    /// `Ddi`): each of its `Mr` and `Ddi` points intersects the reference's, on random curves of
+    /// degree 1..=10 (both extraction routes of `Ddi`) with flat runs. (F and F' are built
+    /// from these points by the code checked in `span_poly_derivative_numerator_matches_f64`.)
     /// (Fails if a row, the weight index or the shift's sign is wrong.)
     #[test]
     fn shared_points_give_the_same_forms() {
@@ -900,20 +880,15 @@ mod tests {
             let tight = crate::spline::tight::TightEval::new(&c);
             for k in spans {
                 for j in 0..dim {
-                    let a = SpanPoly::new(&c, j, k, &pair, Some(tight.bezier_points(k)));
-                    let b = SpanPoly::new(&c, j, k, &pair, None);
-                    assert_eq!(a.c, b.c);
-                    for (x, y) in [(&a.seg, &b.seg), (&a.f, &b.f), (&a.df, &b.df)] {
-                        assert_eq!(x.pts.len(), y.pts.len());
-                        for (u, v) in x.pts.iter().zip(&y.pts) {
-                            assert!(meet(u.to_interval(), v.to_interval()), "{c:?} k={k} j={j}");
-                        }
+                    let a = SpanPoly::new(&c, j, k, &pair, tight.bezier_points(k));
+                    let mr = shifted_segment::<Mr>(&c, j, k, a.c);
+                    let dd = shifted_segment::<Ddi>(&c, j, k, a.c);
+                    assert_eq!(a.seg.pts.len(), mr.pts.len());
+                    assert_eq!(a.dseg.pts.len(), dd.pts.len());
+                    for (u, v) in a.seg.pts.iter().zip(&mr.pts) {
+                        assert!(meet(u.to_interval(), v.to_interval()), "{c:?} k={k} j={j}");
                     }
-                    let (da, db) = (
-                        a.dseg.get().expect("set from the shared points"),
-                        shifted_segment::<Ddi>(&c, j, k, b.c),
-                    );
-                    for (u, v) in da.pts.iter().zip(&db.pts) {
+                    for (u, v) in a.dseg.pts.iter().zip(&dd.pts) {
                         assert!(meet(u.to_interval(), v.to_interval()), "{c:?} k={k} j={j}");
                     }
                     checked += 1;
@@ -924,8 +899,8 @@ mod tests {
     }
 
     /// `SpanPoly::tight_over` encloses the piece on its box (degrees 1..=10 and 30..=40): at
-    /// random parameters of random boxes (widths from 2^-50 to 1/2) the piece's value by double-double de Casteljau on the
-    /// shifted rows (an independent enclosure of the exact value, about 2^-100 wide) lies in
+    /// random parameters of random boxes (widths from 2^-50 to 1/2) the piece's value by
+    /// double-double de Casteljau on the shifted rows (an independent enclosure of the exact value, about 2^-100 wide) lies in
     /// `enc`, its value at the box's midpoint meets `v`, and `v0` is the first Bézier point.
     /// (Fails with the mean-value term e left out: `enc` is then the midpoint's value alone.)
     #[test]
@@ -934,7 +909,7 @@ mod tests {
         use rand::{Rng, SeedableRng};
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(22);
         let piece = |sp: &SpanPoly, t: f64| -> Ddi {
-            let seg = sp.dseg.get().unwrap();
+            let seg = &sp.dseg;
             let h = if seg.rational { 2 } else { 1 };
             let mut x: Vec<Ddi> = seg.pts.iter().step_by(h).copied().collect();
             let xv = de_casteljau_eval_in_place(&mut x, &Ddi::exact(t));
@@ -965,16 +940,15 @@ mod tests {
                     .then(|| (0..p + 2).map(|_| rng.random_range(0.5..2.0)).collect());
                 NurbsCurve::new(p, kn, pts, w).unwrap()
             };
-            let p = c.degree();
             let (pair, spans) = pair_and_spans(&c);
             let tight = crate::spline::tight::TightEval::new(&c);
             for k in spans {
-                let sp = SpanPoly::new(&c, 0, k, &pair, Some(tight.bezier_points(k)));
+                let sp = SpanPoly::new(&c, 0, k, &pair, tight.bezier_points(k));
                 for _ in 0..4 {
                     let w = 2f64.powf(rng.random_range(-50.0..-1.0));
                     let t0 = rng.random_range(0.0..1.0 - w);
                     let t = T::new(t0, t0 + w);
-                    let Some((enc, v, v0)) = sp.tight_over(t, p) else {
+                    let Some((enc, v, v0)) = sp.tight_over(t) else {
                         continue;
                     };
                     boxes += 1;
@@ -1025,7 +999,7 @@ mod tests {
                     continue;
                 }
                 let tight = crate::spline::tight::TightEval::new(&c);
-                let sp = SpanPoly::new(&c, 0, k, &pair, Some(tight.bezier_points(k)));
+                let sp = SpanPoly::new(&c, 0, k, &pair, tight.bezier_points(k));
                 for i in 0..=10 {
                     let t = i as f64 / 10.0;
                     let u = a + (b - a) * t;
@@ -1068,7 +1042,7 @@ mod tests {
                     assert!(sp.f(T::new(t0, t1)).contains(f0) && sp.f(T::new(t0, t1)).contains(f1));
                     // the piece's value at u(t), and u([t0, t1]) covers u(t0), u(t1)
                     let y = c.point::<f64>(u).unwrap()[0];
-                    let vt = sp.values_tight(&c, 0, T::new(t, t)).1;
+                    let vt = sp.values_tight(T::new(t, t)).1;
                     assert!(vt.inf() - 1e-12 <= y && y <= vt.sup() + 1e-12, "{vt:?} {y}");
                     let U { lo, hi } = sp.to_u(T::new(t0, t1));
                     assert!(lo <= a + t0 * l && a + t1 * l <= hi && a <= lo && hi <= b);

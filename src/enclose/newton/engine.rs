@@ -327,7 +327,7 @@ impl<'a> Engine<'a> {
         } else if let Some((enc, v, v0)) = cd
             .t
             .zip(self.span_poly(k))
-            .and_then(|(t, sp)| sp.tight_over(t, self.p))
+            .and_then(|(t, sp)| sp.tight_over(t))
             .filter(|(enc, ..)| enc.sup() <= enc.inf().next_up().next_up())
         {
             // A box of the Bernstein search in span k's local parameter t, enclosed from the
@@ -382,7 +382,7 @@ impl<'a> Engine<'a> {
                 // and far tighter than [lo, hi] when the span is below the f64 resolution of
                 // u (a 1e-12 span at u ~ 6: C'' ~ 1e24 times ulp(u)^2). The piece's value at
                 // u(t_mid), a real in the span, is attained.
-                let (b, at) = sp.values_tight(self.c, self.j, t);
+                let (b, at) = sp.values_tight(t);
                 if !b.intersection(enc).is_empty() {
                     enc = enc.intersection(b);
                 }
@@ -810,7 +810,7 @@ impl<'a> Engine<'a> {
             if want_poly {
                 // (the span's double-double points, shared with the other coordinates and
                 // the candidates' values: `TightEval::bezier_points`)
-                let pts = Some(self.tight.bezier_points(k));
+                let pts = self.tight.bezier_points(k);
                 let sp = SpanPoly::new(self.c, self.j, k, &self.pair, pts);
                 self.poly = None;
                 let bp = self.s.bezier_pretest;
