@@ -783,6 +783,21 @@ impl Scalar for Ddi {
         p >= DW_MIN_DEGREE && crate::num::dw::clamp_span_dw(p, h, t, q)
     }
 
+    /// From degree [`DW_MIN_DEGREE`] on, the sweep in double words ([`crate::num::dw`]),
+    /// where its guard holds.
+    #[inline]
+    fn sweep_fast(
+        p: usize,
+        h: usize,
+        knots: &[f64],
+        pts: &[Self],
+        k0: usize,
+        count: usize,
+        emit: &mut dyn FnMut(usize, &[Self]),
+    ) -> bool {
+        p >= DW_MIN_DEGREE && crate::num::dw::sweep_dw(p, h, knots, pts, k0, count, emit)
+    }
+
     /// The fused Horner step [`Ddi::mul_add`].
     #[inline]
     fn horner_step(acc: &Self, t: &Self, c: &Self) -> Self {

@@ -63,7 +63,7 @@
 
 use super::ddi::{two_prod, two_sum, up, Ddi};
 use super::Scalar;
-use crate::spline::bspline::clamp_span;
+use crate::spline::bspline::{clamp_span, sweep_spans};
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -194,38 +194,114 @@ const TINY_GAP: f64 = f64::from_bits((1023 - 900) << 52);
 const C100: f64 = f64::from_bits((1023 - 100) << 52);
 const C29: f64 = 29.0 * f64::from_bits((1023 - 106) << 52);
 
+/// The guard of the module docs on the knots: every one finite and below 2^1000, distinct
+/// ones at least 2^-900 apart (sorted, so the consecutive gaps are the smallest differences).
+fn knots_guarded(t: &[f64]) -> bool {
+    t.iter().all(|x| x.abs() < BIG) && !t.windows(2).any(|w| w[1] != w[0] && w[1] - w[0] < TINY_GAP)
+}
+
+/// The `Ddi` inputs as double words carrying their radii, or `None` where the guard of the
+/// module docs fails (a non-finite or huge value).
+fn to_dw<const N: usize>(q: &[Ddi]) -> Option<smallvec::SmallVec<[Dw; N]>>
+where
+    [Dw; N]: smallvec::Array<Item = Dw>,
+{
+    let mut buf = smallvec::SmallVec::with_capacity(q.len());
+    for x in q {
+        let (hi, lo, rad) = x.parts();
+        // (a NaN fails the comparison too)
+        if hi.is_nan() || rad.is_nan() || hi.abs() + rad >= BIG {
+            return None;
+        }
+        buf.push(Dw { hi, lo, e: rad });
+    }
+    Some(buf)
+}
+
+/// Whether every part of every result is finite (else the caller runs the `Ddi` route).
+fn all_finite(d: &[Dw]) -> bool {
+    d.iter()
+        .all(|x| x.hi.is_finite() && x.lo.is_finite() && x.e.is_finite())
+}
+
+/// A double word with its bound as the `Ddi` centre hi + lo and radius e.
+fn to_ddi(d: &Dw) -> Ddi {
+    Ddi::from_parts(d.hi, d.lo, d.e)
+}
+
 /// The Bézier extraction of one span ([`clamp_span`]) of `Ddi` points in double words with the
 /// running bound of the module docs; `false` (nothing changed) where the guard fails, and the
 /// caller runs the `Ddi` extraction.
 pub(crate) fn clamp_span_dw(p: usize, h: usize, t: &mut [f64], q: &mut [Ddi]) -> bool {
-    // the knots: finite, below 2^1000, distinct ones at least 2^-900 apart (sorted, so the
-    // consecutive gaps are the smallest differences)
-    if !t.iter().all(|x| x.abs() < BIG)
-        || t.windows(2).any(|w| w[1] != w[0] && w[1] - w[0] < TINY_GAP)
-    {
+    if !knots_guarded(t) {
         return false;
     }
-    let mut buf: smallvec::SmallVec<[Dw; 96]> = smallvec::SmallVec::with_capacity(q.len());
-    for x in q.iter() {
-        let (hi, lo, rad) = x.parts();
-        // (a NaN fails the comparison too)
-        if hi.is_nan() || rad.is_nan() || hi.abs() + rad >= BIG {
-            return false;
-        }
-        buf.push(Dw { hi, lo, e: rad });
-    }
+    let Some(mut buf) = to_dw::<96>(q) else {
+        return false;
+    };
     let mut tt: smallvec::SmallVec<[f64; 96]> = smallvec::SmallVec::from_slice(t);
     clamp_span(p, h, &mut tt, &mut buf);
-    if !buf
-        .iter()
-        .all(|x| x.hi.is_finite() && x.lo.is_finite() && x.e.is_finite())
-    {
+    if !all_finite(&buf) {
         return false;
     }
     for (x, d) in q.iter_mut().zip(&buf) {
-        *x = Ddi::from_parts(d.hi, d.lo, d.e);
+        *x = to_ddi(d);
     }
     t.copy_from_slice(&tt);
+    true
+}
+
+/// The Bézier points of a block of consecutive spans ([`sweep_spans`], NURBS Book A5.6) of
+/// `Ddi` points in double words with the running bound of the module docs (its corner cuts
+/// are those of the proof above: ratios of exact knot differences in [0, 1]); `false`
+/// (nothing emitted) where the guard fails on the knots or points the block reads, or a
+/// result is not finite, and the caller runs the `Ddi` sweep.
+pub(crate) fn sweep_dw(
+    p: usize,
+    h: usize,
+    knots: &[f64],
+    pts: &[Ddi],
+    k0: usize,
+    count: usize,
+    emit: &mut dyn FnMut(usize, &[Ddi]),
+) -> bool {
+    // the block's last span (the sweep's own stepping), for the knots and points it reads:
+    // knots u_{k0-p} ..= u_{k0+p+1} and u_{k+j} (j <= p) of every span k, points
+    // P_{k0-p} ..= P_{last}
+    let n = pts.len() / h - 1;
+    let (mut last, mut done) = (k0, 1);
+    while done < count {
+        let mut e = last + 1;
+        while e + 1 < knots.len() && knots[e + 1] == knots[last + 1] {
+            e += 1;
+        }
+        if e > n {
+            break;
+        }
+        (last, done) = (e, done + 1);
+    }
+    let kend = (last + p).max(k0 + p + 1).min(knots.len() - 1);
+    if !knots_guarded(&knots[k0 - p..=kend]) {
+        return false;
+    }
+    let Some(buf) = to_dw::<96>(&pts[(k0 - p) * h..(last + 1) * h]) else {
+        return false;
+    };
+    // the sweep on the block's points alone (span k0 - p + i of the block's local indices)
+    let off = k0 - p;
+    let mut out: Vec<(usize, Vec<Dw>)> = Vec::with_capacity(done);
+    sweep_spans(p, h, &knots[off..], &buf, p, done, &mut |k, q| {
+        out.push((k + off, q.to_vec()))
+    });
+    if !out.iter().all(|(_, q)| all_finite(q)) {
+        return false;
+    }
+    let mut conv = Vec::with_capacity((p + 1) * h);
+    for (k, q) in &out {
+        conv.clear();
+        conv.extend(q.iter().map(to_ddi));
+        emit(*k, &conv);
+    }
     true
 }
 
@@ -244,7 +320,7 @@ mod tests {
     fn dw_extraction_bound_holds_exactly() {
         let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(17);
         let mut worst: f64 = 0.0;
-        let mut ran = 0;
+        let (mut ran, mut swept) = (0, 0);
         for it in 0..300 {
             let p = r.random_range(2..=24usize);
             let h = r.random_range(1..=3usize);
@@ -254,7 +330,10 @@ mod tests {
             } else {
                 r.random_range(-5.0..5.0)
             };
-            let mut t: Vec<f64> = (0..2 * p + 2)
+            // (up to five more points and knots: a multi-span curve for the sweep below,
+            // whose first span's window is the one-span extraction's input)
+            let extra = r.random_range(0..=5usize);
+            let mut t: Vec<f64> = (0..2 * p + 2 + extra)
                 .map(|_| match it % 4 {
                     0 => base + r.random_range(0..=(2 * p + 2)) as f64 * scale,
                     1 => base * (1.0 + r.random_range(0.0..1e-13)),
@@ -267,7 +346,7 @@ mod tests {
                 continue;
             }
             let mag = 2f64.powi(r.random_range(-80..=80));
-            let q: Vec<Ddi> = (0..(p + 1) * h)
+            let q_all: Vec<Ddi> = (0..(p + 1 + extra) * h)
                 .map(|i| {
                     // (some points 2^40 times larger or smaller: weights spread widely)
                     let spread = match i % 5 {
@@ -288,8 +367,9 @@ mod tests {
                     }
                 })
                 .collect();
+            let q = q_all[..(p + 1) * h].to_vec();
             let mut qd = q.clone();
-            let mut td = t.clone();
+            let mut td = t[..2 * p + 2].to_vec();
             if !clamp_span_dw(p, h, &mut td, &mut qd) {
                 continue;
             }
@@ -301,10 +381,10 @@ mod tests {
                     Exact::of(hi) + Exact::of(lo)
                 })
                 .collect();
-            let mut te = t.clone();
+            let mut te = t[..2 * p + 2].to_vec();
             clamp_span(p, h, &mut te, &mut qe);
             assert_eq!(te, td, "knots");
-            for (e, d) in qe.iter().zip(&qd) {
+            let mut within = |e: &Exact, d: &Ddi| {
                 let (hi, lo, rad) = d.parts();
                 let diff = e.clone() - Exact::of(hi) - Exact::of(lo);
                 assert!(
@@ -314,8 +394,43 @@ mod tests {
                     diff.to_f64()
                 );
                 worst = worst.max(diff.to_f64().abs() / rad.max(f64::MIN_POSITIVE));
+            };
+            for (e, d) in qe.iter().zip(&qd) {
+                within(e, d);
+            }
+            // The sweep over every span from span p (NURBS Book A5.6, `sweep_dw`), against
+            // the exact sweep of the input centres (itself the exact per-span extraction:
+            // `bspline`'s sweep test); up to degree 14 (the exact rationals of longer chains
+            // grow large).
+            if p > 14 {
+                continue;
+            }
+            let centres: Vec<Exact> = q_all
+                .iter()
+                .map(|x| {
+                    let (hi, lo, _) = x.parts();
+                    Exact::of(hi) + Exact::of(lo)
+                })
+                .collect();
+            let mut exact = Vec::new();
+            sweep_spans(p, h, &t, &centres, p, usize::MAX, &mut |k, q| {
+                exact.push((k, q.to_vec()))
+            });
+            let mut dws = Vec::new();
+            if sweep_dw(p, h, &t, &q_all, p, usize::MAX, &mut |k, q| {
+                dws.push((k, q.to_vec()))
+            }) {
+                swept += 1;
+                assert_eq!(dws.len(), exact.len());
+                for ((k, d), (ke, e)) in dws.iter().zip(&exact) {
+                    assert_eq!(k, ke);
+                    for (x, y) in e.iter().zip(d) {
+                        within(x, y);
+                    }
+                }
             }
         }
+        assert!(swept > 80, "{swept} sweeps ran");
         assert!(ran > 150, "{ran} extractions ran");
         eprintln!("dw extraction: {ran} spans, worst error {worst:.3e} of the radius");
         // not vacuous: the radius is within a factor 2^20 of the worst error seen

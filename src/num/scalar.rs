@@ -108,6 +108,22 @@ pub trait Scalar:
     fn clamp_span_fast(_p: usize, _h: usize, _t: &mut [f64], _q: &mut [Self]) -> bool {
         false
     }
+    /// A faster route for the Bézier points of a block of spans
+    /// ([`crate::spline::bspline::sweep_spans`]): `true` if it emitted every span, `false`
+    /// (nothing emitted) for none. The default has none; `Ddi` sweeps in double words with
+    /// the running bound of [`crate::num::dw`].
+    #[inline]
+    fn sweep_fast(
+        _p: usize,
+        _h: usize,
+        _knots: &[f64],
+        _pts: &[Self],
+        _k0: usize,
+        _count: usize,
+        _emit: &mut dyn FnMut(usize, &[Self]),
+    ) -> bool {
+        false
+    }
     /// An f64 interval that contains the value (outward rounded for `rug::Float`).
     fn to_interval(&self) -> Interval;
     /// A representative f64 (midpoint for intervals, nearest for MPFR).

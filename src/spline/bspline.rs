@@ -275,6 +275,19 @@ impl<S: Scalar> HSpline<S> {
         }
     }
 
+    /// The Bézier segments' points of up to `count` consecutive non-empty spans from span k0
+    /// (u_{k0} < u_{k0+1}), each handed to `emit(k, points)` in order, by one sweep of Boehm
+    /// insertion (NURBS Book A5.6, [`sweep_spans`]; the type's faster route
+    /// [`Scalar::sweep_fast`] where it applies). The same points as
+    /// [`HSpline::bezier_segment`] of each span (enclosures of the same exact points), at
+    /// about half its cost per span from the second span of the block on.
+    pub fn bezier_sweep(&self, k0: usize, count: usize, emit: &mut dyn FnMut(usize, &[S])) {
+        let (p, h) = (self.degree, self.hdim());
+        if !S::sweep_fast(p, h, &self.knots, &self.pts, k0, count, emit) {
+            sweep_spans(p, h, &self.knots, &self.pts, k0, count, emit);
+        }
+    }
+
     /// Insert the knot u `r` times (NURBS Book A5.1 CurveKnotIns; thesis eqs. 4.12, 4.15/4.16).
     /// Requires u in the domain; insertions beyond multiplicity p are ignored. The new points
     /// are convex combinations alpha*(Q_i - Q_{i-1}) + Q_{i-1}.
@@ -509,6 +522,84 @@ fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
     t[1..=p].iter_mut().for_each(|x| *x = u);
 }
 
+/// The Bézier points of up to `count` consecutive non-empty spans, the first being span k0
+/// (u_{k0} < u_{k0+1}), handed to `emit(k, points)` in order (`h` values per point, row-major):
+/// NURBS Book A5.6 DecomposeCurve, started at any span of any (also unclamped) knot vector.
+///
+/// Span k0's local points are first clamped at its left end ([`clamp_left`]). Then, span by
+/// span, the right end u_{k+1} (multiplicity `mult` among the knots that follow) is inserted
+/// until its multiplicity is p: with the left end already of multiplicity p, the ratio of every
+/// corner cut is (u_{k+1} - u_k) / (u_{k+j} - u_k), so the p - mult ratios are formed once per
+/// span (A5.6's `alphas`), and the points that step j of the insertion leaves at the right
+/// end are the next span's left points (A5.6's `Qw[nb+1][save]`; its other points are the
+/// original P_{e-p+i}, i >= p - mult, e the run's last index). Each span thus costs one end's
+/// insertion, (p - mult)(p - mult + 1)/2 corner cuts of `h` values and p - mult ratios, against
+/// both ends' and a ratio per corner cut in [`clamp_span`].
+///
+/// Every step is a corner cut lerp(alpha, Q_{i-1}, Q_i) with alpha in [0, 1] a ratio of knot
+/// differences ([`Scalar::knot_ratio_f64`]: u_k < u_{k+1} <= u_{k+j}), as in [`clamp_left`]: so
+/// enclosing types (`Ddi`, `Mr`, intervals) enclose the exact points, and the double words
+/// of `num::dw` keep their running bound (its guard checked by the caller). The chain of
+/// operations behind a span's points grows with its position in the sweep (a span's left
+/// points come from its predecessor's), which is why callers sweep short blocks.
+pub(crate) fn sweep_spans<S: Scalar>(
+    p: usize,
+    h: usize,
+    knots: &[f64],
+    pts: &[S],
+    k0: usize,
+    count: usize,
+    emit: &mut dyn FnMut(usize, &[S]),
+) {
+    let n = pts.len() / h - 1;
+    debug_assert!(p <= k0 && k0 <= n && knots[k0] < knots[k0 + 1]);
+    let mut q: Vec<S> = pts[(k0 - p) * h..(k0 + 1) * h].to_vec();
+    let mut t: SmallVec<[f64; 24]> = SmallVec::from_slice(&knots[k0 - p..=k0 + p + 1]);
+    clamp_left(p, h, &mut t, &mut q);
+    let mut next = q.clone();
+    let mut alphas: SmallVec<[S; 16]> = SmallVec::new();
+    let (mut k, mut done) = (k0, 0);
+    loop {
+        let (a, ub) = (knots[k], knots[k + 1]);
+        // e: the last index of the run of knots equal to u_{k+1}
+        let mut e = k + 1;
+        while e + 1 < knots.len() && knots[e + 1] == ub {
+            e += 1;
+        }
+        let mult = e - k;
+        // (span e = [u_e, u_{e+1}] is the next non-empty span if e <= n)
+        let more = done + 1 < count && e <= n;
+        if mult < p {
+            alphas.clear();
+            // alphas[j - mult - 1] = (u_{k+1} - u_k) / (u_{k+j} - u_k), j = mult + 1 ..= p
+            alphas.extend((mult + 1..=p).map(|j| S::knot_ratio_f64(ub, a, knots[k + j])));
+            let r = p - mult;
+            for j in 1..=r {
+                let s = mult + j;
+                // (descending: Q_{i-1} is still the previous step's when Q_i is cut)
+                for i in (s..=p).rev() {
+                    let (lo, hi) = q[(i - 1) * h..(i + 1) * h].split_at_mut(h);
+                    for (x, l) in hi.iter_mut().zip(lo.iter()) {
+                        *x = S::lerp(&alphas[i - s], l, x);
+                    }
+                }
+                if more {
+                    next[(r - j) * h..(r - j + 1) * h].clone_from_slice(&q[p * h..(p + 1) * h]);
+                }
+            }
+        }
+        emit(k, &q);
+        done += 1;
+        if !more {
+            return;
+        }
+        let first = p.saturating_sub(mult);
+        next[first * h..].clone_from_slice(&pts[(e + first - p) * h..(e + 1) * h]);
+        std::mem::swap(&mut q, &mut next);
+        k = e;
+    }
+}
+
 /// NURBS Book A5.1 CurveKnotIns: insert u (in span k, multiplicity s) r times, r + s <= p.
 /// Returns the new knots and points.
 #[allow(clippy::too_many_arguments)]
@@ -677,6 +768,92 @@ mod tests {
     use super::*;
     use crate::num::iv;
     use inari::Interval;
+
+    /// The sweep of NURBS Book A5.6 gives each span's Bézier points: on exact rationals the
+    /// very points of the per-span extraction `bezier_segment` (every start span, blocks of
+    /// 1, 2, 3 and all spans), on random curves of the test families (unclamped, multiple and
+    /// clustered knots, weights); and the `Ddi` sweep (its double-word route from degree 2, and
+    /// the `Ddi` arithmetic itself) and the `Mr` sweep enclose those exact points.
+    #[test]
+    fn sweep_gives_every_span_s_bezier_points() {
+        use crate::num::ddi::Ddi;
+        use crate::num::exact::Exact;
+        use crate::num::mr::Mr;
+        use crate::testkit::gen::Family;
+        use rand::SeedableRng;
+        let contains = |x: &Exact, v: Interval| {
+            x.cmp_f64(v.inf()) != Some(std::cmp::Ordering::Less)
+                && x.cmp_f64(v.sup()) != Some(std::cmp::Ordering::Greater)
+        };
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(23);
+        let (mut spans, mut fast) = (0, 0);
+        let fams = [
+            Family::ClampedUniform,
+            Family::ClusteredKnots,
+            Family::MultipleKnots,
+            Family::Unclamped,
+            Family::ExtremeWeights,
+            Family::ExtremaAtKnots,
+            Family::Mixed,
+        ];
+        for it in 0..140 {
+            let c = fams[it % fams.len()].curve(&mut r);
+            if c.degree() > 9 {
+                continue;
+            }
+            let (he, hd, hm) = (
+                HSpline::<Exact>::from_curve(&c),
+                HSpline::<Ddi>::from_curve(&c),
+                HSpline::<Mr>::from_curve(&c),
+            );
+            let (p, n) = (c.degree(), c.num_points() - 1);
+            let kn = c.knots();
+            let nonempty: Vec<usize> = (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect();
+            for (i, &k0) in nonempty.iter().enumerate() {
+                for count in [1, 2, 3, usize::MAX] {
+                    let mut want: Vec<usize> = nonempty[i..].to_vec();
+                    want.truncate(count);
+                    let mut got = Vec::new();
+                    he.bezier_sweep(k0, count, &mut |k, q| got.push((k, q.to_vec())));
+                    let ks: Vec<usize> = got.iter().map(|g| g.0).collect();
+                    assert_eq!(ks, want, "spans of the sweep from {k0}, count {count}");
+                    for (k, q) in &got {
+                        assert!(
+                            *q == he.bezier_segment(*k).pts,
+                            "exact points of span {k} (from {k0}), curve {c:?}"
+                        );
+                    }
+                    let mut check = |k: usize, v: Vec<Interval>| {
+                        let q = &got[ks.iter().position(|&x| x == k).unwrap()].1;
+                        for (x, iv) in q.iter().zip(&v) {
+                            assert!(contains(x, *iv), "span {k}: {iv:?} misses the exact point");
+                        }
+                        spans += 1;
+                    };
+                    let mut dd = Vec::new();
+                    let fast_ran =
+                        Ddi::sweep_fast(p, hd.hdim(), kn, &hd.pts, k0, count, &mut |k, q| {
+                            dd.push((k, q.iter().map(Ddi::to_interval).collect::<Vec<_>>()))
+                        });
+                    fast += fast_ran as usize;
+                    sweep_spans(p, hd.hdim(), kn, &hd.pts, k0, count, &mut |k, q| {
+                        dd.push((k, q.iter().map(Ddi::to_interval).collect()))
+                    });
+                    hm.bezier_sweep(k0, count, &mut |k, q| {
+                        dd.push((k, q.iter().map(Mr::to_interval).collect()))
+                    });
+                    assert_eq!(dd.len(), got.len() * (2 + fast_ran as usize));
+                    for (k, v) in dd {
+                        check(k, v);
+                    }
+                }
+            }
+        }
+        assert!(
+            spans > 2000 && fast > 300,
+            "{spans} spans, {fast} double-word sweeps"
+        );
+    }
 
     /// The one-sided splits of `sub_points` give exactly the points of the two full splits
     /// they replace (the same corner cuts in the same order), for `Mr` and `Ddi`, rational and

@@ -60,6 +60,11 @@ const ORDERS: usize = 3;
 /// this threshold; with none, 2 to 4 of 3000).
 const TAYLOR_TIGHT_FROM: usize = 32;
 
+/// The most spans one sweep of Boehm insertion extracts ([`TightEval::swept`]): the sweep's
+/// saving grows with the block (one end's insertion per span instead of two), the chain of
+/// roundings behind a span's points with its place in the block.
+const SWEEP_BLOCK: usize = 8;
+
 /// Below this degree every evaluation in a span expands at its left end, whichever end is
 /// nearer: Horner's terms c_k s^k over the whole span (s <= b - a) are at most
 /// binom(p, k) 2^k max |Q_i|, so the rounding of the double-double evaluation stays below
@@ -112,6 +117,8 @@ pub struct TightEval {
     spans: Vec<SpanSlot>,
     hom: OnceLock<HSpline<Ddi>>,
     generic: OnceLock<Vec<CoordEval>>,
+    /// whether [`TightEval::bezier_points`] extracts blocks of spans ([`TightEval::sweeping`])
+    sweep: bool,
 }
 
 /// Horner's rule in `Ddi`: the shared [`crate::num::horner`] (whose `Ddi` step is the fused
@@ -232,6 +239,18 @@ impl TightEval {
                 .collect(),
             hom: OnceLock::new(),
             generic: OnceLock::new(),
+            sweep: false,
+        }
+    }
+
+    /// [`TightEval::new`] for a caller that asks for the Bézier points of every span, in
+    /// order (the Newton strategy's search): [`TightEval::bezier_points`] then extracts up to
+    /// [`SWEEP_BLOCK`] spans at once by one sweep of Boehm insertion (NURBS Book A5.6), about
+    /// half the per-span cost; for a caller that needs a few spans it would be wasted work.
+    pub fn sweeping(curve: &NurbsCurve) -> Self {
+        TightEval {
+            sweep: true,
+            ..TightEval::new(curve)
         }
     }
 
@@ -259,15 +278,46 @@ impl TightEval {
     /// (Boehm knot insertion, NURBS Book A5.1, via [`HSpline::bezier_segment`]), built on first
     /// use and shared by the span's two Taylor expansions.
     fn span_points(&self, k: usize) -> &[Ddi] {
-        let slot = &self.spans[k];
-        slot.seg.get_or_init(|| {
-            // The power form amplifies the Bézier points' radii by up to (1 + 2s/len)^p: 2^p
-            // from the nearer end (s <= len/2), 3^p from the left end below ONE_END_BELOW
-            // (s <= len; 3^15 ~ 2^24 on the double-word radii of p 2^-99 of the scale). From
-            // degree TAYLOR_TIGHT_FROM on the points come from the extraction with `Ddi`'s own,
-            // tighter running bounds.
-            self.extract(k, self.curve.degree() < TAYLOR_TIGHT_FROM)
-        })
+        // The power form amplifies the Bézier points' radii by up to (1 + 2s/len)^p: 2^p
+        // from the nearer end (s <= len/2), 3^p from the left end below ONE_END_BELOW
+        // (s <= len; 3^15 ~ 2^24 on the double-word radii of p 2^-99 of the scale, times the
+        // chain of at most SWEEP_BLOCK spans where `bezier_points` swept them). From degree
+        // TAYLOR_TIGHT_FROM on the points come from the extraction with `Ddi`'s own, tighter
+        // running bounds.
+        let tight = self.curve.degree() >= TAYLOR_TIGHT_FROM;
+        self.spans[k].seg.get_or_init(|| self.extract(k, tight))
+    }
+
+    /// The cached points of span k in the slot `cell` picks, filled on first use together with
+    /// those of the following non-empty spans whose slots are empty (up to [`SWEEP_BLOCK`] in
+    /// all) by one sweep of Boehm insertion (`HSpline::bezier_sweep`, NURBS Book A5.6: about
+    /// half the per-span extraction's cost from the block's second span on; the same enclosures
+    /// of the same exact points), end points that are exactly doubles made exact.
+    fn swept(&self, k: usize, cell: impl Fn(&SpanSlot) -> &OnceLock<Vec<Ddi>>) -> &[Ddi] {
+        if let Some(v) = cell(&self.spans[k]).get() {
+            return v;
+        }
+        let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
+        let kn = self.curve.knots();
+        let n = self.curve.num_points() - 1;
+        // (the run of empty slots from k: non-empty spans only, stopping at a filled one)
+        let (mut count, mut i) = (1, k + 1);
+        while count < SWEEP_BLOCK && i <= n && cell(&self.spans[i]).get().is_none() {
+            count += (kn[i] < kn[i + 1]) as usize;
+            i += 1;
+        }
+        hs.bezier_sweep(k, count, &mut |i, q| {
+            let slot = cell(&self.spans[i]);
+            if slot.get().is_none() {
+                let mut pts = q.to_vec();
+                crate::spline::fraction_free::snap_exact_ends(&self.curve, i, &mut pts);
+                // (another thread may have filled it meanwhile: either enclosure is sound)
+                let _ = slot.set(pts);
+            }
+        });
+        cell(&self.spans[k])
+            .get()
+            .expect("the sweep emits its first span")
     }
 
     /// The span's double-double Bézier points as [`TightEval::span_points`], for uses that do
@@ -278,21 +328,25 @@ impl TightEval {
     /// strategy's per-coordinate Bernstein forms and candidate values start from them
     /// (`newton::bernstein::SpanPoly`), instead of each coordinate's own knot insertion.
     pub(crate) fn bezier_points(&self, k: usize) -> &[Ddi] {
-        if self.curve.degree() < TAYLOR_TIGHT_FROM {
-            return self.span_points(k);
+        // (extracted in blocks by one sweep for a caller that asks for every span's points,
+        // `TightEval::sweeping`; else one span at a time)
+        match (self.curve.degree() < TAYLOR_TIGHT_FROM, self.sweep) {
+            (true, false) => self.span_points(k),
+            (true, true) => self.swept(k, |s| &s.seg),
+            (false, false) => self.spans[k].fast.get_or_init(|| self.extract(k, false)),
+            (false, true) => self.swept(k, |s| &s.fast),
         }
-        self.spans[k].fast.get_or_init(|| self.extract(k, true))
     }
 
-    /// The extraction of span k's points (`fast`: the type's faster route, the double words
-    /// of `num::dw`; else running bounds), its end points that are exactly doubles made exact
-    /// (an extremum at an unclamped end or a knot is then not straddled).
-    fn extract(&self, k: usize, fast: bool) -> Vec<Ddi> {
+    /// The extraction of span k's points alone (`tight`: with `Ddi`'s running bounds; else the
+    /// type's faster route, the double words of `num::dw`), its end points that are exactly
+    /// doubles made exact (an extremum at an unclamped end or a knot is then not straddled).
+    fn extract(&self, k: usize, tight: bool) -> Vec<Ddi> {
         let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
-        let mut pts = if fast {
-            hs.bezier_segment(k).pts
-        } else {
+        let mut pts = if tight {
             hs.bezier_segment_tight(k).pts
+        } else {
+            hs.bezier_segment(k).pts
         };
         crate::spline::fraction_free::snap_exact_ends(&self.curve, k, &mut pts);
         pts

@@ -14,7 +14,6 @@ use crate::enclose::{CandidateKind, CoordBox, Stats, Termination};
 use crate::num::ddi::Ddi;
 use crate::num::{iv, Scalar};
 use crate::num::mr::Mr;
-use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
 use crate::spline::knots::multiplicity;
@@ -61,8 +60,6 @@ pub(crate) struct Engine<'a> {
     /// interval de Boor on the derivative splines, built on first use (a search in the local
     /// parameter through the span's Bernstein form never needs it)
     ev: std::cell::OnceCell<CurveEval<Interval>>,
-    /// the curve in f64 for the float-first span prune (non-rational), built on first use
-    hf: std::cell::OnceCell<HSpline<f64>>,
     p: usize,
     d: usize,
     rational: bool,
@@ -110,13 +107,12 @@ impl<'a> Engine<'a> {
             c,
             s,
             ev: std::cell::OnceCell::new(),
-            hf: std::cell::OnceCell::new(),
             p,
             d: c.dim(),
             rational: c.is_rational(),
             spans,
             nd,
-            tight: TightEval::new(c),
+            tight: TightEval::sweeping(c),
             buf: Vec::with_capacity(2 * (p + 1)),
             stack: Vec::new(),
             est: Vec::new(),
@@ -790,21 +786,24 @@ impl<'a> Engine<'a> {
                 }
             }
             if self.s.fast_path && mode == SpanMode::Prune && !self.rational && want_poly {
-                // Float first: the span's f64 Bézier points with the a-priori error bound of
-                // knot insertion (`bezier::span_filter`, its proof there; checked against
-                // MPFR segments in its test) bound the span's values; inside the values the
-                // curve attains on both sides, the span is covered as with the `Mr` Bézier
-                // hull below, without building that form.
-                let c = self.c;
-                let hf = self.hf.get_or_init(|| HSpline::<f64>::from_curve(c));
-                let q = hf.bezier_segment(k);
-                let hi = crate::enclose::bezier::span_filter(c, &q, k, j, 1.0, false);
-                let lo = crate::enclose::bezier::span_filter(c, &q, k, j, -1.0, false);
-                if let (Some((ub, _)), Some((nlb, _))) = (hi, lo) {
-                    if -nlb >= cheap_lo && ub <= cheap_hi {
-                        self.stats.fast_exits += 1;
-                        continue;
-                    }
+                // The span's Bézier hull from its double-double points (convex hull
+                // property, NURBS Book P5.x; each point enclosed, rounded outward): inside the
+                // values the curve attains on both sides, the span is covered as with the
+                // Bézier hull of its `SpanPoly` below, without building that form. (The points
+                // are those `SpanPoly` starts from, swept in blocks and shared by the
+                // coordinates: cheaper than the f64 insertion with its a-priori bound that
+                // this prune used before, `bezier::span_filter`.)
+                let pts = self.tight.bezier_points(k);
+                let d = self.c.dim();
+                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+                for x in pts.iter().skip(j).step_by(d) {
+                    let v = x.to_interval();
+                    lo = lo.min(v.inf());
+                    hi = hi.max(v.sup());
+                }
+                if lo >= cheap_lo && hi <= cheap_hi {
+                    self.stats.fast_exits += 1;
+                    continue;
                 }
             }
             if want_poly {
