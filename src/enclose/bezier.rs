@@ -34,9 +34,10 @@
 //!   few test points (an f64 filter with an a-priori error bound, `Ddi` where it is unsure),
 //!   root counting, and a `Ddi` Taylor enclosure over each tiny bracket. It hands the curve to
 //!   the branch and bound below when it cannot prove a result within two ulps.
-//! * Before a span is converted in verified arithmetic, its f64 Bézier coefficients with an
-//!   a-priori knot-insertion error bound ([`span_filter`]) give a cheap, sound upper bound and
-//!   an attained value, which prune most spans of long splines without interval work.
+//! * Before a span's `Mr` segment is built and split, the hull of its double-double Bézier
+//!   points ([`span_hull`]; extracted in blocks by one sweep of Boehm insertion and shared
+//!   with the tight evaluations, `TightEval::bezier_points`) gives a cheap, sound upper bound
+//!   and an attained value, which prune most spans of long splines without the search.
 //!
 //! The minimum is computed as the maximum of -C_j (negation is exact).
 
@@ -49,7 +50,7 @@ use crate::num::iv;
 use crate::num::mr::Mr;
 use crate::num::Scalar;
 use crate::spline::bezier::{bernstein_value as bern, cartesian, hodograph};
-use crate::spline::bspline::{BezierSeg, HSpline};
+use crate::spline::bspline::BezierSeg;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::tight::TightEval;
 use inari::Interval;
@@ -124,7 +125,7 @@ impl<'a> Values<'a> {
     fn new(curve: &'a NurbsCurve) -> Self {
         Values {
             curve,
-            tight: TightEval::new(curve),
+            tight: TightEval::sweeping(curve),
         }
     }
     /// Enclosure of sign * C_j(u) at the exact f64 u, and a strict witness below it: the
@@ -140,6 +141,20 @@ impl<'a> Values<'a> {
     /// Enclosure of C_j over [a, b].
     fn over(&self, j: usize, a: f64, b: f64) -> Interval {
         self.tight.coord_over(j, a, b)
+    }
+    /// The Bézier segment of span k in double-double: the shared points of
+    /// [`TightEval::bezier_points`] (extracted in blocks of spans by one sweep of Boehm
+    /// insertion, NURBS Book A5.6; end values that are exactly doubles made exact).
+    fn segment(&self, k: usize) -> BezierSeg<Ddi> {
+        let c = self.curve;
+        BezierSeg {
+            a: c.knots()[k],
+            b: c.knots()[k + 1],
+            degree: c.degree(),
+            dim: c.dim(),
+            rational: c.is_rational(),
+            pts: self.tight.bezier_points(k).to_vec(),
+        }
     }
 }
 
@@ -302,28 +317,19 @@ struct Item {
     /// control-point hull (not yet converted to a Bézier segment)
     span: usize,
     piece: Option<(f64, f64, u32, Vec<Interval>)>,
-    /// whether `pri` of a span item (piece None) is already the f64 filter bound
+    /// whether `pri` of a span item (piece None) is already the hull filter's bound
     filtered: bool,
 }
 
 /// The per-curve data of the branch and bound, built when some coordinate side needs it.
 struct Ctx<'a> {
     vals: Values<'a>,
-    /// homogeneous spline in midpoint-radius arithmetic (Bézier segments for the search)
-    hs: HSpline<Mr>,
-    /// the same in f64 for the span filter (non-rational curves only)
-    hf: Option<HSpline<f64>>,
-    /// the same in double-double for the `single` fast path on spans (non-rational curves of
-    /// degree 2 or 3 only)
-    hd: Option<HSpline<Ddi>>,
+    /// whether the `single` fast path runs on spans (non-rational curves of degree 2 or 3)
+    single: bool,
     /// non-empty spans
     spans: Vec<usize>,
+    /// the spans' `Mr` segments (from the double-double points of `vals`), built on first use
     segs: Vec<Option<BezierSeg<Mr>>>,
-    fsegs: Vec<Option<BezierSeg<f64>>>,
-    dsegs: Vec<Option<BezierSeg<Ddi>>>,
-    /// the homogeneous spline in double-double for the local refinement (`refine_local`) when
-    /// `hd` is not built
-    hdd: Option<HSpline<Ddi>>,
 }
 
 impl<'a> Ctx<'a> {
@@ -333,15 +339,9 @@ impl<'a> Ctx<'a> {
         let kn = c.knots();
         Ctx {
             vals: Values::new(c),
-            hs: HSpline::<Mr>::from_curve(c),
-            hf: (!c.is_rational()).then(|| HSpline::<f64>::from_curve(c)),
-            hd: (fast && !c.is_rational() && (2..=3).contains(&p))
-                .then(|| HSpline::<Ddi>::from_curve(c)),
+            single: fast && !c.is_rational() && (2..=3).contains(&p),
             spans: (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect(),
             segs: vec![None; n + 1],
-            fsegs: vec![None; n + 1],
-            dsegs: vec![None; n + 1],
-            hdd: None,
         }
     }
 }
@@ -373,14 +373,9 @@ impl BezierSubdivision {
     fn maximize(&self, ctx: &mut Ctx, j: usize, sign: f64) -> Side {
         let Ctx {
             vals,
-            hs,
-            hf,
-            hd,
+            single,
             spans,
             segs,
-            fsegs,
-            dsegs,
-            hdd,
         } = ctx;
         let c = vals.curve;
         let p = c.degree();
@@ -435,35 +430,31 @@ impl BezierSubdivision {
                     );
                     continue;
                 }
-                // f64 filter (non-rational curves): a cheap upper bound of the span from its
-                // f64 Bézier coefficients, before the interval conversion (`span_filter`).
-                if let (false, Some(hf)) = (item.filtered, hf.as_ref()) {
-                    let q = fsegs[k].get_or_insert_with(|| hf.bezier_segment(k));
+                // Hull filter (non-rational curves): a cheap upper bound of the span and a value
+                // it attains from its double-double Bézier points (`span_hull`), before the
+                // `Mr` segment and its pieces.
+                if !item.filtered && !c.is_rational() {
                     let last = k == spans[spans.len() - 1];
-                    if let Some((pri, at)) = span_filter(c, q, k, j, sign, last) {
-                        side.attain_f64(at);
-                        heap.push(Item {
-                            pri: pri.min(item.pri),
-                            span: k,
-                            piece: None,
-                            filtered: true,
-                        });
-                        continue;
-                    }
+                    let (pri, at) = span_hull(vals.tight.bezier_points(k), p, j, sign, last);
+                    side.attain_f64(at);
+                    heap.push(Item {
+                        pri: pri.min(item.pri),
+                        span: k,
+                        piece: None,
+                        filtered: true,
+                    });
+                    continue;
                 }
                 // The root-isolating fast path on the span's double-double Bézier segment
                 // (non-rational, p = 2 or 3): a proven result for the whole span, or nothing.
-                if let Some(hd) = hd.as_ref() {
-                    let q = dsegs[k].get_or_insert_with(|| {
-                        let mut q = hd.bezier_segment(k);
-                        // (end values that are exactly doubles made exact: `snap_exact_ends`)
-                        crate::spline::fraction_free::snap_exact_ends(c, k, &mut q.pts);
-                        q
-                    });
-                    let h = q.hdim();
+                // (the points of `TightEval::bezier_points`, end values that are exactly
+                // doubles made exact: `snap_exact_ends`)
+                if *single {
+                    let q = vals.tight.bezier_points(k);
+                    let h = c.dim();
                     let mut v = [Ddi::exact(0.0); 4];
                     for (i, x) in v.iter_mut().enumerate().take(p + 1) {
-                        *x = q.pts[i * h + j];
+                        *x = q[i * h + j];
                     }
                     let kn = c.knots();
                     let (u0, u1) = (kn[k], kn[k + 1]);
@@ -492,8 +483,21 @@ impl BezierSubdivision {
                 }
             }
             // (coordinate j's rows of the span's segment, kept for the pieces that follow)
-            let seg = &*csegs[k]
-                .get_or_insert_with(|| segs[k].get_or_insert_with(|| hs.bezier_segment(k)).coord(j));
+            let seg = &*csegs[k].get_or_insert_with(|| {
+                segs[k]
+                    .get_or_insert_with(|| {
+                        let seg = vals.segment(k);
+                        BezierSeg {
+                            pts: seg.pts.iter().map(|&x| Mr::from_ddi(x)).collect(),
+                            a: seg.a,
+                            b: seg.b,
+                            degree: seg.degree,
+                            dim: seg.dim,
+                            rational: seg.rational,
+                        }
+                    })
+                    .coord(j)
+            });
             // The last coefficient at the span's right end is the left limit there: a value of
             // the curve unless that end is a jump
             let right_attained = right_end_attained(c.knots(), p, k, spans[spans.len() - 1]);
@@ -694,16 +698,7 @@ impl BezierSubdivision {
         // max C <= max(upper, attained).
         side.upper = side.upper.max(side.attained);
         if needs_refinement(c, side.upper, side.attained, side.witness, scale) {
-            let mut dseg = |k: usize| {
-                dsegs[k]
-                    .get_or_insert_with(|| {
-                        let h = hd
-                            .as_ref()
-                            .unwrap_or_else(|| hdd.get_or_insert_with(|| HSpline::from_curve(c)));
-                        h.bezier_segment(k)
-                    })
-                    .coord(j)
-            };
+            let mut dseg = |k: usize| vals.segment(k).coord(j);
             refine_local(c, spans, sign, &mut dseg, &mut side);
         }
         side
@@ -1070,54 +1065,42 @@ fn refine_local(
     side.stats.add(&r.stats);
 }
 
-/// The f64 span filter: `(upper bound, attained value)` of sign * C_j on span k from the f64
-/// Bézier segment `q` of the span (`HSpline::<f64>::bezier_segment`, the same Boehm knot
-/// insertion as the interval version), or `None` if something is not finite. Non-rational
-/// curves only (the homogeneous rows are the coordinates).
-///
-/// Error bound. Let M = max |P_ij| over the span's p + 1 local control points (exact data).
-/// Every exact intermediate point of the knot insertion is a convex combination of them, so
-/// |exact| <= M. One step computes α̂ = fl(fl(u - t_a) / fl(t_b - t_a)) with exact α in
-/// [0, 1] (u between the knots), |α̂ - α| <= 3.01u + η (two exact-or-relative subtractions
-/// and a quotient; η = 2^-1075 the underflow error of a product or quotient, which times
-/// |h - l| <= 2M is far below the u M terms and covered by the margin below), and
-/// r̂ = fl(fl(α̂ fl(ĥ - l̂)) + l̂) from inputs within e of exact l, h. With
-/// R = l + α (h - l): r̂ - R = (ĥ - l̂)(α̂ (1 + δ1)(1 + δ2) - α) + α (ĥ - h) + (1 - α)(l̂ - l)
-/// plus η + δ3 (m̂ + l̂), |δi| <= u, so |r̂ - R| is at most e + 2 (M + e) 5.03u plus
-/// 1.0001u (M + e) + 2η, hence at most e + 12u M + 2η while e <= M / 1000.
-/// A point passes through at most 2 (p - 1) < 2p such steps (each clamp inserts at most
-/// p - 1 knots: the span's own knot already has multiplicity >= 1), so every computed
-/// coefficient is within E = 2p (12u M + 2η) of the exact one (and e <= 24 p u M <= M / 1000
-/// for any p < 10^11). We use 2p 16u M + MIN_POSITIVE >= E (the margin covers the three
-/// roundings of computing it). The span's values lie in the hull of its exact Bézier
-/// coefficients (NURBS Book P5.x, convex hull property), so max v_i + E bounds it, and
-/// C(u_k) = b_0 (right-continuous; b_p = C(u_{k+1}) only on the last span, elsewhere it may
-/// be a left limit at a jump) is attained. Results are rounded outward by one step.
-///
-/// No subtraction overflows: `knot_ratio` halves the operands of a knot difference that could
-/// (|t_b - t_a| >= 2^1022), which adds at most 2^-1075 / 2^1021 to α̂, far below η (and the
-/// driver only passes moderate knot vectors here: `rescale`, `segments`). A non-finite
-/// coefficient would void the bound, so it sends the span to the interval path.
-pub(crate) fn span_filter(
-    c: &NurbsCurve,
-    q: &BezierSeg<f64>,
-    k: usize,
-    j: usize,
-    sign: f64,
-    last: bool,
-) -> Option<(f64, f64)> {
-    let p = c.degree();
-    let h = q.hdim();
-    let m = (k - p..=k).fold(0.0f64, |m, i| m.max(c.control_point(i)[j].abs()));
-    let v: SmallVec<[f64; 16]> = (0..=p).map(|i| sign * q.pts[i * h + j]).collect();
-    span_bounds(&v, m, last)
+/// The hull filter: `(upper bound, attained value)` of sign * C_j on span k from the span's
+/// Bézier points `pts` (`TightEval::bezier_points`: `Ddi` enclosures of the exact points, `d`
+/// rows each, of a non-rational curve of degree p). The span's values lie in the hull of its
+/// exact Bézier coefficients (convex hull property, NURBS Book P5.x), so the largest upper
+/// end of the enclosures, rounded outward, bounds them; C(u_k) = b_0 is attained
+/// (right-continuous; b_p = C(u_{k+1}) only on the last span, elsewhere it may be a left limit
+/// at a jump), so the lower end of its enclosure is a value the curve reaches. A non-finite
+/// enclosure gives an infinite bound, which prunes nothing.
+fn span_hull(pts: &[Ddi], p: usize, j: usize, sign: f64, last: bool) -> (f64, f64) {
+    let d = pts.len() / (p + 1);
+    let v = |i: usize| {
+        let x = pts[i * d + j].to_interval();
+        if sign > 0.0 {
+            (x.inf(), x.sup())
+        } else {
+            (-x.sup(), -x.inf())
+        }
+    };
+    // (a NaN end would be skipped by `max`: the entire line instead, which bounds nothing)
+    if (0..=p).any(|i| v(i).1.is_nan()) {
+        return (f64::INFINITY, f64::NEG_INFINITY);
+    }
+    let ub = (0..=p).fold(f64::NEG_INFINITY, |m, i| m.max(v(i).1));
+    let at = if last { v(0).0.max(v(p).0) } else { v(0).0 };
+    (ub, at)
 }
 
-/// The bound of [`span_filter`] from the span's f64 Bézier coefficients `v` (sign-adjusted,
-/// computed by the local Boehm insertion from the span's p + 1 control values, whose largest
-/// magnitude is `m`): `(upper bound, attained value)`, with `last` whether b_p is a value of
-/// the curve (else only b_0 is), or `None` if something is not finite. The error bound is
-/// the one in [`span_filter`]'s docs.
+/// `(upper bound, attained value)` of a span from f64 Bézier coefficients `v` (sign-adjusted)
+/// that are within E = 2p 8ε M + MIN_POSITIVE of the exact ones (`m` = M, the largest
+/// magnitude of the span's p + 1 control values; the caller's a-priori bound must be below E:
+/// the closed-form coefficients of the lane's splines, `lane::span_coefficients`, err by at
+/// most 35 u M, below E = 64 u M for p >= 2), with `last` whether b_p is a value of the curve
+/// (else only b_0 is), or `None` if something is not finite. The span's values lie in the hull
+/// of its exact Bézier coefficients (convex hull property, NURBS Book P5.x), so max v_i + E
+/// bounds it, and C(u_k) = b_0 (right-continuous) is attained, b_0 - E below it. Results are
+/// rounded outward by one step.
 pub(crate) fn span_bounds(v: &[f64], m: f64, last: bool) -> Option<(f64, f64)> {
     let p = v.len() - 1;
     let e = (2 * p) as f64 * (8.0 * f64::EPSILON) * m + f64::MIN_POSITIVE;
@@ -1429,61 +1412,6 @@ mod tests {
             assert!(cb.lo <= cb.inner_lo && cb.inner_hi <= cb.hi);
             assert!(cb.gap() <= 8.0 * f64::EPSILON * 2.0, "gap {}", cb.gap());
         }
-    }
-
-    /// The f64 span filter's bounds against 256-bit Bézier segments (the same Boehm knot
-    /// insertion in MPFR: accurate to far below the filter's margin), on the families with
-    /// the hardest knot vectors and degrees up to 40.
-    #[cfg(feature = "mpfr")]
-    #[test]
-    fn span_filter_bounds_hold_against_mpfr_segments() {
-        use crate::num::MPFR_PREC;
-        use crate::testkit::gen::{self, Family};
-        use rug::Float;
-        let mut r = gen::rng(5);
-        let mut checked = 0;
-        for fam in [
-            Family::ClusteredKnots,
-            Family::HighDegree,
-            Family::MultipleKnots,
-            Family::Unclamped,
-            Family::ExtremeMagnitudes,
-            Family::Mixed,
-        ] {
-            for _ in 0..30 {
-                let c = fam.curve(&mut r);
-                if c.is_rational() {
-                    continue;
-                }
-                let (p, n) = (c.degree(), c.num_points() - 1);
-                let hf = HSpline::<f64>::from_curve(&c);
-                let hm = HSpline::<Float>::from_curve(&c);
-                let spans: Vec<usize> = (p..=n)
-                    .filter(|&k| c.knots()[k] < c.knots()[k + 1])
-                    .collect();
-                for &k in &spans {
-                    let (q, qm) = (hf.bezier_segment(k), hm.bezier_segment(k));
-                    let last = k == spans[spans.len() - 1];
-                    let h = q.hdim();
-                    for j in 0..c.dim() {
-                        for sign in [1.0, -1.0] {
-                            let Some((ub, at)) = span_filter(&c, &q, k, j, sign, last) else {
-                                continue;
-                            };
-                            let ex =
-                                |i: usize| Float::with_val(MPFR_PREC, &qm.pts[i * h + j] * sign);
-                            // every exact coefficient <= ub; the exact C(u_k) = b_0 >= at
-                            for i in 0..=p {
-                                assert!(ex(i) <= ub, "span {k} coord {j}: {ub} < {}", ex(i));
-                            }
-                            assert!(ex(0) >= at || (last && ex(p) >= at), "{k} {j} {at}");
-                            checked += 1;
-                        }
-                    }
-                }
-            }
-        }
-        assert!(checked > 500, "{checked}");
     }
 
     #[test]
