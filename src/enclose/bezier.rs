@@ -1066,30 +1066,44 @@ fn refine_local(
 }
 
 /// The hull filter: `(upper bound, attained value)` of sign * C_j on span k from the span's
-/// Bézier points `pts` (`TightEval::bezier_points`: `Ddi` enclosures of the exact points, `d`
-/// rows each, of a non-rational curve of degree p). The span's values lie in the hull of its
-/// exact Bézier coefficients (convex hull property, NURBS Book P5.x), so the largest upper
-/// end of the enclosures, rounded outward, bounds them; C(u_k) = b_0 is attained
+/// Bézier points `pts` (`TightEval::bezier_points`: `Ddi` enclosures of the exact points of a
+/// non-rational curve of degree p, [`span_range`]). C(u_k) = b_0 is attained
 /// (right-continuous; b_p = C(u_{k+1}) only on the last span, elsewhere it may be a left limit
-/// at a jump), so the lower end of its enclosure is a value the curve reaches. A non-finite
-/// enclosure gives an infinite bound, which prunes nothing.
+/// at a jump), so the lower end of its enclosure is a value the curve reaches.
 fn span_hull(pts: &[Ddi], p: usize, j: usize, sign: f64, last: bool) -> (f64, f64) {
+    let (lo, hi) = span_range(pts, p, j);
     let d = pts.len() / (p + 1);
-    let v = |i: usize| {
+    let end = |i: usize| {
         let x = pts[i * d + j].to_interval();
         if sign > 0.0 {
-            (x.inf(), x.sup())
+            x.inf()
         } else {
-            (-x.sup(), -x.inf())
+            -x.sup()
         }
     };
-    // (a NaN end would be skipped by `max`: the entire line instead, which bounds nothing)
-    if (0..=p).any(|i| v(i).1.is_nan()) {
-        return (f64::INFINITY, f64::NEG_INFINITY);
+    let at = if last { end(0).max(end(p)) } else { end(0) };
+    (if sign > 0.0 { hi } else { -lo }, at)
+}
+
+/// `(lo, hi)` bounding coordinate j of a span from its Bézier points `pts` (`Ddi` enclosures
+/// of the exact points, `pts.len() / (p + 1)` rows each, of a non-rational curve of degree p):
+/// the span's values lie in the hull of its exact Bézier coefficients (convex hull property,
+/// NURBS Book P5.x), so the extreme ends of the enclosures, rounded outward, bound them (an
+/// overflowed enclosure is the whole line, which bounds nothing).
+pub(crate) fn span_range(pts: &[Ddi], p: usize, j: usize) -> (f64, f64) {
+    let d = pts.len() / (p + 1);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for x in pts.iter().skip(j).step_by(d) {
+        // (an interval's ends are never NaN; an empty one, which no enclosure of a real is,
+        // would be skipped by min / max: the whole line then)
+        let v = x.to_interval();
+        if v.is_empty() {
+            return (f64::NEG_INFINITY, f64::INFINITY);
+        }
+        lo = lo.min(v.inf());
+        hi = hi.max(v.sup());
     }
-    let ub = (0..=p).fold(f64::NEG_INFINITY, |m, i| m.max(v(i).1));
-    let at = if last { v(0).0.max(v(p).0) } else { v(0).0 };
-    (ub, at)
+    (lo, hi)
 }
 
 /// `(upper bound, attained value)` of a span from f64 Bézier coefficients `v` (sign-adjusted)

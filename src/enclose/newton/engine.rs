@@ -786,21 +786,13 @@ impl<'a> Engine<'a> {
                 }
             }
             if self.s.fast_path && mode == SpanMode::Prune && !self.rational && want_poly {
-                // The span's Bézier hull from its double-double points (convex hull
-                // property, NURBS Book P5.x; each point enclosed, rounded outward): inside the
-                // values the curve attains on both sides, the span is covered as with the
-                // Bézier hull of its `SpanPoly` below, without building that form. (The points
-                // are those `SpanPoly` starts from, swept in blocks and shared by the
-                // coordinates: cheaper than the f64 insertion with its a-priori bound that
-                // this prune used before, `bezier::span_filter`.)
+                // The span's Bézier hull from its double-double points (`bezier::span_range`:
+                // convex hull property, each point enclosed): inside the values the curve
+                // attains on both sides, the span is covered as with the Bézier hull of its
+                // `SpanPoly` below, without building that form. (The points are those
+                // `SpanPoly` starts from, swept in blocks and shared by the coordinates.)
                 let pts = self.tight.bezier_points(k);
-                let d = self.c.dim();
-                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-                for x in pts.iter().skip(j).step_by(d) {
-                    let v = x.to_interval();
-                    lo = lo.min(v.inf());
-                    hi = hi.max(v.sup());
-                }
+                let (lo, hi) = crate::enclose::bezier::span_range(pts, self.p, j);
                 if lo >= cheap_lo && hi <= cheap_hi {
                     self.stats.fast_exits += 1;
                     continue;

@@ -138,8 +138,8 @@ pub struct Newton {
     /// proves the zero unique), and the rest of the span excluded by the sign of the enclosed
     /// Bernstein coefficients of the derivative numerator; only what is not excluded is
     /// searched from the whole box as before (`Engine::seed_float_first`). Spans of
-    /// non-rational curves are first pruned by their f64 Bézier points with the a-priori
-    /// knot-insertion error bound of `bezier::span_filter`. Counted in `Stats::fast_exits` /
+    /// non-rational curves are first pruned by the hull of their double-double Bézier points
+    /// (`bezier::span_range`). Counted in `Stats::fast_exits` /
     /// `fast_proofs` / `fast_fallbacks`.
     pub fast_path: bool,
 }
