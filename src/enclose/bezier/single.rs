@@ -550,7 +550,10 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
     k += 1;
     {
         let (mut r, nr) = root_estimates(deriv.b[0], deriv.b[1], deriv.b[2]);
-        r[..nr].sort_by(f64::total_cmp);
+        // (ascending; at most two, both finite)
+        if nr == 2 && r[1] < r[0] {
+            r.swap(0, 1);
+        }
         for &ri in &r[..nr] {
             for t in [ri - H, ri + H] {
                 if t > z[k - 1] && t < 1.0 {
