@@ -257,11 +257,11 @@ fn main() {
             out.len() as f64
         }
     };
-    let th = best(reps.min(5), &mut run("hull"));
+    let th = best(reps.min(15), &mut run("hull"));
     // (each strategy's ratio from runs alternating with `hull`'s: the same load for both)
     let paired_stream = |s: &dyn BoxEncloser| {
         let (mut h, mut t) = (run("hull"), run(s.name()));
-        paired(reps.min(5), &mut h, &mut t)
+        paired(reps.min(15), &mut h, &mut t)
     };
     let nlines = batch.iter().filter(|&&b| b == b'\n').count();
     line(String::new());
