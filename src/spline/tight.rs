@@ -243,8 +243,8 @@ impl TightEval {
         }
     }
 
-    /// [`TightEval::new`] for a caller that asks for the Bézier points of every span, in
-    /// order (the Newton strategy's search): [`TightEval::bezier_points`] then extracts up to
+    /// [`TightEval::new`] for a caller that asks for the Bézier points of most spans (the
+    /// searches of the Newton and Bézier strategies): [`TightEval::bezier_points`] then extracts up to
     /// [`SWEEP_BLOCK`] spans at once by one sweep of Boehm insertion (NURBS Book A5.6), about
     /// half the per-span cost; for a caller that needs a few spans it would be wasted work.
     pub fn sweeping(curve: &NurbsCurve) -> Self {
@@ -291,8 +291,8 @@ impl TightEval {
     /// The cached points of span k in the slot `cell` picks, filled on first use together with
     /// those of the following non-empty spans whose slots are empty (up to [`SWEEP_BLOCK`] in
     /// all) by one sweep of Boehm insertion (`HSpline::bezier_sweep`, NURBS Book A5.6: about
-    /// half the per-span extraction's cost from the block's second span on; the same enclosures
-    /// of the same exact points), end points that are exactly doubles made exact.
+    /// half the per-span extraction's cost from the block's second span on; enclosures of the
+    /// same exact points), end points that are exactly doubles made exact.
     fn swept(&self, k: usize, cell: impl Fn(&SpanSlot) -> &OnceLock<Vec<Ddi>>) -> &[Ddi] {
         if let Some(v) = cell(&self.spans[k]).get() {
             return v;
@@ -326,9 +326,10 @@ impl TightEval {
     /// extraction with its a-priori bound at every degree (`num::dw`, where its guard holds),
     /// cached; below [`TAYLOR_TIGHT_FROM`] the very points of the expansions. The Newton
     /// strategy's per-coordinate Bernstein forms and candidate values start from them
-    /// (`newton::bernstein::SpanPoly`), instead of each coordinate's own knot insertion.
+    /// (`newton::bernstein::SpanPoly`), and the Bézier strategy's `Mr` segments, span filter
+    /// and fast paths, instead of each one's own knot insertion.
     pub(crate) fn bezier_points(&self, k: usize) -> &[Ddi] {
-        // (extracted in blocks by one sweep for a caller that asks for every span's points,
+        // (extracted in blocks by one sweep for a caller that asks for most spans' points,
         // `TightEval::sweeping`; else one span at a time)
         match (self.curve.degree() < TAYLOR_TIGHT_FROM, self.sweep) {
             (true, false) => self.span_points(k),
