@@ -1396,6 +1396,68 @@ impl BoxEncloser for BezierSubdivision {
 mod tests {
     use super::*;
 
+    /// The hull filter's bounds (`span_hull`, from `span_range`) against the curve: on random
+    /// non-rational curves of the families with the hardest knot vectors, every sampled value
+    /// of a span (interval de Boor at 33 parameters, its enclosure's far end) lies within the
+    /// bound, and the attained value is at most the curve's value at the span's start (and at
+    /// its end on the last span). Taking b_p as attained on every span fails it.
+    #[test]
+    fn span_hull_bounds_the_span_and_attains_its_value() {
+        use crate::testkit::gen::{self, Family};
+        let mut r = gen::rng(13);
+        let mut checked = 0;
+        for fam in [
+            Family::ClampedUniform,
+            Family::ClusteredKnots,
+            Family::MultipleKnots,
+            Family::Unclamped,
+            Family::ExtremaAtKnots,
+            Family::Mixed,
+        ] {
+            for _ in 0..25 {
+                let c = fam.curve(&mut r);
+                if c.is_rational() {
+                    continue;
+                }
+                let ev = TightEval::sweeping(&c);
+                let (p, n, kn) = (c.degree(), c.num_points() - 1, c.knots());
+                let spans: Vec<usize> = (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect();
+                for &k in &spans {
+                    let last = k == spans[spans.len() - 1];
+                    let pts = ev.bezier_points(k);
+                    for j in 0..c.dim() {
+                        for sign in [1.0, -1.0] {
+                            let (ub, at) = span_hull(pts, p, j, sign, last);
+                            for i in 0..=32 {
+                                let u = (kn[k] + (kn[k + 1] - kn[k]) * (i as f64 / 32.0))
+                                    .clamp(kn[k], kn[k + 1]);
+                                // (the span's own piece: at its right end the left limit)
+                                let x = c
+                                    .point::<Interval>(u)
+                                    .map(|p| p[j])
+                                    .unwrap_or(Interval::ENTIRE);
+                                let far = if sign > 0.0 { x.inf() } else { -x.sup() };
+                                if i < 32 || last {
+                                    assert!(far <= ub, "span {k} coord {j}: {far:e} > {ub:e}");
+                                }
+                            }
+                            let v = ev.coord_at(j, kn[k]);
+                            let near = if sign > 0.0 { v.sup() } else { -v.inf() };
+                            let mut ok = at <= near;
+                            if last {
+                                let w = ev.coord_at(j, kn[k + 1]);
+                                ok |= at <= if sign > 0.0 { w.sup() } else { -w.inf() };
+                            }
+                            assert!(ok, "span {k} coord {j}: attained {at:e} above the curve");
+                            checked += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 500, "{checked}");
+    }
+
     #[test]
     fn cubic_bezier_box_contains_samples_and_is_tight() {
         let c = NurbsCurve::new(

@@ -63,7 +63,7 @@
 
 use super::ddi::{two_prod, two_sum, up, Ddi};
 use super::Scalar;
-use crate::spline::bspline::{clamp_span, sweep_spans};
+use crate::spline::bspline::{clamp_span, run_end, sweep_spans};
 use inari::Interval;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -271,10 +271,7 @@ pub(crate) fn sweep_dw(
     let n = pts.len() / h - 1;
     let (mut last, mut done) = (k0, 1);
     while done < count {
-        let mut e = last + 1;
-        while e + 1 < knots.len() && knots[e + 1] == knots[last + 1] {
-            e += 1;
-        }
+        let e = run_end(knots, last);
         if e > n {
             break;
         }

@@ -522,6 +522,16 @@ fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
     t[1..=p].iter_mut().for_each(|x| *x = u);
 }
 
+/// The last index e of the run of knots equal to u_{k+1}: span e = [u_e, u_{e+1}] is the
+/// non-empty span after span k, if e <= n ([`sweep_spans`]' stepping).
+pub(crate) fn run_end(knots: &[f64], k: usize) -> usize {
+    let mut e = k + 1;
+    while e + 1 < knots.len() && knots[e + 1] == knots[k + 1] {
+        e += 1;
+    }
+    e
+}
+
 /// The Bézier points of up to `count` consecutive non-empty spans, the first being span k0
 /// (u_{k0} < u_{k0+1}), handed to `emit(k, points)` in order (`h` values per point, row-major):
 /// NURBS Book A5.6 DecomposeCurve, started at any span of any (also unclamped) knot vector.
@@ -561,11 +571,7 @@ pub(crate) fn sweep_spans<S: Scalar>(
     let (mut k, mut done) = (k0, 0);
     loop {
         let (a, ub) = (knots[k], knots[k + 1]);
-        // e: the last index of the run of knots equal to u_{k+1}
-        let mut e = k + 1;
-        while e + 1 < knots.len() && knots[e + 1] == ub {
-            e += 1;
-        }
+        let e = run_end(knots, k);
         let mult = e - k;
         // (span e = [u_e, u_{e+1}] is the next non-empty span if e <= n)
         let more = done + 1 < count && e <= n;
