@@ -829,7 +829,7 @@ impl<'a> Evals<'a> {
 /// with e - s >= p ends the span k = s - 1 (kn[s - 1] < u = kn[s], the piece's value P_k)
 /// and starts the span k = e - 1 (kn[e - 1] = u < kn[e], the value P_{k-p}), each where
 /// p <= k <= n: exactly the pairs (span, end) of `knot_value` with multiplicity >= p.
-fn knot_points(c: &NurbsCurve, mut f: impl FnMut(usize)) {
+pub(crate) fn knot_points(c: &NurbsCurve, mut f: impl FnMut(usize)) {
     let (kn, p, n) = (c.knots(), c.degree(), c.num_points() - 1);
     let mut s = 0;
     while s < kn.len() {
@@ -873,6 +873,7 @@ fn knot_points(c: &NurbsCurve, mut f: impl FnMut(usize)) {
 ///   below twice the curve's (the copy's largest coordinate is near 1, rounded by at most an
 ///   ulp), so its refusal test holds, the local stage (which needs a bound within that test)
 ///   does not run, and the end game refuses the bound on the curve's own scale.
+#[inline]
 fn first_round(
     bound: f64,
     inner: f64,
@@ -905,18 +906,30 @@ fn signed(x: Ddi, sign: f64) -> Ddi {
 /// where the full certification must decide: [`first_round`] without the exact knot values
 /// (the lane's clamped ends are among its attained values already; a side that an interior
 /// knot's exact value would decide is left to the full certification, which has them).
+#[inline]
 pub(crate) fn quick(bound: f64, inner: f64, witness: f64, scale: f64) -> Option<bool> {
-    first_round(
-        bound,
-        inner,
-        witness,
-        f64::NEG_INFINITY,
-        (scale, LOWER_WITHIN_ULPS),
-    )
+    quick_exact(bound, inner, witness, f64::NEG_INFINITY, scale)
+}
+
+/// [`quick`] with `exact`, the largest exact value of the side's function at a knot of
+/// multiplicity >= p (from [`knot_points`]; -inf for none): [`first_round`] as the full
+/// certification runs it, for a caller whose attained values do not include those knot
+/// values (the `hull` lane on a spline, whose interior knots of multiplicity p make control
+/// points attained values).
+#[inline]
+pub(crate) fn quick_exact(
+    bound: f64,
+    inner: f64,
+    witness: f64,
+    exact: f64,
+    scale: f64,
+) -> Option<bool> {
+    first_round(bound, inner, witness, exact, (scale, LOWER_WITHIN_ULPS))
 }
 
 /// The first rule: an attained value equal to the bound, or a strict witness at or above
 /// next_down(bound) (the curve exceeds it), proves bound = RU(max).
+#[inline]
 fn attained_rule(bound: f64, inner: f64, witness: f64) -> bool {
     inner == bound || witness >= bound.next_down()
 }
@@ -924,6 +937,7 @@ fn attained_rule(bound: f64, inner: f64, witness: f64) -> bool {
 /// Whether the attained value is more than [`LOWER_WITHIN_ULPS`] ulps of the scale
 /// (max(|bound|, `scale`)) below the bound: a loose bound, which the search stages do not try
 /// to complete.
+#[inline]
 pub(crate) fn far_below(bound: f64, inner: f64, scale: f64, within: usize) -> bool {
     bound - inner > within as f64 * crate::num::ulp(bound.abs().max(scale))
 }

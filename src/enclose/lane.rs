@@ -133,25 +133,30 @@ impl<'a> Simple<'a> {
         let pts = c.points_flat();
         let mut range = [(0.0, 0.0); MAX_DIM];
         let mut extreme_at = [(0, 0); MAX_DIM];
-        for (j, (r, at)) in range.iter_mut().zip(&mut extreme_at).enumerate().take(d) {
-            let (mut lo, mut hi) = (pts[j], pts[j]);
-            for i in 1..=n {
-                let x = pts[i * d + j];
-                if x < lo {
-                    lo = x;
-                    at.0 = i;
+        // point by point (`chunks_exact`: no index arithmetic or bounds checks per value), the
+        // first index of the smallest and of the largest value of each coordinate
+        let (first, rest) = pts.split_at(d);
+        for (r, &x) in range.iter_mut().zip(first) {
+            *r = (x, x);
+        }
+        for (i, q) in rest.chunks_exact(d).enumerate() {
+            for ((r, at), &x) in range.iter_mut().zip(&mut extreme_at).zip(q) {
+                if x < r.0 {
+                    r.0 = x;
+                    at.0 = i + 1;
                 }
-                if x > hi {
-                    hi = x;
-                    at.1 = i;
+                if x > r.1 {
+                    r.1 = x;
+                    at.1 = i + 1;
                 }
             }
+        }
+        for &(lo, hi) in &range[..d] {
             let m = if -lo > hi { -lo } else { hi };
             // (a NaN or infinite coordinate is rejected by validation; checked again)
             if !m.is_finite() || (m != 0.0 && beyond_coord_window(m)) {
                 return None;
             }
-            *r = (lo, hi);
         }
         Some(Simple {
             curve: c,
@@ -644,6 +649,48 @@ fn hull_coord(s: &Simple, j: usize) -> CoordBox {
     }
 }
 
+/// The `hull` lane's coordinates, written to `e` (empty): [`hull_coord`] per coordinate, with
+/// the certificates when `certify`. The driver's facts (`apply_facts`) hold by construction
+/// and are not applied again: the outer bounds are the control-point range itself, the inner
+/// bounds the end control points, which lie in it. The certificate's cheap part is the full
+/// certification's first round (`certify::quick_exact`) with the hull's values (no witness:
+/// -inf; attained: the end control points) and the exact values at knots of multiplicity p
+/// (on a spline the curve passes through those control points: `certify::knot_points`):
+/// `true` when a control point the curve passes through attains the bound, `false` when
+/// those values lie more than a few ulps of the scale below it, the full certification
+/// (`certify::certify`) otherwise: the general path's flags.
+fn hull_into(e: &mut Enclosure, c: &NurbsCurve, s: &Simple, certify: bool) {
+    let mut open = false;
+    // per coordinate the (min, max) of the control values at knots of multiplicity >= p
+    let mut knot_values = [(f64::INFINITY, f64::NEG_INFINITY); MAX_DIM];
+    if certify && s.n > s.p {
+        certify::knot_points(c, |i| {
+            let q = &s.pts[i * s.d..(i + 1) * s.d];
+            for (kv, &x) in knot_values.iter_mut().zip(q) {
+                *kv = (kv.0.min(x), kv.1.max(x));
+            }
+        });
+    }
+    for (j, &(klo, khi)) in knot_values.iter().enumerate().take(s.d) {
+        let clock = Clock::start();
+        let mut cb = hull_coord(s, j);
+        if certify {
+            let (plo, phi) = s.range[j];
+            let scale = plo.abs().max(phi.abs()).max(f64::MIN_POSITIVE);
+            let q_hi = certify::quick_exact(cb.hi, cb.inner_hi, cb.witness_hi, khi, scale);
+            let q_lo = certify::quick_exact(-cb.lo, -cb.inner_lo, -cb.witness_lo, -klo, scale);
+            cb.optimal_hi = q_hi == Some(true);
+            cb.optimal_lo = q_lo == Some(true);
+            open |= q_hi.is_none() || q_lo.is_none();
+        }
+        cb.stats.time_total = clock.elapsed();
+        e.coords.push(cb);
+    }
+    if open {
+        certify::certify(c, e);
+    }
+}
+
 /// The enclosure of a [`Simple`] curve by a strategy named `name` answering with `lane`, with
 /// the certificates when `certify` (see the module docs), written to `e` (whose coordinates
 /// are replaced); `false` sends the curve to the general path (`e` is then unspecified).
@@ -660,20 +707,17 @@ pub fn enclose_into(
 ) -> bool {
     e.strategy = name;
     e.verified = true;
-    e.coords.clear();
+    if !e.coords.is_empty() {
+        e.coords.clear();
+    }
+    if lane == Lane::Hull {
+        hull_into(e, c, s, certify);
+        return true;
+    }
     for j in 0..s.d {
         let clock = Clock::start();
-        let [hi, lo] = match lane {
-            Lane::Hull => {
-                let mut cb = hull_coord(s, j);
-                cb.stats.time_total = clock.elapsed();
-                e.coords.push(cb);
-                continue;
-            }
-            Lane::Tight => match tight_sides(s, j) {
-                Some(sides) => sides,
-                None => return false,
-            },
+        let Some([hi, lo]) = tight_sides(s, j) else {
+            return false;
         };
         let n = |k: usize| (hi.counts[k] + lo.counts[k]) as u64;
         let stats = Stats {
@@ -781,6 +825,72 @@ mod tests {
             }
         }
         assert!(checked > 200, "{checked}");
+    }
+
+    /// The `hull` lane's whole result (bounds, attained values, extrema, certificates) is the
+    /// general path's: `ControlHull` under the driver against the same strategy without the
+    /// lane (so `apply_facts` and the full certification run), on the families the lane
+    /// takes, flat coordinates and ties between end and interior control values included.
+    #[test]
+    fn hull_lane_equals_the_general_path() {
+        use crate::enclose::{drive_with, BoxEncloser, ControlHull, Guarantee};
+        struct NoLane;
+        impl BoxEncloser for NoLane {
+            fn name(&self) -> &'static str {
+                "hull"
+            }
+            fn guarantee(&self) -> Guarantee {
+                Guarantee::Verified
+            }
+            fn enclose_prepared(&self, c: &NurbsCurve) -> Enclosure {
+                ControlHull.enclose_prepared(c)
+            }
+        }
+        let mut r = gen::rng(31);
+        let (mut taken, mut optimal, mut open) = (0, 0, 0);
+        for fam in [
+            Family::ClampedUniform,
+            Family::MultipleKnots,
+            Family::FlatCoordinates,
+            Family::NearDegenerateCubic,
+            Family::Mixed,
+        ] {
+            for i in 0..300 {
+                let mut c = fam.curve(&mut r);
+                if i % 3 == 0 {
+                    // an interior control value one double above the largest end value: the
+                    // quick rule leaves it to the full certification
+                    let n = c.num_points() - 1;
+                    let (e0, e1) = (c.control_point(0)[0], c.control_point(n)[0]);
+                    let mut pts = c.control_points();
+                    if n >= 1 && pts.len() > 2 {
+                        pts[1][0] = e0.max(e1).next_up();
+                        let w = c.weights().map(|w| w.to_vec());
+                        c = NurbsCurve::new(c.degree(), c.knots().to_vec(), pts, w).unwrap();
+                    }
+                }
+                if Simple::of(&c).is_none() {
+                    continue;
+                }
+                taken += 1;
+                for certify in [true, false] {
+                    let lane = drive_with(&ControlHull, &c, certify);
+                    let general = drive_with(&NoLane, &c, certify);
+                    assert_eq!(lane, general, "{fam:?} {c:?}");
+                }
+                let e = drive_with(&ControlHull, &c, true);
+                optimal += e.coords.iter().filter(|cb| cb.optimal_hi).count();
+                let scale = c.coord_scale(0).max(f64::MIN_POSITIVE);
+                let cb = &e.coords[0];
+                open += usize::from(
+                    certify::quick(cb.hi, cb.inner_hi, f64::NEG_INFINITY, scale).is_none(),
+                );
+            }
+        }
+        assert!(
+            taken > 300 && optimal > 100 && open > 20,
+            "{taken} {optimal} {open}"
+        );
     }
 
     /// The closed form equals the exact insertion in rational arithmetic (so the formula is

@@ -27,6 +27,7 @@ pub fn set_timing(on: bool) {
 }
 
 /// Whether timing was asked for ([`set_timing`]).
+#[inline]
 pub fn timing() -> bool {
     TIMING.load(Ordering::Relaxed)
 }

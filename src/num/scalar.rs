@@ -228,6 +228,7 @@ pub mod iv {
 /// The spacing of f64 numbers just above |x| (the ulp of x, used to report widths and
 /// distances "in ulps of a scale"): 2^(e - 52) for a normal |x| with exponent e, 2^-1074 for a
 /// zero or subnormal |x|; for non-finite |x| (and f64::MAX) the spacing below f64::MAX.
+#[inline]
 pub fn ulp(x: f64) -> f64 {
     let s = x.abs();
     if !s.is_finite() || s == f64::MAX {
