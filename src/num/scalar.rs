@@ -59,6 +59,10 @@ pub trait Scalar:
     + Div<Output = Self>
     + Neg<Output = Self>
 {
+    /// Whether the corner cuts of [`crate::spline::bezier::de_casteljau_levels`] run in
+    /// blocks of four (which compile to vector instructions for f64; for the verified types a
+    /// block only moves more data).
+    const CUT_BLOCKS: bool = false;
     /// Exact embedding of an f64 value (the curve data are f64 and are taken as exact).
     fn from_f64(x: f64) -> Self;
     /// Additive identity.
@@ -133,6 +137,7 @@ pub trait Scalar:
 }
 
 impl Scalar for f64 {
+    const CUT_BLOCKS: bool = true;
     #[inline]
     fn from_f64(x: f64) -> Self {
         x

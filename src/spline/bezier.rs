@@ -46,7 +46,19 @@ pub fn de_casteljau_levels<S: Scalar>(
     for r in 1..=p {
         let len = (p - r + 1) * h;
         let lv = &mut b[..len + h];
-        for k in 0..len {
+        // Blocks of four entries (`Scalar::CUT_BLOCKS`: f64), every read of a block before its
+        // writes: in the scalar order entry x is read (as `lo` of x, as `hi` of x - h) at or
+        // before its own write, never after, so the block gives the scalar loop's values
+        // exactly. A block compiles to vector instructions (the levels are short, and the
+        // scalar tail of the compiler's own vectorised loop took most of them).
+        let mut k = 0;
+        while S::CUT_BLOCKS && k + 4 <= len {
+            let (lo, hi) = (&lv[k..k + 4], &lv[k + h..k + h + 4]);
+            let v: [S; 4] = std::array::from_fn(|m| S::lerp(t, &lo[m], &hi[m]));
+            lv[k..k + 4].clone_from_slice(&v);
+            k += 4;
+        }
+        for k in k..len {
             let hi = lv[k + h].clone();
             lv[k] = S::lerp(t, &lv[k], &hi);
         }
@@ -282,6 +294,38 @@ pub fn cartesian<S: Scalar>(homogeneous: Vec<S>, dim: usize, rational: bool) -> 
 
 #[cfg(test)]
 mod tests {
+    /// The f64 corner cuts in blocks of four give the one-entry-at-a-time loop's values bit
+    /// for bit, at every level (the callback's view) and at the end: 1 to 5 rows, 1 to 40
+    /// points, random data and parameters (a block that read an entry after its write would
+    /// differ).
+    #[test]
+    fn blocked_corner_cuts_equal_the_scalar_loop() {
+        use rand::Rng;
+        let mut r = crate::testkit::gen::rng(3);
+        for _ in 0..3000 {
+            let h = r.random_range(1..=5usize);
+            let np = r.random_range(1..=40usize);
+            let t: f64 = r.random_range(0.0..=1.0);
+            let b0: Vec<f64> = (0..np * h).map(|_| r.random_range(-1e3..1e3)).collect();
+            let mut want = b0.clone();
+            let mut want_levels = Vec::new();
+            for lvl in 1..np {
+                let len = (np - lvl) * h;
+                for k in 0..len {
+                    want[k] = t * (want[k + h] - want[k]) + want[k];
+                }
+                want_levels.push(want[..len].to_vec());
+            }
+            let mut got = b0.clone();
+            let mut got_levels = Vec::new();
+            super::de_casteljau_levels(&mut got, h, &t, |lvl, b| {
+                got_levels.push(b[..(np - lvl) * h].to_vec());
+            });
+            assert_eq!(got_levels, want_levels, "h {h} points {np} t {t}");
+            assert_eq!(got, want);
+        }
+    }
+
     #[test]
     fn bernstein_value_matches_de_casteljau() {
         // the binomial table is Pascal's triangle: exact where f64 holds C(n, i) exactly
