@@ -119,6 +119,13 @@ impl Mr {
         Mr::checked(hi, up(lo.abs() + rad))
     }
 
+    /// The set [c - r, c + r] for a centre and a radius that a caller proved (an a-priori
+    /// bound); anything non-finite, or a negative or NaN radius, gives [`Mr::ENTIRE`].
+    #[inline]
+    pub(crate) fn from_centre_radius(c: f64, r: f64) -> Mr {
+        Mr::checked(c, r)
+    }
+
     /// Centre.
     #[inline]
     pub fn mid(&self) -> f64 {

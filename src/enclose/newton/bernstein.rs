@@ -78,14 +78,7 @@ impl SpanPoly {
             // degree above BERNSTEIN_MAX_DEGREE: F unknown
             vec![Mr::ENTIRE]
         } else if rational {
-            let mut d = vec![Mr::from_f64(0.0); 2 * p - 1];
-            for i in 0..p {
-                for l in i + 1..=p {
-                    let (ai, wi, al, wl) = (q[2 * i], q[2 * i + 1], q[2 * l], q[2 * l + 1]);
-                    d[i + l - 1] = d[i + l - 1] + pair[i * (p + 1) + l] * (al * wi - ai * wl);
-                }
-            }
-            d
+            pair_sum_f64(q, pair, p)
         } else {
             q.windows(2).map(|w| w[1] - w[0]).collect()
         };
@@ -587,6 +580,71 @@ pub(crate) fn segment_values_f64(seg: &BezierSeg<Mr>, t0: f64, t1: f64) -> Optio
     (!v.is_empty() && v.is_common_interval()).then_some(v)
 }
 
+/// The Bernstein coefficients of the rational derivative numerator (see [`SpanPoly`]),
+/// D_k = sum over i < l with i + l - 1 = k of P_il (A_l W_i - A_i W_l), for homogeneous points
+/// `q` = (A_0, W_0, A_1, W_1, ...) and pair coefficients P_il = `pair[i (p + 1) + l]`, all
+/// enclosed in [`Mr`]: the sums in plain f64 on the centres, each enclosed with one a-priori
+/// bound (an `Mr` operation per product, with its own radius and exactness test, cost five
+/// times as much; this is O(p^2) per span and coordinate).
+///
+/// The bound (u = 2^-53, U1 = u (1 + 2^-50), η = 2^-1075 the underflow error of a product). Per
+/// term, with centres a, w, P and radii r: x1 = fl(a_l w_i), x2 = fl(a_i w_l), t = fl(x1 - x2),
+/// v = fl(P t), S = |x1| + |x2|, ρ1 = |a_l| r_wi + |w_i| r_al + r_al r_wi (so |A_l W_i - a_l w_i|
+/// <= ρ1; ρ2 alike). Each rounding errs by at most U1 |result| (+ η for a product), so with
+/// the exact D = A_l W_i - A_i W_l: |D - t| <= ρ1 + ρ2 + U1 (S + |t|) + 2η, |t| <= 1.001 S,
+/// |D| <= 1.01 S + ρ1 + ρ2 + 2η, and for every P in the pair's enclosure
+/// |P D - v| <= r_P |D| + |P| |D - t| + U1 |v| + η
+///          <= r_P (1.01 S + ρ1 + ρ2) + |P| (ρ1 + ρ2) + 3.03 u |P| S + η (2 r_P + 2 |P| + 1).
+/// The m terms of D_k are summed in order from 0: at most (m - 1) roundings of partial sums
+/// of |v| <= 1.01 |P| S each, error <= 1.03 (m - 1) u sum |P| S (m <= 256). So
+/// the sum over the terms of r_P (1.01 S + ρ1 + ρ2) + |P| (ρ1 + ρ2), plus
+/// (3.03 + 1.03 (m - 1)) u sum |P| S, plus η sum (2 r_P + 2 |P| + 17), is a bound E_k of
+/// |D_k - d_k| (the 16 η per term cover the underflow of the products computed for the bound
+/// itself). E_k is computed in f64 from nonnegative terms
+/// only: each of its at most 2^12 roundings to nearest loses at most a factor 1 - u, so the
+/// computed sum times 1 + 2^-40, rounded, is at least E_k. A term whose products have an exact
+/// zero factor of radius 0 each is exactly 0 and adds nothing (flat runs, shifted to zero, stay
+/// exact zeros). A non-finite centre or bound gives ENTIRE. Tested against exact rational
+/// sums over the corners of the input enclosures (`pair_sum_bound_holds_exactly`).
+fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize) -> Vec<Mr> {
+    const ETA: f64 = f64::from_bits(1); // 2^-1074 >= η
+    const C: f64 = f64::EPSILON / 2.0; // u
+    let n = 2 * p - 1;
+    // per k: the centre d, the radius terms, sum |P| S, the η count, the number of terms m
+    let mut acc = vec![(0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64); n];
+    for i in 0..p {
+        let (ai, wi) = (q[2 * i], q[2 * i + 1]);
+        for l in i + 1..=p {
+            let (al, wl) = (q[2 * l], q[2 * l + 1]);
+            let pc = pair[i * (p + 1) + l];
+            let (a_l, w_i, a_i, w_l) = (al.mid(), wi.mid(), ai.mid(), wl.mid());
+            let x1 = a_l * w_i;
+            let x2 = a_i * w_l;
+            let v = pc.mid() * (x1 - x2);
+            let rho1 = a_l.abs() * wi.rad() + w_i.abs() * al.rad() + al.rad() * wi.rad();
+            let rho2 = a_i.abs() * wl.rad() + w_l.abs() * ai.rad() + ai.rad() * wl.rad();
+            let zero = (a_l == 0.0 || w_i == 0.0) && (a_i == 0.0 || w_l == 0.0);
+            let (pa, pr) = (pc.mid().abs(), pc.rad());
+            let sum = x1.abs() + x2.abs();
+            let e = &mut acc[i + l - 1];
+            e.0 += v;
+            if !(zero && rho1 == 0.0 && rho2 == 0.0) {
+                e.1 += pr * (1.01 * sum + rho1 + rho2) + pa * (rho1 + rho2);
+                e.2 += pa * sum;
+                e.3 += 2.0 * (pr + pa) + 17.0;
+                e.4 += 1.0;
+            }
+        }
+    }
+    acc.into_iter()
+        .map(|(d, r, g, h, m)| {
+            let m_terms = (m - 1.0).max(0.0);
+            let e = (r + (3.03 + 1.03 * m_terms) * C * g + h * ETA) * (1.0 + 1.0 / 1_099_511_627_776.0);
+            Mr::from_centre_radius(d, e)
+        })
+        .collect()
+}
+
 /// The Cartesian points (x_i - c) of homogeneous one-coordinate points.
 fn cartesian<S: Scalar>(q: Vec<S>, rational: bool) -> Vec<S> {
     // one coordinate row (and the weight row): the shared kernel with dim = 1
@@ -1062,6 +1120,90 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The a-priori bound of [`pair_sum_f64`] holds against exact rational sums: for inputs
+    /// anywhere in their enclosures (centres, and corners at ± the radius, of the points and
+    /// of the pair coefficients), every exact D_k lies within the returned radius of the
+    /// centre; degrees 1 to 40, magnitudes 2^±60, radii from 0 to 2^-30 relative, exact zeros
+    /// (flat runs, which must stay exact zeros), cancelling and alternating values.
+    #[test]
+    fn pair_sum_bound_holds_exactly() {
+        use crate::num::Exact;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(23);
+        let (mut checked, mut zeros) = (0, 0);
+        for it in 0..600 {
+            let p = if it % 50 == 7 { rng.random_range(13..=40) } else { rng.random_range(1..=12) };
+            let mag = 2f64.powi(rng.random_range(-60..=60));
+            let rel = [0.0, 1e-30, 1e-17, 1e-10][it % 4];
+            let q: Vec<Mr> = (0..=p)
+                .flat_map(|i| {
+                    let a = match it % 5 {
+                        0 if i % 3 != 2 => 0.0, // a flat run: exact zeros
+                        1 => mag * if i % 2 == 0 { 1.0 } else { -0.999 },
+                        2 => mag * (1.0 + rng.random_range(-1e-12..1e-12)),
+                        _ => rng.random_range(-1.0..1.0) * mag,
+                    };
+                    let w: f64 = rng.random_range(0.01..100.0);
+                    let ra = if a == 0.0 { 0.0 } else { a.abs() * rel * rng.random_range(0.0..1.0) };
+                    let rw = w * rel * rng.random_range(0.0..1.0);
+                    [Mr::from_centre_radius(a, ra), Mr::from_centre_radius(w, rw)]
+                })
+                .collect();
+            let mut pair = pair_coefficients(p);
+            if it % 3 == 1 {
+                // (wider pair enclosures than the cached ones, so that their radius counts)
+                for x in &mut pair {
+                    *x = Mr::from_centre_radius(x.mid(), x.mid().abs() * 1e-12);
+                }
+            }
+            let got = pair_sum_f64(&q, &pair, p);
+            assert_eq!(got.len(), 2 * p - 1);
+            for trial in 0..3 {
+                // an exact value in each enclosure: the centre or a corner
+                let mut pick = |x: &Mr| {
+                    let s = if trial == 0 { 0.0 } else { [-1.0, 0.0, 1.0][rng.random_range(0..3)] };
+                    Exact::of(x.mid()) + Exact::of(s) * Exact::of(x.rad())
+                };
+                let qe: Vec<Exact> = q.iter().map(&mut pick).collect();
+                let pe: Vec<Exact> = pair.iter().map(&mut pick).collect();
+                let mut d = vec![Exact::of(0.0); 2 * p - 1];
+                for i in 0..p {
+                    for l in i + 1..=p {
+                        let t = qe[2 * l].clone() * qe[2 * i + 1].clone()
+                            - qe[2 * i].clone() * qe[2 * l + 1].clone();
+                        d[i + l - 1] = d[i + l - 1].clone() + pe[i * (p + 1) + l].clone() * t;
+                    }
+                }
+                for (k, (x, g)) in d.iter().zip(&got).enumerate() {
+                    let dev = x.clone() - Exact::of(g.mid());
+                    assert!(
+                        !dev.gt_f64(g.rad()) && !(Exact::of(0.0) - dev).gt_f64(g.rad()),
+                        "it {it} p {p} k {k}: centre {:e} radius {:e}",
+                        g.mid(),
+                        g.rad()
+                    );
+                    checked += 1;
+                }
+            }
+            if it % 5 == 0 && rel == 0.0 {
+                // a coefficient whose every term has a zero factor is an exact zero
+                for (k, g) in got.iter().enumerate() {
+                    let all_zero = (0..p).all(|i| {
+                        (i + 1..=p).filter(|&l| i + l - 1 == k).all(|l| {
+                            (q[2 * l].mid() == 0.0 || q[2 * i + 1].mid() == 0.0)
+                                && (q[2 * i].mid() == 0.0 || q[2 * l + 1].mid() == 0.0)
+                        })
+                    });
+                    if all_zero {
+                        assert_eq!((g.mid(), g.rad()), (0.0, 0.0), "p {p} k {k}");
+                        zeros += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 10_000 && zeros > 20, "{checked} {zeros}");
     }
 
     /// The a-priori bound of [`restrict_hull_f64`] holds against exact rational
