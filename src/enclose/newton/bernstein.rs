@@ -564,19 +564,20 @@ pub(crate) fn segment_values_f64(seg: &BezierSeg<Mr>, t0: f64, t1: f64) -> Optio
     if !(0.0 <= t0 && t0 < t1 && t1 <= 1.0) {
         return None;
     }
-    let h = if seg.rational { 2 } else { 1 };
-    let row = |r: usize| seg.pts.iter().skip(r).step_by(h).copied();
-    let x: SmallVec<[Interval; 32]> =
-        restricted_f64(row(0), t0, t1, |b, e| b.iter().map(|&bi| widened(bi, bi, e)).collect())?;
-    let v = if h == 1 {
-        x.iter().fold(Interval::EMPTY, |a, &xi| a.convex_hull(xi))
-    } else {
-        restricted_f64(row(1), t0, t1, |b, e| {
-            x.iter().zip(b).fold(Interval::EMPTY, |a, (&xi, &wi)| {
-                a.convex_hull(xi / widened(wi, wi, e))
+    // (both rows in one interleaved restriction: the same splits per row, each row with its
+    // own bound)
+    let v = if seg.rational {
+        restricted_f64::<2, _>(&seg.pts, t0, t1, |b, e| {
+            b.chunks_exact(2).fold(Interval::EMPTY, |a, q| {
+                a.convex_hull(widened(q[0], q[0], e[0]) / widened(q[1], q[1], e[1]))
             })
-        })?
-    };
+        })
+    } else {
+        restricted_f64::<1, _>(&seg.pts, t0, t1, |b, e| {
+            b.iter()
+                .fold(Interval::EMPTY, |a, &x| a.convex_hull(widened(x, x, e[0])))
+        })
+    }?;
     (!v.is_empty() && v.is_common_interval()).then_some(v)
 }
 
@@ -693,7 +694,8 @@ fn restrict_hull_f64(co: &[Mr], t0: f64, t1: f64) -> Option<(Interval, f64, bool
     if !(0.0 <= t0 && t0 < t1 && t1 <= 1.0) {
         return None;
     }
-    restricted_f64(co.iter().copied(), t0, t1, |b, e| {
+    restricted_f64::<1, _>(co, t0, t1, |b, e| {
+        let e = e[0];
         let (lo, hi) = b.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
             (lo.min(x), hi.max(x))
         });
@@ -712,9 +714,9 @@ fn value_f64(co: &[Mr], t: f64) -> Option<(Interval, f64)> {
     if !(0.0..=1.0).contains(&t) {
         return None;
     }
-    restricted_f64(co.iter().copied(), 0.0, t, |b, e| {
+    restricted_f64::<1, _>(co, 0.0, t, |b, e| {
         let v = b[b.len() - 1];
-        (widened(v, v, e), e)
+        (widened(v, v, e[0]), e[0])
     })
 }
 
@@ -726,68 +728,80 @@ fn widened(lo: f64, hi: f64, e: f64) -> Interval {
     iv::span(lo, hi) + iv::span(-e, e)
 }
 
-/// The common body of [`restrict_hull_f64`] and [`value_f64`]: the midpoints of the
-/// coefficients `co` restricted to [t0, t1] ([`restrict_in_place`]) and the bound E (see
-/// [`restrict_hull_f64`]) handed to `done` (E = inf for non-finite data); `None` for no
-/// coefficient or a degree above [`F64_RESTRICT_MAX`].
-fn restricted_f64<R>(
-    co: impl ExactSizeIterator<Item = Mr>,
+/// The common body of [`restrict_hull_f64`], [`value_f64`] and [`segment_values_f64`]: the
+/// midpoints of the coefficients `co` (`h` interleaved rows, each a polynomial of degree n)
+/// restricted to [t0, t1] ([`restrict_in_place`]) and per row the bound E of
+/// [`restrict_hull_f64`] (from that row's largest midpoint and radius: the rows are
+/// independent polynomials split at the same parameters) handed to `done` (E = inf for
+/// non-finite data); `None` for no coefficient or a degree above [`F64_RESTRICT_MAX`].
+fn restricted_f64<const H: usize, R>(
+    co: &[Mr],
     t0: f64,
     t1: f64,
-    done: impl FnOnce(&[f64], f64) -> R,
+    done: impl FnOnce(&[f64], &[f64]) -> R,
 ) -> Option<R> {
-    let n = co.len().checked_sub(1)?;
-    if n > F64_RESTRICT_MAX {
+    let h = H;
+    let n = (co.len() / h).checked_sub(1)?;
+    if n > F64_RESTRICT_MAX || h > 2 || co.len() % h != 0 {
         return None;
     }
     // (stack buffers for the usual degrees, heap ones above)
     const STACK: usize = 64;
+    let len = co.len();
     let (mut sb, mut so) = ([0.0f64; STACK], [0.0f64; STACK]);
     let (mut hb, mut ho) = (Vec::new(), Vec::new());
-    let (b, out) = if n < STACK {
-        (&mut sb[..=n], &mut so[..=n])
+    let (b, out) = if len <= STACK {
+        (&mut sb[..len], &mut so[..len])
     } else {
-        hb.resize(n + 1, 0.0);
-        ho.resize(n + 1, 0.0);
+        hb.resize(len, 0.0);
+        ho.resize(len, 0.0);
         (&mut hb[..], &mut ho[..])
     };
-    let (mut m, mut r) = (0.0f64, 0.0f64);
-    for (x, c) in b.iter_mut().zip(co) {
+    let (mut m, mut r) = ([0.0f64; 2], [0.0f64; 2]);
+    for (i, (x, c)) in b.iter_mut().zip(co).enumerate() {
         *x = c.mid();
-        m = m.max(x.abs());
-        r = r.max(c.rad());
+        let row = i % h;
+        m[row] = m[row].max(x.abs());
+        r[row] = r[row].max(c.rad());
     }
-    if !(m.is_finite() && r.is_finite()) {
-        return Some(done(b, f64::INFINITY));
+    let inf = [f64::INFINITY; 2];
+    if !m.iter().chain(&r).all(|v| v.is_finite()) {
+        return Some(done(b, &inf[..h]));
     }
-    restrict_in_place(b, out, t0, t1);
+    restrict_in_place::<f64, H>(b, out, t0, t1);
     // (midpoints near f64::MAX of opposite signs overflow a difference hi - lo: an infinite
     // or NaN coefficient voids the bound, whose proof assumes every computed value finite,
     // and a NaN would be skipped by the min / max of a hull: E = inf, so ENTIRE)
     if !b.iter().all(|x| x.is_finite()) {
-        return Some(done(b, f64::INFINITY));
+        return Some(done(b, &inf[..h]));
     }
     let nf = n as f64;
-    let e = up(nf * (1.0 / 562_949_953_421_312.0) * m + nf * f64::from_bits(2) + r);
-    Some(done(b, e))
+    let e = [0, 1].map(|row| up(nf * (1.0 / 562_949_953_421_312.0) * m[row] + nf * f64::from_bits(2) + r[row]));
+    Some(done(b, &e[..h]))
 }
 
-/// The splits of [`restrict_hull_f64`] in place on the coefficients `b` (`out`: a buffer of
-/// the same length): left part at t1 (unless t1 = 1), then its right part at
-/// s = max(0, next_down(fl(t0 / t1))) (unless t0 = 0), so that `b` ends as the coefficients
-/// over [s t1, t1], which contains [t0, t1]. Generic so that the test runs the same splits
-/// in exact arithmetic.
-fn restrict_in_place<S: Scalar>(b: &mut [S], out: &mut [S], t0: f64, t1: f64) {
-    let n = b.len() - 1;
+/// The splits of [`restrict_hull_f64`] in place on the coefficients `b` (`h` interleaved rows;
+/// `out`: a buffer of the same length): left part at t1 (unless t1 = 1), then its right part
+/// at s = max(0, next_down(fl(t0 / t1))) (unless t0 = 0), so that `b` ends as the
+/// coefficients over [s t1, t1], which contains [t0, t1]. Generic so that the test runs the
+/// same splits in exact arithmetic.
+fn restrict_in_place<S: Scalar, const H: usize>(b: &mut [S], out: &mut [S], t0: f64, t1: f64) {
+    let h = H;
+    let n = b.len() / h - 1;
     if t1 < 1.0 {
-        out[0] = b[0].clone();
-        de_casteljau_levels(b, 1, &S::from_f64(t1), |lv, b| out[lv] = b[0].clone());
+        out[..h].clone_from_slice(&b[..h]);
+        de_casteljau_levels(b, h, &S::from_f64(t1), |lv, b| {
+            out[lv * h..(lv + 1) * h].clone_from_slice(&b[..h])
+        });
         b.clone_from_slice(out);
     }
     if t0 > 0.0 {
         let s = (t0 / t1).next_down().max(0.0);
-        out[n] = b[n].clone();
-        de_casteljau_levels(b, 1, &S::from_f64(s), |lv, b| out[n - lv] = b[n - lv].clone());
+        out[n * h..].clone_from_slice(&b[n * h..]);
+        de_casteljau_levels(b, h, &S::from_f64(s), |lv, b| {
+            let k = (n - lv) * h;
+            out[k..k + h].clone_from_slice(&b[k..k + h])
+        });
         b.clone_from_slice(out);
     }
 }
@@ -1206,6 +1220,56 @@ mod tests {
         assert!(checked > 10_000 && zeros > 20, "{checked} {zeros}");
     }
 
+    /// The restriction of interleaved rows (`segment_values_f64`'s homogeneous rows x w, w)
+    /// gives each row's one-row restriction bit for bit (so the one-row bound, tested exactly
+    /// below, holds per row), and the values' enclosure contains the piece's f64 values
+    /// over the box: random rows, degrees 1 to 40, boxes anywhere in [0, 1].
+    #[test]
+    fn interleaved_rows_restrict_as_single_rows() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
+        for _ in 0..2000 {
+            let n = rng.random_range(1..=40usize);
+            let rows: Vec<f64> = (0..=n)
+                .flat_map(|_| [rng.random_range(-10.0..10.0), rng.random_range(0.1..10.0)])
+                .collect();
+            let (a, b): (f64, f64) = (rng.random_range(0.0..1.0), rng.random_range(0.0..1.0));
+            let (t0, t1) = (a.min(b), a.max(b));
+            if t0 >= t1 {
+                continue;
+            }
+            let mut both = rows.clone();
+            let mut out = vec![0.0; both.len()];
+            restrict_in_place::<f64, 2>(&mut both, &mut out, t0, t1);
+            for r in 0..2 {
+                let mut one: Vec<f64> = rows.iter().skip(r).step_by(2).copied().collect();
+                let mut out1 = vec![0.0; one.len()];
+                restrict_in_place::<f64, 1>(&mut one, &mut out1, t0, t1);
+                let got: Vec<f64> = both.iter().skip(r).step_by(2).copied().collect();
+                assert_eq!(got, one, "row {r}, n {n}, [{t0}, {t1}]");
+            }
+            // the rational piece's values over the box lie in the enclosure
+            let seg = BezierSeg {
+                a: 0.0,
+                b: 1.0,
+                degree: n,
+                dim: 1,
+                rational: true,
+                pts: rows.iter().map(|&x| Mr::from_f64(x)).collect(),
+            };
+            let v = segment_values_f64(&seg, t0, t1).unwrap();
+            for i in 0..=8 {
+                let t = t0 + (t1 - t0) * i as f64 / 8.0;
+                let x: Vec<f64> = rows.iter().step_by(2).copied().collect();
+                let w: Vec<f64> = rows.iter().skip(1).step_by(2).copied().collect();
+                let y = crate::spline::bezier::bernstein_value(&x, t)
+                    / crate::spline::bezier::bernstein_value(&w, t);
+                let tol = 1e-9 * (1.0 + y.abs());
+                assert!(v.inf() - tol <= y && y <= v.sup() + tol, "{v:?} {y}");
+            }
+        }
+    }
+
     /// The a-priori bound of [`restrict_hull_f64`] holds against exact rational
     /// restrictions: every exact restricted coefficient (of the midpoints, at the same split
     /// parameters) lies in the returned enclosure, on random, clustered, cancelling,
@@ -1264,7 +1328,7 @@ mod tests {
             // exact restriction at the same parameters (the same splits in exact arithmetic)
             let mut b: Vec<Exact> = c.iter().map(|&x| Exact::of(x)).collect();
             let mut out = b.clone();
-            restrict_in_place(&mut b, &mut out, t0, t1);
+            restrict_in_place::<_, 1>(&mut b, &mut out, t0, t1);
             for x in &b {
                 assert!(
                     !x.gt_f64(got.sup()) && !(Exact::of(got.inf()) - x.clone()).gt_f64(0.0),
@@ -1277,7 +1341,7 @@ mod tests {
             let (pv, _) = value_f64(&co, t1).unwrap();
             let mut b: Vec<Exact> = c.iter().map(|&x| Exact::of(x)).collect();
             let mut out = b.clone();
-            restrict_in_place(&mut b, &mut out, 0.0, t1);
+            restrict_in_place::<_, 1>(&mut b, &mut out, 0.0, t1);
             let v = &b[n];
             assert!(
                 !v.gt_f64(pv.sup()) && !(Exact::of(pv.inf()) - v.clone()).gt_f64(0.0),
