@@ -133,23 +133,14 @@ impl<'a> Simple<'a> {
         let pts = c.points_flat();
         let mut range = [(0.0, 0.0); MAX_DIM];
         let mut extreme_at = [(0, 0); MAX_DIM];
-        // point by point (`chunks_exact`: no index arithmetic or bounds checks per value), the
-        // first index of the smallest and of the largest value of each coordinate
-        let (first, rest) = pts.split_at(d);
-        for (r, &x) in range.iter_mut().zip(first) {
-            *r = (x, x);
-        }
-        for (i, q) in rest.chunks_exact(d).enumerate() {
-            for ((r, at), &x) in range.iter_mut().zip(&mut extreme_at).zip(q) {
-                if x < r.0 {
-                    r.0 = x;
-                    at.0 = i + 1;
-                }
-                if x > r.1 {
-                    r.1 = x;
-                    at.1 = i + 1;
-                }
-            }
+        // (the scan with the dimension a compile-time constant: the loop over a point's
+        // coordinates unrolled, no index arithmetic per value)
+        match d {
+            1 => scan::<1>(pts, &mut range, &mut extreme_at),
+            2 => scan::<2>(pts, &mut range, &mut extreme_at),
+            3 => scan::<3>(pts, &mut range, &mut extreme_at),
+            4 => scan::<4>(pts, &mut range, &mut extreme_at),
+            _ => return None,
         }
         for &(lo, hi) in &range[..d] {
             let m = if -lo > hi { -lo } else { hi };
@@ -170,6 +161,32 @@ impl<'a> Simple<'a> {
             range,
             extreme_at,
         })
+    }
+}
+
+/// Per coordinate of the points `pts` (D coordinates each, at least one point) the range
+/// (min, max) and the first indices of the smallest and of the largest value.
+#[inline]
+fn scan<const D: usize>(
+    pts: &[f64],
+    range: &mut [(f64, f64); MAX_DIM],
+    extreme_at: &mut [(usize, usize); MAX_DIM],
+) {
+    let (first, rest) = pts.split_at(D);
+    for (r, &x) in range.iter_mut().zip(first) {
+        *r = (x, x);
+    }
+    for (i, q) in rest.chunks_exact(D).enumerate() {
+        for ((r, at), &x) in range.iter_mut().zip(extreme_at.iter_mut()).zip(q) {
+            if x < r.0 {
+                r.0 = x;
+                at.0 = i + 1;
+            }
+            if x > r.1 {
+                r.1 = x;
+                at.1 = i + 1;
+            }
+        }
     }
 }
 
