@@ -1010,3 +1010,21 @@ fn overflowing_f64_restrictions_exclude_nothing() {
     let v = check_all_strategies(&c, 4, &[]);
     assert!(v.is_empty(), "{v:?}");
 }
+
+/// A quadratic NURBS whose first piece has a weight of 1e214 and a control value -5.4e226 and
+/// whose second piece (after a jump knot) is an ordinary arch up to 1315 (found by
+/// `jumps_next_to_overflowing_weights_stay_in_the_box`): after the driver's rescaling the second
+/// piece's homogeneous points are zero centres with subnormal radii next to weights near
+/// 1e-214, and `newton`'s f64 sum of the derivative numerator (`pair_sum_f64`) took a term as
+/// exactly zero because its computed radius products had underflowed to 0. F came out as an
+/// exact zero, the arch was taken as flat, and the upper bound was 0 (certified optimal). Now
+/// only exact zero factors (centre and radius 0) make a term exactly zero.
+#[test]
+fn underflowing_radius_products_do_not_flatten_a_piece() {
+    let json = r#"{"degree":2,"knots":[-1.0,-1.0,-1.0,0.0,0.0,0.0,1.0,1.0,1.0],"control_points":[[0.0,0.0],[-5.356699823829085e+226,0.0],[0.0,0.0],[0.0,0.0],[2630.8732680534463,0.0],[0.0,0.0]],"weights":[1.0,1.0,1e+214,1.0,1.0,1.0]}"#;
+    let c = nurbs_box::parse_curve(json.as_bytes()).unwrap();
+    let v = check_all_strategies(&c, 4, &[]);
+    assert!(v.is_empty(), "{v:?}");
+    let v = nurbs_box::testkit::robust::check_strategies(&raw_strategies(), &c, 4, &[]);
+    assert!(v.is_empty(), "raw: {v:?}");
+}

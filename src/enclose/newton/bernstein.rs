@@ -603,9 +603,11 @@ pub(crate) fn segment_values_f64(seg: &BezierSeg<Mr>, t0: f64, t1: f64) -> Optio
 /// |D_k - d_k| (the 16 η per term cover the underflow of the products computed for the bound
 /// itself). E_k is computed in f64 from nonnegative terms
 /// only: each of its at most 2^12 roundings to nearest loses at most a factor 1 - u, so the
-/// computed sum times 1 + 2^-40, rounded, is at least E_k. A term whose products have an exact
-/// zero factor of radius 0 each is exactly 0 and adds nothing (flat runs, shifted to zero, stay
-/// exact zeros). A non-finite centre or bound gives ENTIRE. Tested against exact rational
+/// computed sum times 1 + 2^-40, rounded, is at least E_k. A term whose products each have a
+/// factor that is an exact 0 (centre and radius 0) is exactly 0 and adds nothing (flat runs,
+/// shifted to zero, stay exact zeros); any other term adds its η share, also where its
+/// computed radius terms underflowed to 0 (a zero centre with a subnormal radius times a
+/// weight near 1e-214). A non-finite centre or bound gives ENTIRE. Tested against exact rational
 /// sums over the corners of the input enclosures (`pair_sum_bound_holds_exactly`).
 fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize) -> Vec<Mr> {
     const ETA: f64 = f64::from_bits(1); // 2^-1074 >= η
@@ -624,12 +626,15 @@ fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize) -> Vec<Mr> {
             let v = pc.mid() * (x1 - x2);
             let rho1 = a_l.abs() * wi.rad() + w_i.abs() * al.rad() + al.rad() * wi.rad();
             let rho2 = a_i.abs() * wl.rad() + w_l.abs() * ai.rad() + ai.rad() * wl.rad();
-            let zero = (a_l == 0.0 || w_i == 0.0) && (a_i == 0.0 || w_l == 0.0);
+            // (exactly zero: a factor of each product is an exact 0, centre and radius; a test
+            // on the computed ρ would let a radius product that underflowed to 0 pass)
+            let nil = |x: Mr| x.mid() == 0.0 && x.rad() == 0.0;
+            let zero = (nil(al) || nil(wi)) && (nil(ai) || nil(wl));
             let (pa, pr) = (pc.mid().abs(), pc.rad());
             let sum = x1.abs() + x2.abs();
             let e = &mut acc[i + l - 1];
             e.0 += v;
-            if !(zero && rho1 == 0.0 && rho2 == 0.0) {
+            if !zero {
                 e.1 += pr * (1.01 * sum + rho1 + rho2) + pa * (rho1 + rho2);
                 e.2 += pa * sum;
                 e.3 += 2.0 * (pr + pa) + 17.0;
@@ -1151,6 +1156,9 @@ mod tests {
             let p = if it % 50 == 7 { rng.random_range(13..=40) } else { rng.random_range(1..=12) };
             let mag = 2f64.powi(rng.random_range(-60..=60));
             let rel = [0.0, 1e-30, 1e-17, 1e-10][it % 4];
+            // (every 9th case: zero centres with subnormal radii next to weights near 1e-214,
+            // whose radius products underflow to 0 in f64)
+            let tiny = it % 9 == 4;
             let q: Vec<Mr> = (0..=p)
                 .flat_map(|i| {
                     let a = match it % 5 {
@@ -1159,8 +1167,18 @@ mod tests {
                         2 => mag * (1.0 + rng.random_range(-1e-12..1e-12)),
                         _ => rng.random_range(-1.0..1.0) * mag,
                     };
-                    let w: f64 = rng.random_range(0.01..100.0);
-                    let ra = if a == 0.0 { 0.0 } else { a.abs() * rel * rng.random_range(0.0..1.0) };
+                    let (a, w): (f64, f64) = if tiny {
+                        (0.0, 1e-214 * rng.random_range(0.5..2.0))
+                    } else {
+                        (a, rng.random_range(0.01..100.0))
+                    };
+                    let ra = if tiny {
+                        f64::from_bits(rng.random_range(1..64))
+                    } else if a == 0.0 {
+                        0.0
+                    } else {
+                        a.abs() * rel * rng.random_range(0.0..1.0)
+                    };
                     let rw = w * rel * rng.random_range(0.0..1.0);
                     [Mr::from_centre_radius(a, ra), Mr::from_centre_radius(w, rw)]
                 })
@@ -1206,8 +1224,9 @@ mod tests {
                 for (k, g) in got.iter().enumerate() {
                     let all_zero = (0..p).all(|i| {
                         (i + 1..=p).filter(|&l| i + l - 1 == k).all(|l| {
-                            (q[2 * l].mid() == 0.0 || q[2 * i + 1].mid() == 0.0)
-                                && (q[2 * i].mid() == 0.0 || q[2 * l + 1].mid() == 0.0)
+                            let nil = |x: &Mr| x.mid() == 0.0 && x.rad() == 0.0;
+                            (nil(&q[2 * l]) || nil(&q[2 * i + 1]))
+                                && (nil(&q[2 * i]) || nil(&q[2 * l + 1]))
                         })
                     });
                     if all_zero {
