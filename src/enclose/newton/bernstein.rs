@@ -599,9 +599,11 @@ pub(crate) fn segment_values_f64(seg: &BezierSeg<Mr>, t0: f64, t1: f64) -> Optio
 /// The m terms of D_k are summed in order from 0: at most (m - 1) roundings of partial sums
 /// of |v| <= 1.01 |P| S each, error <= 1.03 (m - 1) u sum |P| S (m <= 256). So
 /// the sum over the terms of r_P (1.01 S + ρ1 + ρ2) + |P| (ρ1 + ρ2), plus
-/// (3.03 + 1.03 (m - 1)) u sum |P| S, plus η sum (2 r_P + 2 |P| + 17), is a bound E_k of
-/// |D_k - d_k| (the 16 η per term cover the underflow of the products computed for the bound
-/// itself). E_k is computed in f64 from nonnegative terms
+/// (3.03 + 1.03 (m - 1)) u sum |P| S, plus η sum (2 r_P + 2 |P| + 1), is a bound of
+/// |D_k - d_k|. The products computed for this bound can underflow too, each by at most η:
+/// three in each of ρ1, ρ2 (which the bound multiplies by |P| + r_P, so 6 (|P| + r_P) η), and
+/// a few more per term; so the η share per term taken is 10 (r_P + |P|) + 17 multiples of
+/// 2^-1074 = 2η, at least twice what is needed. E_k is computed in f64 from nonnegative terms
 /// only: each of its at most 2^12 roundings to nearest loses at most a factor 1 - u, so the
 /// computed sum times 1 + 2^-40, rounded, is at least E_k. A term whose products each have a
 /// factor that is an exact 0 (centre and radius 0) is exactly 0 and adds nothing (flat runs,
@@ -637,7 +639,7 @@ fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize) -> Vec<Mr> {
             if !zero {
                 e.1 += pr * (1.01 * sum + rho1 + rho2) + pa * (rho1 + rho2);
                 e.2 += pa * sum;
-                e.3 += 2.0 * (pr + pa) + 17.0;
+                e.3 += 10.0 * (pr + pa) + 17.0;
                 e.4 += 1.0;
             }
         }
