@@ -899,31 +899,18 @@ fn signed(x: Ddi, sign: f64) -> Ddi {
 }
 
 /// The certificate's cheap part for one side, sign-adjusted (the strategy proved max g <=
-/// `bound`, that g reaches a value >= `inner` and one > `witness`; `scale` is the coordinate
-/// scale): `Some(true)` by the first rule of the module docs, `Some(false)` where
-/// [`certify_side`] answers `false` at once (the attained value more than
-/// [`LOWER_WITHIN_ULPS`] ulps of the scale below the bound: no search, no lowering), `None`
-/// where the full certification must decide: [`first_round`] without the exact knot values
-/// (the lane's clamped ends are among its attained values already; a side that an interior
-/// knot's exact value would decide is left to the full certification, which has them).
+/// `bound`, that g reaches a value >= `inner` and one > `witness`; `exact` is the largest
+/// exact value of g at a knot of multiplicity >= p that the caller knows, from
+/// [`knot_points`], or -inf; `scale` is the coordinate scale): `Some(true)` by the first rule
+/// of the module docs, `Some(false)` where [`certify_side`] answers `false` at once (the
+/// attained values more than [`LOWER_WITHIN_ULPS`] ulps of the scale below the bound: no
+/// search, no lowering), `None` where the full certification must decide: [`first_round`]
+/// (the `tight` lane passes -inf: its clamped ends and span ends are among its attained values
+/// already, and a side that an interior knot's exact value would decide is left to the full
+/// certification; the `hull` lane passes the control values at such knots, which the curve
+/// passes through).
 #[inline]
-pub(crate) fn quick(bound: f64, inner: f64, witness: f64, scale: f64) -> Option<bool> {
-    quick_exact(bound, inner, witness, f64::NEG_INFINITY, scale)
-}
-
-/// [`quick`] with `exact`, the largest exact value of the side's function at a knot of
-/// multiplicity >= p (from [`knot_points`]; -inf for none): [`first_round`] as the full
-/// certification runs it, for a caller whose attained values do not include those knot
-/// values (the `hull` lane on a spline, whose interior knots of multiplicity p make control
-/// points attained values).
-#[inline]
-pub(crate) fn quick_exact(
-    bound: f64,
-    inner: f64,
-    witness: f64,
-    exact: f64,
-    scale: f64,
-) -> Option<bool> {
+pub(crate) fn quick(bound: f64, inner: f64, witness: f64, exact: f64, scale: f64) -> Option<bool> {
     first_round(bound, inner, witness, exact, (scale, LOWER_WITHIN_ULPS))
 }
 

@@ -666,11 +666,25 @@ fn hull_coord(s: &Simple, j: usize) -> CoordBox {
     }
 }
 
+/// The certificate's first round on both sides of `cb` (`certify::quick`), with the
+/// coordinate's control-point range (its scale) and the (min, max) of the exact values at
+/// knots of multiplicity >= p that the caller reads ((inf, -inf) for none): sets the flags it
+/// proves, and returns whether a side is left to the full certification.
+#[inline]
+fn first_rounds(cb: &mut CoordBox, (plo, phi): (f64, f64), (klo, khi): (f64, f64)) -> bool {
+    let scale = plo.abs().max(phi.abs()).max(f64::MIN_POSITIVE);
+    let q_hi = certify::quick(cb.hi, cb.inner_hi, cb.witness_hi, khi, scale);
+    let q_lo = certify::quick(-cb.lo, -cb.inner_lo, -cb.witness_lo, -klo, scale);
+    cb.optimal_hi = q_hi == Some(true);
+    cb.optimal_lo = q_lo == Some(true);
+    q_hi.is_none() || q_lo.is_none()
+}
+
 /// The `hull` lane's coordinates, written to `e` (empty): [`hull_coord`] per coordinate, with
 /// the certificates when `certify`. The driver's facts (`apply_facts`) hold by construction
 /// and are not applied again: the outer bounds are the control-point range itself, the inner
 /// bounds the end control points, which lie in it. The certificate's cheap part is the full
-/// certification's first round (`certify::quick_exact`) with the hull's values (no witness:
+/// certification's first round ([`first_rounds`], `certify::quick`) with the hull's values (no witness:
 /// -inf; attained: the end control points) and the exact values at knots of multiplicity p
 /// (on a spline the curve passes through those control points: `certify::knot_points`):
 /// `true` when a control point the curve passes through attains the bound, `false` when
@@ -688,17 +702,11 @@ fn hull_into(e: &mut Enclosure, c: &NurbsCurve, s: &Simple, certify: bool) {
             }
         });
     }
-    for (j, &(klo, khi)) in knot_values.iter().enumerate().take(s.d) {
+    for (j, &kv) in knot_values.iter().enumerate().take(s.d) {
         let clock = Clock::start();
         let mut cb = hull_coord(s, j);
         if certify {
-            let (plo, phi) = s.range[j];
-            let scale = plo.abs().max(phi.abs()).max(f64::MIN_POSITIVE);
-            let q_hi = certify::quick_exact(cb.hi, cb.inner_hi, cb.witness_hi, khi, scale);
-            let q_lo = certify::quick_exact(-cb.lo, -cb.inner_lo, -cb.witness_lo, -klo, scale);
-            cb.optimal_hi = q_hi == Some(true);
-            cb.optimal_lo = q_lo == Some(true);
-            open |= q_hi.is_none() || q_lo.is_none();
+            open |= first_rounds(&mut cb, s.range[j], kv);
         }
         cb.stats.time_total = clock.elapsed();
         e.coords.push(cb);
@@ -758,12 +766,7 @@ pub fn enclose_into(
         let ends = [s.pts[j], s.pts[s.n * s.d + j]].map(Some);
         apply_facts(cb, (plo, phi), ends, true);
         if certify {
-            let scale = plo.abs().max(phi.abs()).max(f64::MIN_POSITIVE);
-            let q_hi = certify::quick(cb.hi, cb.inner_hi, cb.witness_hi, scale);
-            let q_lo = certify::quick(-cb.lo, -cb.inner_lo, -cb.witness_lo, scale);
-            cb.optimal_hi = q_hi == Some(true);
-            cb.optimal_lo = q_lo == Some(true);
-            open |= q_hi.is_none() || q_lo.is_none();
+            open |= first_rounds(cb, (plo, phi), (f64::INFINITY, f64::NEG_INFINITY));
         }
     }
     if open {
@@ -880,7 +883,7 @@ mod tests {
                     let n = c.num_points() - 1;
                     let (e0, e1) = (c.control_point(0)[0], c.control_point(n)[0]);
                     let mut pts = c.control_points();
-                    if n >= 1 && pts.len() > 2 {
+                    if pts.len() > 2 {
                         pts[1][0] = e0.max(e1).next_up();
                         let w = c.weights().map(|w| w.to_vec());
                         c = NurbsCurve::new(c.degree(), c.knots().to_vec(), pts, w).unwrap();
@@ -900,7 +903,14 @@ mod tests {
                 let scale = c.coord_scale(0).max(f64::MIN_POSITIVE);
                 let cb = &e.coords[0];
                 open += usize::from(
-                    certify::quick(cb.hi, cb.inner_hi, f64::NEG_INFINITY, scale).is_none(),
+                    certify::quick(
+                        cb.hi,
+                        cb.inner_hi,
+                        f64::NEG_INFINITY,
+                        f64::NEG_INFINITY,
+                        scale,
+                    )
+                    .is_none(),
                 );
             }
         }
