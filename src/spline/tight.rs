@@ -89,6 +89,19 @@ struct Taylor {
     coef: Vec<Ddi>,
 }
 
+/// What [`TightEval::end_form`] returns for a box [lo, hi] and its end e.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct EndForm {
+    /// C_j(e), enclosed
+    pub value: Ddi,
+    /// an upper bound of |C_j'(e)|
+    pub slope: f64,
+    /// C_j''([lo, hi]), enclosed
+    pub second: Interval,
+    /// {C_j(u) : u in [lo, hi]}, enclosed
+    pub range: Interval,
+}
+
 /// Lazily computed data of one knot span.
 #[derive(Debug, Default)]
 struct SpanSlot {
@@ -601,12 +614,7 @@ impl TightEval {
         let r = dist_up(m, lo).max(dist_up(hi, m));
         let hset = Ddi::from_bounds(-r, r);
         let pm = self.derivs(t, j, sm, 0, 2);
-        let mut c2 = self.derivs(t, j, sm.widen(r), 2, 3)[2];
-        if c2.is_entire() {
-            // (the power form over the set lost too much, e.g. a weight enclosure holding 0
-            // at high degree: its mean value form instead)
-            c2 = self.derivs_centred(t, j, sm, r, 2, 3)[2];
-        }
+        let c2 = self.second_over(t, j, sm, r);
         let (cm, c1m) = (pm[0], pm[1]);
         if cm.is_entire() || c1m.is_entire() || c2.is_entire() {
             return self.piece_over_generic(j, k, lo, hi, m);
@@ -625,23 +633,7 @@ impl TightEval {
             c.inf().abs().max(c.sup().abs()) * r * r > cm.hi().abs() * f64::EPSILON * 0.25
         };
         if self.curve.is_rational() && visible(c2i) {
-            // eq. 3.10 over the set S divides wide homogeneous enclosures by each other and
-            // overestimates C'' badly when the weights vary much. Re-evaluate
-            // C''(X) ⊆ (A''(S) - 2 W'(S) C'(X) - W''(S) C(X)) / W(S) with the much tighter
-            // C'(X) ⊆ C'(m) + C''(X) H and C(X) ⊆ C(m) + C'(m) H + C''(X) H^2 / 2 (Taylor), and
-            // intersect (both enclose C''(X)). Two rounds.
-            let sx = sm.widen(r);
-            for _ in 0..2 {
-                let c2d = Ddi::from_interval(c2i);
-                let c1x = c2d.mul_add(hset, c1m);
-                let cx = c1m.mul_add(hset, cm) + c2d * hset * hset * Ddi::exact(0.5);
-                let refined = self.c2_from(t, j, sx, cx, c1x).to_interval();
-                let both = c2i.intersection(refined);
-                if both.is_empty() {
-                    break;
-                }
-                c2i = both;
-            }
+            c2i = self.second_refined(t, j, (sm.widen(r), hset), (cm, c1m), c2i);
         }
         // If the sign of C'' over X is unknown (near an inflection, or C''(X) overestimated, as
         // for rational curves with widely spread weights) the quadratic term cannot be
@@ -655,6 +647,126 @@ impl TightEval {
         }
         let (tl, tu) = taylor_bounds(c1m.abs_upper(), c2i, r);
         (cm + Ddi::from_bounds(tl, tu)).to_interval()
+    }
+
+    /// C_j''(X) over the set sm ± r of the expansion's variable (X: the parameters within r
+    /// of m): the power form over the set, else (entire: it lost too much, e.g. a weight
+    /// enclosure holding 0 at high degree) its mean value form.
+    #[inline]
+    fn second_over(&self, t: &Taylor, j: usize, sm: Ddi, r: f64) -> Ddi {
+        let c2 = self.derivs(t, j, sm.widen(r), 2, 3)[2];
+        if c2.is_entire() {
+            self.derivs_centred(t, j, sm, r, 2, 3)[2]
+        } else {
+            c2
+        }
+    }
+
+    /// A rational curve's C_j''(X) sharpened: eq. 3.10 over the set S of the expansion's
+    /// variable (`sx`) divides wide homogeneous enclosures by each other and overestimates C''
+    /// badly when the weights vary much. Re-evaluate
+    /// C''(X) ⊆ (A''(S) - 2 W'(S) C'(X) - W''(S) C(X)) / W(S) with the much tighter
+    /// C'(X) ⊆ C'(m) + C''(X) H and C(X) ⊆ C(m) + C'(m) H + C''(X) H^2 / 2 (Taylor about m,
+    /// `(cm, c1m)` enclosing C(m), C'(m), H ∋ u - m for u in X), and intersect (both enclose
+    /// C''(X)). Two rounds.
+    #[inline]
+    fn second_refined(
+        &self,
+        t: &Taylor,
+        j: usize,
+        (sx, hset): (Ddi, Ddi),
+        (cm, c1m): (Ddi, Ddi),
+        mut c2i: Interval,
+    ) -> Interval {
+        for _ in 0..2 {
+            let c2d = Ddi::from_interval(c2i);
+            let c1x = c2d.mul_add(hset, c1m);
+            let cx = c1m.mul_add(hset, cm) + c2d * hset * hset * Ddi::exact(0.5);
+            let refined = self.c2_from(t, j, sx, cx, c1x).to_interval();
+            let both = c2i.intersection(refined);
+            if both.is_empty() {
+                break;
+            }
+            c2i = both;
+        }
+        c2i
+    }
+
+    /// The second-order Taylor form of piece k of C_j over [lo, hi] (inside the closed span)
+    /// centred at one of its ends e (`at_hi`: e = hi, else e = lo) instead of its middle:
+    /// C(X) ⊆ C(e) + C'(e) H + C''(X) H^2 / 2 with H = X - e ⊆ [-r, r], r >= hi - lo, bounded
+    /// as in `coord_over` ([`taylor_bounds`]: completing the square where C'' has a sign).
+    /// Made for a box that ends at an extremum where C_j' vanishes (a symmetric curve's
+    /// extremum at a knot): there |C'(e)| is an enclosure of 0, and where C'' has the sign of
+    /// the extremum over the box the bound is C(e) to about an ulp however wide the box
+    /// (about the middle it exceeds C(e) by up to |C''| (hi - lo)^2 / 8). `None` after an
+    /// overflow or for a box outside the span.
+    pub(crate) fn end_form(
+        &self,
+        j: usize,
+        k: usize,
+        lo: f64,
+        hi: f64,
+        at_hi: bool,
+    ) -> Option<EndForm> {
+        let kn = self.curve.knots();
+        if !(lo < hi && kn[k] <= lo && hi <= kn[k + 1]) {
+            return None;
+        }
+        let e = if at_hi { hi } else { lo };
+        let (right, se) = self.side(k, e);
+        let t = self.taylor(k, right)?;
+        // r >= hi - lo = max |u - e| over X; h = u - e lies in H = [-r, 0] (e = hi) or [0, r],
+        // and the expansion's variable in se + H (s = u - a) or se - H (s = b - u at the right
+        // end). One-sided sets: a symmetric one would reach beyond the span, where a rational
+        // curve's weight polynomial may vanish.
+        let r = dist_up(hi, lo);
+        let hset = if at_hi {
+            Ddi::from_bounds(-r, 0.0)
+        } else {
+            Ddi::from_bounds(0.0, r)
+        };
+        let sx = se + if right { -hset } else { hset };
+        let pe = self.derivs(t, j, se, 0, 2);
+        let (ce, c1e) = (pe[0], pe[1]);
+        if ce.is_entire() || c1e.is_entire() {
+            return None;
+        }
+        let c2 = self.derivs(t, j, sx, 2, 3)[2];
+        let mut c2i = if c2.is_entire() {
+            Interval::ENTIRE
+        } else {
+            c2.to_interval()
+        };
+        if c2i.contains(0.0) {
+            // (the power form over a wide set loses ~2^p, and a rational curve's weight over it
+            // may hold 0: the generic interval de Boor derivatives over X instead, where the
+            // weight is a convex combination of positive weights; both enclose C''(X))
+            let e = self.generic()[j]
+                .ival
+                .derivs_in_span(k, &iv::span(lo, hi), 2);
+            c2i = c2i.intersection(e[2][0]);
+        }
+        if c2i.is_empty() || c2i.is_entire() {
+            return None;
+        }
+        if self.curve.is_rational() {
+            c2i = self.second_refined(t, j, (sx, hset), (ce, c1e), c2i);
+        }
+        let g = c1e.abs_upper();
+        let (tl, tu) = taylor_bounds(g, c2i, r);
+        // (each end on its own: C(e) + [tl, tu] as one midpoint-radius `Ddi` would round its
+        // upper end at the scale of the wide lower one)
+        let range = iv::span(
+            (ce + Ddi::exact(tl)).lower_end(),
+            (ce + Ddi::exact(tu)).upper_end(),
+        );
+        (g.is_finite() && !range.is_empty()).then_some(EndForm {
+            value: ce,
+            slope: g,
+            second: c2i,
+            range,
+        })
     }
 
     /// Wide boxes and overflow: generic interval de Boor over X (C, C', C''), Ddi at m; the
@@ -1003,6 +1115,138 @@ pub(crate) mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// A rational quadratic in 3-D, mirror-symmetric about u = 0 (a simple knot, C1 there),
+    /// from the `extrema_at_knots` test family: its first and third coordinates have their
+    /// minimum at u = 0, the second its maximum.
+    pub(crate) fn symmetric_at_a_knot() -> NurbsCurve {
+        let p0 = vec![
+            0.9180048576902702,
+            -0.46806430741524396,
+            0.16494573052517847,
+        ];
+        let p1 = vec![
+            0.8054290257000831,
+            -0.25600300026892686,
+            -0.6415474811181174,
+        ];
+        let p2 = vec![-0.3054533290473014, 0.6098559001330548, -0.984613714466708];
+        let (w0, w1, w2) = (0.5528577113252439, 3.6825903093062817, 0.6912429388865053);
+        let k = 0.8147563086639935;
+        NurbsCurve::new(
+            2,
+            vec![-1.0, -1.0, -1.0, -k, 0.0, k, 1.0, 1.0, 1.0],
+            vec![p0.clone(), p1.clone(), p2.clone(), p2, p1, p0],
+            Some(vec![w0, w1, w2, w2, w1, w0]),
+        )
+        .unwrap()
+    }
+
+    /// The Taylor form about a box's end ([`TightEval::end_form`]) on random boxes ending at
+    /// span ends (widths 2^-50 of the span to the whole span): its range holds every sampled
+    /// value (and, with `mpfr`, the 256-bit values), its `second` every sampled C'' enclosure
+    /// (interval de Boor at the point), its `slope` bounds |C'(e)|, and its value is C(e).
+    #[test]
+    fn end_form_is_sound_on_random_boxes_at_span_ends() {
+        let mut rng = ChaCha8Rng::seed_from_u64(21);
+        let mut formed = 0;
+        for case in 0..150 {
+            // (every fifth curve of degree 16 to 20, whose spans expand at the nearer end:
+            // the right end's variable runs against u)
+            let c = if case % 5 == 0 {
+                let p = rng.random_range(16..=20usize);
+                let n = p + 1 + rng.random_range(0..3usize);
+                let mut kn = vec![0.0; p + 1];
+                let mut inner: Vec<f64> =
+                    (0..n - p - 1).map(|_| rng.random_range(0.1..0.9)).collect();
+                inner.sort_by(f64::total_cmp);
+                kn.extend(inner);
+                kn.extend(vec![1.0; p + 1]);
+                let pts = (0..n)
+                    .map(|_| vec![rng.random_range(-10.0..10.0)])
+                    .collect();
+                let w = rng.random_bool(0.5).then(|| {
+                    (0..n)
+                        .map(|_| 10f64.powf(rng.random_range(-1.0..1.0)))
+                        .collect()
+                });
+                NurbsCurve::new(p, kn, pts, w).unwrap()
+            } else {
+                random_curve(&mut rng, 1)
+            };
+            let t = TightEval::new(&c);
+            let iv_eval = CurveEval::<Interval>::new(&c, 2);
+            let kn = c.knots().to_vec();
+            let p = c.degree();
+            for k in p..c.num_points() {
+                let (a, b) = (kn[k], kn[k + 1]);
+                if a >= b {
+                    continue;
+                }
+                for at_hi in [false, true] {
+                    let w = (b - a) * 2f64.powf(-rng.random_range(0.0..50.0));
+                    let (lo, hi) = if at_hi {
+                        ((b - w).max(a), b)
+                    } else {
+                        (a, (a + w).min(b))
+                    };
+                    let Some(f) = t.end_form(0, k, lo, hi, at_hi) else {
+                        continue;
+                    };
+                    formed += 1;
+                    let e = if at_hi { hi } else { lo };
+                    let d = iv_eval.derivs_in_span(k, &iv::point(e), 1);
+                    assert!(!f.value.to_interval().intersection(d[0][0]).is_empty());
+                    assert!(f.slope >= d[1][0].mig(), "{} < |{:?}|", f.slope, d[1][0]);
+                    for i in 0..=16 {
+                        let s = (lo + (hi - lo) * i as f64 / 16.0).clamp(lo, hi);
+                        let v = t.coord_at(0, s);
+                        // (at a knot coord_at is the next piece's value: use span k's own)
+                        let own = iv_eval.derivs_in_span(k, &iv::point(s), 2);
+                        assert!(
+                            !own[0][0].intersection(f.range).is_empty()
+                                && (s == b || !v.intersection(f.range).is_empty()),
+                            "{c:?} k={k} [{lo}, {hi}] s={s}: {:?} misses {:?}",
+                            (f.range.inf(), f.range.sup()),
+                            (v.inf(), v.sup())
+                        );
+                        assert!(
+                            !own[2][0].intersection(f.second).is_empty(),
+                            "C'' at {s} outside {:?}",
+                            (f.second.inf(), f.second.sup())
+                        );
+                        #[cfg(feature = "mpfr")]
+                        if s < b || k + 1 == c.num_points() {
+                            let x: Vec<rug::Float> = c.point(s).unwrap();
+                            assert!(f.range.inf() <= x[0] && x[0] <= f.range.sup(), "s={s}");
+                        }
+                    }
+                }
+            }
+        }
+        assert!(formed > 200, "only {formed} forms");
+    }
+
+    /// At a symmetric curve's extremum at a knot (C' = 0 there), the form about the knot bounds
+    /// a box a hundredth of the span wide within two ulps of C(knot), with C'' of one sign.
+    #[test]
+    fn end_form_at_a_knot_extremum_is_within_two_ulps() {
+        let c = symmetric_at_a_knot();
+        let t = TightEval::new(&c);
+        let top = t.coord_at(1, 0.0);
+        let ulp = f64::EPSILON * c.coord_scale(1);
+        let w = 0.8147563086639935 / 100.0;
+        for (k, lo, hi, at_hi) in [(3, -w, 0.0, true), (4, 0.0, w, false)] {
+            let f = t.end_form(1, k, lo, hi, at_hi).expect("a form");
+            assert!(f.second.sup() < 0.0, "C'' has its sign");
+            assert!(
+                f.range.sup() - top.sup() <= 2.0 * ulp,
+                "{} vs {}",
+                f.range.sup(),
+                top.sup()
+            );
         }
     }
 
