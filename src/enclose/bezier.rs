@@ -114,6 +114,11 @@ impl BezierSubdivision {
     }
 }
 
+/// The fraction of a span split off at its end where the Taylor form about the end
+/// ([`Values::end_bound`]) cannot localise a maximum sitting there: over a piece this short
+/// C'' usually has a sign (as the Taylor forms of `coord_over` take boxes up to this width).
+const END_PIECE: f64 = 1.0 / 256.0;
+
 /// Tight evaluation of one coordinate at exact parameters and over small parameter boxes
 /// ([`TightEval`]: rigorous double-double, ~1 ulp; its per-span data are built lazily).
 struct Values<'a> {
@@ -143,18 +148,20 @@ impl<'a> Values<'a> {
         self.tight.coord_over(j, a, b)
     }
 
-    /// A piece [s0, s1] of span k that ends at a span end, bounded by the Taylor form centred
-    /// at that end ([`TightEval::end_form`]) if the bound is within `accept` of the side's
-    /// attained value: then the bound and where the maximum can lie are recorded on `side` and
-    /// `true` is returned; else nothing changes (`false`). (`e0`, `e1`: the piece's end
-    /// coefficients, sign-adjusted enclosures of its end values, choosing the end when both
-    /// are span ends; `jump1`: s1 is a jump, where C_j(s1) of span k is a left limit only.)
+    /// A piece [s0, s1] of span k that ends at a span end (`at_hi`: at s1 = u_{k+1}, else at
+    /// s0 = u_k), bounded by the Taylor form centred at that end ([`TightEval::end_form`]) if
+    /// the bound (at most the piece's own bound `u`) is within `accept` of the side's attained
+    /// value and localises the maximum (C'' has its sign, or the piece is at most
+    /// [`END_PIECE`] of the span): then the bound and where the maximum can lie are recorded
+    /// on `side` and `true` is returned; else `false` and the caller splits the piece. Either
+    /// way C_j at the end is recorded as attained, with its strict witness (`jump1`: s1 is a
+    /// jump, where C_j(s1) of span k is a left limit only and is not attained).
     ///
     /// Why: at a symmetric curve's extremum at a knot, sign * C_j' vanishes at the span end,
     /// so the piece's last two Bézier coefficients are equal in exact arithmetic and their
     /// `Mr` enclosures overlap: neither the end-value rule nor the critical-point split
     /// resolves it, and halving towards the end took ~26 levels per side (until the pieces
-    /// were 2^-26 of the span) on rational curves, 170 subdivisions on one curve. The form
+    /// were 2^-26 of the span) on rational curves, 130-170 subdivisions on one curve. The form
     /// about the end has |C'(e)| ~ 0, so its bound is C(e) to about an ulp.
     ///
     /// Where the maximum of g = sign * C_j over X = [s0, s1] lies: if g'' <= -κ < 0 on X
@@ -198,8 +205,8 @@ impl<'a> Values<'a> {
         }
         let second = sg * f.second;
         let concave = second.sup() < 0.0;
-        if !concave && s1 - s0 > (b - a) * (1.0 / 256.0) {
-            // not localised: the caller halves the piece (module docs of `maximize`)
+        if !concave && s1 - s0 > (b - a) * END_PIECE {
+            // not localised: the caller splits off the end's END_PIECE of the span
             return false;
         }
         let (lo, hi) = if concave {
@@ -709,7 +716,7 @@ impl BezierSubdivision {
                 if vals.end_bound(c, j, k, sign, (s0, s1), at_hi, jump1, u, &mut side, accept) {
                     continue;
                 }
-                let w = (seg.b - seg.a) * (1.0 / 256.0);
+                let w = (seg.b - seg.a) * END_PIECE;
                 let m = if at_hi { s1 - w } else { s0 + w };
                 if s1 - s0 > 2.0 * w && s0 < m && m < s1 {
                     side.stats.subdivisions += 1;
@@ -1553,6 +1560,47 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    /// The localisation of [`Values::end_bound`] off the symmetric case: the rational quadratic
+    /// of the test above with its fourth control point moved by 2^-k (k = 44 .. 56) in its
+    /// second coordinate, so that the maximum moves off the knot u = 0 by 1e-14 .. 1e-18 (from
+    /// k = 50 on too close to the knot for the critical-point estimate: the form about the
+    /// end places the candidate). Some candidate [u_lo, u_hi] of `bezier`'s must bracket the
+    /// maximiser, C'(u_lo) >= 0 >= C'(u_hi) not excluded by double-double de Boor enclosures
+    /// (the maximiser lies 9.62999e-17 right of the knot at k = 50 by 256-bit MPFR; the
+    /// candidate there is [0, 9.6303e-17], where f64 Newton on C' says 1.04e-16), the
+    /// candidates stay narrow, and the bounds agree with `newton`'s. (Fails with δ = 0, the
+    /// candidate then being the knot alone, and with the candidate on the wrong side.)
+    #[test]
+    fn knot_extremum_candidates_hold_the_moved_maximiser() {
+        let base = crate::spline::tight::tests::symmetric_at_a_knot();
+        for k in (44..=56).step_by(2) {
+            let mut pts: Vec<Vec<f64>> = (0..base.num_points())
+                .map(|i| base.control_point(i).to_vec())
+                .collect();
+            pts[3][1] += 2f64.powi(-k);
+            let w = (0..base.num_points()).map(|i| base.weight(i)).collect();
+            let c = NurbsCurve::new(2, base.knots().to_vec(), pts, Some(w)).unwrap();
+            let e = crate::enclose::drive_with(&BezierSubdivision::default(), &c, false);
+            let n = crate::enclose::drive_with(&crate::enclose::Newton::default(), &c, false);
+            let (cb, nb) = (&e.coords[1], &n.coords[1]);
+            assert_eq!((cb.lo, cb.hi), (nb.lo, nb.hi), "k={k}");
+            let f = crate::spline::eval::CurveEval::<Ddi>::new(&c, 1);
+            let slope = |u: f64| f.derivs(u, 1).unwrap()[1][1].to_interval();
+            assert!(
+                cb.argmax
+                    .iter()
+                    .any(|y| slope(y.u_lo).sup() >= 0.0 && slope(y.u_hi).inf() <= 0.0),
+                "k={k}: bezier {:?}",
+                cb.argmax
+            );
+            assert!(
+                cb.argmax.iter().all(|y| y.u_hi - y.u_lo <= 1e-6),
+                "k={k}: {:?}",
+                cb.argmax
+            );
         }
     }
 

@@ -614,7 +614,12 @@ impl TightEval {
         let r = dist_up(m, lo).max(dist_up(hi, m));
         let hset = Ddi::from_bounds(-r, r);
         let pm = self.derivs(t, j, sm, 0, 2);
-        let c2 = self.second_over(t, j, sm, r);
+        let mut c2 = self.derivs(t, j, sm.widen(r), 2, 3)[2];
+        if c2.is_entire() {
+            // (the power form over the set lost too much, e.g. a weight enclosure holding 0
+            // at high degree: its mean value form instead)
+            c2 = self.derivs_centred(t, j, sm, r, 2, 3)[2];
+        }
         let (cm, c1m) = (pm[0], pm[1]);
         if cm.is_entire() || c1m.is_entire() || c2.is_entire() {
             return self.piece_over_generic(j, k, lo, hi, m);
@@ -647,19 +652,6 @@ impl TightEval {
         }
         let (tl, tu) = taylor_bounds(c1m.abs_upper(), c2i, r);
         (cm + Ddi::from_bounds(tl, tu)).to_interval()
-    }
-
-    /// C_j''(X) over the set sm ± r of the expansion's variable (X: the parameters within r
-    /// of m): the power form over the set, else (entire: it lost too much, e.g. a weight
-    /// enclosure holding 0 at high degree) its mean value form.
-    #[inline]
-    fn second_over(&self, t: &Taylor, j: usize, sm: Ddi, r: f64) -> Ddi {
-        let c2 = self.derivs(t, j, sm.widen(r), 2, 3)[2];
-        if c2.is_entire() {
-            self.derivs_centred(t, j, sm, r, 2, 3)[2]
-        } else {
-            c2
-        }
     }
 
     /// A rational curve's C_j''(X) sharpened: eq. 3.10 over the set S of the expansion's
