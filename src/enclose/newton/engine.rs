@@ -75,6 +75,8 @@ pub(crate) struct Engine<'a> {
     stack: Vec<(f64, f64)>,
     /// scratch for the f64 zero estimates of the float-first seeding
     est: Vec<f64>,
+    /// the zero-free intervals of `seed_float_first` (reused)
+    free: Vec<(f64, f64)>,
     /// coordinate currently worked on
     j: usize,
     /// Bernstein form of the span being worked on ([`Newton::bezier_pretest`],
@@ -116,6 +118,7 @@ impl<'a> Engine<'a> {
             buf: Vec::with_capacity(2 * (p + 1)),
             stack: Vec::new(),
             est: Vec::new(),
+            free: Vec::new(),
             j: 0,
             poly: None,
             bern: s.bernstein && (1..=BERNSTEIN_MAX_DEGREE).contains(&p),
@@ -606,7 +609,11 @@ impl<'a> Engine<'a> {
     /// the error of an estimate of a simple zero), which go on the stack: the first interval
     /// Newton step on such a box proves a zero there unique (N(X) in the interior of X, the
     /// test of the loop below; Moore; Hansen thm. 9.6.8) and the following steps shrink it to
-    /// machine precision. Each gap between the boxes (and the ends) is excluded if the
+    /// machine precision. The parts of the gaps between the boxes (and the ends) that the
+    /// estimation's own proofs do not cover (`free` intervals: pieces of its subdivision whose
+    /// coefficients have one proven sign, or one proven sign change with F of opposite proven
+    /// signs at the ends of the piece's box, so that Descartes' rule of signs leaves the box
+    /// the piece's only zero; [`SpanPoly::zero_estimates`]) are each excluded if the
     /// enclosure of F over it (hull of its Bernstein coefficients restricted to the gap by
     /// de Casteljau in `Mr`, every coefficient enclosing the exact one: the rounding error is
     /// inside the enclosure, no separate a-priori bound needed) excludes 0, after at most
@@ -620,12 +627,15 @@ impl<'a> Engine<'a> {
         const H: f64 = 1.0 / 1_073_741_824.0; // 2^-30
         let mut est = std::mem::take(&mut self.est);
         est.clear();
+        let mut free = std::mem::take(&mut self.free);
+        free.clear();
         let ok = match self.span_poly(k) {
-            Some(sp) => sp.zero_estimates(&mut est, 2 * self.p + 2),
+            Some(sp) => sp.zero_estimates(&mut est, 2 * self.p + 2, H, &mut free),
             None => false,
         };
         if !(ok && a == 0.0 && b == 1.0) {
             self.est = est;
+            self.free = free;
             return false;
         }
         // boxes, merged where they overlap, inside [a, b]
@@ -642,13 +652,14 @@ impl<'a> Engine<'a> {
         let mut left = a;
         for &(lo, hi) in &bx {
             if lo > left {
-                gaps.push((left, lo, 0));
+                push_unproven(&mut gaps, left, lo, &free);
             }
             left = hi;
         }
         if left < b {
-            gaps.push((left, b, 0));
+            push_unproven(&mut gaps, left, b, &free);
         }
+        self.free = free;
         while let Some((g0, g1, depth)) = gaps.pop() {
             let fg = self.f(k, SpanParam::Local(T::new(g0, g1)));
             if !fg.is_empty() && !fg.contains(0.0) {
@@ -671,6 +682,35 @@ impl<'a> Engine<'a> {
         true
     }
 
+}
+
+/// Push the parts of the closed gap [lo, hi] that the closed intervals `free` (increasing, F
+/// proven zero-free there: [`SpanPoly::zero_estimates`]) do not cover, each as a closed
+/// interval at depth 0, to `gaps`: the parts still to be excluded. (A part's ends may lie in
+/// `free`, which only makes it larger than needed.)
+fn push_unproven(gaps: &mut Vec<(f64, f64, u32)>, lo: f64, hi: f64, free: &[(f64, f64)]) {
+    let mut left = lo;
+    for &(f0, f1) in free {
+        if f1 < left {
+            continue;
+        }
+        if f0 >= hi {
+            break;
+        }
+        if f0 > left {
+            gaps.push((left, f0, 0));
+        }
+        left = left.max(f1);
+        if left >= hi {
+            return;
+        }
+    }
+    if left < hi {
+        gaps.push((left, hi, 0));
+    }
+}
+
+impl<'a> Engine<'a> {
     /// Push the pieces of [x0, x1] (split rule) on the stack. Piece ends are rounded f64 values
     /// forced to be monotone, and the first and last are x0 and x1: the pieces cover [x0, x1].
     fn split_box(&mut self, x0: f64, x1: f64) {
