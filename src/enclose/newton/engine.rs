@@ -7,7 +7,7 @@
 //! (interval de Boor) or of the span's local parameter t (its Bernstein form, [`SpanPoly`]).
 
 use super::acc::{Acc, Cand};
-use super::bernstein::{pair_coefficients, SpanPoly};
+use super::bernstein::{pair_coefficients, push_unproven, SpanPoly};
 use super::param::{can_split, midpoint, Space, SpanParam, T, U};
 use super::{DerivForm, Newton, Split, BERNSTEIN_MAX_DEGREE, EVALS_PER_SPAN, WORK_PER_SPAN};
 use crate::enclose::{CandidateKind, CoordBox, Stats, Termination};
@@ -682,35 +682,6 @@ impl<'a> Engine<'a> {
         true
     }
 
-}
-
-/// Push the parts of the closed gap [lo, hi] that the closed intervals `free` (increasing, F
-/// proven zero-free there: [`SpanPoly::zero_estimates`]) do not cover, each as a closed
-/// interval at depth 0, to `gaps`: the parts still to be excluded. (A part's ends may lie in
-/// `free`, which only makes it larger than needed.)
-fn push_unproven(gaps: &mut Vec<(f64, f64, u32)>, lo: f64, hi: f64, free: &[(f64, f64)]) {
-    let mut left = lo;
-    for &(f0, f1) in free {
-        if f1 < left {
-            continue;
-        }
-        if f0 >= hi {
-            break;
-        }
-        if f0 > left {
-            gaps.push((left, f0, 0));
-        }
-        left = left.max(f1);
-        if left >= hi {
-            return;
-        }
-    }
-    if left < hi {
-        gaps.push((left, hi, 0));
-    }
-}
-
-impl<'a> Engine<'a> {
     /// Push the pieces of [x0, x1] (split rule) on the stack. Piece ends are rounded f64 values
     /// forced to be monotone, and the first and last are x0 and x1: the pieces cover [x0, x1].
     fn split_box(&mut self, x0: f64, x1: f64) {
