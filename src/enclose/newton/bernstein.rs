@@ -213,14 +213,14 @@ impl SpanPoly {
         }
     }
 
-    /// F' over the box t = [t0, t1] (at t0 for a point). A small box (the first Newton boxes
-    /// around the zero estimates: width in [2^-40, 2^-20]; the converged boxes below keep the
-    /// restriction, whose last bits decide the final box) first tries the mean value form
-    /// F'(m) + F''([0, 1])
+    /// F' over the box t = [t0, t1] (at t0 for a point). A small box (width at most 2^-20: the
+    /// Newton boxes around the zero estimates, converged or not; F'(m) is the O(n) value with
+    /// its a-priori bound, about as wide as the restriction's hull) first tries the mean value
+    /// form F'(m) + F''([0, 1])
     /// ([t0, t1] - m), m the midpoint: F'(t) = F'(m) + F''(ξ)(t - m) with ξ between t and m,
     /// F''(ξ) in the hull of F'''s hodograph coefficients (`d2`, convex hull property), all in
-    /// outward-rounded interval arithmetic; one de Casteljau evaluation instead of the two
-    /// splits of the restriction. It is used when it excludes 0 (else the restriction's hull,
+    /// outward-rounded interval arithmetic; one evaluation instead of the two splits of the
+    /// restriction. It is used when it excludes 0 (else the restriction's hull,
     /// which is sharper where F'' varies much).
     pub(super) fn df(&self, t: T) -> Interval {
         let (t0, t1) = (t.lo, t.hi);
@@ -228,7 +228,7 @@ impl SpanPoly {
             return self.df_at(t0);
         }
         let w = t1 - t0;
-        if (1.0 / 1_099_511_627_776.0..=1.0 / 1_048_576.0).contains(&w) && !self.d2.is_entire() {
+        if w <= 1.0 / 1_048_576.0 && !self.d2.is_entire() {
             let m = midpoint(t0, t1);
             let dm = self.df_at(m);
             let mv = dm + self.d2 * (iv::span(t0, t1) - iv::point(m));
