@@ -475,6 +475,10 @@ impl SpanPoly {
     ///   in (x0, x1) (intermediate values: the signs at x0 and x1 differ), and F(t0), F(t1)
     ///   (the end coefficients) are not 0: [t0, x0] and [x1, t1] hold none.
     ///
+    /// * **free but for a box at the span's end** ([`SpanPoly::end_rule`]), for a piece touching
+    ///   t = 0 or t = 1 whose coefficient there is rounding noise (a zero of F at a knot); the
+    ///   box's end (0 or 1) is then added to the estimates.
+    ///
     /// Nothing else is claimed; the caller excludes the rest of the gaps between the boxes as
     /// before.
     pub(super) fn zero_estimates(
@@ -528,9 +532,16 @@ impl SpanPoly {
                 return false;
             }
             let n = changes(&v);
+            let e = halving_bound(len - 1, depth, m, rad);
             if n == 0 {
-                if proven_changes(&v, halving_bound(len - 1, depth, m, rad)) == Some(0) {
+                if proven_changes(&v, e) == Some(0) {
                     push_free(free, t0, t1);
+                } else if let Some((end, f0, f1)) = self.end_rule(&v, e, t0, t1, h) {
+                    if out.len() >= max {
+                        return false;
+                    }
+                    out.push(end);
+                    push_free(free, f0, f1);
                 }
                 continue;
             }
@@ -544,12 +555,18 @@ impl SpanPoly {
                     let (x0, x1) = (r - h, r + h);
                     if t0 < x0
                         && x1 < t1
-                        && proven_changes(&v, halving_bound(len - 1, depth, m, rad)) == Some(1)
+                        && proven_changes(&v, e) == Some(1)
                         && self.f_has_sign(x0, v[0] > 0.0)
                         && self.f_has_sign(x1, v[len - 1] > 0.0)
                     {
                         push_free(free, t0, x0);
                         push_free(free, x1, t1);
+                    } else if let Some((end, f0, f1)) = self.end_rule(&v, e, t0, t1, h) {
+                        if out.len() >= max {
+                            return false;
+                        }
+                        out.push(end);
+                        push_free(free, f0, f1);
                     }
                 }
                 continue;
@@ -613,6 +630,37 @@ impl SpanPoly {
     /// ([`SpanPoly::tight_over`]).
     pub(crate) fn box_tight(&self, x0: f64, x1: f64) -> Option<(Interval, Ddi)> {
         self.tight_over(T::new(x0, x1)).map(|(enc, v, _)| (enc, v))
+    }
+
+    /// The end rule of [`SpanPoly::zero_estimates`], for a zero of F at (or next to) an end of
+    /// the span, where the end coefficient of the piece touching it is rounding noise (a
+    /// symmetric curve's extremum at a knot): for a piece [t0, t1] with t1 = 1 whose f64
+    /// coefficients `v` (within `e` of the exact ones) other than the last all have one proven
+    /// sign s, with t0 < x0 = 1 - h and F(x0) of proven sign s, it returns the box's end 1 and
+    /// the zero-free [t0, x0] (and symmetrically at t0 = 0: the end 0 and [h, t1]). Proof: the
+    /// exact coefficients have at most one sign change (between the last two), so F has at most
+    /// one zero in (t0, 1) (Descartes' rule of signs for the Bernstein basis); if the last one
+    /// has sign -s there is one in (x0, 1) (intermediate values), and that is the only one;
+    /// otherwise there is none. F(t0), the first coefficient, is not 0. So [t0, x0] holds no
+    /// zero, and the box [1 - h, 1] holds every zero of the piece beyond it.
+    fn end_rule(&self, v: &[f64], e: f64, t0: f64, t1: f64, h: f64) -> Option<(f64, f64, f64)> {
+        let len = v.len();
+        if len < 2 {
+            return None;
+        }
+        if t1 == 1.0 && proven_changes(&v[..len - 1], e) == Some(0) {
+            let x0 = 1.0 - h;
+            if t0 < x0 && self.f_has_sign(x0, v[0] > 0.0) {
+                return Some((1.0, t0, x0));
+            }
+        }
+        if t0 == 0.0 && proven_changes(&v[1..], e) == Some(0) {
+            let x1 = h;
+            if x1 < t1 && self.f_has_sign(x1, v[len - 1] > 0.0) {
+                return Some((0.0, x1, t1));
+            }
+        }
+        None
     }
 
     /// Whether F(t) provably is > 0 (`positive`) or < 0 at the point t in [0, 1]: the f64 value
@@ -1858,7 +1906,8 @@ mod tests {
     /// Every zero of F lies outside the intervals that [`SpanPoly::zero_estimates`] proves
     /// zero-free: F = prod (t - r_i) (times a constant) in Bernstein form, exact, then rounded
     /// to enclosures; roots random, in pairs 1e-6 .. 1e-15 apart (a near-double zero), at the
-    /// dyadic piece ends 1/2 and 1/4, and just outside [0, 1]. The proof must also find
+    /// dyadic piece ends 1/2 and 1/4, at the span's ends and 1e-8 .. 1e-15 inside or outside
+    /// them (the end rule), in pairs straddling an end, and just outside [0, 1]. The proof must also find
     /// something to claim (else the test would pass vacuously).
     #[test]
     fn zero_free_intervals_hold_no_zero() {
@@ -1877,7 +1926,27 @@ mod tests {
                     roots.push(r + 10f64.powi(-rng.random_range(6..=15)));
                 }
                 1 => roots.push([0.5, 0.25, 0.75][it % 3]),
-                _ => {}
+                2 => {
+                    // a zero at or next to an end of the span (the end rule), inside or just
+                    // outside its box of 2^-30
+                    let d = if it % 3 == 0 { 0.0 } else { 10f64.powi(-rng.random_range(8..=15)) };
+                    let d = if it % 5 == 0 { -d } else { d };
+                    roots.push(if it % 2 == 0 { d } else { 1.0 - d });
+                }
+                _ => {
+                    // a pair straddling an end, the inner zero outside the end's box: F at
+                    // the end is rounding noise, and only the sign of F at the box's inner end
+                    // shows the zero before it
+                    let (d, d2) = (
+                        10f64.powi(-rng.random_range(7..=8)),
+                        10f64.powi(-rng.random_range(6..=9)),
+                    );
+                    if it % 8 == 3 {
+                        roots.extend([1.0 - d, 1.0 + d2]);
+                    } else {
+                        roots.extend([d, -d2]);
+                    }
+                }
             }
             // F = k * prod (t - r): Bernstein coefficients by products of linear factors
             // (-r, 1 - r), degree-elevating each product exactly
