@@ -551,9 +551,22 @@ impl Critical {
         let (att_hi, att_lo) = boxes.iter().fold((l.inf(), l.sup()), |(h, lo), b| {
             (h.max(b.enc.inf()), lo.min(b.enc.sup()))
         });
+        let gap = 2.0 * crate::num::ulp(c.coord_scale(j));
+        let kn = c.knots();
         for b in boxes.iter_mut() {
             if !(b.enc.sup() < att_hi && b.enc.inf() > att_lo) {
-                let (enc, v) = sp.box_tight(b.x0, b.x1)?;
+                let (mut enc, v) = sp.box_tight(b.x0, b.x1)?;
+                if enc.sup() - enc.inf() > gap {
+                    // (the mean value form's r |F| / wmin^2 is wide where weights are tiny:
+                    // then also the second-order Taylor form over the box in u, `TightEval`'s;
+                    // both enclose the piece's values over the box)
+                    let e = single::extremum(kn[k], kn[k + 1], b.x0, b.x1, false, CandidateKind::Critical);
+                    let t = vals.tight.coord_over(j, e.u_lo, e.u_hi);
+                    let both = enc.intersection(t);
+                    if !both.is_empty() {
+                        enc = both;
+                    }
+                }
                 b.enc = enc;
                 b.v = Some(v);
             }
