@@ -1028,3 +1028,44 @@ fn underflowing_radius_products_do_not_flatten_a_piece() {
     let v = nurbs_box::testkit::robust::check_strategies(&raw_strategies(), &c, 4, &[]);
     assert!(v.is_empty(), "raw: {v:?}");
 }
+
+/// Control values at -f64::MAX next to zeros (the proptest case that found it): the
+/// subdivision of the zero estimation overflows (differences of coefficients near f64::MAX),
+/// and an infinite piece coefficient must not pass as a proven sign; without the driver's
+/// rescaling `newton` and `bezier` reported an upper bound 9e305 below a value of the curve.
+#[test]
+fn overflowing_zero_estimation_proves_nothing() {
+    let m = -f64::MAX;
+    let c = curve(
+        4,
+        vec![
+            -2.950856608435965,
+            -1.8817884591644178,
+            -1.8801112406652707,
+            -1.4303234254590993,
+            -0.8067902275626213,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            5e-324,
+            7.9915485645182525e-25,
+            0.1932478333888893,
+        ],
+        [0.0, 0.0, m, 0.0, m, 0.0, 0.0, 0.0]
+            .iter()
+            .map(|&x| vec![x])
+            .collect(),
+        None,
+    );
+    let v = nurbs_box::testkit::robust::check_strategies(
+        &raw_strategies(),
+        &c,
+        6,
+        &[-0.3457672403839806],
+    );
+    assert!(v.is_empty(), "{v:?}");
+    let v = check_all_strategies(&c, 6, &[-0.3457672403839806]);
+    assert!(v.is_empty(), "{v:?}");
+}

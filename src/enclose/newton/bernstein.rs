@@ -721,9 +721,13 @@ fn halving_bound(n: usize, depth: u32, m: f64, rad: f64) -> f64 {
 
 /// The number of sign changes of the exact coefficients within `e` of the f64 coefficients
 /// `v` when every |v_i| > e (each exact coefficient then has the sign of v_i), else `None`
-/// (a coefficient of unknown sign, or non-finite data).
+/// (a coefficient of unknown sign, or non-finite data). Every coefficient must be finite: the
+/// bound's proof assumes that no computed value overflowed, and an overflow anywhere in the
+/// halvings reaches every later piece (each halving's apex is in both halves), so a finite
+/// piece had only finite ancestors. (An infinite coefficient would otherwise pass as a proven
+/// sign: values near f64::MAX, whose differences overflow.)
 fn proven_changes(v: &[f64], e: f64) -> Option<usize> {
-    if !e.is_finite() {
+    if !e.is_finite() || !v.iter().all(|x| x.is_finite()) {
         return None;
     }
     let mut n = 0;
