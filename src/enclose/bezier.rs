@@ -472,22 +472,24 @@ impl<'a> Ctx<'a> {
 /// derivative numerator F (degree 2p - 2 rational, p - 1 polynomial; sign and zeros of C_j' on
 /// the closed span) located by Bernstein subdivision with proven sign counts, so that every
 /// zero lies in one of a few boxes of half-width 2^-40 of the span's local parameter and F
-/// provably has none elsewhere (`SpanPoly::critical_values`: pieces with one proven sign,
+/// provably has none elsewhere (`SpanPoly::critical_boxes`: pieces with one proven sign,
 /// or one proven sign change and F of opposite proven signs at the ends of the piece's box;
 /// Descartes' rule of signs for the Bernstein basis). The extremes of C_j over the closed span
 /// are then among its end values and its values over the boxes, each enclosed about one ulp
 /// wide (a mean value form from the span's double-double points).
 struct Critical {
-    /// C_j at the span's left and right end (the first and last Bézier points' quotients)
+    /// C_j at the span's left end and the limit at its right end (`TightEval::end_value`)
     ends: [Ddi; 2],
     boxes: SmallVec<[CriticalBox; 4]>,
 }
 
-/// A box of [`Critical`]: the local parameters [x0, x1], an enclosure of the piece's values
+/// A box of [`Critical`]: the local parameters [x0, x1] and the box in u, an enclosure of the piece's values
 /// over it, and (where it was needed) the enclosure of a value the piece attains in it.
 struct CriticalBox {
     x0: f64,
     x1: f64,
+    /// the box in u, rounded outward (its candidate record)
+    at: Extremum,
     enc: Interval,
     v: Option<Ddi>,
 }
@@ -502,47 +504,23 @@ impl Critical {
     fn of(vals: &Values, pair: &[Mr], j: usize, k: usize) -> Option<Critical> {
         use crate::enclose::newton::bernstein::SpanPoly;
         let c = vals.curve;
-        let (p, d) = (c.degree(), c.dim());
-        let pts = vals.tight.bezier_points(k);
-        let sp = SpanPoly::new(c, j, k, pair, pts);
+        let sp = SpanPoly::new(c, j, k, pair, vals.tight.bezier_points(k));
         if sp.f_swamped() {
             return None;
         }
         let found = sp.critical_boxes(GENERAL_H)?;
-        let h = d + c.is_rational() as usize;
-        let end = |i: usize| {
-            let x = pts[i * h + j];
-            if c.is_rational() {
-                x / pts[i * h + d]
-            } else {
-                x
-            }
-        };
-        // (at a clamped domain end the value is the end control point exactly:
-        // `NurbsCurve::clamped_ends`; the quotient of the Bézier points would be an enclosure
-        // one ulp wide)
-        let (kn, (a, b)) = (c.knots(), c.domain());
-        let cl = c.clamped_ends();
-        let last = c.num_points() - 1;
-        let left = if cl[0] && kn[k] == a {
-            Ddi::exact(c.control_point(0)[j])
-        } else {
-            end(0)
-        };
-        let right = if cl[1] && kn[k + 1] == b {
-            Ddi::exact(c.control_point(last)[j])
-        } else {
-            end(p)
-        };
+        let (left, right) = (vals.tight.end_value(j, k, false), vals.tight.end_value(j, k, true));
         // Every box's values cheaply first (O(p)); the tight enclosure only for boxes that
         // may hold an extreme of the piece: a box whose cheap values lie strictly between values
         // the piece attains (the left end, the boxes' own cheap ends: every value over a box is
         // attained) holds neither its maximum nor its minimum, and its cheap enclosure bounds it.
+        let kn = c.knots();
         let mut boxes: SmallVec<[CriticalBox; 4]> = found
             .iter()
             .map(|&(x0, x1)| CriticalBox {
                 x0,
                 x1,
+                at: single::extremum(kn[k], kn[k + 1], x0, x1, false, CandidateKind::Critical),
                 enc: sp.box_values(x0, x1),
                 v: None,
             })
@@ -552,7 +530,6 @@ impl Critical {
             (h.max(b.enc.inf()), lo.min(b.enc.sup()))
         });
         let gap = 2.0 * crate::num::ulp(c.coord_scale(j));
-        let kn = c.knots();
         for b in boxes.iter_mut() {
             if !(b.enc.sup() < att_hi && b.enc.inf() > att_lo) {
                 let (mut enc, v) = sp.box_tight(b.x0, b.x1)?;
@@ -560,8 +537,7 @@ impl Critical {
                     // (the mean value form's r |F| / wmin^2 is wide where weights are tiny:
                     // then also the second-order Taylor form over the box in u, `TightEval`'s;
                     // both enclose the piece's values over the box)
-                    let e = single::extremum(kn[k], kn[k + 1], b.x0, b.x1, false, CandidateKind::Critical);
-                    let t = vals.tight.coord_over(j, e.u_lo, e.u_hi);
+                    let t = vals.tight.coord_over(j, b.at.u_lo, b.at.u_hi);
                     let both = enc.intersection(t);
                     if !both.is_empty() {
                         enc = both;
@@ -609,8 +585,7 @@ impl Critical {
                 side.attain_f64(v.lower_end());
                 side.witness = side.witness.max(v.strictly_below());
             }
-            let e = single::extremum(u0, u1, b.x0, b.x1, false, CandidateKind::Critical);
-            side.bound(enc.sup(), e);
+            side.bound(enc.sup(), b.at);
         }
         let gap = side.upper - side.attained;
         if gap.is_nan() || gap > max_gap {

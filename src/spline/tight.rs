@@ -522,8 +522,19 @@ impl TightEval {
     /// first (last) Bézier point, x / w or x ([`TightEval::bezier_points`]; the value the
     /// expansion at that end gives, s = 0, without building it). At u = u_k this is the
     /// curve's value (the span found for u_k is the one starting there: right-continuous);
-    /// the right end is asked for only at the domain's end, the limit from the left.
-    fn end_value(&self, j: usize, k: usize, right: bool) -> Ddi {
+    /// at u_{k+1} it is the limit from the left (the curve's value unless u_{k+1} is a jump).
+    /// At a clamped domain end it is the end control point exactly
+    /// (`NurbsCurve::clamped_ends`; the quotient of the Bézier points would be an enclosure
+    /// an ulp wide).
+    pub(crate) fn end_value(&self, j: usize, k: usize, right: bool) -> Ddi {
+        let c = &self.curve;
+        let (kn, (a, b), cl) = (c.knots(), c.domain(), c.clamped_ends());
+        if !right && cl[0] && kn[k] == a {
+            return Ddi::exact(c.control_point(0)[j]);
+        }
+        if right && cl[1] && kn[k + 1] == b {
+            return Ddi::exact(c.control_point(c.num_points() - 1)[j]);
+        }
         let pts = self.bezier_points(k);
         let (p, d) = (self.curve.degree(), self.curve.dim());
         let h = d + self.curve.is_rational() as usize;

@@ -64,7 +64,7 @@ pub(crate) struct SpanPoly {
 /// (increasing; F proven zero-free there: [`SpanPoly::zero_estimates`]) do not cover, each as a
 /// closed interval with depth 0, to `gaps`: the parts still to be excluded. (A part's ends may
 /// lie in `free`, which only makes it larger than needed.)
-pub(super) fn push_unproven(gaps: &mut Vec<(f64, f64, u32)>, lo: f64, hi: f64, free: &[(f64, f64)]) {
+fn push_unproven(gaps: &mut Vec<(f64, f64, u32)>, lo: f64, hi: f64, free: &[(f64, f64)]) {
     let mut left = lo;
     for &(f0, f1) in free {
         if f1 < left {
@@ -370,9 +370,7 @@ impl SpanPoly {
         };
         let (v, v0, e) = if seg.rational {
             let (x, w) = (row(0), row(1));
-            let wmin = self.seg.pts.iter().skip(1).step_by(2).fold(f64::INFINITY, |m, w| {
-                m.min((w.to_interval()).inf())
-            });
+            let wmin = self.wmin;
             if wmin.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 return None;
             }
@@ -533,90 +531,106 @@ impl SpanPoly {
             }
             let n = changes(&v);
             let e = halving_bound(len - 1, depth, m, rad);
-            if n == 0 {
-                if proven_changes(&v, e) == Some(0) {
+            let proved = if n == 0 {
+                let free_piece = proven_changes(&v, e) == Some(0);
+                if free_piece {
                     push_free(free, t0, t1);
-                } else if let Some((end, f0, f1)) = self.end_rule(&v, e, t0, t1, h) {
+                }
+                free_piece
+            } else if n == 1 || t1 - t0 <= 1.0 / 1_048_576.0 {
+                if out.len() >= max {
+                    return false;
+                }
+                let r = locate(&c, &dc, t0, t1, polygon_crossing(&v, t0, t1));
+                out.push(r);
+                let (x0, x1) = (r - h, r + h);
+                let one = n == 1
+                    && t0 < x0
+                    && x1 < t1
+                    && proven_changes(&v, e) == Some(1)
+                    && self.f_has_sign(x0, v[0] > 0.0)
+                    && self.f_has_sign(x1, v[len - 1] > 0.0);
+                if one {
+                    push_free(free, t0, x0);
+                    push_free(free, x1, t1);
+                }
+                one
+            } else {
+                // the halves at 1/2 (right stored first, so the left one is popped first)
+                let mid = 0.5 * (t0 + t1);
+                let r0 = arena.len();
+                arena.resize(r0 + 2 * len, 0.0);
+                let (right, left) = arena[r0..].split_at_mut(len);
+                halve(&mut v, left, right);
+                stack.push((mid, t1, r0, depth + 1));
+                stack.push((t0, mid, r0 + len, depth + 1));
+                continue;
+            };
+            // (a piece with at most one sign change that the rules above leave open: a zero at
+            // the span's end)
+            if !proved && n <= 1 {
+                if let Some((end, f0, f1)) = self.end_rule(&v, e, t0, t1, h) {
                     if out.len() >= max {
                         return false;
                     }
                     out.push(end);
                     push_free(free, f0, f1);
                 }
-                continue;
             }
-            if n == 1 || t1 - t0 <= 1.0 / 1_048_576.0 {
-                if out.len() >= max {
-                    return false;
-                }
-                let r = locate(&c, &dc, t0, t1, polygon_crossing(&v, t0, t1));
-                out.push(r);
-                if n == 1 {
-                    let (x0, x1) = (r - h, r + h);
-                    if t0 < x0
-                        && x1 < t1
-                        && proven_changes(&v, e) == Some(1)
-                        && self.f_has_sign(x0, v[0] > 0.0)
-                        && self.f_has_sign(x1, v[len - 1] > 0.0)
-                    {
-                        push_free(free, t0, x0);
-                        push_free(free, x1, t1);
-                    } else if let Some((end, f0, f1)) = self.end_rule(&v, e, t0, t1, h) {
-                        if out.len() >= max {
-                            return false;
-                        }
-                        out.push(end);
-                        push_free(free, f0, f1);
-                    }
-                }
-                continue;
-            }
-            // the halves at 1/2 (right stored first, so the left one is popped first)
-            let mid = 0.5 * (t0 + t1);
-            let r0 = arena.len();
-            arena.resize(r0 + 2 * len, 0.0);
-            let (right, left) = arena[r0..].split_at_mut(len);
-            halve(&mut v, left, right);
-            stack.push((mid, t1, r0, depth + 1));
-            stack.push((t0, mid, r0 + len, depth + 1));
         }
         out.sort_by(f64::total_cmp);
         true
     }
 
-    /// The critical points of the piece, proven located (the `bezier` strategy's fast path
-    /// on spans of any degree): boxes [x0, x1] of the local parameter (half-width `h` around
-    /// the estimates of [`SpanPoly::zero_estimates`], clamped to [0, 1], merged where they
-    /// overlap) whose union holds every zero of F in [0, 1]; `None` unless the estimation's
-    /// zero-free intervals cover everything outside the boxes. Sound: a zero of F outside
-    /// every box would lie in a proven zero-free interval. Since F has the sign and the zeros of
-    /// C_j' on the closed span, every interior extremum of the piece lies in a box.
-    pub(crate) fn critical_boxes(&self, h: f64) -> Option<SmallVec<[(f64, f64); 4]>> {
-        let (mut est, mut free) = (Vec::new(), Vec::new());
-        if !self.zero_estimates(&mut est, self.f.pts.len() + 1, h, &mut free) {
-            return None;
+    /// The boxes of the float-first search and what is left to exclude between them: the
+    /// estimates of [`SpanPoly::zero_estimates`] (at most `max`; `est` and `free` are its
+    /// scratch) as boxes [r - h, r + h] clamped to [0, 1] and merged where they overlap
+    /// (`boxes`, increasing), and the parts of [0, 1] outside the boxes that its zero-free
+    /// intervals do not cover (`gaps`, closed, depth 0). `false` where the estimation gave
+    /// nothing (then `boxes` and `gaps` are empty). Every zero of F in [0, 1] lies in a box or
+    /// in a gap.
+    pub(super) fn zero_boxes(
+        &self,
+        h: f64,
+        max: usize,
+        (est, free): (&mut Vec<f64>, &mut Vec<(f64, f64)>),
+        boxes: &mut Vec<(f64, f64)>,
+        gaps: &mut Vec<(f64, f64, u32)>,
+    ) -> bool {
+        est.clear();
+        free.clear();
+        boxes.clear();
+        gaps.clear();
+        if !self.zero_estimates(est, max, h, free) {
+            return false;
         }
-        let mut boxes: SmallVec<[(f64, f64); 4]> = SmallVec::new();
-        for &r in &est {
-            let (lo, hi) = ((r - h).max(0.0), (r + h).min(1.0));
-            match boxes.last_mut() {
-                Some(last) if lo <= last.1 => last.1 = last.1.max(hi),
-                _ => boxes.push((lo, hi)),
-            }
+        for &r in est.iter() {
+            push_free(boxes, (r - h).max(0.0), (r + h).min(1.0));
         }
-        // (every part of [0, 1] outside the boxes must be proven zero-free)
         let mut left = 0.0;
-        let mut rest = Vec::new();
-        for &(lo, hi) in &boxes {
+        for &(lo, hi) in boxes.iter() {
             if lo > left {
-                push_unproven(&mut rest, left, lo, &free);
+                push_unproven(gaps, left, lo, free);
             }
             left = hi;
         }
         if left < 1.0 {
-            push_unproven(&mut rest, left, 1.0, &free);
+            push_unproven(gaps, left, 1.0, free);
         }
-        rest.is_empty().then_some(boxes)
+        true
+    }
+
+    /// The critical points of the piece, proven located (the `bezier` strategy's fast path
+    /// on spans of any degree): the boxes of [`SpanPoly::zero_boxes`] (half-width `h`), whose
+    /// union holds every zero of F in [0, 1]; `None` unless the estimation's zero-free
+    /// intervals cover everything outside the boxes (no gap left). Sound: a zero of F outside
+    /// every box would lie in a proven zero-free interval. Since F has the sign and the zeros
+    /// of C_j' on the closed span, every interior extremum of the piece lies in a box.
+    pub(crate) fn critical_boxes(&self, h: f64) -> Option<Vec<(f64, f64)>> {
+        let (mut est, mut free, mut boxes, mut gaps) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let max = self.f.pts.len() + 1;
+        (self.zero_boxes(h, max, (&mut est, &mut free), &mut boxes, &mut gaps) && gaps.is_empty())
+            .then_some(boxes)
     }
 
     /// The values of the piece over the box [x0, x1] of the local parameter (x0 < x1), cheap
@@ -742,8 +756,8 @@ fn proven_changes(v: &[f64], e: f64) -> Option<usize> {
     Some(n)
 }
 
-/// Append the closed interval [lo, hi] to the increasing list `free`, merged with the last one
-/// where they touch.
+/// Append the closed interval [lo, hi] to the list `free` of intervals increasing in their
+/// lower ends, merged with the last one where they touch or overlap.
 fn push_free(free: &mut Vec<(f64, f64)>, lo: f64, hi: f64) {
     match free.last_mut() {
         Some(last) if lo <= last.1 => last.1 = last.1.max(hi),
@@ -1382,8 +1396,10 @@ mod tests {
     /// `SpanPoly::tight_over` encloses the piece on its box (degrees 1..=10 and 30..=40): at
     /// random parameters of random boxes (widths from 2^-50 to 1/2) the piece's value by
     /// double-double de Casteljau on the shifted rows (an independent enclosure of the exact value, about 2^-100 wide) lies in
-    /// `enc`, its value at the box's midpoint meets `v`, and `v0` is the first Bézier point.
-    /// (Fails with the mean-value term e left out: `enc` is then the midpoint's value alone.)
+    /// `enc`, its value at the box's midpoint meets `v`, and `v0` is the first Bézier point;
+    /// the cheap values of [`SpanPoly::values`] contain the same values (below 2^-20 the O(p)
+    /// form of `values_small`), and F' over the box meets F' at each sample. (Fails with the mean-value term e left out: `enc` is then the
+    /// midpoint's value alone; and with `values_small`'s r L term left out.)
     #[test]
     fn tight_over_encloses_the_piece() {
         use crate::spline::bezier::de_casteljau_eval_in_place;
@@ -1402,7 +1418,7 @@ mod tests {
             };
             v + Ddi::exact(sp.c)
         };
-        let (mut boxes, mut wide) = (0, 0);
+        let (mut boxes, mut wide, mut small) = (0, 0, 0);
         for n in 0..230 {
             let dim = rng.random_range(1..=2usize);
             let c = if n < 200 {
@@ -1429,6 +1445,20 @@ mod tests {
                     let w = 2f64.powf(rng.random_range(-50.0..-1.0));
                     let t0 = rng.random_range(0.0..1.0 - w);
                     let t = T::new(t0, t0 + w);
+                    // the cheap values too (below 2^-20 the O(p) value at the midpoint widened
+                    // by r max |C'|, `values_small`; above, the restriction)
+                    let cheap = sp.values(t);
+                    small += (w <= 1.0 / 1_048_576.0 && sp.values_small(t).is_some()) as usize;
+                    // and F' over the box (below 2^-20 first the mean value form about the
+                    // midpoint) meets F' at every sample (`Mr` enclosures of the same value)
+                    let dfx = sp.df(t);
+                    for i in 0..=8 {
+                        let s = (t.lo + (t.hi - t.lo) * i as f64 / 8.0).clamp(t.lo, t.hi);
+                        let x = piece(&sp, s);
+                        assert!(cheap.contains(x.hi()), "{c:?} k={k} t={t:?} s={s}");
+                        let d = bernstein_value_s(&sp.df.pts, s).to_interval();
+                        assert!(!dfx.intersection(d).is_empty(), "{c:?} k={k} t={t:?} s={s}");
+                    }
                     let Some((enc, v, v0)) = sp.tight_over(t) else {
                         continue;
                     };
@@ -1452,7 +1482,7 @@ mod tests {
                 }
             }
         }
-        assert!(boxes > 500 && wide > 100, "{boxes} {wide}");
+        assert!(boxes > 500 && wide > 100 && small > 300, "{boxes} {wide} {small}");
     }
 
     #[test]

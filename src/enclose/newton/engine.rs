@@ -7,7 +7,7 @@
 //! (interval de Boor) or of the span's local parameter t (its Bernstein form, [`SpanPoly`]).
 
 use super::acc::{Acc, Cand};
-use super::bernstein::{pair_coefficients, push_unproven, SpanPoly};
+use super::bernstein::{pair_coefficients, SpanPoly};
 use super::param::{can_split, midpoint, Space, SpanParam, T, U};
 use super::{DerivForm, Newton, Split, BERNSTEIN_MAX_DEGREE, EVALS_PER_SPAN, WORK_PER_SPAN};
 use crate::enclose::{CandidateKind, CoordBox, Stats, Termination};
@@ -625,41 +625,18 @@ impl<'a> Engine<'a> {
     /// excluded).
     fn seed_float_first(&mut self, k: usize, a: f64, b: f64) -> bool {
         const H: f64 = 1.0 / 1_073_741_824.0; // 2^-30
-        let mut est = std::mem::take(&mut self.est);
-        est.clear();
-        let mut free = std::mem::take(&mut self.free);
-        free.clear();
-        let ok = match self.span_poly(k) {
-            Some(sp) => sp.zero_estimates(&mut est, 2 * self.p + 2, H, &mut free),
-            None => false,
-        };
-        if !(ok && a == 0.0 && b == 1.0) {
-            self.est = est;
-            self.free = free;
+        let (mut est, mut free) = (std::mem::take(&mut self.est), std::mem::take(&mut self.free));
+        let (mut bx, mut gaps) = (Vec::new(), Vec::new());
+        let ok = a == 0.0
+            && b == 1.0
+            && match self.span_poly(k) {
+                Some(sp) => sp.zero_boxes(H, 2 * self.p + 2, (&mut est, &mut free), &mut bx, &mut gaps),
+                None => false,
+            };
+        (self.est, self.free) = (est, free);
+        if !ok {
             return false;
         }
-        // boxes, merged where they overlap, inside [a, b]
-        let mut bx: Vec<(f64, f64)> = Vec::with_capacity(est.len());
-        for &r in &est {
-            let (lo, hi) = ((r - H).max(a), (r + H).min(b));
-            match bx.last_mut() {
-                Some(last) if lo <= last.1 => last.1 = last.1.max(hi),
-                _ => bx.push((lo, hi)),
-            }
-        }
-        self.est = est;
-        let mut gaps: Vec<(f64, f64, u32)> = Vec::with_capacity(bx.len() + 1);
-        let mut left = a;
-        for &(lo, hi) in &bx {
-            if lo > left {
-                push_unproven(&mut gaps, left, lo, &free);
-            }
-            left = hi;
-        }
-        if left < b {
-            push_unproven(&mut gaps, left, b, &free);
-        }
-        self.free = free;
         while let Some((g0, g1, depth)) = gaps.pop() {
             let fg = self.f(k, SpanParam::Local(T::new(g0, g1)));
             if !fg.is_empty() && !fg.contains(0.0) {
