@@ -36,8 +36,12 @@
 //!   the branch and bound below when it cannot prove a result within two ulps.
 //! * Before a span's `Mr` segment is built and split, the hull of its double-double Bézier
 //!   points ([`span_hull`]; extracted in blocks by one sweep of Boehm insertion and shared
-//!   with the tight evaluations, `TightEval::bezier_points`) gives a cheap, sound upper bound
+//!   with the tight evaluations, `TightEval::bezier_points`; for a rational curve the
+//!   outward-rounded quotients of its homogeneous points) gives a cheap, sound upper bound
 //!   and an attained value, which prune most spans of long splines without the search.
+//!   A span that this hull leaves first in the best-first order goes to the root-isolating
+//!   proofs: [`single`] (non-rational, degree 2 or 3) or the general fast path ([`Critical`],
+//!   degree 2 to 64 otherwise), before any `Mr` segment is built.
 //!
 //! The minimum is computed as the maximum of -C_j (negation is exact).
 
@@ -685,12 +689,14 @@ impl BezierSubdivision {
                     );
                     continue;
                 }
-                // Hull filter (non-rational curves): a cheap upper bound of the span and a value
-                // it attains from its double-double Bézier points (`span_hull`), before the
-                // `Mr` segment and its pieces.
-                if !item.filtered && !c.is_rational() {
+                // Hull filter: a cheap upper bound of the span and a value it attains from its
+                // double-double Bézier points (`span_hull`; the quotients of the homogeneous
+                // points for a rational curve), before any proof and before the `Mr` segment
+                // and its pieces.
+                if !item.filtered {
                     let last = k == spans[spans.len() - 1];
-                    let (pri, at) = span_hull(vals.tight.bezier_points(k), p, j, sign, last);
+                    let (pri, at) =
+                        span_hull(vals.tight.bezier_points(k), p, j, sign, last, c.is_rational());
                     side.attain_f64(at);
                     heap.push(Item {
                         pri: pri.min(item.pri),
@@ -726,6 +732,31 @@ impl BezierSubdivision {
                     if let Some(mut sd) = single::coord_sides(&seg, self.max_gap(c, j), need) {
                         side.absorb(std::mem::replace(&mut sd[i], Side::new()));
                         continue;
+                    }
+                }
+                // The general fast path (any other degree up to GENERAL_MAX_DEGREE, rational or
+                // not) once the span's Bézier hull comes first (it may hold the extreme; most
+                // spans are pruned by that hull before): a proven result for the whole span, or
+                // nothing (then the `Mr` segment and its subdivision follow). Its proof is
+                // shared by both sides of the coordinate.
+                if *general {
+                    if !matches!(crit[k], Some((jj, _)) if jj == j) {
+                        let pr = pair.get_or_insert_with(|| {
+                            if c.is_rational() {
+                                super::newton::bernstein::pair_coefficients(p)
+                            } else {
+                                Vec::new()
+                            }
+                        });
+                        crit[k] = Some((j, Critical::of(vals, pr, j, k)));
+                    }
+                    if let Some((_, Some(cr))) = &crit[k] {
+                        let last = spans[spans.len() - 1];
+                        let ra = right_end_attained(c.knots(), p, k, last);
+                        if let Some(s) = cr.side(c, k, sign, ra, self.max_gap(c, j)) {
+                            side.absorb(s);
+                            continue;
+                        }
                     }
                 }
             }
@@ -777,31 +808,6 @@ impl BezierSubdivision {
                 });
                 continue;
             };
-            // The general fast path (any other degree up to GENERAL_MAX_DEGREE, rational or
-            // not) once the whole span's piece comes first (its Bézier hull may hold the
-            // extreme; most spans are pruned before): a proven result for the whole span, or
-            // nothing (then the subdivision goes on). Its proof is shared by both sides of the
-            // coordinate.
-            if *general && depth == 0 && s0 == seg.a && s1 == seg.b {
-                if !matches!(crit[k], Some((jj, _)) if jj == j) {
-                    let pr = pair.get_or_insert_with(|| {
-                        if c.is_rational() {
-                            super::newton::bernstein::pair_coefficients(p)
-                        } else {
-                            Vec::new()
-                        }
-                    });
-                    crit[k] = Some((j, Critical::of(vals, pr, j, k)));
-                }
-                if let Some((_, Some(cr))) = &crit[k] {
-                    let last = spans[spans.len() - 1];
-                    let ra = right_end_attained(c.knots(), p, k, last);
-                    if let Some(s) = cr.side(c, k, sign, ra, self.max_gap(c, j)) {
-                        side.absorb(s);
-                        continue;
-                    }
-                }
-            }
             let u = item.pri;
             pieces += 1;
             let (e0, e1) = (co[0], co[p]);
@@ -1369,14 +1375,14 @@ fn refine_local(
 
 /// The hull filter: `(upper bound, attained value)` of sign * C_j on span k from the span's
 /// Bézier points `pts` (`TightEval::bezier_points`: `Ddi` enclosures of the exact points of a
-/// non-rational curve of degree p, [`span_range`]). C(u_k) = b_0 is attained
-/// (right-continuous; b_p = C(u_{k+1}) only on the last span, elsewhere it may be a left limit
-/// at a jump), so the lower end of its enclosure is a value the curve reaches.
-fn span_hull(pts: &[Ddi], p: usize, j: usize, sign: f64, last: bool) -> (f64, f64) {
-    let (lo, hi) = span_range(pts, p, j);
+/// curve of degree p, homogeneous for a `rational` one, [`span_range`]). C(u_k) = b_0 is
+/// attained (right-continuous; b_p = C(u_{k+1}) only on the last span, elsewhere it may be a
+/// left limit at a jump), so the lower end of its enclosure is a value the curve reaches.
+fn span_hull(pts: &[Ddi], p: usize, j: usize, sign: f64, last: bool, rational: bool) -> (f64, f64) {
+    let (lo, hi) = span_range(pts, p, j, rational);
     let d = pts.len() / (p + 1);
     let end = |i: usize| {
-        let x = pts[i * d + j].to_interval();
+        let x = cartesian_point(pts, d, i, j, rational);
         if sign > 0.0 {
             x.inf()
         } else {
@@ -1387,18 +1393,37 @@ fn span_hull(pts: &[Ddi], p: usize, j: usize, sign: f64, last: bool) -> (f64, f6
     (if sign > 0.0 { hi } else { -lo }, at)
 }
 
+/// Coordinate j of the Bézier point i of a span from its points `pts` (`d` rows each,
+/// homogeneous (w x, w) for a `rational` curve), enclosed in f64: the point's enclosure, or
+/// for a rational curve the outward-rounded quotient of the enclosures of w x_j and w (the
+/// whole line unless the weight's enclosure is positive).
+fn cartesian_point(pts: &[Ddi], d: usize, i: usize, j: usize, rational: bool) -> Interval {
+    let x = pts[i * d + j].to_interval();
+    if !rational {
+        return x;
+    }
+    let w = pts[i * d + d - 1].to_interval();
+    if w.is_empty() || w.inf().partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return Interval::ENTIRE;
+    }
+    x / w
+}
+
 /// `(lo, hi)` bounding coordinate j of a span from its Bézier points `pts` (`Ddi` enclosures
-/// of the exact points, `pts.len() / (p + 1)` rows each, of a non-rational curve of degree p):
-/// the span's values lie in the hull of its exact Bézier coefficients (convex hull property,
-/// NURBS Book P5.x), so the extreme ends of the enclosures, rounded outward, bound them (an
-/// overflowed enclosure is the whole line, which bounds nothing).
-pub(crate) fn span_range(pts: &[Ddi], p: usize, j: usize) -> (f64, f64) {
+/// of the exact points, `pts.len() / (p + 1)` rows each, of a curve of degree p, homogeneous
+/// (w x, w) for a `rational` one): the span's values lie in the hull of its exact Bézier
+/// points (convex hull property, NURBS Book P5.x; for a rational span with the Cartesian
+/// points x_i = (w x)_i / w_i, thesis prop. 2.1, the weights of knot insertion being convex
+/// combinations of positive weights, so positive), so the extreme ends of the enclosures,
+/// rounded outward, bound them (an overflowed enclosure, or a weight not proven positive,
+/// is the whole line, which bounds nothing).
+pub(crate) fn span_range(pts: &[Ddi], p: usize, j: usize, rational: bool) -> (f64, f64) {
     let d = pts.len() / (p + 1);
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for x in pts.iter().skip(j).step_by(d) {
+    for i in 0..=p {
         // (an interval's ends are never NaN; an empty one, which no enclosure of a real is,
         // would be skipped by min / max: the whole line then)
-        let v = x.to_interval();
+        let v = cartesian_point(pts, d, i, j, rational);
         if v.is_empty() {
             return (f64::NEG_INFINITY, f64::INFINITY);
         }
@@ -1860,7 +1885,7 @@ mod tests {
                     let pts = ev.bezier_points(k);
                     for j in 0..c.dim() {
                         for sign in [1.0, -1.0] {
-                            let (ub, at) = span_hull(pts, p, j, sign, last);
+                            let (ub, at) = span_hull(pts, p, j, sign, last, c.is_rational());
                             for i in 0..=32 {
                                 let u = (kn[k] + (kn[k + 1] - kn[k]) * (i as f64 / 32.0))
                                     .clamp(kn[k], kn[k + 1]);

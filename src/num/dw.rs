@@ -91,6 +91,20 @@ impl Dw {
     }
 }
 
+impl Dw {
+    /// The normalised double word of the exact sum hi + lo (TwoSum), with no bound (for
+    /// kernels that bound their error a priori, such as `bernstein::value_vs_dw`).
+    #[inline(always)]
+    pub(crate) fn from_parts(hi: f64, lo: f64) -> Dw {
+        Dw::norm(hi, lo)
+    }
+    /// (hi, lo).
+    #[inline(always)]
+    pub(crate) fn parts(self) -> (f64, f64) {
+        (self.hi, self.lo)
+    }
+}
+
 impl Add for Dw {
     type Output = Dw;
     #[inline(always)]

@@ -6,7 +6,7 @@
 //! semantics of their types on top of error-free transformations and directed error bounds.
 
 pub mod ddi;
-mod dw;
+pub(crate) mod dw;
 pub mod exact;
 pub(crate) mod ffint;
 pub mod mr;

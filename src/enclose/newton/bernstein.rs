@@ -368,21 +368,24 @@ impl SpanPoly {
                 None => hull(&Self::restrict(&self.f, t0, t1)).mag(),
             },
         };
+        // (a row's value at t_m: in double words with one a-priori bound up to degree
+        // VS_DW_MAX, else by the scheme in `Ddi`)
+        let at = |i: usize| -> Ddi {
+            value_vs_dw(&seg.pts, h, i, tm).unwrap_or_else(|| bernstein_value_s(&row(i), tm))
+        };
         let (v, v0, e) = if seg.rational {
-            let (x, w) = (row(0), row(1));
             let wmin = self.wmin;
             if wmin.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 return None;
             }
-            let v = bernstein_value_s(&x, tm) / bernstein_value_s(&w, tm) + shift;
-            let v0 = x[0] / w[0] + shift;
+            let v = at(0) / at(1) + shift;
+            let v0 = seg.pts[0] / seg.pts[1] + shift;
             let e = iv::point(r) * iv::point(fm) / (iv::point(wmin) * iv::point(wmin));
             (v, v0, e.sup())
         } else {
-            let x = row(0);
-            let v = bernstein_value_s(&x, tm) + shift;
+            let v = at(0) + shift;
             let e = iv::point(r) * iv::point(fm) * iv::point(p as f64);
-            (v, x[0] + shift, e.sup())
+            (v, seg.pts[0] + shift, e.sup())
         };
         if v.is_entire() || !e.is_finite() {
             return None;
@@ -1132,10 +1135,80 @@ fn vs_row(co: &[Mr], h: usize, row: usize, t: f64) -> Option<(Interval, f64)> {
         acc = acc * s + (bj * xp) * b;
     }
     let nf = n as f64;
-    let e = up(((4.0 * nf + 6.0) * f64::EPSILON + 1.0 / f64::powi(2.0, 900)) * m
+    let e = up(((4.0 * nf + 6.0) * f64::EPSILON + P2_M900) * m
         + nf * f64::from_bits(16)
         + r);
     Some((widened(acc, acc, e), e))
+}
+
+/// 2^-900 and 2^-106 (exact; constants rather than `powi`, a library call with a loop).
+const P2_M900: f64 = f64::from_bits((1023 - 900) << 52);
+const P2_M106: f64 = f64::from_bits((1023 - 106) << 52);
+
+/// The degree up to which [`value_vs_dw`] runs (every binomial coefficient exact in f64).
+pub(crate) const VS_DW_MAX: usize = 56;
+
+/// The value at t in [0, 1] of the polynomial whose Bernstein coefficients (degree
+/// n <= [`VS_DW_MAX`]) lie in the `Ddi` enclosures of row `row` of `h` interleaved rows of
+/// `co` (coefficient j at `co[j h + row]`), in plain double-word arithmetic ([`Dw`]: no bound
+/// carried per operation) with one a-priori bound: the scheme of [`value_vs_f64`] (Horner in
+/// s = 1 - t carrying the powers of x = t, mirrored for t > 1/2), a few times cheaper than
+/// the same scheme in `Ddi` ([`bernstein_value_s`], a running bound per operation), for the
+/// point values of [`SpanPoly::tight_over`]. `None` above [`VS_DW_MAX`] or for t outside
+/// [0, 1]; ENTIRE where something is not finite.
+///
+/// Error bound (u = 2^-53, η = 2^-1075, M = max |hi_j| of the coefficients' centres
+/// hi_j + lo_j, R = max radius). The centres are taken as normalised double words (TwoSum,
+/// exact), |hi_j + lo_j| <= (1 + u) |hi_j|. x and s are exact (x = t or 1 - t, exact by
+/// Sterbenz's lemma for t >= 1/2; s = 1 - t as the double word TwoSum(1, -t), or t), and
+/// x + s = 1 exactly; the binomials are exact (n <= 56). The double-word operations of
+/// [`crate::num::dw`] err by at most 7.1 u^2 |a| |b| + 5 η (product) and 3.02 u^2 (|a| + |b|)
+/// (sum), so (as in [`value_vs_f64`]) without underflow the computed value is
+/// sum_j b_j C(n, j) x^j s^(n-j) (1 + θ_j) with term j meeting j products for x^j, two for
+/// its coefficient and per later step one product and one sum: |θ_j| <= (1 + 2^-90)
+/// (7.1 (n + 2) + 3.02 n) u^2 <= (10.2 n + 14.3) u^2. The weights C(n, j) x^j s^(n-j) are
+/// nonnegative and sum to 1, so the error is at most (10.2 n + 14.3) u^2 (1 + u) M
+/// <= (12 n + 16) 2^-106 M. Underflow: each of the at most 3n products adds at most 5 η, which
+/// the later factors (C(n, j) |b_j| <= 2^n (1 + u) M at most) amplify: below
+/// 5 (3n) 2^n 1.01 M η + 15 n η <= 2^-900 M + n 2^-1070 for n <= 56. The centres are within R
+/// of the exact coefficients: + R. So E = up(((12 n + 16) 2^-106 + 2^-900) M + n 2^-1070 + R)
+/// (Lemma B of [`crate::num::ddi`]; (12 n + 16) 2^-106 and n 2^-1070 are exact), and the
+/// result is the `Ddi` with the computed centre and radius E. (|partial sums| <= 2^n M: no
+/// overflow below 2^1000 M.) Tested against exact rational evaluation
+/// (`vs_dw_value_bound_holds_exactly`).
+pub(crate) fn value_vs_dw(co: &[Ddi], h: usize, row: usize, t: f64) -> Option<Ddi> {
+    use crate::num::dw::Dw;
+    let n = (co.len() / h).checked_sub(1)?;
+    if n > VS_DW_MAX || !(0.0..=1.0).contains(&t) || co.len() % h != 0 {
+        return None;
+    }
+    let rev = t > 0.5;
+    // (x + s = 1 exactly: 1 - t is exact for t in [1/2, 1] (Sterbenz), and a double word
+    // (TwoSum) below)
+    let (x, s) = if rev {
+        (Dw::from_parts(1.0 - t, 0.0), Dw::from_parts(t, 0.0))
+    } else {
+        (Dw::from_parts(t, 0.0), Dw::from_parts(1.0, -t))
+    };
+    let binom = &BINOMIALS[n];
+    let at = |j: usize| if rev { (n - j) * h + row } else { j * h + row };
+    let (hi, lo, rad) = co[at(0)].parts();
+    let (mut m, mut r) = (hi.abs(), rad);
+    let mut acc = Dw::from_parts(hi, lo);
+    let mut xp = Dw::from_parts(1.0, 0.0);
+    for (j, &bj) in binom.iter().enumerate().take(n + 1).skip(1) {
+        let (hi, lo, rad) = co[at(j)].parts();
+        m = m.max(hi.abs());
+        r = r.max(rad);
+        xp = xp * x;
+        acc = acc * s + (Dw::from_parts(bj, 0.0) * xp) * Dw::from_parts(hi, lo);
+    }
+    let nf = n as f64;
+    let e = up(((12.0 * nf + 16.0) * P2_M106 + P2_M900) * m
+        + nf * f64::from_bits(16)
+        + r);
+    let (vh, vl) = acc.parts();
+    Some(Ddi::from_parts(vh, vl, e))
 }
 
 /// [lo - e, hi + e] rounded outward (ENTIRE for non-finite ends or bound).
@@ -1804,6 +1877,88 @@ mod tests {
         assert!(slack.is_finite());
     }
 
+    /// A parameter of the point-value tests, by the iteration `it`: near 0, near 1, near 1/2,
+    /// tiny (underflowing powers), exactly 0, 1/2 or 1, or uniform.
+    fn vs_test_param(rng: &mut rand_chacha::ChaCha8Rng, it: usize) -> f64 {
+        use rand::Rng;
+        match it % 7 {
+            0 => rng.random_range(0.0..1e-6),
+            1 => 1.0 - rng.random_range(0.0..1e-6),
+            2 => 0.5 + rng.random_range(-1e-12..1e-12),
+            3 => 2f64.powi(-rng.random_range(20..=1000)),
+            4 => [0.0, 0.5, 1.0][it % 3],
+            _ => rng.random_range(0.0..1.0),
+        }
+    }
+
+    /// The a-priori bound of [`value_vs_dw`] (the VS scheme in plain double words) holds
+    /// against exact rational evaluation: degrees 0 ..= 56, one of two interleaved rows,
+    /// double-word centres (a genuine low part) with and without radii, magnitudes from
+    /// 2^-1060 to 2^60, alternating and clustered coefficients, parameters near 0, 1/2, 1 and
+    /// tiny ones; and it is not vacuous (the worst observed error is a sizeable share of it,
+    /// and the bound is below 2^-90 of the coefficients).
+    #[test]
+    fn vs_dw_value_bound_holds_exactly() {
+        use crate::num::Exact;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(29);
+        let mut worst: f64 = 0.0;
+        for it in 0..2000 {
+            let n = match it % 3 {
+                0 => rng.random_range(0..=4),
+                1 => rng.random_range(5..=24),
+                _ => rng.random_range(25..=VS_DW_MAX),
+            };
+            let mag = match it % 9 {
+                8 => 2f64.powi(rng.random_range(-1060..=-1000)),
+                _ => 2f64.powi(rng.random_range(-60..=60)),
+            };
+            let base: f64 = rng.random_range(-1.0..1.0) * mag;
+            let (h, row) = if it % 2 == 0 { (1, 0) } else { (2, it / 2 % 2) };
+            let rad = if it % 4 == 1 { mag * 1e-35 } else { 0.0 };
+            let co: Vec<Ddi> = (0..(n + 1) * h)
+                .map(|i| {
+                    let x = match it % 5 {
+                        0 => base + rng.random_range(-1.0..1.0) * mag * 1e-9,
+                        1 => if i % 2 == 0 { mag } else { -mag * rng.random_range(0.5..1.0) },
+                        _ => rng.random_range(-1.0..1.0) * mag,
+                    };
+                    // (a double word: the exact product of two f64, then its radius)
+                    let d = Ddi::exact(x) * Ddi::exact(1.0 + rng.random_range(0.0..1.0));
+                    let (hi, lo, _) = d.parts();
+                    Ddi::from_parts(hi, lo, rad)
+                })
+                .collect();
+            let t = vs_test_param(&mut rng, it);
+            let got = value_vs_dw(&co, h, row, t).expect("a degree in range");
+            let (gh, gl, e) = got.parts();
+            assert!(got.to_interval().is_common_interval(), "n = {n}, t = {t}");
+            let m = (0..=n).fold(0.0f64, |a, j| a.max(co[j * h + row].parts().0.abs()));
+            assert!(e <= m * 2f64.powi(-90) + rad + 1e-300, "n = {n}: bound {e:e} of {m:e}");
+            let centre = Exact::of(gh) + Exact::of(gl);
+            for sign in [-1.0, 1.0] {
+                let mut b: Vec<Exact> = (0..=n)
+                    .map(|j| {
+                        let (hi, lo, _) = co[j * h + row].parts();
+                        Exact::of(hi) + Exact::of(lo) + Exact::of(sign * rad)
+                    })
+                    .collect();
+                let mut out = b.clone();
+                restrict_in_place::<_, 1>(&mut b, &mut out, 0.0, t);
+                let d = b[n].clone() - centre.clone();
+                assert!(
+                    !d.gt_f64(e) && !(Exact::of(0.0) - d.clone()).gt_f64(e),
+                    "n = {n}, row {row} of {h}, at {t}: off by more than {e:e}"
+                );
+                if rad == 0.0 && e > 0.0 {
+                    worst = worst.max(d.round_up().abs() / e);
+                }
+            }
+        }
+        // (the rounding errors reach a noticeable share of the bound somewhere)
+        assert!(worst > 1e-3, "{worst}");
+    }
+
     /// The bound of [`value_vs_f64`] holds against exact rational evaluation (the left part
     /// of exact de Casteljau at t ends in B(t)): degrees 0 ..= 56, coefficients with radii,
     /// magnitudes from 2^-1060 to near f64::MAX, alternating and nearly constant signs,
@@ -1839,14 +1994,7 @@ mod tests {
                 })
                 .collect();
             let rad = if it % 4 == 0 { mag * 1e-20 } else { 0.0 };
-            let t: f64 = match it % 7 {
-                0 => rng.random_range(0.0..1e-6),
-                1 => 1.0 - rng.random_range(0.0..1e-6),
-                2 => 0.5 + rng.random_range(-1e-12..1e-12),
-                3 => 2f64.powi(-rng.random_range(20..=1000)),
-                4 => [0.0, 0.5, 1.0][it % 3],
-                _ => rng.random_range(0.0..1.0),
-            };
+            let t = vs_test_param(&mut rng, it);
             let t = if high {
                 (t * 4096.0).round() / 4096.0
             } else {

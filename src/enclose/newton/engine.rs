@@ -773,14 +773,15 @@ impl<'a> Engine<'a> {
                     continue;
                 }
             }
-            if self.s.fast_path && mode == SpanMode::Prune && !self.rational && want_poly {
+            if self.s.fast_path && mode == SpanMode::Prune && want_poly {
                 // The span's Bézier hull from its double-double points (`bezier::span_range`:
-                // convex hull property, each point enclosed): inside the values the curve
+                // convex hull property, each point enclosed, the quotients of the homogeneous
+                // points for a rational curve): inside the values the curve
                 // attains on both sides, the span is covered as with the Bézier hull of its
                 // `SpanPoly` below, without building that form. (The points are those
                 // `SpanPoly` starts from, swept in blocks and shared by the coordinates.)
                 let pts = self.tight.bezier_points(k);
-                let (lo, hi) = crate::enclose::bezier::span_range(pts, self.p, j);
+                let (lo, hi) = crate::enclose::bezier::span_range(pts, self.p, j, self.rational);
                 if lo >= cheap_lo && hi <= cheap_hi {
                     self.stats.fast_exits += 1;
                     continue;
