@@ -1395,18 +1395,14 @@ fn span_hull(pts: &[Ddi], p: usize, j: usize, sign: f64, last: bool, rational: b
 
 /// Coordinate j of the Bézier point i of a span from its points `pts` (`d` rows each,
 /// homogeneous (w x, w) for a `rational` curve), enclosed in f64: the point's enclosure, or
-/// for a rational curve the outward-rounded quotient of the enclosures of w x_j and w (the
-/// whole line unless the weight's enclosure is positive).
+/// for a rational curve the outward-rounded quotient of the enclosures of w x_j and w
+/// ([`iv::div_positive`]: the whole line unless the weight's enclosure is positive).
 fn cartesian_point(pts: &[Ddi], d: usize, i: usize, j: usize, rational: bool) -> Interval {
     let x = pts[i * d + j].to_interval();
     if !rational {
         return x;
     }
-    let w = pts[i * d + d - 1].to_interval();
-    if w.is_empty() || w.inf().partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-        return Interval::ENTIRE;
-    }
-    x / w
+    iv::div_positive(x, pts[i * d + d - 1].to_interval())
 }
 
 /// `(lo, hi)` bounding coordinate j of a span from its Bézier points `pts` (`Ddi` enclosures

@@ -115,7 +115,50 @@ pub fn bernstein_value(c: &[f64], t: f64) -> f64 {
             acc = acc * s + binom * coef(i);
         }
     }
-    acc * q.powi(n as i32)
+    acc * powu(q, n)
+}
+
+/// x^n by squaring (`powi` is a library call with a loop).
+#[inline]
+fn powu(mut x: f64, mut n: usize) -> f64 {
+    let mut r = 1.0;
+    while n > 0 {
+        if n & 1 == 1 {
+            r *= x;
+        }
+        x *= x;
+        n >>= 1;
+    }
+    r
+}
+
+/// [`bernstein_value`] of `c` (degree n) and of `d` (degree n - 1, e.g. the hodograph) at the
+/// same t, in one pass: the two Horner chains run side by side (they are independent, so
+/// their latencies overlap) and share s and the powers of 1 - t (for estimates only: the
+/// Newton steps of root finding). Falls back to two calls where the degrees do not fit.
+pub fn bernstein_value_pair(c: &[f64], d: &[f64], t: f64) -> (f64, f64) {
+    let n = c.len().wrapping_sub(1);
+    if c.len() < 2 || d.len() != n || n > BINOM_TABLE_MAX {
+        return (bernstein_value(c, t), bernstein_value(d, t));
+    }
+    let m = n - 1;
+    let (s, q, rev) = if t <= 0.5 {
+        (t / (1.0 - t), 1.0 - t, false)
+    } else {
+        ((1.0 - t) / t, t, true)
+    };
+    let cc = |i: usize| if rev { c[n - i] } else { c[i] };
+    let dd = |i: usize| if rev { d[m - i] } else { d[i] };
+    let rc = &BINOM_TABLE[n * (n + 1) / 2..n * (n + 1) / 2 + n + 1];
+    let rd = &BINOM_TABLE[m * (m + 1) / 2..m * (m + 1) / 2 + m + 1];
+    let mut a = cc(n).mul_add(s, rc[m] * cc(m));
+    let mut b = dd(m);
+    for i in (0..m).rev() {
+        a = a.mul_add(s, rc[i] * cc(i));
+        b = b.mul_add(s, rd[i] * dd(i));
+    }
+    let qm = powu(q, m);
+    (a * (qm * q), b * qm)
 }
 
 /// The Bernstein polynomial with coefficients `c` at the f64 t in [0, 1] in any [`Scalar`], in
@@ -350,6 +393,18 @@ mod tests {
                     super::de_casteljau_eval(&c, &t),
                 );
                 assert!((a - b).abs() <= 1e-12 * scale, "n {n} t {t}: {a} vs {b}");
+                // the fused pair: the same value and the hodograph's (the derivative / n)
+                if n >= 1 {
+                    let d = hodograph(&c);
+                    let (pa, pd) = super::bernstein_value_pair(&c, &d, t);
+                    let want_d = super::de_casteljau_eval(&d, &t);
+                    let dscale: f64 = d.iter().map(|x| x.abs()).sum::<f64>().max(1.0);
+                    assert!(
+                        (pa - b).abs() <= 1e-12 * scale,
+                        "pair n {n} t {t}: {pa} vs {b}"
+                    );
+                    assert!((pd - want_d).abs() <= 1e-12 * dscale, "pair' n {n} t {t}");
+                }
             }
         }
     }

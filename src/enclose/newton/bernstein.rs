@@ -802,15 +802,14 @@ fn polygon_crossing(v: &[f64], t0: f64, t1: f64) -> f64 {
 /// it leaves the bracket, until a step or the bracket is below [`LOCATE_TOL`] (an estimate
 /// only; see [`SpanPoly::zero_estimates`]).
 fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64, start: f64) -> f64 {
-    let eval = |v: &[f64], t: f64| crate::spline::bezier::bernstein_value(v, t);
-    let f0 = eval(c, t0);
+    let f0 = crate::spline::bezier::bernstein_value(c, t0);
     let mut t = if start > t0 && start < t1 {
         start
     } else {
         0.5 * (t0 + t1)
     };
     for _ in 0..60 {
-        let ft = eval(c, t);
+        let (ft, d) = crate::spline::bezier::bernstein_value_pair(c, dc, t);
         if ft == 0.0 {
             return t;
         }
@@ -820,7 +819,6 @@ fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64, start: f64) -> f64 {
         } else {
             t1 = t;
         }
-        let d = eval(dc, t);
         let mut nt = t - ft / d;
         // (a converged step first: at the rounding level a step can land just outside the
         // updated bracket, and a bisection from there crawled back in dozens of steps)
