@@ -256,11 +256,11 @@ impl SpanPoly {
         }
         if t.lo < t.hi {
             if let Some(v) = segment_values_f64(&self.seg, t.lo, t.hi) {
-                return v + iv::point(self.c);
+                return iv::add(v, iv::point(self.c));
             }
         }
         let q = Self::restrict(&self.seg, t.lo, t.hi);
-        hull(&cartesian(q, self.seg.rational)) + iv::point(self.c)
+        iv::add(hull(&cartesian(q, self.seg.rational)), iv::point(self.c))
     }
 
     /// [`SpanPoly::values`] over a small box (width at most 2^-20 of the span: the converged
@@ -270,8 +270,9 @@ impl SpanPoly {
     /// r L, where r >= |t - t_m| for t in the box ([`dist_up`]) and L bounds |dC_j/dt| on the
     /// closed span: dC_j/dt = F / W^2 (rational) or p F (polynomial; see [`SpanPoly`]), with
     /// |F| <= `fmax` and W >= `wmin` > 0 there (convex hull property). By the mean value
-    /// theorem every value of the piece over the box lies within r L of C_j(t_m). All in
-    /// outward-rounded interval arithmetic. `None` where that does not apply (wider boxes,
+    /// theorem every value of the piece over the box lies within r L of C_j(t_m). All rounded
+    /// outward (sums by [`iv::add`], quotients by [`iv::div_positive`], the magnitudes by the
+    /// upper bounds [`iv::mul_up`] and [`iv::div_up`]). `None` where that does not apply (wider boxes,
     /// degree above [`VS_MAX`], no positive weight bound, something not finite).
     fn values_small(&self, t: T) -> Option<Interval> {
         let (t0, t1) = (t.lo, t.hi);
@@ -289,14 +290,16 @@ impl SpanPoly {
             if w.inf().partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 return None;
             }
-            let wm = iv::point(self.wmin);
-            (a / w, iv::point(self.fmax) / (wm * wm))
+            let wm = self.wmin;
+            (iv::div_positive(a, w), iv::div_up(iv::div_up(self.fmax, wm), wm))
         } else {
             let (a, _) = vs_row(&self.seg.pts, 1, 0, tm)?;
-            (a, iv::point(self.fmax) * iv::point(self.seg.degree as f64))
+            (a, iv::mul_up(self.fmax, self.seg.degree as f64))
         };
-        let rl = (iv::point(r) * l).sup();
-        let out = v + iv::span(-rl, rl) + iv::point(self.c);
+        // (upper bounds by round to nearest stepped up, and sums rounded as inari's, without
+        // its switches of the rounding mode)
+        let rl = iv::mul_up(r, l);
+        let out = iv::add(iv::add(v, iv::span(-rl, rl)), iv::point(self.c));
         (rl.is_finite() && out.is_common_interval()).then_some(out)
     }
 
@@ -359,7 +362,7 @@ impl SpanPoly {
         // magnitude is all that is needed here, so no sharper form where that hull holds 0),
         // else `Mr`'s
         let by_value = value_f64(&self.f.pts, tm)
-            .map(|(v, _)| (iv::point(v.mag()) + iv::point(r) * iv::point(self.dfmax)).sup())
+            .map(|(v, _)| iv::add_up(v.mag(), iv::mul_up(r, self.dfmax)))
             .filter(|m| m.is_finite());
         let fm = match by_value {
             Some(m) => m,
@@ -380,12 +383,12 @@ impl SpanPoly {
             }
             let v = at(0) / at(1) + shift;
             let v0 = seg.pts[0] / seg.pts[1] + shift;
-            let e = iv::point(r) * iv::point(fm) / (iv::point(wmin) * iv::point(wmin));
-            (v, v0, e.sup())
+            let e = iv::div_up(iv::div_up(iv::mul_up(r, fm), wmin), wmin);
+            (v, v0, e)
         } else {
             let v = at(0) + shift;
-            let e = iv::point(r) * iv::point(fm) * iv::point(p as f64);
-            (v, seg.pts[0] + shift, e.sup())
+            let e = iv::mul_up(iv::mul_up(r, fm), p as f64);
+            (v, seg.pts[0] + shift, e)
         };
         if v.is_entire() || !e.is_finite() {
             return None;
@@ -419,8 +422,12 @@ impl SpanPoly {
         // (the Cartesian points x_i - c, as `cartesian` gives them, without its copy)
         let h = if self.seg.rational { 2 } else { 1 };
         for q in self.seg.pts.chunks_exact(h) {
-            let x = if h == 2 { q[0] / q[1] } else { q[0] };
-            let x = x.to_interval() + iv::point(self.c);
+            let x = if h == 2 {
+                iv::div_positive(q[0].to_interval(), q[1].to_interval())
+            } else {
+                q[0].to_interval()
+            };
+            let x = iv::add(x, iv::point(self.c));
             if x.is_empty() || x.is_entire() {
                 return (f64::NEG_INFINITY, f64::INFINITY, false, false);
             }
@@ -1079,7 +1086,7 @@ static BINOMIALS: [[f64; VS_MAX + 1]; VS_MAX + 1] = {
 /// polynomial whose Bernstein coefficients (degree n <= [`VS_MAX`]) lie in the `Mr` enclosures
 /// `co`, with an a-priori bound E (returned with the enclosure). The Volk–Schumaker scheme
 /// without division (a Horner scheme in s = 1 - t that carries the powers of x = t):
-/// acc_0 = b_0, acc_j = acc_{j-1} s + (C(n, j) x^j) b_j, so acc_n = sum_j b_j C(n, j) x^j
+/// acc_0 = b_0, acc_j = acc_{j-1} s + (C(n, j) x^j) b_j (one FMA), so acc_n = sum_j b_j C(n, j) x^j
 /// s^(n-j) = B(t), on the midpoints b_j. For t > 1/2 it runs mirrored (coefficients reversed,
 /// x = 1 - t, exact by Sterbenz's lemma, s = t), so that |acc_j| stays below 2^n M.
 ///
@@ -1088,7 +1095,8 @@ static BINOMIALS: [[f64; VS_MAX + 1]; VS_MAX + 1] = {
 /// integer (exact below 2^53). Without underflow the computed value is
 /// sum_j b_j C(n, j) x^j s^(n-j) (1 + θ_j), where term j meets the rounding of its binomial, j
 /// products for x^j, two for its coefficient, its addition, and per later step the rounding of
-/// s (if t <= 1/2, s = fl(1 - t)), of the product and of the sum: at most 3n + 4 roundings,
+/// s (if t <= 1/2, s = fl(1 - t)), of the product and of the sum (an FMA rounds product and
+/// sum once, one rounding fewer than counted here): at most 3n + 4 roundings,
 /// |θ_j| <= γ_{3n+4} <= 1.01 (3n + 4) u. The exact weights C(n, j) x^j (1 - x)^(n-j) are
 /// nonnegative and sum to 1, so the error is at most 1.01 (3n + 4) u M. Underflow adds at most
 /// j η to x^j, times C(n, j) (1 + u) and |b_j| <= M, and η per later product: in all below
@@ -1130,7 +1138,7 @@ fn vs_row(co: &[Mr], h: usize, row: usize, t: f64) -> Option<(Interval, f64)> {
         m = m.max(b.abs());
         r = r.max(c.rad());
         xp *= x;
-        acc = acc * s + (bj * xp) * b;
+        acc = acc.mul_add(s, (bj * xp) * b);
     }
     let nf = n as f64;
     let e = up(((4.0 * nf + 6.0) * f64::EPSILON + P2_M900) * m
@@ -1209,12 +1217,15 @@ pub(crate) fn value_vs_dw(co: &[Ddi], h: usize, row: usize, t: f64) -> Option<Dd
     Some(Ddi::from_parts(vh, vl, e))
 }
 
-/// [lo - e, hi + e] rounded outward (ENTIRE for non-finite ends or bound).
+/// [lo - e, hi + e] rounded outward (ENTIRE for non-finite ends or bound): each end in round
+/// to nearest, which errs by at most half an ulp (an overflow goes to ±inf, beyond f64::MAX on
+/// its side), then stepped one ulp outward (without inari's addition, which switches the
+/// rounding mode per operation; this runs for every f64 value and restriction).
 fn widened(lo: f64, hi: f64, e: f64) -> Interval {
     if !(lo.is_finite() && hi.is_finite() && e.is_finite()) {
         return Interval::ENTIRE;
     }
-    iv::span(lo, hi) + iv::span(-e, e)
+    iv::span((lo - e).next_down(), (hi + e).next_up())
 }
 
 /// The common body of [`restrict_hull_f64`], [`value_f64`] and [`segment_values_f64`]: the
