@@ -1414,19 +1414,36 @@ fn cartesian_point(pts: &[Ddi], d: usize, i: usize, j: usize, rational: bool) ->
 /// rounded outward, bound them (an overflowed enclosure, or a weight not proven positive,
 /// is the whole line, which bounds nothing).
 pub(crate) fn span_range(pts: &[Ddi], p: usize, j: usize, rational: bool) -> (f64, f64) {
+    let (lo, hi, _, _) = span_points(pts, p, j, rational);
+    (lo, hi)
+}
+
+/// [`span_range`] and whether the span's exact Bézier points are non-decreasing /
+/// non-increasing (for every choice of them in their enclosures: each upper end at most the
+/// next lower end): then so is the span's piece (a Bézier curve with positive weights and
+/// monotone points is monotone, the argument of `newton`'s monotone pretest). An empty or
+/// unbounded enclosure gives the whole line and neither.
+pub(crate) fn span_points(pts: &[Ddi], p: usize, j: usize, rational: bool) -> (f64, f64, bool, bool) {
     let d = pts.len() / (p + 1);
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let (mut inc, mut dec) = (true, true);
+    let mut prev = Interval::EMPTY;
     for i in 0..=p {
         // (an interval's ends are never NaN; an empty one, which no enclosure of a real is,
         // would be skipped by min / max: the whole line then)
         let v = cartesian_point(pts, d, i, j, rational);
-        if v.is_empty() {
-            return (f64::NEG_INFINITY, f64::INFINITY);
+        if v.is_empty() || v.is_entire() {
+            return (f64::NEG_INFINITY, f64::INFINITY, false, false);
         }
         lo = lo.min(v.inf());
         hi = hi.max(v.sup());
+        if i > 0 {
+            inc &= v.inf() >= prev.sup();
+            dec &= v.sup() <= prev.inf();
+        }
+        prev = v;
     }
-    (lo, hi)
+    (lo, hi, inc, dec)
 }
 
 /// `(upper bound, attained value)` of a span from f64 Bézier coefficients `v` (sign-adjusted)

@@ -407,41 +407,6 @@ impl SpanPoly {
         U::new(lo, hi)
     }
 
-    /// Coordinate j of the span's Bézier points, enclosed: their hull [lo, hi] and whether
-    /// they are non-decreasing / non-increasing (for every choice of the exact points in the
-    /// enclosures: each upper bound <= the next lower bound).
-    ///
-    /// Why this is sound: the new weights of knot insertion are convex combinations of
-    /// positive weights, so positive. A rational Bézier curve with positive weights lies in
-    /// the convex hull of its points (thesis prop. 2.1, on the closed span, the right-end limit
-    /// included), and is monotone if its points are (the argument of `Engine::monotone`).
-    pub(super) fn bezier_points(&self) -> (f64, f64, bool, bool) {
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        let (mut inc, mut dec) = (true, true);
-        let mut prev = Interval::EMPTY;
-        // (the Cartesian points x_i - c, as `cartesian` gives them, without its copy)
-        let h = if self.seg.rational { 2 } else { 1 };
-        for q in self.seg.pts.chunks_exact(h) {
-            let x = if h == 2 {
-                iv::div_positive(q[0].to_interval(), q[1].to_interval())
-            } else {
-                q[0].to_interval()
-            };
-            let x = iv::add(x, iv::point(self.c));
-            if x.is_empty() || x.is_entire() {
-                return (f64::NEG_INFINITY, f64::INFINITY, false, false);
-            }
-            lo = lo.min(x.inf());
-            hi = hi.max(x.sup());
-            if !prev.is_empty() {
-                inc &= x.inf() >= prev.sup();
-                dec &= x.sup() <= prev.inf();
-            }
-            prev = x;
-        }
-        (lo, hi, inc, dec)
-    }
-
     /// Whether every coefficient enclosure of F contains 0 or lies within four of its radii of
     /// it (and F is not exactly 0): the rounding of the Bernstein form swamps F, so no box of the
     /// span can be excluded with it
@@ -507,6 +472,14 @@ impl SpanPoly {
         let rad = self.f.pts.iter().fold(0.0f64, |a, x| a.max(x.rad()));
         let dc = crate::spline::bezier::hodograph(&c);
         let changes = |v: &[f64]| {
+            // (without a zero coefficient, the usual case, by comparisons summed without
+            // branches: the signs of the coefficients are unpredictable)
+            if v.iter().fold(true, |a, &x| a & (x != 0.0)) {
+                return v
+                    .windows(2)
+                    .map(|w| ((w[0] > 0.0) != (w[1] > 0.0)) as usize)
+                    .sum();
+            }
             let mut n = 0;
             let mut last = 0.0f64;
             for &x in v {
@@ -751,19 +724,17 @@ fn halving_bound(n: usize, depth: u32, m: f64, rad: f64) -> f64 {
 /// piece had only finite ancestors. (An infinite coefficient would otherwise pass as a proven
 /// sign: values near f64::MAX, whose differences overflow.)
 fn proven_changes(v: &[f64], e: f64) -> Option<usize> {
-    if !e.is_finite() || !v.iter().all(|x| x.is_finite()) {
+    if !e.is_finite() {
         return None;
     }
-    let mut n = 0;
-    for (i, &x) in v.iter().enumerate() {
-        if x.abs().partial_cmp(&e) != Some(std::cmp::Ordering::Greater) {
-            return None;
-        }
-        if i > 0 && (x > 0.0) != (v[i - 1] > 0.0) {
-            n += 1;
-        }
-    }
-    Some(n)
+    // (every |v_i| > e and finite (false for a NaN), and the sign changes, summed without
+    // branches: the signs are unpredictable)
+    let ok = v.iter().fold(true, |a, &x| a & x.is_finite() & (x.abs() > e));
+    let n = v
+        .windows(2)
+        .map(|w| ((w[0] > 0.0) != (w[1] > 0.0)) as usize)
+        .sum();
+    ok.then_some(n)
 }
 
 /// Append the closed interval [lo, hi] to the list `free` of intervals increasing in their

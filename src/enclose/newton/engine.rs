@@ -773,32 +773,27 @@ impl<'a> Engine<'a> {
                     continue;
                 }
             }
-            if self.s.fast_path && mode == SpanMode::Prune && want_poly {
-                // The span's Bézier hull from its double-double points (`bezier::span_range`:
-                // convex hull property, each point enclosed, the quotients of the homogeneous
-                // points for a rational curve): inside the values the curve
-                // attains on both sides, the span is covered as with the Bézier hull of its
-                // `SpanPoly` below, without building that form. (The points are those
-                // `SpanPoly` starts from, swept in blocks and shared by the coordinates.)
+            if want_poly {
+                // The span's Bézier points from its double-double points, shared with the
+                // other coordinates and the candidates' values (`TightEval::bezier_points`):
+                // their hull and monotonicity (`bezier::span_points`: convex hull property,
+                // each point enclosed, the quotients of the homogeneous points for a rational
+                // curve). Inside the values the curve attains on both sides, the span is
+                // covered as by the local hull above, without building its Bernstein form.
                 let pts = self.tight.bezier_points(k);
-                let (lo, hi) = crate::enclose::bezier::span_range(pts, self.p, j, self.rational);
-                if lo >= cheap_lo && hi <= cheap_hi {
-                    self.stats.fast_exits += 1;
+                let (blo, bhi, inc, dec) =
+                    crate::enclose::bezier::span_points(pts, self.p, j, self.rational);
+                let bp = self.s.bezier_pretest;
+                if (self.s.fast_path || bp)
+                    && mode == SpanMode::Prune
+                    && blo >= cheap_lo
+                    && bhi <= cheap_hi
+                {
+                    self.stats.fast_exits += self.s.fast_path as u64;
                     continue;
                 }
-            }
-            if want_poly {
-                // (the span's double-double points, shared with the other coordinates and
-                // the candidates' values: `TightEval::bezier_points`)
-                let pts = self.tight.bezier_points(k);
                 let sp = SpanPoly::new(self.c, self.j, k, &self.pair, pts);
                 self.poly = None;
-                let bp = self.s.bezier_pretest;
-                let (blo, bhi, inc, dec) = sp.bezier_points();
-                if bp && mode == SpanMode::Prune && blo >= cheap_lo && bhi <= cheap_hi {
-                    // as the local-hull prune above, with the span's own Bézier hull
-                    continue;
-                }
                 if bp && self.s.pretest && (inc || dec) {
                     status[si] = Status::Mono { inc, dec };
                     continue;
