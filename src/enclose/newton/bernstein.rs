@@ -371,22 +371,24 @@ impl SpanPoly {
                 None => hull(&Self::restrict(&self.f, t0, t1)).mag(),
             },
         };
-        // (a row's value at t_m: in double words with one a-priori bound up to degree
+        // (the rows' values at t_m: in double words with one a-priori bound up to degree
         // VS_DW_MAX, else by the scheme in `Ddi`)
-        let at = |i: usize| -> Ddi {
-            value_vs_dw(&seg.pts, h, i, tm).unwrap_or_else(|| bernstein_value_s(&row(i), tm))
-        };
         let (v, v0, e) = if seg.rational {
             let wmin = self.wmin;
             if wmin.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 return None;
             }
-            let v = at(0) / at(1) + shift;
+            let [x, w] = value_vs_dw::<2>(&seg.pts, h, tm).unwrap_or_else(|| {
+                [bernstein_value_s(&row(0), tm), bernstein_value_s(&row(1), tm)]
+            });
+            let v = x / w + shift;
             let v0 = seg.pts[0] / seg.pts[1] + shift;
             let e = iv::div_up(iv::div_up(iv::mul_up(r, fm), wmin), wmin);
             (v, v0, e)
         } else {
-            let v = at(0) + shift;
+            let [x] = value_vs_dw::<1>(&seg.pts, h, tm)
+                .unwrap_or_else(|| [bernstein_value_s(&row(0), tm)]);
+            let v = x + shift;
             let e = iv::mul_up(iv::mul_up(r, fm), p as f64);
             (v, seg.pts[0] + shift, e)
         };
@@ -1125,9 +1127,9 @@ const P2_M106: f64 = f64::from_bits((1023 - 106) << 52);
 /// The degree up to which [`value_vs_dw`] runs (every binomial coefficient exact in f64).
 pub(crate) const VS_DW_MAX: usize = 56;
 
-/// The value at t in [0, 1] of the polynomial whose Bernstein coefficients (degree
-/// n <= [`VS_DW_MAX`]) lie in the `Ddi` enclosures of row `row` of `h` interleaved rows of
-/// `co` (coefficient j at `co[j h + row]`), in plain double-word arithmetic ([`Dw`]: no bound
+/// The values at t in [0, 1] of the polynomials whose Bernstein coefficients (degree
+/// n <= [`VS_DW_MAX`]) lie in the `Ddi` enclosures of the first R of `h` interleaved rows of
+/// `co` (coefficient j of row i at `co[j h + i]`), in plain double-word arithmetic ([`Dw`]: no bound
 /// carried per operation) with one a-priori bound: the scheme of [`value_vs_f64`] (Horner in
 /// s = 1 - t carrying the powers of x = t, mirrored for t > 1/2), a few times cheaper than
 /// the same scheme in `Ddi` ([`bernstein_value_s`], a running bound per operation), for the
@@ -1153,10 +1155,10 @@ pub(crate) const VS_DW_MAX: usize = 56;
 /// result is the `Ddi` with the computed centre and radius E. (|partial sums| <= 2^n M: no
 /// overflow below 2^1000 M.) Tested against exact rational evaluation
 /// (`vs_dw_value_bound_holds_exactly`).
-pub(crate) fn value_vs_dw(co: &[Ddi], h: usize, row: usize, t: f64) -> Option<Ddi> {
+pub(crate) fn value_vs_dw<const R: usize>(co: &[Ddi], h: usize, t: f64) -> Option<[Ddi; R]> {
     use crate::num::dw::Dw;
     let n = (co.len() / h).checked_sub(1)?;
-    if n > VS_DW_MAX || !(0.0..=1.0).contains(&t) || co.len() % h != 0 {
+    if n > VS_DW_MAX || !(0.0..=1.0).contains(&t) || co.len() % h != 0 || R > h {
         return None;
     }
     let rev = t > 0.5;
@@ -1168,24 +1170,34 @@ pub(crate) fn value_vs_dw(co: &[Ddi], h: usize, row: usize, t: f64) -> Option<Dd
         (Dw::from_parts(t, 0.0), Dw::from_parts(1.0, -t))
     };
     let binom = &BINOMIALS[n];
-    let at = |j: usize| if rev { (n - j) * h + row } else { j * h + row };
-    let (hi, lo, rad) = co[at(0)].parts();
-    let (mut m, mut r) = (hi.abs(), rad);
-    let mut acc = Dw::from_parts(hi, lo);
+    let at = |j: usize| if rev { (n - j) * h } else { j * h };
+    // (the R rows side by side: independent chains, whose latencies overlap)
+    let (mut m, mut r) = ([0.0f64; R], [0.0f64; R]);
+    let mut acc = [Dw::from_parts(0.0, 0.0); R];
+    for row in 0..R {
+        let (hi, lo, rad) = co[at(0) + row].parts();
+        (m[row], r[row]) = (hi.abs(), rad);
+        acc[row] = Dw::from_parts(hi, lo);
+    }
     let mut xp = Dw::from_parts(1.0, 0.0);
     for (j, &bj) in binom.iter().enumerate().take(n + 1).skip(1) {
-        let (hi, lo, rad) = co[at(j)].parts();
-        m = m.max(hi.abs());
-        r = r.max(rad);
         xp = xp * x;
-        acc = acc * s + (Dw::from_parts(bj, 0.0) * xp) * Dw::from_parts(hi, lo);
+        let w = Dw::from_parts(bj, 0.0) * xp;
+        for row in 0..R {
+            let (hi, lo, rad) = co[at(j) + row].parts();
+            m[row] = m[row].max(hi.abs());
+            r[row] = r[row].max(rad);
+            acc[row] = acc[row] * s + w * Dw::from_parts(hi, lo);
+        }
     }
     let nf = n as f64;
-    let e = up(((12.0 * nf + 16.0) * P2_M106 + P2_M900) * m
-        + nf * f64::from_bits(16)
-        + r);
-    let (vh, vl) = acc.parts();
-    Some(Ddi::from_parts(vh, vl, e))
+    Some(std::array::from_fn(|row| {
+        let e = up(((12.0 * nf + 16.0) * P2_M106 + P2_M900) * m[row]
+            + nf * f64::from_bits(16)
+            + r[row]);
+        let (vh, vl) = acc[row].parts();
+        Ddi::from_parts(vh, vl, e)
+    }))
 }
 
 /// [lo - e, hi + e] rounded outward (ENTIRE for non-finite ends or bound): each end in round
@@ -1910,7 +1922,12 @@ mod tests {
                 })
                 .collect();
             let t = vs_test_param(&mut rng, it);
-            let got = value_vs_dw(&co, h, row, t).expect("a degree in range");
+            let got = if h == 1 {
+                value_vs_dw::<1>(&co, h, t).map(|[v]| v)
+            } else {
+                value_vs_dw::<2>(&co, h, t).map(|v| v[row])
+            }
+            .expect("a degree in range");
             let (gh, gl, e) = got.parts();
             assert!(got.to_interval().is_common_interval(), "n = {n}, t = {t}");
             let m = (0..=n).fold(0.0f64, |a, j| a.max(co[j * h + row].parts().0.abs()));
