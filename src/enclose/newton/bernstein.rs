@@ -715,7 +715,9 @@ fn halving_bound(n: usize, depth: u32, m: f64, rad: f64) -> f64 {
         return f64::INFINITY;
     }
     let lf = l as f64;
-    up(lf * (1.0 / 1_125_899_906_842_624.0) * m + lf * f64::from_bits(2) + rad)
+    // (L 2^-1073 as the subnormal 2L 2^-1074 built from its bits, exact for L <= 2^30: a product
+    // with a subnormal result takes a slow path in the hardware)
+    up(lf * (1.0 / 1_125_899_906_842_624.0) * m + f64::from_bits(2 * l) + rad)
 }
 
 /// The number of sign changes of the exact coefficients within `e` of the f64 coefficients
@@ -1115,7 +1117,7 @@ fn vs_row(co: &[Mr], h: usize, row: usize, t: f64) -> Option<(Interval, f64)> {
     }
     let nf = n as f64;
     let e = up(((4.0 * nf + 6.0) * f64::EPSILON + P2_M900) * m
-        + nf * f64::from_bits(16)
+        + f64::from_bits(16 * n as u64)
         + r);
     Some((widened(acc, acc, e), e))
 }
@@ -1193,7 +1195,7 @@ pub(crate) fn value_vs_dw<const R: usize>(co: &[Ddi], h: usize, t: f64) -> Optio
     let nf = n as f64;
     Some(std::array::from_fn(|row| {
         let e = up(((12.0 * nf + 16.0) * P2_M106 + P2_M900) * m[row]
-            + nf * f64::from_bits(16)
+            + f64::from_bits(16 * n as u64)
             + r[row]);
         let (vh, vl) = acc[row].parts();
         Ddi::from_parts(vh, vl, e)
@@ -1258,7 +1260,7 @@ fn restricted_f64<const H: usize, R>(
     }
     let nf = n as f64;
     let e = std::array::from_fn(|row| {
-        up(nf * (1.0 / 562_949_953_421_312.0) * m[row] + nf * f64::from_bits(2) + r[row])
+        up(nf * (1.0 / 562_949_953_421_312.0) * m[row] + f64::from_bits(2 * n as u64) + r[row])
     });
     Some(done(b, &e))
 }
