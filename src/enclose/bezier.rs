@@ -35,7 +35,7 @@
 //!   root counting, and a `Ddi` Taylor enclosure over each tiny bracket. It hands the curve to
 //!   the branch and bound below when it cannot prove a result within two ulps.
 //! * Before a span's `Mr` segment is built and split, the hull of its double-double Bézier
-//!   points ([`span_hull`]; extracted in blocks by one sweep of Boehm insertion and shared
+//!   points ([`span_points`]; extracted in blocks by one sweep of Boehm insertion and shared
 //!   with the tight evaluations, `TightEval::bezier_points`; for a rational curve the
 //!   outward-rounded quotients of its homogeneous points) gives a cheap, sound upper bound
 //!   and an attained value, which prune most spans of long splines without the search.
@@ -445,6 +445,9 @@ struct Ctx<'a> {
     /// per span, the general fast path's result for coordinate `.0` (`None` inside: it
     /// proved nothing), kept for the other side of that coordinate
     crit: Vec<Option<(usize, Option<Critical>)>>,
+    /// per span, its Bézier points' hull for coordinate `.0` (the hull filter's data, kept for
+    /// the other side of that coordinate)
+    hulls: Vec<Option<(usize, SpanPoints)>>,
     /// the pair coefficients of the rational derivative numerator (built on first use)
     pair: Option<Vec<Mr>>,
 }
@@ -466,6 +469,7 @@ impl<'a> Ctx<'a> {
             spans: (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect(),
             segs: vec![None; n + 1],
             crit: (0..=n).map(|_| None).collect(),
+            hulls: vec![None; n + 1],
             pair: None,
         }
     }
@@ -634,6 +638,7 @@ impl BezierSubdivision {
             spans,
             segs,
             crit,
+            hulls,
             pair,
         } = ctx;
         let c = vals.curve;
@@ -690,13 +695,19 @@ impl BezierSubdivision {
                     continue;
                 }
                 // Hull filter: a cheap upper bound of the span and a value it attains from its
-                // double-double Bézier points (`span_hull`; the quotients of the homogeneous
+                // double-double Bézier points (`span_points`; the quotients of the homogeneous
                 // points for a rational curve), before any proof and before the `Mr` segment
                 // and its pieces.
                 if !item.filtered {
                     let last = k == spans[spans.len() - 1];
-                    let (pri, at) =
-                        span_hull(vals.tight.bezier_points(k), p, j, sign, last, c.is_rational());
+                    if !matches!(hulls[k], Some((jj, _)) if jj == j) {
+                        let pts = vals.tight.bezier_points(k);
+                        hulls[k] = Some((j, span_points(pts, p, j, c.is_rational())));
+                    }
+                    let (pri, at) = match &hulls[k] {
+                        Some((_, h)) => h.side(sign, last),
+                        None => (f64::INFINITY, f64::NEG_INFINITY),
+                    };
                     side.attain_f64(at);
                     heap.push(Item {
                         pri: pri.min(item.pri),
@@ -1373,26 +1384,6 @@ fn refine_local(
     side.stats.add(&r.stats);
 }
 
-/// The hull filter: `(upper bound, attained value)` of sign * C_j on span k from the span's
-/// Bézier points `pts` (`TightEval::bezier_points`: `Ddi` enclosures of the exact points of a
-/// curve of degree p, homogeneous for a `rational` one, [`span_range`]). C(u_k) = b_0 is
-/// attained (right-continuous; b_p = C(u_{k+1}) only on the last span, elsewhere it may be a
-/// left limit at a jump), so the lower end of its enclosure is a value the curve reaches.
-fn span_hull(pts: &[Ddi], p: usize, j: usize, sign: f64, last: bool, rational: bool) -> (f64, f64) {
-    let (lo, hi) = span_range(pts, p, j, rational);
-    let d = pts.len() / (p + 1);
-    let end = |i: usize| {
-        let x = cartesian_point(pts, d, i, j, rational);
-        if sign > 0.0 {
-            x.inf()
-        } else {
-            -x.sup()
-        }
-    };
-    let at = if last { end(0).max(end(p)) } else { end(0) };
-    (if sign > 0.0 { hi } else { -lo }, at)
-}
-
 /// Coordinate j of the Bézier point i of a span from its points `pts` (`d` rows each,
 /// homogeneous (w x, w) for a `rational` curve), enclosed in f64: the point's enclosure, or
 /// for a rational curve the outward-rounded quotient of the enclosures of w x_j and w
@@ -1405,45 +1396,81 @@ fn cartesian_point(pts: &[Ddi], d: usize, i: usize, j: usize, rational: bool) ->
     iv::div_positive(x, pts[i * d + d - 1].to_interval())
 }
 
-/// `(lo, hi)` bounding coordinate j of a span from its Bézier points `pts` (`Ddi` enclosures
-/// of the exact points, `pts.len() / (p + 1)` rows each, of a curve of degree p, homogeneous
-/// (w x, w) for a `rational` one): the span's values lie in the hull of its exact Bézier
-/// points (convex hull property, NURBS Book P5.x; for a rational span with the Cartesian
-/// points x_i = (w x)_i / w_i, thesis prop. 2.1, the weights of knot insertion being convex
-/// combinations of positive weights, so positive), so the extreme ends of the enclosures,
-/// rounded outward, bound them (an overflowed enclosure, or a weight not proven positive,
-/// is the whole line, which bounds nothing).
-pub(crate) fn span_range(pts: &[Ddi], p: usize, j: usize, rational: bool) -> (f64, f64) {
-    let (lo, hi, _, _) = span_points(pts, p, j, rational);
-    (lo, hi)
+/// Coordinate j of a span's Bézier points, enclosed ([`span_points`]): from its points `pts`
+/// (`TightEval::bezier_points`: `Ddi` enclosures of the exact points, `pts.len() / (p + 1)`
+/// rows each, homogeneous (w x, w) for a rational curve). The span's values lie in the hull
+/// of its exact Bézier points (convex hull property, NURBS Book P5.x; for a rational span
+/// with the Cartesian points x_i = (w x)_i / w_i, thesis prop. 2.1, the weights of knot
+/// insertion being convex combinations of positive weights, so positive), so the extreme ends
+/// of the enclosures, rounded outward, bound them (an overflowed enclosure, or a weight not
+/// proven positive, is the whole line, which bounds nothing).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SpanPoints {
+    /// the hull of the enclosures (the whole line if one is empty or unbounded)
+    pub lo: f64,
+    pub hi: f64,
+    /// whether the exact points are non-decreasing / non-increasing
+    pub inc: bool,
+    pub dec: bool,
+    /// the enclosures of the first and the last point: C(u_k), and the left limit at u_{k+1}
+    pub first: Interval,
+    pub last: Interval,
 }
 
-/// [`span_range`] and whether the span's exact Bézier points are non-decreasing /
+impl SpanPoints {
+    /// The hull filter's `(upper bound, attained value)` of sign * C_j on the span: the hull's
+    /// end on that side, and C(u_k) = b_0, which is attained (right-continuous; b_p =
+    /// C(u_{k+1}) only on the last span `last_span`, elsewhere it may be a left limit at a
+    /// jump), so the lower end of its enclosure is a value the curve reaches.
+    pub(crate) fn side(&self, sign: f64, last_span: bool) -> (f64, f64) {
+        let end = |x: Interval| if sign > 0.0 { x.inf() } else { -x.sup() };
+        let at = if last_span {
+            end(self.first).max(end(self.last))
+        } else {
+            end(self.first)
+        };
+        (if sign > 0.0 { self.hi } else { -self.lo }, at)
+    }
+}
+
+/// The hull of coordinate j of a span's Bézier points (see [`SpanPoints`]), whether the span's exact Bézier points are non-decreasing /
 /// non-increasing (for every choice of them in their enclosures: each upper end at most the
-/// next lower end): then so is the span's piece (a Bézier curve with positive weights and
-/// monotone points is monotone, the argument of `newton`'s monotone pretest). An empty or
-/// unbounded enclosure gives the whole line and neither.
-pub(crate) fn span_points(pts: &[Ddi], p: usize, j: usize, rational: bool) -> (f64, f64, bool, bool) {
+/// next lower end), then so is the span's piece (a Bézier curve with positive weights and
+/// monotone points is monotone, the argument of `newton`'s monotone pretest), and the
+/// enclosures of the end points. An empty or unbounded enclosure gives the whole line and
+/// neither.
+pub(crate) fn span_points(pts: &[Ddi], p: usize, j: usize, rational: bool) -> SpanPoints {
     let d = pts.len() / (p + 1);
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    let (mut inc, mut dec) = (true, true);
+    let mut out = SpanPoints {
+        lo: f64::INFINITY,
+        hi: f64::NEG_INFINITY,
+        inc: true,
+        dec: true,
+        first: cartesian_point(pts, d, 0, j, rational),
+        last: cartesian_point(pts, d, p, j, rational),
+    };
     let mut prev = Interval::EMPTY;
     for i in 0..=p {
         // (an interval's ends are never NaN; an empty one, which no enclosure of a real is,
         // would be skipped by min / max: the whole line then)
-        let v = cartesian_point(pts, d, i, j, rational);
+        let v = match i {
+            0 => out.first,
+            _ if i == p => out.last,
+            _ => cartesian_point(pts, d, i, j, rational),
+        };
         if v.is_empty() || v.is_entire() {
-            return (f64::NEG_INFINITY, f64::INFINITY, false, false);
+            (out.lo, out.hi, out.inc, out.dec) = (f64::NEG_INFINITY, f64::INFINITY, false, false);
+            return out;
         }
-        lo = lo.min(v.inf());
-        hi = hi.max(v.sup());
+        out.lo = out.lo.min(v.inf());
+        out.hi = out.hi.max(v.sup());
         if i > 0 {
-            inc &= v.inf() >= prev.sup();
-            dec &= v.sup() <= prev.inf();
+            out.inc &= v.inf() >= prev.sup();
+            out.dec &= v.sup() <= prev.inf();
         }
         prev = v;
     }
-    (lo, hi, inc, dec)
+    out
 }
 
 /// `(upper bound, attained value)` of a span from f64 Bézier coefficients `v` (sign-adjusted)
@@ -1867,7 +1894,7 @@ mod tests {
         assert!(e.stats().subdivisions <= 24, "{:?}", e.stats());
     }
 
-    /// The hull filter's bounds (`span_hull`, from `span_range`) against the curve: on random
+    /// The hull filter's bounds (`span_points` and `SpanPoints::side`) against the curve: on random
     /// non-rational curves of the families with the hardest knot vectors, every sampled value
     /// of a span (interval de Boor at 33 parameters, its enclosure's far end) lies within the
     /// bound, and the attained value is at most the curve's value at the span's start (and at
@@ -1898,7 +1925,7 @@ mod tests {
                     let pts = ev.bezier_points(k);
                     for j in 0..c.dim() {
                         for sign in [1.0, -1.0] {
-                            let (ub, at) = span_hull(pts, p, j, sign, last, c.is_rational());
+                            let (ub, at) = span_points(pts, p, j, c.is_rational()).side(sign, last);
                             for i in 0..=32 {
                                 let u = (kn[k] + (kn[k + 1] - kn[k]) * (i as f64 / 32.0))
                                     .clamp(kn[k], kn[k + 1]);

@@ -781,8 +781,8 @@ impl<'a> Engine<'a> {
                 // curve). Inside the values the curve attains on both sides, the span is
                 // covered as by the local hull above, without building its Bernstein form.
                 let pts = self.tight.bezier_points(k);
-                let (blo, bhi, inc, dec) =
-                    crate::enclose::bezier::span_points(pts, self.p, j, self.rational);
+                let sp = crate::enclose::bezier::span_points(pts, self.p, j, self.rational);
+                let (blo, bhi, inc, dec) = (sp.lo, sp.hi, sp.inc, sp.dec);
                 let bp = self.s.bezier_pretest;
                 if (self.s.fast_path || bp)
                     && mode == SpanMode::Prune

@@ -139,7 +139,7 @@ pub struct Newton {
     /// Bernstein coefficients of the derivative numerator; only what is not excluded is
     /// searched from the whole box as before (`Engine::seed_float_first`). Spans of
     /// non-rational curves are first pruned by the hull of their double-double Bézier points
-    /// (`bezier::span_range`). Counted in `Stats::fast_exits` /
+    /// (`bezier::span_points`). Counted in `Stats::fast_exits` /
     /// `fast_proofs` / `fast_fallbacks`.
     pub fast_path: bool,
 }
