@@ -72,9 +72,9 @@ const U: f64 = 1.0 / 9_007_199_254_740_992.0;
 /// U1 = u (1 + 2^-50) >= u / (1 - u) (exact: 53-bit significand 1 + 2^-50).
 pub(crate) const U1: f64 = U * (1.0 + 1.0 / 1_125_899_906_842_624.0);
 /// Radius inflation 1 + 2^-46 (Lemma B).
-const INFL: f64 = 1.0 + 1.0 / 70_368_744_177_664.0;
+pub(crate) const INFL: f64 = 1.0 + 1.0 / 70_368_744_177_664.0;
 /// 2^-1068 (Lemma B): 64 times the smallest subnormal (checked by a unit test).
-const FLOOR: f64 = 3.16e-322;
+pub(crate) const FLOOR: f64 = 3.16e-322;
 /// 16 eta = 2^-1071: bound for the underflow errors of one double-word product (4 products with
 /// at most 2 eta each). Checked by a unit test.
 pub(crate) const ETA16: f64 = 3.95e-323;

@@ -63,6 +63,15 @@ pub trait Scalar:
     /// blocks of four (which compile to vector instructions for f64; for the verified types a
     /// block only moves more data).
     const CUT_BLOCKS: bool = false;
+    /// Whether the corner cuts of the span sweep ([`crate::spline::bspline::sweep_spans`]) run
+    /// in blocks of four through [`Scalar::lerp4`] (a type whose four-lane form compiles to
+    /// vector instructions).
+    const SWEEP_BLOCKS: bool = false;
+    /// Four corner cuts [`Scalar::lerp`] at once (the default: one after the other).
+    #[inline]
+    fn lerp4(a: [&Self; 4], lo: [&Self; 4], hi: [&Self; 4]) -> [Self; 4] {
+        std::array::from_fn(|l| Self::lerp(a[l], lo[l], hi[l]))
+    }
     /// Exact embedding of an f64 value (the curve data are f64 and are taken as exact).
     fn from_f64(x: f64) -> Self;
     /// Additive identity.

@@ -513,7 +513,32 @@ fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
         return;
     }
     let r = p - s;
+    let mut aexp: SmallVec<[S; 64]> = SmallVec::new();
     for j in 1..=r {
+        if S::SWEEP_BLOCKS {
+            // (ascending: Q_{i+1} is still the previous step's when Q_i is cut; blocks of four
+            // entries read x and x + h before their writes, as `sweep_spans`' blocks)
+            aexp.clear();
+            for i in 0..=p - j - s {
+                let a = S::knot_ratio_f64(u, t[j + i], t[i + p + 1]);
+                aexp.extend(std::iter::repeat_n(a, h));
+            }
+            let end = aexp.len();
+            let mut x = 0;
+            while x + 4 <= end {
+                let v = S::lerp4(
+                    std::array::from_fn(|m| &aexp[x + m]),
+                    std::array::from_fn(|m| &q[x + m]),
+                    std::array::from_fn(|m| &q[x + m + h]),
+                );
+                q[x..x + 4].clone_from_slice(&v);
+                x += 4;
+            }
+            for x in x..end {
+                q[x] = S::lerp(&aexp[x], &q[x], &q[x + h]);
+            }
+            continue;
+        }
         for i in 0..=p - j - s {
             lerp_next(q, i, h, &S::knot_ratio_f64(u, t[j + i], t[i + p + 1]));
         }
@@ -568,6 +593,7 @@ pub(crate) fn sweep_spans<S: Scalar>(
     clamp_left(p, h, &mut t, &mut q);
     let mut next = q.clone();
     let mut alphas: SmallVec<[S; 16]> = SmallVec::new();
+    let mut aexp: SmallVec<[S; 64]> = SmallVec::new();
     let (mut k, mut done) = (k0, 0);
     loop {
         let (a, ub) = (knots[k], knots[k + 1]);
@@ -580,13 +606,42 @@ pub(crate) fn sweep_spans<S: Scalar>(
             // alphas[j - mult - 1] = (u_{k+1} - u_k) / (u_{k+j} - u_k), j = mult + 1 ..= p
             alphas.extend((mult + 1..=p).map(|j| S::knot_ratio_f64(ub, a, knots[k + j])));
             let r = p - mult;
+            if S::SWEEP_BLOCKS {
+                // (per entry its ratio: entry m h + row of a step starting at point s has
+                // alphas[m], so the blocks below read them without a division by h)
+                aexp.clear();
+                aexp.extend(
+                    alphas
+                        .iter()
+                        .flat_map(|a| std::iter::repeat_n(a.clone(), h)),
+                );
+            }
             for j in 1..=r {
                 let s = mult + j;
                 // (descending: Q_{i-1} is still the previous step's when Q_i is cut)
+                let (start, mut end) = (s * h, (p + 1) * h);
+                // Blocks of four entries from the top (`Scalar::SWEEP_BLOCKS`), every read of a
+                // block (entries x and x - h, none above the block) before its writes: each
+                // entry is cut from the previous step's values exactly as in the order below.
+                while S::SWEEP_BLOCKS && end >= start + 4 {
+                    let b = end - 4;
+                    let v = S::lerp4(
+                        std::array::from_fn(|m| &aexp[b + m - start]),
+                        std::array::from_fn(|m| &q[b + m - h]),
+                        std::array::from_fn(|m| &q[b + m]),
+                    );
+                    q[b..end].clone_from_slice(&v);
+                    end = b;
+                }
                 for i in (s..=p).rev() {
+                    if i * h >= end {
+                        continue;
+                    }
                     let (lo, hi) = q[(i - 1) * h..(i + 1) * h].split_at_mut(h);
-                    for (x, l) in hi.iter_mut().zip(lo.iter()) {
-                        *x = S::lerp(&alphas[i - s], l, x);
+                    for (row, (x, l)) in hi.iter_mut().zip(lo.iter()).enumerate() {
+                        if i * h + row < end {
+                            *x = S::lerp(&alphas[i - s], l, x);
+                        }
                     }
                 }
                 if more {
