@@ -700,14 +700,16 @@ impl BezierSubdivision {
                 // and its pieces.
                 if !item.filtered {
                     let last = k == spans[spans.len() - 1];
-                    if !matches!(hulls[k], Some((jj, _)) if jj == j) {
-                        let pts = vals.tight.bezier_points(k);
-                        hulls[k] = Some((j, span_points(pts, p, j, c.is_rational())));
-                    }
-                    let (pri, at) = match &hulls[k] {
-                        Some((_, h)) => h.side(sign, last),
-                        None => (f64::INFINITY, f64::NEG_INFINITY),
+                    let hull = match hulls[k] {
+                        Some((jj, h)) if jj == j => h,
+                        _ => {
+                            let pts = vals.tight.bezier_points(k);
+                            let h = span_points(pts, p, j, c.is_rational());
+                            hulls[k] = Some((j, h));
+                            h
+                        }
                     };
+                    let (pri, at) = hull.side(sign, last);
                     side.attain_f64(at);
                     heap.push(Item {
                         pri: pri.min(item.pri),
@@ -1433,12 +1435,12 @@ impl SpanPoints {
     }
 }
 
-/// The hull of coordinate j of a span's Bézier points (see [`SpanPoints`]), whether the span's exact Bézier points are non-decreasing /
-/// non-increasing (for every choice of them in their enclosures: each upper end at most the
-/// next lower end), then so is the span's piece (a Bézier curve with positive weights and
-/// monotone points is monotone, the argument of `newton`'s monotone pretest), and the
-/// enclosures of the end points. An empty or unbounded enclosure gives the whole line and
-/// neither.
+/// Coordinate j of a span's Bézier points ([`SpanPoints`]): the hull of their enclosures, the
+/// enclosures of the end points, and whether the exact points are non-decreasing /
+/// non-increasing for every choice of them in their enclosures (each upper end at most the
+/// next lower end); the span's piece is then monotone too (a Bézier curve with positive
+/// weights and monotone points is, the argument of `newton`'s monotone pretest). An empty or
+/// unbounded enclosure gives the whole line and neither.
 pub(crate) fn span_points(pts: &[Ddi], p: usize, j: usize, rational: bool) -> SpanPoints {
     let d = pts.len() / (p + 1);
     let mut out = SpanPoints {
@@ -1895,28 +1897,29 @@ mod tests {
     }
 
     /// The hull filter's bounds (`span_points` and `SpanPoints::side`) against the curve: on random
-    /// non-rational curves of the families with the hardest knot vectors, every sampled value
-    /// of a span (interval de Boor at 33 parameters, its enclosure's far end) lies within the
-    /// bound, and the attained value is at most the curve's value at the span's start (and at
-    /// its end on the last span). Taking b_p as attained on every span fails it.
+    /// curves of the families with the hardest knot vectors, rational ones (extreme weights)
+    /// included, every sampled value of a span (interval de Boor at 33 parameters, its
+    /// enclosure's far end) lies within the bound, the attained value is at most the curve's
+    /// value at the span's start (and at its end on the last span), and a span whose points
+    /// are found non-decreasing (non-increasing) has non-decreasing (non-increasing) samples.
+    /// Taking b_p as attained on every span fails it, and so does a monotonicity flag that
+    /// ignores the points.
     #[test]
     fn span_hull_bounds_the_span_and_attains_its_value() {
         use crate::testkit::gen::{self, Family};
         let mut r = gen::rng(13);
-        let mut checked = 0;
+        let (mut checked, mut rational, mut monotone) = (0, 0, 0);
         for fam in [
             Family::ClampedUniform,
             Family::ClusteredKnots,
             Family::MultipleKnots,
             Family::Unclamped,
             Family::ExtremaAtKnots,
+            Family::ExtremeWeights,
             Family::Mixed,
         ] {
             for _ in 0..25 {
                 let c = fam.curve(&mut r);
-                if c.is_rational() {
-                    continue;
-                }
                 let ev = TightEval::sweeping(&c);
                 let (p, n, kn) = (c.degree(), c.num_points() - 1, c.knots());
                 let spans: Vec<usize> = (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect();
@@ -1924,20 +1927,33 @@ mod tests {
                     let last = k == spans[spans.len() - 1];
                     let pts = ev.bezier_points(k);
                     for j in 0..c.dim() {
-                        for sign in [1.0, -1.0] {
-                            let (ub, at) = span_points(pts, p, j, c.is_rational()).side(sign, last);
-                            for i in 0..=32 {
+                        let sp = span_points(pts, p, j, c.is_rational());
+                        // (the span's own piece: at its right end the left limit, so that end
+                        // only on the last span)
+                        let xs: Vec<Interval> = (0..=32)
+                            .filter(|&i| i < 32 || last)
+                            .map(|i| {
                                 let u = (kn[k] + (kn[k + 1] - kn[k]) * (i as f64 / 32.0))
                                     .clamp(kn[k], kn[k + 1]);
-                                // (the span's own piece: at its right end the left limit)
-                                let x = c
-                                    .point::<Interval>(u)
+                                c.point::<Interval>(u)
                                     .map(|p| p[j])
-                                    .unwrap_or(Interval::ENTIRE);
+                                    .unwrap_or(Interval::ENTIRE)
+                            })
+                            .collect();
+                        for w in xs.windows(2) {
+                            if sp.inc {
+                                assert!(w[1].sup() >= w[0].inf(), "span {k} coord {j}: not increasing");
+                            }
+                            if sp.dec {
+                                assert!(w[1].inf() <= w[0].sup(), "span {k} coord {j}: not decreasing");
+                            }
+                        }
+                        monotone += (sp.inc || sp.dec) as usize;
+                        for sign in [1.0, -1.0] {
+                            let (ub, at) = sp.side(sign, last);
+                            for x in &xs {
                                 let far = if sign > 0.0 { x.inf() } else { -x.sup() };
-                                if i < 32 || last {
-                                    assert!(far <= ub, "span {k} coord {j}: {far:e} > {ub:e}");
-                                }
+                                assert!(far <= ub, "span {k} coord {j}: {far:e} > {ub:e}");
                             }
                             let v = ev.coord_at(j, kn[k]);
                             let near = if sign > 0.0 { v.sup() } else { -v.inf() };
@@ -1948,12 +1964,13 @@ mod tests {
                             }
                             assert!(ok, "span {k} coord {j}: attained {at:e} above the curve");
                             checked += 1;
+                            rational += c.is_rational() as usize;
                         }
                     }
                 }
             }
         }
-        assert!(checked > 500, "{checked}");
+        assert!(checked > 500 && rational > 200 && monotone > 50, "{checked} {rational} {monotone}");
     }
 
     /// The general fast path ([`Critical`]) on spans of degree 4 .. 40, rational and not

@@ -89,9 +89,6 @@ impl Dw {
             e: f64::NAN,
         }
     }
-}
-
-impl Dw {
     /// The normalised double word of the exact sum hi + lo (TwoSum), with no bound (for
     /// kernels that bound their error a priori, such as `bernstein::value_vs_dw`).
     #[inline(always)]
@@ -105,43 +102,7 @@ impl Dw {
     }
 }
 
-impl Dw {
-    /// Four corner cuts ([`Scalar::lerp`]) lane by lane: in AVX2 / FMA registers where the
-    /// target has them ([`lerp4_avx`], per lane exactly the operations of `lerp`, in the same
-    /// order: the same results and the same bound), else one after the other.
-    #[inline(always)]
-    pub(crate) fn lerp4(a: [&Dw; 4], lo: [&Dw; 4], hi: [&Dw; 4]) -> [Dw; 4] {
-        #[cfg(all(
-            target_arch = "x86_64",
-            target_feature = "avx2",
-            target_feature = "fma"
-        ))]
-        {
-            let g =
-                |v: [&Dw; 4], f: fn(&Dw) -> f64| -> [f64; 4] { std::array::from_fn(|l| f(v[l])) };
-            let (zh, zl, ze) = lerp4_avx(
-                [g(a, |x| x.hi), g(a, |x| x.lo)],
-                [g(lo, |x| x.hi), g(lo, |x| x.lo), g(lo, |x| x.e)],
-                [g(hi, |x| x.hi), g(hi, |x| x.lo), g(hi, |x| x.e)],
-            );
-            std::array::from_fn(|l| Dw {
-                hi: zh[l],
-                lo: zl[l],
-                e: ze[l],
-            })
-        }
-        #[cfg(not(all(
-            target_arch = "x86_64",
-            target_feature = "avx2",
-            target_feature = "fma"
-        )))]
-        {
-            std::array::from_fn(|l| <Dw as Scalar>::lerp(a[l], lo[l], hi[l]))
-        }
-    }
-}
-
-/// The lanes of [`Dw::lerp4`] in AVX2 / FMA registers: per lane the same IEEE operations in
+/// The lanes of `Dw`'s [`Scalar::lerp4`] in AVX2 / FMA registers: per lane the same IEEE operations in
 /// the same order as [`Scalar::lerp`] (TwoSum, TwoProd by a fused multiply-subtract, the FMA
 /// of the product's low part, the bound's products and sums unfused), so bit for bit its
 /// results (`lerp4_is_four_lerps`).
@@ -271,9 +232,38 @@ impl Div for Dw {
 
 impl Scalar for Dw {
     const SWEEP_BLOCKS: bool = true;
+    /// Four corner cuts ([`Scalar::lerp`]) lane by lane: in AVX2 / FMA registers where the
+    /// target has them ([`lerp4_avx`], per lane exactly the operations of `lerp`, in the same
+    /// order: the same results and the same bound), else one after the other.
     #[inline(always)]
     fn lerp4(a: [&Self; 4], lo: [&Self; 4], hi: [&Self; 4]) -> [Self; 4] {
-        Dw::lerp4(a, lo, hi)
+        #[cfg(all(
+            target_arch = "x86_64",
+            target_feature = "avx2",
+            target_feature = "fma"
+        ))]
+        {
+            let g =
+                |v: [&Dw; 4], f: fn(&Dw) -> f64| -> [f64; 4] { std::array::from_fn(|l| f(v[l])) };
+            let (zh, zl, ze) = lerp4_avx(
+                [g(a, |x| x.hi), g(a, |x| x.lo)],
+                [g(lo, |x| x.hi), g(lo, |x| x.lo), g(lo, |x| x.e)],
+                [g(hi, |x| x.hi), g(hi, |x| x.lo), g(hi, |x| x.e)],
+            );
+            std::array::from_fn(|l| Dw {
+                hi: zh[l],
+                lo: zl[l],
+                e: ze[l],
+            })
+        }
+        #[cfg(not(all(
+            target_arch = "x86_64",
+            target_feature = "avx2",
+            target_feature = "fma"
+        )))]
+        {
+            std::array::from_fn(|l| <Dw as Scalar>::lerp(a[l], lo[l], hi[l]))
+        }
     }
     #[inline(always)]
     fn from_f64(x: f64) -> Self {
@@ -458,7 +448,7 @@ mod tests {
             });
             let lo: [Dw; 4] = std::array::from_fn(|_| dw(&mut r));
             let hi: [Dw; 4] = std::array::from_fn(|_| dw(&mut r));
-            let got = Dw::lerp4(
+            let got = <Dw as Scalar>::lerp4(
                 std::array::from_fn(|l| &a[l]),
                 std::array::from_fn(|l| &lo[l]),
                 std::array::from_fn(|l| &hi[l]),
