@@ -137,6 +137,26 @@ impl Mr {
     pub fn rad(&self) -> f64 {
         self.r
     }
+
+    /// `[c - r, c + r]` rounded outward, as plain f64 ends (those of [`Scalar::to_interval`],
+    /// without building an inari interval): fl(c - r) is within half an ulp of c - r, so its
+    /// predecessor is below it (and symmetrically above); exact for r = 0; (-inf, inf) for
+    /// ENTIRE.
+    #[inline]
+    pub fn bounds(&self) -> (f64, f64) {
+        if self.r == 0.0 {
+            return (self.c, self.c);
+        }
+        ((self.c - self.r).next_down(), (self.c + self.r).next_up())
+    }
+
+    /// An upper bound of |x| for every x in the set: the larger magnitude of its ends
+    /// ([`Mr::bounds`]); +inf for ENTIRE.
+    #[inline]
+    pub fn mag(&self) -> f64 {
+        let (lo, hi) = self.bounds();
+        (-lo).max(hi)
+    }
 }
 
 /// Whether c = fl(t d + x) with d = fl(y - x) is exactly x + t (y - x) (exact data stays
@@ -302,17 +322,13 @@ impl Scalar for Mr {
 
     /// `[c - r, c + r]` rounded outward: fl(c - r) is within half an ulp of c - r, so its
     /// predecessor is below it (and symmetrically above); exact for r = 0.
+    /// (the ends of [`Mr::bounds`])
     #[inline]
     fn to_interval(&self) -> Interval {
         if self.r == f64::INFINITY {
             return Interval::ENTIRE;
         }
-        if self.r == 0.0 {
-            return Interval::try_from((self.c, self.c)).unwrap_or(Interval::ENTIRE);
-        }
-        let lo = (self.c - self.r).next_down();
-        let hi = (self.c + self.r).next_up();
-        Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
+        Interval::try_from(self.bounds()).unwrap_or(Interval::ENTIRE)
     }
 
     #[inline]
@@ -576,6 +592,39 @@ mod tests {
         // a product that underflows to 0 is not exact
         let z = cut(1e-300, 0.0, 1e-300);
         assert!(z.rad() > 0.0 && z.to_interval().contains(0.0));
+    }
+
+    /// `Mr::bounds` and `Mr::mag` enclose the set [c - r, c + r] exactly (checked by the
+    /// exact error terms of c - r and c + r, TwoSum), are the ends of `to_interval`, keep a
+    /// point exact and ENTIRE entire. (Ends without the outward step fail it.)
+    #[test]
+    fn bounds_and_mag_enclose_the_set() {
+        use crate::num::ddi::two_sum;
+        use rand::Rng;
+        let mut rng = crate::testkit::gen::rng(31);
+        for it in 0..100_000 {
+            let c = rng.random_range(-1.0..1.0) * 10f64.powi(rng.random_range(-300..300));
+            let r = match it % 4 {
+                0 => 0.0,
+                1 => c.abs() * 10f64.powi(rng.random_range(-17..-12)),
+                2 => f64::from_bits(rng.random_range(1..1u64 << 52)),
+                _ => rng.random_range(0.0..1.0) * 10f64.powi(rng.random_range(-300..300)),
+            };
+            let x = Mr::from_centre_radius(c, r);
+            let (lo, hi) = x.bounds();
+            let (s0, e0) = two_sum(c, -r);
+            let (s1, e1) = two_sum(c, r);
+            assert!(lo < s0 || (lo == s0 && e0 >= 0.0), "{x:?} {lo}");
+            assert!(hi > s1 || (hi == s1 && e1 <= 0.0), "{x:?} {hi}");
+            assert!(x.mag() >= -lo && x.mag() >= hi && x.mag() >= c.abs());
+            let i = x.to_interval();
+            assert_eq!((i.inf(), i.sup()), (lo, hi));
+            if r == 0.0 {
+                assert_eq!((lo, hi), (c, c));
+            }
+        }
+        assert_eq!(Mr::ENTIRE.bounds(), (f64::NEG_INFINITY, f64::INFINITY));
+        assert_eq!(Mr::ENTIRE.mag(), f64::INFINITY);
     }
 
     #[test]

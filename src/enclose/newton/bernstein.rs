@@ -131,22 +131,27 @@ impl SpanPoly {
             rational: false,
             pts,
         };
-        // hull of F'' over [0, 1]: its Bernstein coefficients (n - 1)(F'_{i+1} - F'_i)
+        // hull of F'' over [0, 1]: its Bernstein coefficients (n - 1)(F'_{i+1} - F'_i) (the
+        // ends of their enclosures as plain f64, `Mr::bounds`, min and max without an inari
+        // call per coefficient)
         let d2 = if dco.len() < 2 {
             iv::point(0.0)
         } else {
             let nm = Mr::from_usize(dco.len() - 1);
-            dco.windows(2)
-                .fold(Interval::EMPTY, |h, w| h.convex_hull((nm * (w[1] - w[0])).to_interval()))
+            let (lo, hi) = dco.windows(2).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), w| {
+                let (l, h) = (nm * (w[1] - w[0])).bounds();
+                (lo.min(l), hi.max(h))
+            });
+            Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
         };
-        let mag = |v: &[Mr]| v.iter().fold(0.0f64, |m, x| m.max(x.to_interval().mag()));
+        let mag = |v: &[Mr]| v.iter().fold(0.0f64, |m, x| m.max(x.mag()));
         let (fmax, dfmax) = (mag(&fco), mag(&dco));
         let wmin = if rational {
             seg.pts
                 .iter()
                 .skip(1)
                 .step_by(2)
-                .fold(f64::INFINITY, |m, w| m.min(w.to_interval().inf()))
+                .fold(f64::INFINITY, |m, w| m.min(w.bounds().0))
         } else {
             1.0
         };
@@ -675,8 +680,13 @@ impl SpanPoly {
     /// Whether F >= 0 / F <= 0 on the whole span (all coefficients of one sign), i.e. C_j
     /// non-decreasing / non-increasing on the closed span.
     pub(super) fn f_signs(&self) -> (bool, bool) {
-        let h = hull(&self.f.pts);
-        (h.inf() >= 0.0, h.sup() <= 0.0)
+        // (the ends of the coefficients' enclosures, `Mr::bounds`: the hull's, without an
+        // inari call per coefficient)
+        let (lo, hi) = self.f.pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            let (l, h) = x.bounds();
+            (lo.min(l), hi.max(h))
+        });
+        (lo >= 0.0, hi <= 0.0)
     }
 }
 
