@@ -203,7 +203,7 @@
 use super::driver::{exponent, Rescaling};
 use super::{scale_outward, CandidateKind, CoordBox, Enclosure, Extremum};
 pub(crate) use crate::num::ffint::dyadic_integers;
-use crate::num::ffint::{clamp_span_ints, FfInt};
+use crate::num::ffint::{clamp_span_ints, clamp_span_ints_with, FfInt};
 use crate::num::{iv, Ddi, Exact, Scalar};
 use crate::spline::bezier::{bernstein_value, de_casteljau_eval, de_casteljau_split, hodograph};
 use crate::spline::bspline::{BezierSeg, HSpline};
@@ -1389,7 +1389,20 @@ fn span_rows_integer(c: &NurbsCurve, k: usize, j: usize, sign: f64) -> Option<Sp
     };
     let (mut a, e_a) = common(a)?;
     let (mut w, e_w) = common(w)?;
-    clamp_span_integer(c, k, &mut [&mut a, &mut w])?;
+    if c.is_rational() {
+        clamp_span_integer(c, k, &mut [&mut a, &mut w])?;
+    } else {
+        // (the weights are all 1: a constant row, clamped as the common factor alone,
+        // `clamp_span_ints_with`, without its corner cuts: half the big products)
+        let mut f = w[0].clone();
+        clamp_span_ints_with(
+            p,
+            &c.knots()[k - p..=k + p + 1],
+            &mut [&mut a],
+            Some(&mut f),
+        )?;
+        w.iter_mut().for_each(|x| *x = f.clone());
+    }
     Some(SpanRows { a, w, d: e_a - e_w })
 }
 

@@ -107,14 +107,29 @@ pub(crate) fn clamp_span_ints<T: FfInt>(
     knots: &[f64],
     rows: &mut [&mut [T]],
 ) -> Option<()> {
+    clamp_span_ints_with(p, knots, rows, None)
+}
+
+/// [`clamp_span_ints`], and `factor` (if given) multiplied by the rows' common positive
+/// factor: a constant row (every value `factor`, e.g. the weights 1 of a non-rational curve)
+/// clamped with the rows is that row afterwards, without its corner cuts (a corner cut of two
+/// equal values is that value times the sum of its two multipliers, which is the level's
+/// denominator: so each level multiplies a constant row by the product of the level's
+/// denominators, as it does the rows' other values, and shifts it with them).
+pub(crate) fn clamp_span_ints_with<T: FfInt>(
+    p: usize,
+    knots: &[f64],
+    rows: &mut [&mut [T]],
+    mut factor: Option<&mut T>,
+) -> Option<()> {
     let (mut kn, _) = dyadic_ints::<T>(knots.iter().copied())?;
-    clamp_left_integer(p, &mut kn, rows)?;
+    clamp_left_integer(p, &mut kn, rows, factor.as_deref_mut())?;
     rows.iter_mut().for_each(|q| q.reverse());
     kn.reverse();
     for x in kn.iter_mut() {
         *x = x.neg()?;
     }
-    clamp_left_integer(p, &mut kn, rows)?;
+    clamp_left_integer(p, &mut kn, rows, factor)?;
     rows.iter_mut().for_each(|q| q.reverse());
     Some(())
 }
@@ -122,11 +137,13 @@ pub(crate) fn clamp_span_ints<T: FfInt>(
 /// `bspline::clamp_left` on one row of integers over a common positive denominator, with
 /// integer knots, fraction-free (the certificate's `bezier_coefficients_fraction_free`): the same cut
 /// points in the same order (point i of level l from points i and i + 1 of level l - 1),
-/// each value multiplied by one positive factor per level.
+/// each value multiplied by one positive factor per level; `factor` (a constant row's value,
+/// see [`clamp_span_ints_with`]) multiplied by the same factors.
 pub(crate) fn clamp_left_integer<T: FfInt>(
     p: usize,
     t: &mut [T],
     rows: &mut [&mut [T]],
+    mut factor: Option<&mut T>,
 ) -> Option<()> {
     let u = t[p].clone();
     let s = t[..=p].iter().rev().take_while(|x| x.is_eq(&u)).count();
@@ -151,27 +168,40 @@ pub(crate) fn clamp_left_integer<T: FfInt>(
         for i in (0..=n).rev() {
             suf[i] = suf[i + 1].mul(&den[i])?;
         }
-        // (every row the same cuts and factors: their common positive factor stays one)
+        // (every row the same cuts and factors: their common positive factor stays one; the
+        // cuts' multipliers and the cofactors once per level, not per row)
+        let mut cuts: smallvec::SmallVec<[(T, T, T); 8]> = smallvec::SmallVec::new();
+        for i in 0..=n {
+            let left = t[i + p + 1].sub(&u)?;
+            let right = u.sub(&t[l + i])?;
+            cuts.push((left, right, pre[i].mul(&suf[i + 1])?));
+        }
         for q in rows.iter_mut() {
-            for i in 0..=n {
-                let left = t[i + p + 1].sub(&u)?.mul(&q[i])?;
-                let right = u.sub(&t[l + i])?.mul(&q[i + 1])?;
-                q[i] = left.add(&right)?.mul(&pre[i].mul(&suf[i + 1])?)?;
+            for (i, (left, right, cof)) in cuts.iter().enumerate() {
+                let v = left.mul(&q[i])?.add(&right.mul(&q[i + 1])?)?;
+                q[i] = v.mul(cof)?;
             }
             for x in &mut q[n + 1..=p] {
                 *x = x.mul(&pre[n + 1])?;
             }
         }
-        // (a common power of two out of every row: a positive factor)
+        if let Some(f) = factor.as_deref_mut() {
+            *f = f.mul(&pre[n + 1])?;
+        }
+        // (a common power of two out of every row and the factor: a positive factor)
         let tz = rows
             .iter()
             .flat_map(|q| q.iter())
+            .chain(factor.as_deref())
             .filter_map(|x| x.trailing_zeros())
             .min()
             .unwrap_or(0);
         if tz > 0 {
             for q in rows.iter_mut() {
                 q.iter_mut().for_each(|x| *x = x.shr_exact(tz));
+            }
+            if let Some(f) = factor.as_deref_mut() {
+                *f = f.shr_exact(tz);
             }
         }
     }
@@ -224,4 +254,51 @@ pub(crate) fn dyadic_parts(x: f64) -> Option<(i64, i64)> {
     let tz = m.trailing_zeros();
     let m = (m >> tz) as i64;
     Some((if x < 0.0 { -m } else { m }, e + tz as i64))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::Rng;
+
+    /// A constant row clamped as the common factor alone (`clamp_span_ints_with`) is the row
+    /// the full clamping gives, and the other rows are the same integers: random spans of
+    /// degree 1 to 5 with multiple knots, knots at the corners of the f64 range (subnormal,
+    /// near MAX) and ordinary ones. (A factor left out of a level, or out of the common power
+    /// of two, fails it.)
+    #[test]
+    fn constant_row_as_factor_matches_the_full_clamping() {
+        let mut rng = crate::testkit::gen::rng(41);
+        let mut checked = 0;
+        for _ in 0..600 {
+            let p = rng.random_range(1..=5usize);
+            let mut kn: Vec<f64> = (0..2 * p + 2)
+                .map(|_| match rng.random_range(0..4) {
+                    0 => f64::from_bits(rng.random_range(1..64)),
+                    1 => f64::MAX * rng.random_range(-1.0..1.0),
+                    2 => rng.random_range(0..8) as f64,
+                    _ => rng.random_range(-4.0..4.0),
+                })
+                .collect();
+            kn.sort_by(f64::total_cmp);
+            if kn[p] >= kn[p + 1] {
+                continue;
+            }
+            let row: Vec<BigInt> = (0..=p)
+                .map(|_| BigInt::from(rng.random_range(-1_000_000i64..1_000_000)))
+                .collect();
+            let c = BigInt::from(rng.random_range(1..100i64));
+            let (mut full, mut ones) = (row.clone(), vec![c.clone(); p + 1]);
+            let a = clamp_span_ints(p, &kn, &mut [&mut full, &mut ones]);
+            let (mut alone, mut f) = (row.clone(), c.clone());
+            let b = clamp_span_ints_with(p, &kn, &mut [&mut alone], Some(&mut f));
+            assert_eq!(a.is_some(), b.is_some());
+            if a.is_some() {
+                assert_eq!(full, alone, "{kn:?}");
+                assert!(ones.iter().all(|x| *x == f), "{kn:?} {ones:?} {f}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 300, "{checked}");
+    }
 }

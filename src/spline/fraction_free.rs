@@ -4,7 +4,7 @@
 //! Bézier segments get exact end points where the curve's value there is a double
 //! ([`snap_exact_ends`]).
 
-use crate::num::ffint::{clamp_span_ints, dyadic_ints, dyadic_parts, FfInt};
+use crate::num::ffint::{clamp_span_ints, clamp_span_ints_with, dyadic_ints, dyadic_parts, FfInt};
 use crate::num::{ulp, Ddi};
 use crate::spline::curve::NurbsCurve;
 use num_bigint::BigInt;
@@ -103,11 +103,14 @@ fn exact_end_values<T: FfInt>(
         rows.push(row);
         exps.push(e);
     }
-    rows.push(vec![T::from_i64(1); p + 1]);
+    // (the weights' row of ones is a constant row: clamped as the common factor alone,
+    // `clamp_span_ints_with`)
+    let mut f = T::from_i64(1);
     {
         let mut refs: Vec<&mut [T]> = rows.iter_mut().map(|r| r.as_mut_slice()).collect();
-        clamp_span_ints(p, &c.knots()[k - p..=k + p + 1], &mut refs)?;
+        clamp_span_ints_with(p, &c.knots()[k - p..=k + p + 1], &mut refs, Some(&mut f))?;
     }
+    rows.push(vec![f; p + 1]);
     let mut out = [false; 8];
     for (o, &(i, j, h)) in out.iter_mut().zip(cands) {
         let (m, e) = dyadic_parts(h)?;
