@@ -252,10 +252,15 @@ pub fn hodograph<S: Scalar>(c: &[S]) -> Vec<S> {
     if n == 0 {
         return vec![S::zero()];
     }
-    let nf = S::from_usize(n);
+    hodograph_iter(c).collect()
+}
+
+/// The coefficients of [`hodograph`] (at least two input coefficients; nothing for fewer),
+/// one after the other, for callers that keep them in their own storage.
+pub fn hodograph_iter<S: Scalar>(c: &[S]) -> impl Iterator<Item = S> + '_ {
+    let nf = S::from_usize(c.len().saturating_sub(1));
     c.windows(2)
-        .map(|w| nf.clone() * (w[1].clone() - w[0].clone()))
-        .collect()
+        .map(move |w| nf.clone() * (w[1].clone() - w[0].clone()))
 }
 
 /// Forward differences in place: afterwards `d[k] = Δ^k d_0` (Δ^{k+1} b_i = Δ^k b_{i+1} -

@@ -2,6 +2,7 @@
 //! engine and added to [`Acc`], the running hull of the outer enclosures and of the values the
 //! curve attains, which [`Acc::finish`] turns into the coordinate's [`CoordBox`].
 
+use smallvec::SmallVec;
 use super::param::{T, U};
 use crate::enclose::{CandidateKind, CoordBox, Extremum, Stats, Termination};
 use crate::num::ddi::Ddi;
@@ -48,7 +49,7 @@ pub(super) struct Acc {
     /// strict witnesses: the curve reaches a value < `witness_lo` (and > `witness_hi`)
     witness_lo: f64,
     witness_hi: f64,
-    cands: Vec<(Extremum, Interval)>,
+    cands: SmallVec<[(Extremum, Interval); 8]>,
 }
 
 impl Acc {
@@ -60,7 +61,7 @@ impl Acc {
             inner_hi: f64::NEG_INFINITY,
             witness_lo: f64::INFINITY,
             witness_hi: f64::NEG_INFINITY,
-            cands: Vec::new(),
+            cands: SmallVec::new(),
         }
     }
 

@@ -95,7 +95,7 @@ impl SpanPoly {
     pub(crate) fn new(c: &NurbsCurve, j: usize, k: usize, pair: &[Mr], pts: &[Ddi]) -> Self {
         let p = c.degree();
         let rational = c.is_rational();
-        let shift = span_shift((k - p..=k).map(|i| c.control_point(i)[j]).collect());
+        let shift = span_shift(&mut (k - p..=k).map(|i| c.control_point(i)[j]).collect::<SmallVec<[f64; 32]>>());
         let dseg = shifted_from_points(c, j, k, shift, pts);
         let seg = BezierSeg {
             a: dseg.a,
@@ -477,7 +477,7 @@ impl SpanPoly {
         // infinite bound, which proves nothing)
         let m = c.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         let rad = self.f.pts.iter().fold(0.0f64, |a, x| a.max(x.rad()));
-        let dc = crate::spline::bezier::hodograph(&c);
+        let dc: SmallVec<[f64; 64]> = crate::spline::bezier::hodograph_iter(&c).collect();
         let changes = |v: &[f64]| {
             // (without a zero coefficient, the usual case, by comparisons summed without
             // branches: the signs of the coefficients are unpredictable)
@@ -1309,7 +1309,7 @@ fn hull<S: Scalar>(v: &[S]) -> Interval {
 /// The shift c of [`SpanPoly`]: the most frequent of the local control point coordinates
 /// (the smallest such; the median when all differ). Any value is sound; this one makes flat
 /// runs exact zeros.
-fn span_shift(mut xs: Vec<f64>) -> f64 {
+fn span_shift(xs: &mut [f64]) -> f64 {
     xs.sort_by(f64::total_cmp);
     let (mut best, mut run) = (xs[xs.len() / 2], 1);
     let mut i = 0;
@@ -2208,8 +2208,8 @@ mod tests {
 
     #[test]
     fn span_shift_prefers_flat_runs() {
-        assert_eq!(span_shift(vec![3.0, 1.0, 1.0, 2.0, 1.0]), 1.0);
-        assert_eq!(span_shift(vec![3.0, 1.0, 2.0]), 2.0);
-        assert_eq!(span_shift(vec![-0.5]), -0.5);
+        assert_eq!(span_shift(&mut [3.0, 1.0, 1.0, 2.0, 1.0]), 1.0);
+        assert_eq!(span_shift(&mut [3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(span_shift(&mut [-0.5]), -0.5);
     }
 }

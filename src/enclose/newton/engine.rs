@@ -77,6 +77,9 @@ pub(crate) struct Engine<'a> {
     est: Vec<f64>,
     /// the zero-free intervals of `seed_float_first` (reused)
     free: Vec<(f64, f64)>,
+    /// the boxes and the gaps of `seed_float_first` (reused)
+    seed_boxes: Vec<(f64, f64)>,
+    seed_gaps: Vec<(f64, f64, u32)>,
     /// coordinate currently worked on
     j: usize,
     /// Bernstein form of the span being worked on ([`Newton::bezier_pretest`],
@@ -119,6 +122,8 @@ impl<'a> Engine<'a> {
             stack: Vec::new(),
             est: Vec::new(),
             free: Vec::new(),
+            seed_boxes: Vec::new(),
+            seed_gaps: Vec::new(),
             j: 0,
             poly: None,
             bern: s.bernstein && (1..=BERNSTEIN_MAX_DEGREE).contains(&p),
@@ -626,7 +631,7 @@ impl<'a> Engine<'a> {
     fn seed_float_first(&mut self, k: usize, a: f64, b: f64) -> bool {
         const H: f64 = 1.0 / 1_073_741_824.0; // 2^-30
         let (mut est, mut free) = (std::mem::take(&mut self.est), std::mem::take(&mut self.free));
-        let (mut bx, mut gaps) = (Vec::new(), Vec::new());
+        let (mut bx, mut gaps) = (std::mem::take(&mut self.seed_boxes), std::mem::take(&mut self.seed_gaps));
         let ok = a == 0.0
             && b == 1.0
             && match self.span_poly(k) {
@@ -634,9 +639,19 @@ impl<'a> Engine<'a> {
                 None => false,
             };
         (self.est, self.free) = (est, free);
-        if !ok {
-            return false;
+        let seeded = ok && self.exclude_gaps(k, &mut gaps);
+        if seeded {
+            self.stack.extend(bx.iter().copied());
+            self.stats.fast_proofs += 1;
         }
+        (self.seed_boxes, self.seed_gaps) = (bx, gaps);
+        seeded
+    }
+
+    /// The gaps of [`Engine::seed_float_first`] on span k excluded (F has no zero in them, by
+    /// the enclosure of F over each, after at most two halvings), or `false` (counted in
+    /// `Stats::fast_fallbacks`): see there. `gaps` is used up.
+    fn exclude_gaps(&mut self, k: usize, gaps: &mut Vec<(f64, f64, u32)>) -> bool {
         while let Some((g0, g1, depth)) = gaps.pop() {
             let fg = self.f(k, SpanParam::Local(T::new(g0, g1)));
             if !fg.is_empty() && !fg.contains(0.0) {
@@ -654,8 +669,6 @@ impl<'a> Engine<'a> {
                 return false;
             }
         }
-        self.stack.extend(bx);
-        self.stats.fast_proofs += 1;
         true
     }
 
@@ -708,7 +721,7 @@ impl<'a> Engine<'a> {
         self.budget = (self.s.max_work / cost)
             .saturating_add(per_span.saturating_mul(ns as u64))
             .max(8);
-        let mut cands: Vec<Cand> = Vec::with_capacity(8);
+        let mut cands: SmallVec<[Cand; 8]> = SmallVec::new();
         cands.push(Cand::point(
             self.spans[0].0,
             a,
@@ -742,7 +755,7 @@ impl<'a> Engine<'a> {
             let (e, at, w) = self.eval_cand(cd);
             acc.add(cd, e, at, w);
         }
-        let mut status = vec![Status::Covered; ns];
+        let mut status: SmallVec<[Status; 16]> = SmallVec::from_elem(Status::Covered, ns);
         let mut term = Termination::Converged;
         // values the curve attains on both sides: the accumulator's inner bounds (kept up to
         // date below after each candidate) and the cheap bounds of the Newton boxes
