@@ -28,7 +28,7 @@ use super::bezier::{end_kind, span_bounds};
 use super::driver::apply_facts;
 use super::driver::{pow2, COORD_WINDOW};
 use super::{certify, CandidateKind, Clock, CoordBox, Enclosure, Extrema, Extremum};
-use super::{SideData, Stats, Termination};
+use super::{SideData, Termination};
 use crate::num::ddi::Ddi;
 use crate::num::Scalar;
 #[cfg(test)]
@@ -621,13 +621,13 @@ fn span_coefficients_by_insertion<S: Scalar>(s: &Simple, j: usize, k: usize) -> 
     q
 }
 
-/// The `hull` coordinate box of coordinate j, written directly: the control-point box (convex
+/// The `hull` coordinate box of coordinate j, written to the blank box `cb`: the control-point box (convex
 /// hull property, thesis prop. 2.1; exact), the end control points as attained values (a
 /// clamped end is a control point), each bound's extremum the support of the first control
 /// point that attains it (`Simple::extreme_at`; the whole domain for a single segment). The
 /// driver's facts hold by construction (the bounds are the control-point range, the inner
 /// bounds end values inside it).
-fn hull_coord(s: &Simple, j: usize) -> CoordBox {
+fn hull_coord(s: &Simple, j: usize, cb: &mut CoordBox) {
     let (lo, hi) = s.range[j];
     let (e0, e1) = (s.pts[j], s.pts[s.n * s.d + j]);
     let arg = |i: usize| {
@@ -636,34 +636,31 @@ fn hull_coord(s: &Simple, j: usize) -> CoordBox {
             u_lo = s.knots[i].max(s.a);
             u_hi = s.knots[i + s.p + 1].min(s.b);
         }
-        let mut args = Extrema::new();
-        args.push(Extremum {
+        Extremum {
             u_lo,
             u_hi,
             unique: false,
             kind: CandidateKind::ControlPoint,
-        });
-        args
+        }
     };
     let (emax, emin) = if e0 > e1 { (e0, e1) } else { (e1, e0) };
     let (i_min, i_max) = s.extreme_at[j];
-    CoordBox {
-        lo,
-        hi,
-        inner_lo: emin,
-        inner_hi: emax,
-        argmin: arg(i_min),
-        argmax: arg(i_max),
-        stats: Stats {
-            point_evaluations: 2,
-            ..Stats::default()
-        },
-        termination: Termination::Direct,
-        optimal_lo: false,
-        optimal_hi: false,
-        witness_lo: f64::INFINITY,
-        witness_hi: f64::NEG_INFINITY,
-    }
+    cb.lo = lo;
+    cb.hi = hi;
+    cb.inner_lo = emin;
+    cb.inner_hi = emax;
+    cb.argmin.push(arg(i_min));
+    cb.argmax.push(arg(i_max));
+    cb.stats.point_evaluations = 2;
+    cb.termination = Termination::Direct;
+}
+
+/// A blank coordinate box ([`CoordBox::BLANK`]) appended to `e`, to be filled in place.
+#[inline]
+fn blank_slot(e: &mut Enclosure) -> &mut CoordBox {
+    e.coords.push(CoordBox::BLANK);
+    let last = e.coords.len() - 1;
+    &mut e.coords[last]
 }
 
 /// The certificate's first round on both sides of `cb` (`certify::quick`), with the
@@ -704,12 +701,12 @@ fn hull_into(e: &mut Enclosure, c: &NurbsCurve, s: &Simple, certify: bool) {
     }
     for (j, &kv) in knot_values.iter().enumerate().take(s.d) {
         let clock = Clock::start();
-        let mut cb = hull_coord(s, j);
+        let cb = blank_slot(e);
+        hull_coord(s, j, cb);
         if certify {
-            open |= first_rounds(&mut cb, s.range[j], kv);
+            open |= first_rounds(cb, s.range[j], kv);
         }
         cb.stats.time_total = clock.elapsed();
-        e.coords.push(cb);
     }
     if open {
         certify::certify(c, e);
@@ -745,20 +742,22 @@ pub fn enclose_into(
             return false;
         };
         let n = |k: usize| (hi.counts[k] + lo.counts[k]) as u64;
-        let stats = Stats {
-            fast_exits: n(0),
-            fast_proofs: n(1),
-            derivative_evaluations: n(2),
-            point_evaluations: n(3),
-            time_total: clock.elapsed(),
-            ..Stats::default()
-        };
-        e.coords.push(CoordBox::from_sides(
-            hi.data,
-            lo.data,
-            stats,
-            Termination::Converged,
-        ));
+        // (field by field into the blank box, as `CoordBox::from_sides` builds it)
+        let cb = blank_slot(e);
+        cb.stats.fast_exits = n(0);
+        cb.stats.fast_proofs = n(1);
+        cb.stats.derivative_evaluations = n(2);
+        cb.stats.point_evaluations = n(3);
+        cb.stats.time_total = clock.elapsed();
+        let (hi, lo) = (hi.data, lo.data);
+        cb.lo = -lo.upper;
+        cb.hi = hi.upper;
+        cb.inner_lo = -lo.attained;
+        cb.inner_hi = hi.attained;
+        cb.argmin = lo.args;
+        cb.argmax = hi.args;
+        cb.witness_lo = -lo.witness;
+        cb.witness_hi = hi.witness;
     }
     let mut open = false;
     for (j, cb) in e.coords.iter_mut().enumerate() {
@@ -825,7 +824,8 @@ mod tests {
                 let c = fam.curve(&mut r);
                 let Some(s) = Simple::of(&c) else { continue };
                 for j in 0..s.d {
-                    let cb = hull_coord(&s, j);
+                    let mut cb = CoordBox::BLANK;
+                    hull_coord(&s, j, &mut cb);
                     let (lo, hi) = c.coord_range(j, 0..=s.n);
                     assert_eq!((cb.lo, cb.hi), (lo, hi));
                     let (e0, e1) = (c.control_point(0)[j], c.control_point(s.n)[j]);

@@ -215,6 +215,36 @@ pub(crate) struct SideData {
 }
 
 impl CoordBox {
+    /// A box to be filled in place: nothing bounded, nothing attained, no candidates, no
+    /// certificates. A constant, so that appending it to a result copies it from read-only
+    /// data: a box built on the stack just before and then moved in is read back by wide
+    /// loads from the narrow stores just made, which wait for those to reach the cache (most
+    /// of the lane's cost of writing its result).
+    pub(crate) const BLANK: CoordBox = CoordBox {
+        lo: f64::NEG_INFINITY,
+        hi: f64::INFINITY,
+        inner_lo: f64::INFINITY,
+        inner_hi: f64::NEG_INFINITY,
+        argmin: Extrema::new_const(),
+        argmax: Extrema::new_const(),
+        stats: Stats {
+            newton_iterations: 0,
+            derivative_evaluations: 0,
+            point_evaluations: 0,
+            subdivisions: 0,
+            fast_exits: 0,
+            fast_proofs: 0,
+            fast_fallbacks: 0,
+            time_derivatives: Duration::ZERO,
+            time_total: Duration::ZERO,
+        },
+        termination: Termination::Converged,
+        optimal_lo: false,
+        optimal_hi: false,
+        witness_lo: f64::INFINITY,
+        witness_hi: f64::NEG_INFINITY,
+    };
+
     /// The coordinate box of the max side `hi` (of C_j) and the min side `lo` (of -C_j), with
     /// unproved certificates (`false`: the driver's certification sets them).
     pub(crate) fn from_sides(
