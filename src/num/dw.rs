@@ -405,6 +405,22 @@ pub(crate) fn sweep_dw(
     };
     // the sweep on the block's points alone (span k0 - p + i of the block's local indices)
     let off = k0 - p;
+    if done == 1 {
+        // (a single span, the usual block of a search: its points converted straight from the
+        // sweep's buffer to the caller's, on the stack, not copied into a list first)
+        let mut conv: smallvec::SmallVec<[Ddi; 48]> = smallvec::SmallVec::new();
+        let (mut span, mut finite) = (0, false);
+        sweep_spans(p, h, &knots[off..], &buf, p, 1, &mut |k, q| {
+            (span, finite) = (k + off, all_finite(q));
+            if finite {
+                conv.extend(q.iter().map(to_ddi));
+            }
+        });
+        if finite {
+            emit(span, &conv);
+        }
+        return finite;
+    }
     let mut out: Vec<(usize, Vec<Dw>)> = Vec::with_capacity(done);
     sweep_spans(p, h, &knots[off..], &buf, p, done, &mut |k, q| {
         out.push((k + off, q.to_vec()))
@@ -577,6 +593,20 @@ mod tests {
                 for ((k, d), (ke, e)) in dws.iter().zip(&exact) {
                     assert_eq!(k, ke);
                     for (x, y) in e.iter().zip(d) {
+                        within(x, y);
+                    }
+                }
+            }
+            // a block of one span (its own path in `sweep_dw`): the first and the last span
+            // alone
+            for (ke, e) in [&exact[0], &exact[exact.len() - 1]] {
+                let mut one = Vec::new();
+                if sweep_dw(p, h, &t, &q_all, *ke, 1, &mut |k, q| {
+                    one.push((k, q.to_vec()))
+                }) {
+                    assert_eq!(one.len(), 1);
+                    assert_eq!(one[0].0, *ke);
+                    for (x, y) in e.iter().zip(&one[0].1) {
                         within(x, y);
                     }
                 }
