@@ -742,22 +742,14 @@ pub fn enclose_into(
             return false;
         };
         let n = |k: usize| (hi.counts[k] + lo.counts[k]) as u64;
-        // (field by field into the blank box, as `CoordBox::from_sides` builds it)
+        // (field by field into the blank box, whose termination is `Converged`)
         let cb = blank_slot(e);
         cb.stats.fast_exits = n(0);
         cb.stats.fast_proofs = n(1);
         cb.stats.derivative_evaluations = n(2);
         cb.stats.point_evaluations = n(3);
         cb.stats.time_total = clock.elapsed();
-        let (hi, lo) = (hi.data, lo.data);
-        cb.lo = -lo.upper;
-        cb.hi = hi.upper;
-        cb.inner_lo = -lo.attained;
-        cb.inner_hi = hi.attained;
-        cb.argmin = lo.args;
-        cb.argmax = hi.args;
-        cb.witness_lo = -lo.witness;
-        cb.witness_hi = hi.witness;
+        cb.set_sides(hi.data, lo.data);
     }
     let mut open = false;
     for (j, cb) in e.coords.iter_mut().enumerate() {

@@ -253,20 +253,26 @@ impl CoordBox {
         stats: Stats,
         termination: Termination,
     ) -> CoordBox {
-        CoordBox {
-            lo: -lo.upper,
-            hi: hi.upper,
-            inner_lo: -lo.attained,
-            inner_hi: hi.attained,
-            argmin: lo.args,
-            argmax: hi.args,
-            stats,
-            termination,
-            optimal_lo: false,
-            optimal_hi: false,
-            witness_lo: -lo.witness,
-            witness_hi: hi.witness,
-        }
+        let mut cb = CoordBox::BLANK;
+        cb.set_sides(hi, lo);
+        cb.stats = stats;
+        cb.termination = termination;
+        cb
+    }
+
+    /// The bounds, attained values, witnesses and candidates of the max side `hi` (of C_j)
+    /// and the min side `lo` (of -C_j), written to this box in place (the lane fills its
+    /// result's boxes this way, [`CoordBox::BLANK`]); stats, termination and certificates
+    /// are left as they are.
+    pub(crate) fn set_sides(&mut self, hi: SideData, lo: SideData) {
+        self.lo = -lo.upper;
+        self.hi = hi.upper;
+        self.inner_lo = -lo.attained;
+        self.inner_hi = hi.attained;
+        self.argmin = lo.args;
+        self.argmax = hi.args;
+        self.witness_lo = -lo.witness;
+        self.witness_hi = hi.witness;
     }
 
     /// Certified overestimation bound: max(inner_lo - lo, hi - inner_hi).
