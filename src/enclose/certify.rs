@@ -2565,20 +2565,28 @@ const EXACT_SPLIT_MAX_BITS: u64 = 1024;
 /// coefficients. On the power form (a_k = binom(p, k) Δ^k f_0,
 /// Farin's monomial form of a Bézier curve) in exact rationals: for a cubic the rational
 /// roots of the quadratic f' (a square discriminant), else Euclid's algorithm for the gcd.
+/// Both only where the power form modulo a prime has a repeated factor
+/// ([`squarefree_mod_prime`]): otherwise f has no double root at all, and the rational
+/// gcd, whose coefficients grow at every step (milliseconds on long coefficients), is not
+/// computed.
 fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
     let p = fi.len().checked_sub(1)?;
     if !(2..=8).contains(&p) {
         return None;
     }
     let mut d = fi.to_vec();
-    let mut f: Vec<BigRational> = Vec::with_capacity(p + 1);
+    let mut ai: Vec<BigInt> = Vec::with_capacity(p + 1);
     for k in 0..=p {
         let b = BigInt::from(crate::num::binom(p, k) as u64);
-        f.push(BigRational::from_integer(b * &d[0]));
+        ai.push(b * &d[0]);
         for i in 0..p - k {
             d[i] = &d[i + 1] - &d[i];
         }
     }
+    if squarefree_mod_prime(&ai) {
+        return None;
+    }
+    let f: Vec<BigRational> = ai.into_iter().map(BigRational::from_integer).collect();
     let df: Vec<BigRational> = (1..=p)
         .map(|k| &f[k] * BigRational::from_integer(BigInt::from(k)))
         .collect();
@@ -2604,13 +2612,21 @@ fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
             .into_iter()
             .find(|x| eval_integer(fi, x).0.sign() == Sign::NoSign);
     }
+    let a = rational_gcd(f, df);
+    (a.len() == 2).then(|| -&a[0] / &a[1])
+}
+
+/// The greatest common divisor of two polynomials with rational power coefficients (lowest
+/// first), up to a constant factor, by Euclid's algorithm: the last non-zero remainder
+/// (empty when both are zero).
+fn rational_gcd(a: Vec<BigRational>, b: Vec<BigRational>) -> Vec<BigRational> {
     let trim = |mut v: Vec<BigRational>| {
         while v.last().is_some_and(|x| x.is_zero()) {
             v.pop();
         }
         v
     };
-    let (mut a, mut b) = (trim(f), trim(df));
+    let (mut a, mut b) = (trim(a), trim(b));
     while !b.is_empty() {
         // a mod b (b's leading coefficient is non-zero after trimming)
         let lead = b[b.len() - 1].clone();
@@ -2625,8 +2641,76 @@ fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
         }
         std::mem::swap(&mut a, &mut b);
     }
-    // a is the gcd
-    (a.len() == 2).then(|| -&a[0] / &a[1])
+    a
+}
+
+/// Whether the integer polynomial f = sum a_k t^k (`a`, power form) provably has no repeated
+/// factor over the rationals, in particular no double root: decided modulo the prime
+/// q = 2^61 - 1, where gcd(f mod q, f' mod q) is a non-zero constant (Euclid's algorithm in
+/// the field Z/q, on machine words). `false` means only "not proved" (a repeated factor, or
+/// the rare prime that divides the leading coefficient).
+///
+/// Proof. Let n be the degree of f (a_n its leading coefficient, a_n != 0 mod q) and suppose
+/// f = g^2 h over Q with g of degree >= 1. By Gauss's lemma g can be taken primitive in Z[t]
+/// with h in Z[t]; lc(g)^2 divides a_n, so q does not divide lc(g) and g mod q keeps its
+/// degree >= 1. Reducing f = g^2 h and f' = g (2 g' h + g h') modulo q, g mod q divides both,
+/// so their gcd has degree >= 1. (The derivative's coefficients k a_k, k <= 8 < q, reduce to
+/// those of (f mod q)', and its leading one n a_n is non-zero mod q.) Hence a constant gcd
+/// modulo q excludes a repeated factor, and with it a rational double root.
+fn squarefree_mod_prime(a: &[BigInt]) -> bool {
+    const Q: u64 = (1 << 61) - 1;
+    let mul = |x: u64, y: u64| ((x as u128 * y as u128) % Q as u128) as u64;
+    let sub = |x: u64, y: u64| if x >= y { x - y } else { x + Q - y };
+    let inv = |x: u64| {
+        // x^(q - 2) = x^-1 (Fermat; x != 0 mod q)
+        let (mut r, mut b, mut e) = (1u64, x, Q - 2);
+        while e > 0 {
+            if e & 1 == 1 {
+                r = mul(r, b);
+            }
+            b = mul(b, b);
+            e >>= 1;
+        }
+        r
+    };
+    let Some(n) = a.iter().rposition(|x| !x.is_zero()) else {
+        return false;
+    };
+    let q = BigInt::from(Q);
+    let f: Vec<u64> = a[..=n]
+        .iter()
+        .map(|x| x.mod_floor(&q).to_u64().unwrap_or(0))
+        .collect();
+    if f[n] == 0 || n > 8 {
+        return false;
+    }
+    if n <= 1 {
+        // a constant or a line: no repeated factor
+        return true;
+    }
+    let df: Vec<u64> = (1..=n).map(|k| mul(k as u64, f[k])).collect();
+    let trim = |v: &mut Vec<u64>| {
+        while v.last() == Some(&0) {
+            v.pop();
+        }
+    };
+    let (mut x, mut y) = (f, df);
+    while !y.is_empty() {
+        // x mod y (y's leading coefficient non-zero after trimming)
+        let li = inv(y[y.len() - 1]);
+        while x.len() >= y.len() {
+            let c = mul(x[x.len() - 1], li);
+            let off = x.len() - y.len();
+            for (i, &yi) in y.iter().enumerate() {
+                x[off + i] = sub(x[off + i], mul(c, yi));
+            }
+            x.pop();
+            trim(&mut x);
+        }
+        std::mem::swap(&mut x, &mut y);
+    }
+    // x is the gcd modulo q: a non-zero constant proves f square-free
+    x.len() == 1
 }
 
 /// The value at the rational x = m / n (n > 0) of the Bernstein polynomial with integer
@@ -3309,6 +3393,84 @@ mod tests {
         assert_eq!(rational_double_root(&b(&[18, -5, -2, 3])), None);
         // f = 1 + 3t: f' constant, no root
         assert_eq!(rational_double_root(&b(&[1, 2, 3, 4])), None);
+    }
+
+    /// The modular square-free test against exact rational Euclid: polynomials with a squared
+    /// factor (a linear one with a rational root, or an irreducible quadratic) times a random
+    /// cofactor are never called square-free, whatever the size and sign of their
+    /// coefficients (up to ~600 bits, negative ones included: the reduction modulo q); random
+    /// polynomials are called square-free exactly when the rational gcd of f and f' is a
+    /// constant (the oracle), and the rare "not proved" never hides a double root.
+    #[test]
+    fn squarefree_mod_prime_matches_rational_euclid() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(61);
+        let mul = |a: &[BigInt], b: &[BigInt]| -> Vec<BigInt> {
+            let mut c = vec![BigInt::from(0); a.len() + b.len() - 1];
+            for (i, x) in a.iter().enumerate() {
+                for (j, y) in b.iter().enumerate() {
+                    c[i + j] += x * y;
+                }
+            }
+            c
+        };
+        // the degree of gcd(f, f') over Q (Euclid on exact rationals)
+        let gcd_degree = |a: &[BigInt]| -> usize {
+            let f: Vec<BigRational> = a.iter().cloned().map(BigRational::from_integer).collect();
+            let df: Vec<BigRational> = (1..f.len())
+                .map(|k| &f[k] * BigRational::from_integer(BigInt::from(k)))
+                .collect();
+            rational_gcd(f, df).len().saturating_sub(1)
+        };
+        let big = |r: &mut rand_chacha::ChaCha8Rng, bits: u32| -> BigInt {
+            let mut x = BigInt::from(r.random_range(-1000i64..=1000));
+            for _ in 0..bits / 60 {
+                x = (x << 60u32) + BigInt::from(r.random_range(0u64..1 << 60));
+            }
+            if x.is_zero() {
+                BigInt::from(7)
+            } else {
+                x
+            }
+        };
+        let (mut proved, mut squared) = (0, 0);
+        for round in 0..200 {
+            let bits = [0, 60, 240, 600][round % 4];
+            let deg_h = r.random_range(0..=4usize);
+            let h: Vec<BigInt> = (0..=deg_h).map(|_| big(&mut r, bits)).collect();
+            if round % 2 == 0 {
+                // a squared factor: (v t - u)^2 or (t^2 + c)^2 with c > 0
+                let g: Vec<BigInt> = if round % 4 == 0 {
+                    vec![-big(&mut r, bits), big(&mut r, bits)]
+                } else {
+                    vec![
+                        num_traits::Signed::abs(&big(&mut r, bits)) + 1,
+                        BigInt::from(0),
+                        BigInt::from(1),
+                    ]
+                };
+                let f = mul(&mul(&g, &g), &h);
+                assert!(!squarefree_mod_prime(&f), "{f:?}");
+                squared += 1;
+            } else {
+                let f: Vec<BigInt> = (0..=r.random_range(2..=8usize))
+                    .map(|_| big(&mut r, bits))
+                    .collect();
+                let sf = squarefree_mod_prime(&f);
+                assert_eq!(sf, gcd_degree(&f) == 0, "{f:?}");
+                proved += sf as usize;
+            }
+        }
+        assert!(proved >= 95 && squared == 100, "{proved} {squared}");
+        // exact small cases: (3t - 1)^2 (t - 2)(t + 1) and t^2 - 2 (irrational simple roots)
+        let b = |v: &[i64]| v.iter().map(|&x| BigInt::from(x)).collect::<Vec<_>>();
+        assert!(!squarefree_mod_prime(&mul(
+            &mul(&b(&[-1, 3]), &b(&[-1, 3])),
+            &b(&[-2, -1, 1])
+        )));
+        assert!(squarefree_mod_prime(&b(&[-2, 0, 1])));
+        assert!(squarefree_mod_prime(&b(&[5, 3])));
+        assert!(!squarefree_mod_prime(&b(&[0, 0, 0])));
     }
 
     fn quad(p0: f64, p1: f64, p2: f64) -> NurbsCurve {
