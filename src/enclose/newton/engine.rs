@@ -805,12 +805,13 @@ impl<'a> Engine<'a> {
                     self.stats.fast_exits += self.s.fast_path as u64;
                     continue;
                 }
-                let sp = SpanPoly::new(self.c, self.j, k, &self.pair, pts);
                 self.poly = None;
                 if bp && self.s.pretest && (inc || dec) {
                     status[si] = Status::Mono { inc, dec };
                     continue;
                 }
+                // (built only for a span the Bézier points leave open: O(p^2) per coordinate)
+                let sp = SpanPoly::new(self.c, self.j, k, &self.pair, pts);
                 let (inc, dec) = sp.f_signs();
                 if self.bern && self.s.pretest && (inc || dec) {
                     // F >= 0 (or <= 0) on the closed span, and sign F = sign C_j'
