@@ -1276,10 +1276,11 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
         .map(|&k| Some((k, span_rows_integer(c, k, j, sign)?)))
         .collect::<Option<_>>()?;
     let mut best = Exact::of(inner).value()?.clone();
-    // (rationals compared by cross-multiplication, denominators > 0: `Ratio`'s comparison
-    // divides, a chain of big divisions on these unreduced values)
+    // (rationals compared by a logarithm estimate, else cross-multiplication, denominators > 0
+    // (`ratio_gt`): `Ratio`'s comparison divides, a chain of big divisions on these unreduced
+    // values)
     let raise = |best: &mut BigRational, g: BigRational| {
-        if g.numer() * best.denom() > best.numer() * g.denom() {
+        if crate::num::exact::ratio_gt(&g, best) {
             *best = g;
         }
     };
@@ -2530,7 +2531,10 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
         if v.sign() == Sign::NoSign {
             return Some(Exact::from_ratio(x));
         }
-        if best.as_ref().is_none_or(|(bv, bsc, _)| &v * bsc > bv * &sc) {
+        if best
+            .as_ref()
+            .is_none_or(|(bv, bsc, _)| crate::num::exact::frac_gt((&v, &sc), (bv, bsc)))
+        {
             best = Some((v, sc, x));
         }
     }

@@ -267,6 +267,47 @@ fn lift(
 // so the `BigRational` is the same value num-rational would have produced (checked by a
 // unit test against the general operations).
 
+/// Whether a > b, for rationals with positive denominators in any terms (unreduced ones too),
+/// exactly. Cross-multiplication of long unreduced values (thousands of bits, range-limit
+/// data) is the costly part, so it runs only where a cheap estimate cannot decide:
+///
+/// * different signs (or zeros) decide at once;
+/// * for one non-zero sign, |a| and |b| are compared by estimates of their logarithms.
+///   For an integer x > 0 with B bits, L(x) = log2(top) + sh with sh = max(B - 64, 0) and
+///   top = floor(x / 2^sh) satisfies 0 <= log2 x - log2(top) - sh < log2(1 + 2^-63) (top >=
+///   2^63 when sh > 0). Rounding top to f64 (relative 2^-53), the library's log2 (a few ulps
+///   of a value <= 64) and the three f64 sums and differences of values at most S = max
+///   L + 1 in magnitude (each within ulp(4S)) move the estimate
+///   D = (L(num a) - L(den a)) - (L(num b) - L(den b)) by less than 2^-30 + 2^-46 S from
+///   log2 |a| - log2 |b|. So D beyond the margin 2^-20 + 2^-40 S (about a thousand times
+///   that) decides the comparison; only inside it are the products formed.
+pub(crate) fn ratio_gt(a: &BigRational, b: &BigRational) -> bool {
+    frac_gt((a.numer(), a.denom()), (b.numer(), b.denom()))
+}
+
+/// [`ratio_gt`] on numerators and denominators: whether n_a / d_a > n_b / d_b (d_a, d_b > 0).
+pub(crate) fn frac_gt((na, da): (&BigInt, &BigInt), (nb, db): (&BigInt, &BigInt)) -> bool {
+    let (sa, sb) = (na.sign(), nb.sign());
+    if sa != sb || sa == Sign::NoSign {
+        // (Minus < NoSign < Plus)
+        return sa > sb;
+    }
+    let l = |x: &BigInt| -> f64 {
+        let sh = x.bits().saturating_sub(64);
+        let top = (x.magnitude() >> sh).to_u64().unwrap_or(u64::MAX);
+        (top as f64).log2() + sh as f64
+    };
+    let (lna, lda, lnb, ldb) = (l(na), l(da), l(nb), l(db));
+    let d = (lna - lda) - (lnb - ldb);
+    let s = lna.max(lda).max(lnb).max(ldb) + 1.0;
+    let margin = 1.0 / 1_048_576.0 + s / 1_099_511_627_776.0;
+    if d.is_finite() && d.abs() > margin {
+        // |a| > |b| iff d > 0; for negative values the order flips
+        return (d > 0.0) == (sa == Sign::Plus);
+    }
+    na * db > nb * da
+}
+
 /// The exponent e of a denominator d = 2^e (`None` if d is not a power of two).
 fn pow2_exp(d: &BigInt) -> Option<u64> {
     let tz = d.trailing_zeros()?;
@@ -420,6 +461,64 @@ impl Scalar for Exact {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `ratio_gt` against cross-multiplication: values of up to ~3000 bits of both signs and
+    /// zero, in lowest and in unreduced terms (the same value as k a / k b, which must compare
+    /// as equal both ways), and pairs one unit of a long numerator apart (inside the estimate's
+    /// margin: the exact path), and far apart (the estimate).
+    #[test]
+    fn ratio_comparison_matches_cross_multiplication() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let big = |r: &mut rand_chacha::ChaCha8Rng, words: usize| -> BigInt {
+            let mut x = BigInt::from(r.random_range(0u64..1 << 62));
+            for _ in 0..words {
+                x = (x << 64u32) + BigInt::from(r.random::<u64>());
+            }
+            x
+        };
+        let (mut fast, mut exact) = (0, 0);
+        for round in 0..3000 {
+            let (wa, wb) = (r.random_range(0..48usize), r.random_range(0..48usize));
+            let sign = |r: &mut rand_chacha::ChaCha8Rng| -> i32 {
+                [1, 1, 1, -1, -1, -1, 0][r.random_range(0..7usize)]
+            };
+            let na = big(&mut r, wa) * sign(&mut r);
+            let da = big(&mut r, wb) + 1;
+            let (nb, db) = match round % 4 {
+                // the same value, unreduced
+                0 => {
+                    let w = r.random_range(0..8usize);
+                    let k = big(&mut r, w) + 1;
+                    (&na * &k, &da * &k)
+                }
+                // one unit apart in a long numerator
+                1 => {
+                    let k = big(&mut r, 20) + 1;
+                    (&na * &k + [1, -1][r.random_range(0..2usize)], &da * &k)
+                }
+                _ => {
+                    let w = r.random_range(0..48usize);
+                    let n = big(&mut r, w) * sign(&mut r);
+                    (n, big(&mut r, wa) + 1)
+                }
+            };
+            let (a, b) = (BigRational::new_raw(na, da), BigRational::new_raw(nb, db));
+            for (x, y) in [(&a, &b), (&b, &a)] {
+                let want = x.numer() * y.denom() > y.numer() * x.denom();
+                assert_eq!(ratio_gt(x, y), want, "{x} > {y}");
+            }
+            // (how often the estimate decided: the far pairs)
+            let l = |x: &BigInt| x.bits() as f64;
+            let d = (l(a.numer()) - l(a.denom())) - (l(b.numer()) - l(b.denom()));
+            if d.abs() > 2.0 {
+                fast += 1;
+            } else {
+                exact += 1;
+            }
+        }
+        assert!(fast > 500 && exact > 1000, "{fast} {exact}");
+    }
 
     #[test]
     fn f64_round_trip_and_directed_rounding() {
