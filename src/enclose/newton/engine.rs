@@ -342,6 +342,20 @@ impl<'a> Engine<'a> {
             // `coord_at(lo)` below, for a box that starts at the knot).
             self.stats.point_evaluations += 1;
             tight = Some(v);
+            // (two ulps wide: the mean value form's r |F| / wmin^2 is wide where weights are
+            // tiny; then also the Taylor form over the box in u, `TightEval::coord_over`, as the
+            // `bezier` strategy's fast path does: both enclose the piece's values over the box,
+            // and a bound one ulp looser costs the certificate a lowering proof)
+            let enc = if enc.sup() > enc.inf().next_up() {
+                let both = enc.intersection(self.tight.coord_over(self.j, lo, hi));
+                if both.is_empty() {
+                    enc
+                } else {
+                    both
+                }
+            } else {
+                enc
+            };
             let at_knot = lo == self.c.knots()[k];
             let cm = [
                 v.to_interval(),

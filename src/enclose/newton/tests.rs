@@ -265,3 +265,41 @@ fn search_region_finds_what_it_searches() {
         assert_eq!(e.hi(), nb.hi());
     }
 }
+
+/// A converged candidate box whose mean value enclosure is two ulps wide (weights 4.4e-5 next
+/// to 6.2e5 make r |F| / wmin^2 large) is narrowed by the Taylor form over the box as well:
+/// the bound comes out one ulp below the attained value, the optimal double that the quick
+/// certificate rule accepts, instead of two ulps, which cost a lowering proof of ~1 ms. (An
+/// extreme-weights curve of the test families; fails with the Taylor form left out.)
+#[test]
+fn two_ulp_candidate_enclosures_are_narrowed() {
+    let c = NurbsCurve::new(
+        4,
+        vec![0., 0., 0., 0., 0., 0.4110156666342768, 0.4180243607971266, 1., 1., 1., 1., 1.],
+        vec![
+            vec![0.40718203362330385, 0.8575256111243683],
+            vec![0.2532122889467687, -0.5738808972035483],
+            vec![-0.5788000801692368, -0.3889853573477309],
+            vec![0.41264067382539826, 0.45854608591396717],
+            vec![-0.2822347956694924, -0.49858302180298386],
+            vec![0.30185870145665605, -0.14497286832854783],
+            vec![0.462576246099228, -0.9696822209918095],
+        ],
+        Some(vec![
+            0.37759073590034903,
+            0.00004441503047730157,
+            2.5928319362092798,
+            617782.3670784188,
+            48.09021747013447,
+            0.0483248384943736,
+            0.29538027099829417,
+        ]),
+    )
+    .unwrap();
+    let e = crate::enclose::drive_with(&Newton::default(), &c, false);
+    let b = &e.coords[0];
+    assert!(b.lo < b.inner_lo && b.lo.next_up() == b.inner_lo, "{} {}", b.lo, b.inner_lo);
+    sound(&c, &e);
+    let e = crate::enclose::drive_with(&Newton::default(), &c, true);
+    assert!(e.coords.iter().all(|b| b.optimal_lo && b.optimal_hi));
+}
