@@ -75,7 +75,13 @@ pub struct Newton {
     /// spans, where C' is huge, still get small boxes).
     pub tol: f64,
     /// Keep iterating on a box with a uniqueness proof until the Newton step makes no progress
-    /// (machine precision; costs one or two quadratically convergent steps).
+    /// (machine precision; costs one or two quadratically convergent steps). Off by default:
+    /// a box with its zero proved unique and its radius within `tol` is kept as it is (the
+    /// float-first boxes, 2^-30 around an f64 estimate, come out of their first step about
+    /// 2^-45 wide), since the tight forms that enclose the candidate's values (the mean value
+    /// form from the span's double-double points, `SpanPoly::tight_over`, or the Taylor form
+    /// in u) are about one ulp wide on such a box already: only the candidate's parameter
+    /// interval is wider.
     pub refine_unique: bool,
     /// Newton steps per box (thesis: 20).
     pub max_iter: u32,
@@ -163,7 +169,7 @@ impl Default for Newton {
     fn default() -> Self {
         Newton {
             tol: 1e-12,
-            refine_unique: true,
+            refine_unique: false,
             max_iter: 40,
             max_boxes: 2000,
             max_work: DEFAULT_MAX_WORK,
