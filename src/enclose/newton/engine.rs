@@ -627,8 +627,9 @@ impl<'a> Engine<'a> {
     /// ([`SpanPoly::zero_estimates`]) get tiny boxes [r_i - h, r_i + h] (h = 2^-30, far above
     /// the error of an estimate of a simple zero), which go on the stack: the first interval
     /// Newton step on such a box proves a zero there unique (N(X) in the interior of X, the
-    /// test of the loop below; Moore; Hansen thm. 9.6.8) and the following steps shrink it to
-    /// machine precision. The parts of the gaps between the boxes (and the ends) that the
+    /// test of the loop below; Moore; Hansen thm. 9.6.8) and shrinks it to about 2^-45, within
+    /// the tolerance (further steps to machine precision only with [`Newton::refine_unique`]).
+    /// The parts of the gaps between the boxes (and the ends) that the
     /// estimation's own proofs do not cover (`free` intervals: pieces of its subdivision whose
     /// coefficients have one proven sign, or one proven sign change with F of opposite proven
     /// signs at the ends of the piece's box, so that Descartes' rule of signs leaves the box
