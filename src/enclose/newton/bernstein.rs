@@ -613,14 +613,40 @@ impl SpanPoly {
     /// The critical points of the piece, proven located (the `bezier` strategy's fast path
     /// on spans of any degree): the boxes of [`SpanPoly::zero_boxes`] (half-width `h`), whose
     /// union holds every zero of F in [0, 1]; `None` unless the estimation's zero-free
-    /// intervals cover everything outside the boxes (no gap left). Sound: a zero of F outside
-    /// every box would lie in a proven zero-free interval. Since F has the sign and the zeros
-    /// of C_j' on the closed span, every interior extremum of the piece lies in a box.
+    /// intervals and [`SpanPoly::exclude_gaps`] cover everything outside the boxes. Sound: a
+    /// zero of F outside every box would lie in a proven zero-free interval or an excluded
+    /// gap. Since F has the sign and the zeros of C_j' on the closed span, every interior
+    /// extremum of the piece lies in a box.
     pub(crate) fn critical_boxes(&self, h: f64) -> Option<Vec<(f64, f64)>> {
         let (mut est, mut free, mut boxes, mut gaps) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let max = self.f.pts.len() + 1;
-        (self.zero_boxes(h, max, (&mut est, &mut free), &mut boxes, &mut gaps) && gaps.is_empty())
-            .then_some(boxes)
+        (self.zero_boxes(h, max, (&mut est, &mut free), &mut boxes, &mut gaps)
+            && self.exclude_gaps(&mut gaps, &mut 0))
+        .then_some(boxes)
+    }
+
+    /// Whether F provably has no zero in any of the `gaps` ([t0, t1, depth] in [0, 1], used
+    /// up): each is excluded where the enclosure of F over it ([`SpanPoly::f`], the hull of
+    /// its Bernstein coefficients restricted to the gap, every one enclosing the exact one)
+    /// excludes 0, after at most two halvings (depth < 2); `false` at the first gap that is not
+    /// excluded (a gap whose end is next to a zero just outside it would need many halvings).
+    /// `evals` counts the enclosures of F.
+    pub(crate) fn exclude_gaps(&self, gaps: &mut Vec<(f64, f64, u32)>, evals: &mut u64) -> bool {
+        while let Some((g0, g1, depth)) = gaps.pop() {
+            *evals += 1;
+            let fg = self.f(T::new(g0, g1));
+            if !fg.is_empty() && !fg.contains(0.0) {
+                continue; // no zero of F in [g0, g1]
+            }
+            let m = midpoint(g0, g1);
+            if depth < 2 && g0 < m && m < g1 {
+                gaps.push((g0, m, depth + 1));
+                gaps.push((m, g1, depth + 1));
+            } else {
+                return false;
+            }
+        }
+        true
     }
 
     /// The values of the piece over the box [x0, x1] of the local parameter (x0 < x1), cheap
@@ -2105,7 +2131,7 @@ mod tests {
         use crate::num::Exact;
         use rand::{Rng, SeedableRng};
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
-        let mut claimed = 0usize;
+        let (mut claimed, mut excluded) = (0usize, 0usize);
         for it in 0..300 {
             let mut roots: Vec<f64> = (0..rng.random_range(1..=5usize))
                 .map(|_| rng.random_range(-0.1..1.1))
@@ -2202,8 +2228,24 @@ mod tests {
                     assert!(!(lo <= r && r <= hi), "root {r} in [{lo}, {hi}], roots {roots:?}");
                 }
             }
+            // the located critical points (`critical_boxes`, the zero-free intervals and the
+            // gaps excluded by enclosures of F): every root in [0, 1] lies in a box
+            let h = 1.0 / 1_099_511_627_776.0;
+            let (mut bx, mut gaps) = (Vec::new(), Vec::new());
+            let had_gaps = sp.zero_boxes(h, n + 1, (&mut est, &mut free), &mut bx, &mut gaps)
+                && !gaps.is_empty();
+            if let Some(boxes) = sp.critical_boxes(h) {
+                excluded += had_gaps as usize;
+                for &r in roots.iter().filter(|r| (0.0..=1.0).contains(*r)) {
+                    assert!(
+                        boxes.iter().any(|&(lo, hi)| lo <= r && r <= hi),
+                        "root {r} outside {boxes:?}, roots {roots:?}"
+                    );
+                }
+            }
         }
         assert!(claimed > 300, "{claimed}");
+        assert!(excluded > 20, "{excluded}");
     }
 
     #[test]

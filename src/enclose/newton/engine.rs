@@ -663,28 +663,23 @@ impl<'a> Engine<'a> {
         seeded
     }
 
-    /// The gaps of [`Engine::seed_float_first`] on span k excluded (F has no zero in them, by
-    /// the enclosure of F over each, after at most two halvings), or `false` (counted in
-    /// `Stats::fast_fallbacks`): see there. `gaps` is used up.
+    /// The gaps of [`Engine::seed_float_first`] on span k excluded (F has no zero in them:
+    /// [`SpanPoly::exclude_gaps`]), or `false` (counted in `Stats::fast_fallbacks`): see
+    /// there. `gaps` is used up. (A gap not excluded: the whole span is searched as without
+    /// the seeding; a gap whose end is next to a zero just outside it would make the Newton
+    /// steps crawl towards that end.)
     fn exclude_gaps(&mut self, k: usize, gaps: &mut Vec<(f64, f64, u32)>) -> bool {
-        while let Some((g0, g1, depth)) = gaps.pop() {
-            let fg = self.f(k, SpanParam::Local(T::new(g0, g1)));
-            if !fg.is_empty() && !fg.contains(0.0) {
-                continue; // no zero of F in [g0, g1]
-            }
-            let m = midpoint(g0, g1);
-            if depth < 2 && g0 < m && m < g1 {
-                gaps.push((g0, m, depth + 1));
-                gaps.push((m, g1, depth + 1));
-            } else {
-                // Not excluded: search the whole span as without the seeding (a gap whose
-                // end is next to a zero just outside it would make the Newton steps crawl
-                // towards that end).
-                self.stats.fast_fallbacks += 1;
-                return false;
-            }
+        let Some(sp) = self.local(k, T::new(0.0, 1.0)) else {
+            return false;
+        };
+        // (the evaluations of F: one per gap and halving, as the search counts them)
+        let mut n = 0;
+        let ok = sp.exclude_gaps(gaps, &mut n);
+        self.stats.derivative_evaluations += n;
+        if !ok {
+            self.stats.fast_fallbacks += 1;
         }
-        true
+        ok
     }
 
     /// Push the pieces of [x0, x1] (split rule) on the stack. Piece ends are rounded f64 values
