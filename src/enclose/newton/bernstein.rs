@@ -525,7 +525,7 @@ impl SpanPoly {
             // zero of F at the span's end, a knot, besides the one the change shows; halved
             // like a piece of several changes, so that the end's piece is left to the end rule
             // and the other zero to one of its own)
-            let noisy_end = (t0 == 0.0 && !(v[0].abs() > e)) || (t1 == 1.0 && !(v[len - 1].abs() > e));
+            let noisy_end = (t0 == 0.0 && v[0].abs() <= e) || (t1 == 1.0 && v[len - 1].abs() <= e);
             let n = if n == 1 && noisy_end && t1 - t0 > 1.0 / 1_048_576.0 { 2 } else { n };
             let proved = if n == 0 {
                 let free_piece = proven_changes(&v, e) == Some(0);
