@@ -447,7 +447,9 @@ impl SpanPoly {
     ///
     /// * **zero-free** when every coefficient has a proven sign and they all agree: F has that
     ///   sign on the closed piece (convex hull property);
-    /// * **free but for the box** [x0, x1] = [r - h, r + h] around its estimate r, when
+    /// * **free but for the box** [x0, x1] = [r - h, r + h] around its estimate r (or, where
+    ///   the signs at its ends are not proven, [r - h', r + h'] with h' = [`WIDE_H`] > h: the
+    ///   box pushed with the estimate is then the wider one), when
     ///   t0 < x0 < x1 < t1, every coefficient has a proven sign with exactly one change, and F
     ///   at x0 (at x1) provably has the sign of the first (last) coefficient (f64 de Casteljau
     ///   with the a-priori bound of [`value_f64`]). Then F has at most one zero in (t0, t1)
@@ -463,7 +465,7 @@ impl SpanPoly {
     /// before.
     pub(super) fn zero_estimates(
         &self,
-        out: &mut Vec<f64>,
+        out: &mut Vec<Estimate>,
         max: usize,
         h: f64,
         free: &mut Vec<(f64, f64)>,
@@ -538,19 +540,29 @@ impl SpanPoly {
                     return false;
                 }
                 let r = locate(&c, &dc, t0, t1, polygon_crossing(&v, t0, t1));
-                out.push(r);
-                let (x0, x1) = (r - h, r + h);
-                let one = n == 1
-                    && t0 < x0
-                    && x1 < t1
-                    && proven_changes(&v, e) == Some(1)
-                    && self.f_has_sign(x0, v[0] > 0.0)
-                    && self.f_has_sign(x1, v[len - 1] > 0.0);
-                if one {
-                    push_free(free, t0, x0);
-                    push_free(free, x1, t1);
+                let one_at = |hr: f64| {
+                    let (x0, x1) = (r - hr, r + hr);
+                    n == 1
+                        && t0 < x0
+                        && x1 < t1
+                        && proven_changes(&v, e) == Some(1)
+                        && self.f_has_sign(x0, v[0] > 0.0)
+                        && self.f_has_sign(x1, v[len - 1] > 0.0)
+                };
+                // (where F's values at r -+ h are below their error bound, a small slope next
+                // to wide coefficients (tiny spans), the box widened once to WIDE_H: still far
+                // below the widths where the tight enclosures over a box lose accuracy)
+                let hr = if one_at(h) {
+                    Some(h)
+                } else {
+                    (h < WIDE_H && one_at(WIDE_H)).then_some(WIDE_H)
+                };
+                out.push((r, hr.unwrap_or(h)));
+                if let Some(hr) = hr {
+                    push_free(free, t0, r - hr);
+                    push_free(free, r + hr, t1);
                 }
-                one
+                hr.is_some()
             } else {
                 // the halves at 1/2 (right stored first, so the left one is popped first)
                 let mid = 0.5 * (t0 + t1);
@@ -569,18 +581,19 @@ impl SpanPoly {
                     if out.len() >= max {
                         return false;
                     }
-                    out.push(end);
+                    out.push((end, h));
                     push_free(free, f0, f1);
                 }
             }
         }
-        out.sort_by(f64::total_cmp);
+        out.sort_by(|a, b| a.0.total_cmp(&b.0));
         true
     }
 
     /// The boxes of the float-first search and what is left to exclude between them: the
     /// estimates of [`SpanPoly::zero_estimates`] (at most `max`; `est` and `free` are its
-    /// scratch) as boxes [r - h, r + h] clamped to [0, 1] and merged where they overlap
+    /// scratch) as boxes [r - h, r + h] (each with its own half-width, `h` or the wider one of
+    /// the estimation) clamped to [0, 1] and merged where they overlap
     /// (`boxes`, increasing), and the parts of [0, 1] outside the boxes that its zero-free
     /// intervals do not cover (`gaps`, closed, depth 0). `false` where the estimation gave
     /// nothing (then `boxes` and `gaps` are empty). Every zero of F in [0, 1] lies in a box or
@@ -589,7 +602,7 @@ impl SpanPoly {
         &self,
         h: f64,
         max: usize,
-        (est, free): (&mut Vec<f64>, &mut Vec<(f64, f64)>),
+        (est, free): (&mut Vec<Estimate>, &mut Vec<(f64, f64)>),
         boxes: &mut Vec<(f64, f64)>,
         gaps: &mut Vec<(f64, f64, u32)>,
     ) -> bool {
@@ -600,8 +613,8 @@ impl SpanPoly {
         if !self.zero_estimates(est, max, h, free) {
             return false;
         }
-        for &r in est.iter() {
-            push_free(boxes, (r - h).max(0.0), (r + h).min(1.0));
+        for &(r, hr) in est.iter() {
+            push_free(boxes, (r - hr).max(0.0), (r + hr).min(1.0));
         }
         let mut left = 0.0;
         for &(lo, hi) in boxes.iter() {
@@ -791,6 +804,14 @@ fn push_free(free: &mut Vec<(f64, f64)>, lo: f64, hi: f64) {
         _ => free.push((lo, hi)),
     }
 }
+
+/// A zero estimate of [`SpanPoly::zero_estimates`] and the half-width of its box.
+pub(super) type Estimate = (f64, f64);
+
+/// The half-width of an estimate's box in the local parameter where the caller's own is too
+/// narrow for the signs of F at its ends to be proven ([`SpanPoly::zero_estimates`]): newton's
+/// float-first half-width 2^-30.
+const WIDE_H: f64 = 1.0 / 1_073_741_824.0;
 
 /// How close (in t in [0, 1]) an estimate of [`locate`] needs to be: far below the half-width
 /// 2^-30 of the boxes the Newton search puts around it (`Engine::seed_float_first`). Asking for
@@ -2181,6 +2202,27 @@ mod tests {
                 rational: false,
                 pts: vec![Ddi::exact(0.0); 2],
             },
+        }
+    }
+
+    /// A zero where F's slope is too small for its signs 2^-40 away to show through the
+    /// coefficients' error bound (a tiny span: slope ~4e-6 against radii ~7e-15, as on the
+    /// clustered-knots family) is located in a box widened to 2^-30, instead of leaving gaps
+    /// that hold its neighbourhood (fails without the wider box); a steep zero keeps the
+    /// narrow one.
+    #[test]
+    fn a_flat_zero_gets_a_wider_box() {
+        let h = 1.0 / 1_099_511_627_776.0;
+        for (r, k, rad, want) in [(2.1e-7, 3.8e-6, 7e-15, WIDE_H), (0.4, 3.8e-6, 7e-15, WIDE_H), (0.4, 3.0, 7e-15, h)] {
+            let mut sp = span_poly_of_roots(&[r, 5.0], k);
+            for x in sp.f.pts.iter_mut() {
+                *x = Mr::from_centre_radius(x.mid(), rad);
+            }
+            let boxes = sp.critical_boxes(h).unwrap_or_else(|| panic!("{r} {k}: not located"));
+            assert_eq!(boxes.len(), 1, "{boxes:?}");
+            let (lo, hi) = boxes[0];
+            assert!(lo <= r && r <= hi, "{r} outside {boxes:?}");
+            assert!(hi - lo <= 2.0 * want * (1.0 + 1e-9) && hi - lo > want, "{boxes:?}");
         }
     }
 

@@ -74,7 +74,7 @@ pub(crate) struct Engine<'a> {
     /// Newton box stack
     stack: Vec<(f64, f64)>,
     /// scratch for the f64 zero estimates of the float-first seeding
-    est: Vec<f64>,
+    est: Vec<super::bernstein::Estimate>,
     /// the zero-free intervals of `seed_float_first` (reused)
     free: Vec<(f64, f64)>,
     /// the boxes and the gaps of `seed_float_first` (reused)
