@@ -438,7 +438,9 @@ impl SpanPoly {
     /// changes; Farin, "Curves and Surfaces for CAGD"): a piece with no change is dropped, a
     /// piece with one change holds one simple zero of the f64 polynomial, located by Newton's
     /// method safeguarded by bisection; pieces with more changes are halved (to width 2^-20,
-    /// then located like one-change pieces: a near-double zero), at most 8 (max + 1) pieces.
+    /// then located like one-change pieces: a near-double zero), at most 8 (max + 1) pieces;
+    /// so is a piece with one change whose coefficient at an end of the span is rounding noise
+    /// (a zero of F at the knot besides the one the change shows, left to the end rule).
     ///
     /// `free` receives closed intervals of [0, 1], in increasing order, on which F provably has
     /// no zero. The pieces' f64 coefficients are within E_d of the exact coefficients of F over
@@ -448,7 +450,7 @@ impl SpanPoly {
     /// * **zero-free** when every coefficient has a proven sign and they all agree: F has that
     ///   sign on the closed piece (convex hull property);
     /// * **free but for the box** [x0, x1] = [r - h, r + h] around its estimate r (or, where
-    ///   the signs at its ends are not proven, [r - h', r + h'] with h' = [`WIDE_H`] > h: the
+    ///   the signs at its ends are not proven, [r - h', r + h'] with h' = [`FLOAT_FIRST_H`] > h: the
     ///   box pushed with the estimate is then the wider one), when
     ///   t0 < x0 < x1 < t1, every coefficient has a proven sign with exactly one change, and F
     ///   at x0 (at x1) provably has the sign of the first (last) coefficient (f64 de Casteljau
@@ -540,22 +542,24 @@ impl SpanPoly {
                     return false;
                 }
                 let r = locate(&c, &dc, t0, t1, polygon_crossing(&v, t0, t1));
+                let one_change = n == 1 && proven_changes(&v, e) == Some(1);
                 let one_at = |hr: f64| {
                     let (x0, x1) = (r - hr, r + hr);
-                    n == 1
-                        && t0 < x0
+                    t0 < x0
                         && x1 < t1
-                        && proven_changes(&v, e) == Some(1)
                         && self.f_has_sign(x0, v[0] > 0.0)
                         && self.f_has_sign(x1, v[len - 1] > 0.0)
                 };
                 // (where F's values at r -+ h are below their error bound, a small slope next
-                // to wide coefficients (tiny spans), the box widened once to WIDE_H: still far
-                // below the widths where the tight enclosures over a box lose accuracy)
-                let hr = if one_at(h) {
+                // to wide coefficients (tiny spans), the box widened once to FLOAT_FIRST_H:
+                // still far below the widths where the tight enclosures over a box lose
+                // accuracy)
+                let hr = if !one_change {
+                    None
+                } else if one_at(h) {
                     Some(h)
                 } else {
-                    (h < WIDE_H && one_at(WIDE_H)).then_some(WIDE_H)
+                    (h < FLOAT_FIRST_H && one_at(FLOAT_FIRST_H)).then_some(FLOAT_FIRST_H)
                 };
                 out.push((r, hr.unwrap_or(h)));
                 if let Some(hr) = hr {
@@ -808,10 +812,10 @@ fn push_free(free: &mut Vec<(f64, f64)>, lo: f64, hi: f64) {
 /// A zero estimate of [`SpanPoly::zero_estimates`] and the half-width of its box.
 pub(super) type Estimate = (f64, f64);
 
-/// The half-width of an estimate's box in the local parameter where the caller's own is too
-/// narrow for the signs of F at its ends to be proven ([`SpanPoly::zero_estimates`]): newton's
-/// float-first half-width 2^-30.
-const WIDE_H: f64 = 1.0 / 1_073_741_824.0;
+/// The half-width 2^-30 of `newton`'s float-first boxes in the local parameter
+/// (`Engine::seed_float_first`), and of an estimate's box where the caller's own is too
+/// narrow for the signs of F at its ends to be proven ([`SpanPoly::zero_estimates`]).
+pub(super) const FLOAT_FIRST_H: f64 = 1.0 / 1_073_741_824.0;
 
 /// How close (in t in [0, 1]) an estimate of [`locate`] needs to be: far below the half-width
 /// 2^-30 of the boxes the Newton search puts around it (`Engine::seed_float_first`). Asking for
@@ -2213,7 +2217,7 @@ mod tests {
     #[test]
     fn a_flat_zero_gets_a_wider_box() {
         let h = 1.0 / 1_099_511_627_776.0;
-        for (r, k, rad, want) in [(2.1e-7, 3.8e-6, 7e-15, WIDE_H), (0.4, 3.8e-6, 7e-15, WIDE_H), (0.4, 3.0, 7e-15, h)] {
+        for (r, k, rad, want) in [(2.1e-7, 3.8e-6, 7e-15, FLOAT_FIRST_H), (0.4, 3.8e-6, 7e-15, FLOAT_FIRST_H), (0.4, 3.0, 7e-15, h)] {
             let mut sp = span_poly_of_roots(&[r, 5.0], k);
             for x in sp.f.pts.iter_mut() {
                 *x = Mr::from_centre_radius(x.mid(), rad);
@@ -2311,7 +2315,7 @@ mod tests {
             // gaps excluded by enclosures of F): every root in [0, 1] lies in a box
             let h = 1.0 / 1_099_511_627_776.0;
             let (mut bx, mut gaps) = (Vec::new(), Vec::new());
-            let had_gaps = sp.zero_boxes(h, n + 1, (&mut est, &mut free), &mut bx, &mut gaps)
+            let had_gaps = sp.zero_boxes(h, n + 2, (&mut est, &mut free), &mut bx, &mut gaps)
                 && !gaps.is_empty();
             if let Some(boxes) = sp.critical_boxes(h) {
                 excluded += had_gaps as usize;

@@ -644,7 +644,7 @@ impl<'a> Engine<'a> {
     /// `Stats::fast_proofs` (seeded) or `Stats::fast_fallbacks` (estimates, but a gap not
     /// excluded).
     fn seed_float_first(&mut self, k: usize, a: f64, b: f64) -> bool {
-        const H: f64 = 1.0 / 1_073_741_824.0; // 2^-30
+        const H: f64 = super::bernstein::FLOAT_FIRST_H; // 2^-30
         let (mut est, mut free) = (std::mem::take(&mut self.est), std::mem::take(&mut self.free));
         let (mut bx, mut gaps) = (std::mem::take(&mut self.seed_boxes), std::mem::take(&mut self.seed_gaps));
         let ok = a == 0.0
