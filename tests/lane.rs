@@ -227,6 +227,86 @@ fn the_lane_refuses_what_it_does_not_cover() {
     assert!(e.coords[0].optimal_hi && e.coords[0].optimal_lo);
 }
 
+/// Degree-1 curves are polylines through their control points (rational or not, clamped or
+/// not, with jumps at double knots, at any magnitude): the lane answers them with the exact
+/// control-point range, both bounds certified optimal, and the general path agrees
+/// ([`cross_check`]). Each extremum is checked on the curve itself (`TightEval`): the bound is
+/// C(u) at the extremum's knot, or (a jump) the left limit there, whose values just below the
+/// knot come within a tiny distance of it; an inner bound equal to the bound is attained at
+/// one of the extrema, and a bound reached only as a left limit has the strict witness
+/// next_down(bound) instead.
+#[test]
+fn polylines_are_their_control_boxes() {
+    use nurbs_box::spline::TightEval;
+    let mut r = gen::rng(41);
+    let (mut tried, mut taken, mut limits) = (0, 0, 0);
+    for i in 0..700 {
+        let fam = Family::ALL[i % Family::ALL.len()];
+        if fam == Family::NearDegenerateCubic {
+            continue;
+        }
+        let params = GenParams {
+            degree: 1..=1,
+            ..fam.params()
+        };
+        let c = gen::random_curve(&mut r, &params);
+        tried += 1;
+        if Simple::of(&c).is_none() {
+            continue;
+        }
+        taken += 1;
+        let n = c.num_points() - 1;
+        let te = TightEval::new(&c);
+        let s = common::fast_and_general();
+        for pair in s.chunks(2) {
+            let (a, g) = (drive(pair[0].as_ref(), &c), drive(pair[1].as_ref(), &c));
+            cross_check(&c, &a, &g).unwrap();
+            let json = nurbs_box::curve_to_json(&c);
+            for (j, cb) in a.coords.iter().enumerate() {
+                assert_eq!((cb.lo, cb.hi), c.coord_range(j, 0..=n), "{json}");
+                assert!(cb.optimal_lo && cb.optimal_hi, "{json}");
+                for (sign, m, inner, witness, args) in [
+                    (1.0, cb.hi, cb.inner_hi, cb.witness_hi, &cb.argmax),
+                    (-1.0, -cb.lo, -cb.inner_lo, -cb.witness_lo, &cb.argmin),
+                ] {
+                    assert!(!args.is_empty(), "{json}");
+                    let mut attained = false;
+                    for e in args.iter() {
+                        assert_eq!(e.u_lo, e.u_hi, "{json}");
+                        let at = te.point(e.u_lo)[j];
+                        if at.contains(sign * m) {
+                            attained = true;
+                        } else {
+                            // a left limit: the knot is double, the control point before
+                            // it (P_i, u_{i+1} = u_{i+2} = u) has the bound, and just below
+                            // the knot the curve is within a tiny distance of it (relative
+                            // to the weight ratio w_{i-1} / w_i, which slows the approach)
+                            let kn = c.knots();
+                            let i = (1..n)
+                                .find(|&i| kn[i + 1] == e.u_lo && kn[i + 2] == e.u_lo)
+                                .expect("a double knot");
+                            assert_eq!(c.control_point(i)[j], sign * m, "{json}");
+                            let ratio = c.weights().map_or(1.0, |w| (w[i - 1] / w[i]).max(1.0));
+                            let below = te.point(e.u_lo.next_down())[j];
+                            let dist = (below.mid() - sign * m).abs();
+                            let scale = c.coord_scale(j).max(1e-300);
+                            assert!(dist <= 1e-9 * scale * ratio, "{json}");
+                        }
+                    }
+                    if inner == m {
+                        assert!(attained, "{json}");
+                    } else {
+                        assert!(inner < m && witness == m.next_down(), "{json}");
+                        limits += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(taken * 10 >= tried * 9, "{taken} of {tried}");
+    assert!(limits > 10, "{limits}");
+}
+
 /// Counts heap allocations per thread (for the lane's no-allocation claim; other tests of this
 /// binary run on other threads).
 struct Counting;

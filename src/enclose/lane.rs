@@ -1,14 +1,18 @@
 //! The driver's lane for the commonest input: one clamped polynomial Bézier segment of degree
-//! 1, 2 or 3 (a line, a font's quadratic, a cubic Bézier) with moderate magnitudes
-//! ([`Simple::of`]). Such a curve needs none of the general machinery (rescaling, knot
-//! insertion, branch and bound), so the driver answers it here directly, with the same
-//! guarantees and the same reasoning as the general path, and without any heap allocation:
+//! 1, 2 or 3 (a line, a font's quadratic, a cubic Bézier) with moderate magnitudes, a clamped
+//! polynomial spline of degree 2 or 3 with moderate knots, and any polyline (degree 1,
+//! rational or not, clamped or not, jumps at double knots, any magnitude) ([`Simple::of`]).
+//! Such a curve needs none of the general machinery (rescaling, knot insertion, branch and
+//! bound), so the driver answers it here directly, with the same guarantees and the same
+//! reasoning as the general path, and without any heap allocation:
 //!
 //! * **`hull`** ([`Lane::Hull`]): the box of the control points (convex hull property, thesis
 //!   prop. 2.1; exact), the end control points as attained values (a clamped end is a control
 //!   point: `NurbsCurve::clamped_ends`).
 //! * **`bezier` and `newton`** ([`Lane::Tight`]): per coordinate side first the cheap exit (the
-//!   extreme control value is an end value: exact and attained), else the root-isolating proof
+//!   extreme control value is an end value: exact and attained), on a polyline the extreme
+//!   control value itself (a curve value at a knot, or its left limit at a jump:
+//!   `polyline_side`), else the root-isolating proof
 //!   of the `bezier` strategy's fast path (`bezier::single`: f64 root estimates of C_j', proven
 //!   derivative signs at test points by an f64 filter with an a-priori error bound, root
 //!   counting, a double-double Taylor enclosure over each tiny bracket). Where that proof does
@@ -97,16 +101,45 @@ impl<'a> Simple<'a> {
         let p = c.degree();
         let k = c.knots();
         let n = c.num_points() - 1;
-        if c.is_rational() || !(1..=3).contains(&p) || n < p {
+        if !(1..=3).contains(&p) || n < p || (c.is_rational() && p > 1) {
             return None;
         }
-        // clamped: knots a^(p+1) ... b^(p+1), a < b (validation guarantees a non-empty domain;
-        // checked again, as every other assumption here)
-        let (a, b) = (k[0], k[k.len() - 1]);
-        if k[p] != a || k[n + 1] != b || a >= b || a.is_nan() {
-            return None;
-        }
-        if n == p {
+        let (a, b) = if p == 1 {
+            // A polyline (degree 1, weights or not, clamped or not): on span [u_i, u_{i+1}]
+            // the curve is (w_{i-1} P_{i-1} N_{i-1,1} + w_i P_i N_{i,1}) / (w_{i-1} N_{i-1,1} +
+            // w_i N_{i,1}) with N_{i-1,1} = (u_{i+1} - u) / (u_{i+1} - u_i), N_{i,1} = 1 - that,
+            // both >= 0: with positive weights a convex combination of P_{i-1} and P_i moving
+            // from one to the other (the segment between them, each coordinate monotone), and
+            // C(u_{i+1}) = P_i exactly where u_{i+1} < u_{i+2} (NURBS Book eq. 2.5 and 4.2).
+            // At a double knot u_{i+1} = u_{i+2} (multiplicity p + 1, a jump) P_i is the left
+            // limit there, approached strictly monotonically from P_{i-1} (attained at u_i <
+            // u_{i+1}), and C(u_{i+1}) = P_{i+1}. Taken: the domain [u_1, u_{n+1}] with
+            // non-empty end spans (P_0 = C(a), P_n = C(b)) and no interior knot of multiplicity
+            // above 2 (a triple knot would leave a control point that the curve never
+            // approaches). Then every control point is a value of the curve or such a limit,
+            // and every value lies between two of them: the box is the control-point box,
+            // each bound a control value (`polyline_side`). Only the knot values are read (no
+            // arithmetic), so no magnitude window applies.
+            let (a, b) = (k[1], k[n + 1]);
+            if !(k[1] < k[2] && k[n] < k[n + 1])
+                || k[1..=n + 1].windows(3).any(|w| w[0] == w[2])
+                || k[1..=n + 1].windows(2).any(|w| w[1] < w[0])
+            {
+                return None;
+            }
+            (a, b)
+        } else {
+            // clamped: knots a^(p+1) ... b^(p+1), a < b (validation guarantees a non-empty
+            // domain; checked again, as every other assumption here)
+            let (a, b) = (k[0], k[k.len() - 1]);
+            if k[p] != a || k[n + 1] != b || a >= b || a.is_nan() {
+                return None;
+            }
+            (a, b)
+        };
+        if p == 1 {
+            // (the polyline above: nothing more to check)
+        } else if n == p {
             if beyond_knot_window(a) || beyond_knot_window(b) {
                 return None;
             }
@@ -115,7 +148,7 @@ impl<'a> Simple<'a> {
             // is continuous and both end coefficients of every span are curve values), knots
             // that the driver would not rescale (every knot difference is finite and normal
             // enough for the a-priori bound of the f64 span coefficients)
-            if p < 2 || super::driver::knot_scaling(c) != (0, true) {
+            if super::driver::knot_scaling(c) != (0, true) {
                 return None;
             }
             let mut run = 1;
@@ -144,8 +177,9 @@ impl<'a> Simple<'a> {
         }
         for &(lo, hi) in &range[..d] {
             let m = if -lo > hi { -lo } else { hi };
-            // (a NaN or infinite coordinate is rejected by validation; checked again)
-            if !m.is_finite() || (m != 0.0 && beyond_coord_window(m)) {
+            // (a NaN or infinite coordinate is rejected by validation; checked again; a
+            // polyline's bounds are control values, exact at any magnitude)
+            if !m.is_finite() || (p > 1 && m != 0.0 && beyond_coord_window(m)) {
                 return None;
             }
         }
@@ -275,6 +309,57 @@ fn proven(s: &Simple, r: &RawSide) -> SideOut {
     }
 }
 
+/// The side `sign` (1: max, -1: min) of coordinate j of a polyline (degree 1, see
+/// [`Simple::of`]): the bound is the extreme control value m (exact; every value of the curve
+/// lies between two control values). Each control point P_i with value m is a candidate at
+/// the knot u_{i+1} (a domain end, or a knot of multiplicity >= p = 1). P_i is attained there
+/// unless u_{i+1} = u_{i+2} < b, where it is the left limit at a jump: if no control point
+/// with value m is attained, the curve still comes arbitrarily close to m from below (the
+/// segment from the attained P_{i-1} < m rises strictly to m), so it reaches a value above
+/// next_down(m), a strict witness; the attained value is then the largest attained control
+/// value. Counted in `fast_exits`, as the end-value exit.
+fn polyline_side(s: &Simple, j: usize, sign: f64) -> SideOut {
+    let (lo, hi) = s.range[j];
+    let m = if sign > 0.0 { hi } else { -lo };
+    let mut args = Extrema::new();
+    let mut attained = f64::NEG_INFINITY;
+    for i in 0..=s.n {
+        let v = sign * s.pts[i * s.d + j];
+        let u = s.knots[i + 1];
+        let reached = i == s.n || u < s.knots[i + 2];
+        if reached && v > attained {
+            attained = v;
+        }
+        if v == m {
+            let kind = if i == 0 || i == s.n {
+                CandidateKind::EndPoint
+            } else {
+                CandidateKind::Knot
+            };
+            args.push(Extremum {
+                u_lo: u,
+                u_hi: u,
+                unique: false,
+                kind,
+            });
+        }
+    }
+    let witness = if attained < m {
+        m.next_down()
+    } else {
+        f64::NEG_INFINITY
+    };
+    SideOut {
+        data: SideData {
+            upper: m,
+            attained,
+            witness,
+            args,
+        },
+        counts: [1, 0, 0, 0],
+    }
+}
+
 /// The `newton` and `bezier` stopping rule: a gap of at most two ulps of the coordinate scale.
 fn max_gap(s: &Simple, j: usize) -> f64 {
     let (lo, hi) = s.range[j];
@@ -288,6 +373,12 @@ fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
     if hi.is_some() && lo.is_some() {
         // (both exits: a monotone coordinate, or a line)
         return Some([hi?, lo?]);
+    }
+    if s.p == 1 {
+        return Some([
+            hi.unwrap_or_else(|| polyline_side(s, j, 1.0)),
+            lo.unwrap_or_else(|| polyline_side(s, j, -1.0)),
+        ]);
     }
     if s.n > s.p {
         return Some([
@@ -931,7 +1022,8 @@ mod tests {
             for _ in 0..60 {
                 let c = fam.curve(&mut r);
                 let Some(s) = Simple::of(&c) else { continue };
-                if s.n == s.p {
+                // (single segments and polylines have no closed-form spans)
+                if s.n == s.p || s.p == 1 {
                     continue;
                 }
                 for j in 0..s.d {
