@@ -532,11 +532,10 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
     // The f64 filter: straight from f64 data (approximating x' / p), or from the `Ddi` power
     // form of enclosed coefficients (approximating x'). Only signs are read from it, and the
     // Taylor correction below scales it back by `dscale` (4 >= p, or 1).
-    let mut fv = [0.0; 4];
+    // (the f64 values built whole, not stored one by one and then read back by the filter's
+    // wide loads, which would wait for the narrow stores to reach the cache)
+    let fv: [f64; 4] = std::array::from_fn(|i| c.get(i).map_or(0.0, |x| x.hi()));
     let (deriv, dscale) = if all_f64 {
-        for (x, y) in fv.iter_mut().zip(c) {
-            *x = y.hi();
-        }
         // (4 >= p, a power of two: the scaling of the correction below is exact)
         (Deriv::from_f64(&fv[..=p]), 4.0)
     } else {
