@@ -31,8 +31,8 @@ use super::bezier::single::{raw_sides_into, RawSide, Segment};
 use super::bezier::{end_kind, span_bounds};
 use super::driver::apply_facts;
 use super::driver::{pow2, COORD_WINDOW};
+use super::Termination;
 use super::{certify, CandidateKind, Clock, CoordBox, Enclosure, Extrema, Extremum};
-use super::{SideData, Termination};
 use crate::num::ddi::Ddi;
 use crate::num::Scalar;
 #[cfg(test)]
@@ -224,12 +224,43 @@ fn scan<const D: usize>(
     }
 }
 
-/// One side of a coordinate, sign-adjusted (the min side is the max side of -C_j), and its
-/// counters.
-struct SideOut {
-    data: SideData,
-    /// counters: [fast_exits, fast_proofs, derivative_evaluations, point_evaluations]
+/// Writes one side of a coordinate box in place, sign-adjusted (the min side is the max side
+/// of -C_j): `sign` 1 sets `hi`, `inner_hi`, `witness_hi`, -1 sets `lo`, `inner_lo`,
+/// `witness_lo` to the negated values, and adds the counters [fast_exits, fast_proofs,
+/// derivative_evaluations, point_evaluations] to the box's stats. (In place rather than
+/// returned: the moves of a returned side and its candidates through the stack, read back by
+/// wide loads from narrow stores, cost more than the cheap exits themselves.)
+#[inline]
+fn put(
+    cb: &mut CoordBox,
+    sign: f64,
+    (upper, attained, witness): (f64, f64, f64),
     counts: [u32; 4],
+) {
+    if sign > 0.0 {
+        cb.hi = upper;
+        cb.inner_hi = attained;
+        cb.witness_hi = witness;
+    } else {
+        cb.lo = -upper;
+        cb.inner_lo = -attained;
+        cb.witness_lo = -witness;
+    }
+    let st = &mut cb.stats;
+    st.fast_exits += counts[0] as u64;
+    st.fast_proofs += counts[1] as u64;
+    st.derivative_evaluations += counts[2] as u64;
+    st.point_evaluations += counts[3] as u64;
+}
+
+/// The candidate list of the side `sign` of a coordinate box (`argmax` for 1, `argmin` for -1).
+#[inline]
+fn args_of(cb: &mut CoordBox, sign: f64) -> &mut Extrema {
+    if sign > 0.0 {
+        &mut cb.argmax
+    } else {
+        &mut cb.argmin
+    }
 }
 
 /// The end-point extremum at parameter u.
@@ -244,37 +275,34 @@ fn end(u: f64) -> Extremum {
 
 /// The cheap exit for the side `sign` (1: max, -1: min) of coordinate j: the extreme control
 /// value is an end value (exact and attained at a clamped end; convex hull property, thesis
-/// prop. 2.1): `fast_exits`.
-fn cheap_exit(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
+/// prop. 2.1): the sign-adjusted value and the end's parameter, or `None`.
+#[inline]
+fn cheap_exit(s: &Simple, j: usize, sign: f64) -> Option<(f64, f64)> {
     let (lo, hi) = s.range[j];
     let m = if sign > 0.0 { hi } else { -lo };
-    let u = if sign * s.pts[j] == m {
-        s.a
+    if sign * s.pts[j] == m {
+        Some((m, s.a))
     } else if sign * s.pts[s.n * s.d + j] == m {
-        s.b
+        Some((m, s.b))
     } else {
-        return None;
-    };
-    let mut args = Extrema::new();
-    args.push(end(u));
-    Some(SideOut {
-        data: SideData {
-            upper: m,
-            attained: m,
-            witness: f64::NEG_INFINITY,
-            args,
-        },
-        counts: [1, 0, 0, 0],
-    })
+        None
+    }
 }
 
-/// The candidates of a side whose bound reaches its attained value, or the whole domain.
+/// The side `sign` of `cb` from its cheap exit (m, u) ([`cheap_exit`]): `fast_exits`.
+fn put_exit(cb: &mut CoordBox, sign: f64, (m, u): (f64, f64)) {
+    put(cb, sign, (m, m, f64::NEG_INFINITY), [1, 0, 0, 0]);
+    args_of(cb, sign).push(end(u));
+}
+
+/// The candidates of a side whose bound reaches its attained value, or the whole domain,
+/// appended to `args` (empty).
 fn reaching<'e>(
     s: &Simple,
     attained: f64,
     cands: impl Iterator<Item = &'e (f64, Extremum)>,
-) -> Extrema {
-    let mut args = Extrema::new();
+    args: &mut Extrema,
+) {
     for (x, e) in cands {
         if *x >= attained {
             args.push(*e);
@@ -288,25 +316,18 @@ fn reaching<'e>(
             kind: CandidateKind::Unresolved,
         });
     }
-    args
 }
 
-/// A proven side from the root isolation (`fast_proofs`).
-fn proven(s: &Simple, r: &RawSide) -> SideOut {
-    SideOut {
-        data: SideData {
-            upper: r.upper,
-            attained: r.attained,
-            witness: r.witness,
-            args: reaching(s, r.attained, r.cands[..r.n].iter()),
-        },
-        counts: [
-            0,
-            1,
-            r.derivative_evaluations as u32,
-            r.point_evaluations as u32,
-        ],
-    }
+/// The side `sign` of `cb` proven by the root isolation (`fast_proofs`).
+fn put_proven(s: &Simple, cb: &mut CoordBox, sign: f64, r: &RawSide) {
+    let counts = [
+        0,
+        1,
+        r.derivative_evaluations as u32,
+        r.point_evaluations as u32,
+    ];
+    put(cb, sign, (r.upper, r.attained, r.witness), counts);
+    reaching(s, r.attained, r.cands[..r.n].iter(), args_of(cb, sign));
 }
 
 /// The side `sign` (1: max, -1: min) of coordinate j of a polyline (degree 1, see
@@ -317,11 +338,11 @@ fn proven(s: &Simple, r: &RawSide) -> SideOut {
 /// with value m is attained, the curve still comes arbitrarily close to m from below (the
 /// segment from the attained P_{i-1} < m rises strictly to m), so it reaches a value above
 /// next_down(m), a strict witness; the attained value is then the largest attained control
-/// value. Counted in `fast_exits`, as the end-value exit.
-fn polyline_side(s: &Simple, j: usize, sign: f64) -> SideOut {
+/// value. Counted in `fast_exits`, as the end-value exit. Written to the side `sign` of `cb`.
+fn polyline_side(s: &Simple, j: usize, sign: f64, cb: &mut CoordBox) {
     let (lo, hi) = s.range[j];
     let m = if sign > 0.0 { hi } else { -lo };
-    let mut args = Extrema::new();
+    let args = args_of(cb, sign);
     let mut attained = f64::NEG_INFINITY;
     for i in 0..=s.n {
         let v = sign * s.pts[i * s.d + j];
@@ -349,15 +370,7 @@ fn polyline_side(s: &Simple, j: usize, sign: f64) -> SideOut {
     } else {
         f64::NEG_INFINITY
     };
-    SideOut {
-        data: SideData {
-            upper: m,
-            attained,
-            witness,
-            args,
-        },
-        counts: [1, 0, 0, 0],
-    }
+    put(cb, sign, (m, attained, witness), [1, 0, 0, 0]);
 }
 
 /// The `newton` and `bezier` stopping rule: a gap of at most two ulps of the coordinate scale.
@@ -367,27 +380,23 @@ fn max_gap(s: &Simple, j: usize) -> f64 {
     2.0 * crate::num::ulp(scale)
 }
 
-/// The tight sides `[max, min]` of coordinate j, or `None` (fall back to the general path).
-fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
-    let (hi, lo) = (cheap_exit(s, j, 1.0), cheap_exit(s, j, -1.0));
-    if hi.is_some() && lo.is_some() {
-        // (both exits: a monotone coordinate, or a line)
-        return Some([hi?, lo?]);
-    }
-    if s.p == 1 {
-        return Some([
-            hi.unwrap_or_else(|| polyline_side(s, j, 1.0)),
-            lo.unwrap_or_else(|| polyline_side(s, j, -1.0)),
-        ]);
-    }
-    if s.n > s.p {
-        return Some([
-            hi.or_else(|| spline_side(s, j, 1.0))?,
-            lo.or_else(|| spline_side(s, j, -1.0))?,
-        ]);
+/// The tight sides of coordinate j, written to the blank box `cb`, or `None` (fall back to the
+/// general path; `cb` is then unspecified).
+fn tight_sides(s: &Simple, j: usize, cb: &mut CoordBox) -> Option<()> {
+    let exits = [cheap_exit(s, j, 1.0), cheap_exit(s, j, -1.0)];
+    // (both exits: a monotone coordinate, or a line; a polyline or a spline side by side)
+    if (exits[0].is_some() && exits[1].is_some()) || s.n > s.p || s.p == 1 {
+        for (ex, sign) in exits.into_iter().zip([1.0, -1.0]) {
+            match ex {
+                Some(ex) => put_exit(cb, sign, ex),
+                None if s.p == 1 => polyline_side(s, j, sign, cb),
+                None => spline_side(s, j, sign, cb)?,
+            }
+        }
+        return Some(());
     }
     let p = s.p;
-    let need = [hi.is_none(), lo.is_none()];
+    let need = [exits[0].is_none(), exits[1].is_none()];
     let mut c = [Ddi::exact(0.0); 4];
     for (i, x) in c.iter_mut().enumerate().take(p + 1) {
         *x = Ddi::exact(s.pts[i * s.d + j]);
@@ -402,17 +411,16 @@ fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
     let mut raw = [RawSide::new(), RawSide::new()];
     raw_sides_into(&seg, need, &mut raw)?;
     let gap = max_gap(s, j);
-    let mut out = [hi, lo];
-    for (o, r) in out.iter_mut().zip(&raw) {
-        if o.is_none() {
-            if !r.tight(gap) {
-                return None;
-            }
-            *o = Some(proven(s, r));
+    if need.iter().zip(&raw).any(|(&nd, r)| nd && !r.tight(gap)) {
+        return None;
+    }
+    for ((ex, sign), r) in exits.into_iter().zip([1.0, -1.0]).zip(&raw) {
+        match ex {
+            Some(ex) => put_exit(cb, sign, ex),
+            None => put_proven(s, cb, sign, r),
         }
     }
-    let [hi, lo] = out;
-    Some([hi?, lo?])
+    Some(())
 }
 
 /// The side `sign` of coordinate j of a spline (degree 2 or 3, several spans), best first
@@ -450,7 +458,7 @@ fn tight_sides(s: &Simple, j: usize) -> Option<[SideOut; 2]> {
 /// 4. When no span's bound exceeds the attained value, the side's bound is the largest bound
 ///    of the spans proved in step 3 and the attained value (spans left over or done in step 2
 ///    are below the attained value, which is below the exact maximum).
-fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
+fn spline_side(s: &Simple, j: usize, sign: f64, cb: &mut CoordBox) -> Option<()> {
     let (p, d, n, kn) = (s.p, s.d, s.n, s.knots);
     let x = |i: usize| sign * s.pts[i * d + j];
     let mut attained = x(0).max(x(n));
@@ -627,15 +635,9 @@ fn spline_side(s: &Simple, j: usize, sign: f64) -> Option<SideOut> {
         counts[3] += r.point_evaluations as u32;
     }
     let upper = upper.max(attained);
-    Some(SideOut {
-        data: SideData {
-            upper,
-            attained,
-            witness,
-            args: reaching(s, attained, cands.iter()),
-        },
-        counts,
-    })
+    put(cb, sign, (upper, attained, witness), counts);
+    reaching(s, attained, cands.iter(), args_of(cb, sign));
+    Some(())
 }
 
 /// The Bézier coefficients b_0 .. b_p of coordinate j on span k = [u_k, u_{k+1}] of a spline
@@ -829,18 +831,12 @@ pub fn enclose_into(
     }
     for j in 0..s.d {
         let clock = Clock::start();
-        let Some([hi, lo]) = tight_sides(s, j) else {
-            return false;
-        };
-        let n = |k: usize| (hi.counts[k] + lo.counts[k]) as u64;
-        // (field by field into the blank box, whose termination is `Converged`)
+        // (written in place into the blank box, whose termination is `Converged`)
         let cb = blank_slot(e);
-        cb.stats.fast_exits = n(0);
-        cb.stats.fast_proofs = n(1);
-        cb.stats.derivative_evaluations = n(2);
-        cb.stats.point_evaluations = n(3);
+        if tight_sides(s, j, cb).is_none() {
+            return false;
+        }
         cb.stats.time_total = clock.elapsed();
-        cb.set_sides(hi.data, lo.data);
     }
     let mut open = false;
     for (j, cb) in e.coords.iter_mut().enumerate() {
