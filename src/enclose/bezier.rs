@@ -512,11 +512,20 @@ impl Critical {
     fn of(vals: &Values, pair: &[Mr], j: usize, k: usize) -> Option<Critical> {
         use crate::enclose::newton::bernstein::SpanPoly;
         let c = vals.curve;
-        let sp = SpanPoly::new(c, j, k, pair, vals.tight.bezier_points(k));
-        if sp.f_swamped() {
-            return None;
-        }
-        let found = sp.critical_boxes(GENERAL_H)?;
+        let mut sp = SpanPoly::new(c, j, k, pair, vals.tight.bezier_points(k));
+        // (where F's `Mr` coefficients are too wide for the proof, it is tried once more with
+        // F from the double-double points, `SpanPoly::refined`: cheaper by far than the
+        // subdivision that runs otherwise)
+        let found = match sp.critical_boxes(GENERAL_H).filter(|_| !sp.f_swamped()) {
+            Some(found) => found,
+            None => {
+                sp = sp.refined()?;
+                if sp.f_swamped() {
+                    return None;
+                }
+                sp.critical_boxes(GENERAL_H)?
+            }
+        };
         let (left, right) = (vals.tight.end_value(j, k, false), vals.tight.end_value(j, k, true));
         // Every box's values cheaply first (O(p)); the tight enclosure only for boxes that
         // may hold an extreme of the piece: a box whose cheap values lie strictly between values
@@ -537,14 +546,15 @@ impl Critical {
         let (att_hi, att_lo) = boxes.iter().fold((l.inf(), l.sup()), |(h, lo), b| {
             (h.max(b.enc.inf()), lo.min(b.enc.sup()))
         });
-        let gap = 2.0 * crate::num::ulp(c.coord_scale(j));
         for b in boxes.iter_mut() {
             if !(b.enc.sup() < att_hi && b.enc.inf() > att_lo) {
                 let (mut enc, v) = sp.box_tight(b.x0, b.x1)?;
-                if enc.sup() - enc.inf() > gap {
+                if enc.sup() > enc.inf().next_up() {
                     // (the mean value form's r |F| / wmin^2 is wide where weights are tiny:
                     // then also the second-order Taylor form over the box in u, `TightEval`'s;
-                    // both enclose the piece's values over the box)
+                    // both enclose the piece's values over the box; wider than one ulp of the
+                    // value, as `newton` decides: a bound an ulp or two above the optimal
+                    // double costs the certificate a lowering proof)
                     let t = vals.tight.coord_over(j, b.at.u_lo, b.at.u_hi);
                     let both = enc.intersection(t);
                     if !both.is_empty() {
@@ -2037,6 +2047,42 @@ mod tests {
             }
         }
         assert!(proofs as usize >= curves, "{proofs} proofs on {curves} curves");
+    }
+
+    /// Extreme weights (1e-6 .. 1e6) make F's `Mr` coefficients wide (products ~1e6 that
+    /// cancel to ~1e-6), too wide for the general fast path's sign proofs next to a zero; F
+    /// recomputed from the double-double points (`SpanPoly::refined`) proves those spans, so
+    /// that the subdivision runs on almost none of them (81 subdivisions on these 100 curves
+    /// without it, 1 with it), with bounds within two ulps of the scale of the search without
+    /// fast paths.
+    #[test]
+    fn extreme_weights_spans_are_proven_without_subdivision() {
+        use crate::testkit::gen::Family;
+        let mut rng = crate::testkit::gen::rng(11);
+        let fast = BezierSubdivision::default();
+        let slow = BezierSubdivision {
+            fast_path: false,
+            ..BezierSubdivision::default()
+        };
+        let mut subdivisions = 0;
+        for _ in 0..100 {
+            let c = Family::ExtremeWeights.curve(&mut rng);
+            let e = fast.enclose(&c);
+            subdivisions += e.stats().subdivisions;
+            let r = slow.enclose(&c);
+            for (j, (cb, rb)) in e.coords.iter().zip(&r.coords).enumerate() {
+                let gap = 2.0 * crate::num::ulp(c.coord_scale(j));
+                assert!(
+                    (cb.hi - rb.hi).abs() <= gap && (cb.lo - rb.lo).abs() <= gap,
+                    "j = {j}: [{}, {}] vs [{}, {}]",
+                    cb.lo,
+                    cb.hi,
+                    rb.lo,
+                    rb.hi
+                );
+            }
+        }
+        assert!(subdivisions <= 10, "{subdivisions} subdivisions");
     }
 
     #[test]

@@ -114,8 +114,40 @@ impl SpanPoly {
         } else {
             q.windows(2).map(|w| w[1] - w[0]).collect()
         };
+        Self::with_f(k, shift, seg, dseg, fco, rational && pair.is_empty())
+    }
+
+    /// The form with F's coefficients recomputed from the span's double-double points
+    /// (`dseg`) in [`Ddi`] and rounded to `Mr` ([`f_from_ddi`]), where the `Mr` sums of
+    /// [`SpanPoly::new`] left them wide: radii above 2^-44 of the largest coefficient, from
+    /// products of extreme weights that cancel (terms ~1e6 for an F ~1e-6), or from Cartesian
+    /// differences of nearly equal points. About 2^-100 of the terms instead of 2^-53, so that
+    /// the signs of F show close to its zeros again. `None` where nothing is to be gained (the
+    /// radii already small, F unknown, degree above [`F_DDI_MAX_DEGREE`]).
+    pub(crate) fn refined(&self) -> Option<SpanPoly> {
+        let mag = self.f.pts.iter().fold(0.0f64, |m, x| m.max(x.mid().abs()));
+        let rad = self.f.pts.iter().fold(0.0f64, |m, x| m.max(x.rad()));
+        if !rad.is_finite() || rad <= mag * (1.0 / 17_592_186_044_416.0) {
+            return None;
+        }
+        let fco = f_from_ddi(&self.dseg)?;
+        Some(Self::with_f(self.k, self.c, self.seg.clone(), self.dseg.clone(), fco, false))
+    }
+
+    /// The form from its parts: the span index, the shift, the `Mr` and double-double
+    /// segments and F's coefficients (F', F'''s hull and the bounds follow from them;
+    /// `unknown`: F is not known, its one coefficient ENTIRE, and neither is F').
+    fn with_f(
+        k: usize,
+        shift: f64,
+        seg: BezierSeg<Mr>,
+        dseg: BezierSeg<Ddi>,
+        fco: Vec<Mr>,
+        unknown: bool,
+    ) -> Self {
+        let rational = seg.rational;
         let n = fco.len() - 1;
-        let dco: Vec<Mr> = if rational && pair.is_empty() {
+        let dco: Vec<Mr> = if unknown {
             vec![Mr::ENTIRE]
         } else if n == 0 {
             vec![Mr::from_f64(0.0)]
@@ -1023,6 +1055,44 @@ fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize) -> Vec<Mr> {
         .collect()
 }
 
+/// The degree up to which [`f_from_ddi`] computes F in double-double: its integer factors
+/// (l - i) C(p, i) C(p, l) and C(2p - 2, m) stay below 2^53, exact in f64.
+const F_DDI_MAX_DEGREE: usize = 20;
+
+/// F's Bernstein coefficients (see [`SpanPoly`]) from the shifted segment `dseg` in [`Ddi`],
+/// each rounded outward to an `Mr` ([`Mr::from_ddi`]): the rational pair sums
+/// F_m = sum_{i<l, i+l-1=m} (l - i) C(p,i) C(p,l) / C(2p-2,m) (a_l w_i - a_i w_l) (the same
+/// formula as [`pair_sum_f64`]; Farin, sec. 13), the polynomial differences a_{i+1} - a_i.
+/// Every `Ddi` operation encloses its exact result, so each coefficient encloses the exact
+/// one. `None` above [`F_DDI_MAX_DEGREE`].
+fn f_from_ddi(dseg: &BezierSeg<Ddi>) -> Option<Vec<Mr>> {
+    let p = dseg.degree;
+    if p > F_DDI_MAX_DEGREE || p == 0 {
+        return None;
+    }
+    let q = &dseg.pts;
+    if !dseg.rational {
+        return Some(q.windows(2).map(|w| Mr::from_ddi(w[1] - w[0])).collect());
+    }
+    // C(n, k) exactly (n <= 2 F_DDI_MAX_DEGREE - 2: below 2^53)
+    let binom = |n: usize, k: usize| -> f64 {
+        (0..k).fold(1u64, |b, i| b * (n - i) as u64 / (i + 1) as u64) as f64
+    };
+    let mut acc = vec![Ddi::exact(0.0); 2 * p - 1];
+    for i in 0..p {
+        let (ai, wi) = (q[2 * i], q[2 * i + 1]);
+        for l in i + 1..=p {
+            let (al, wl) = (q[2 * l], q[2 * l + 1]);
+            // (l - i) C(p, i) C(p, l) <= 20 * C(20, 10)^2 < 2^53: exact
+            let num = Ddi::exact((l - i) as f64 * binom(p, i) * binom(p, l));
+            let den = Ddi::exact(binom(2 * p - 2, i + l - 1));
+            let d = al * wi - ai * wl;
+            acc[i + l - 1] = acc[i + l - 1] + num * d / den;
+        }
+    }
+    Some(acc.into_iter().map(Mr::from_ddi).collect())
+}
+
 /// The Cartesian points (x_i - c) of homogeneous one-coordinate points.
 fn cartesian<S: Scalar>(q: Vec<S>, rational: bool) -> Vec<S> {
     // one coordinate row (and the weight row): the shared kernel with dim = 1
@@ -1703,6 +1773,105 @@ mod tests {
         }
     }
 
+    /// Asserts that the exact value x lies in the enclosure g (within its radius of its centre).
+    fn assert_encloses(x: &crate::num::Exact, g: &Mr, what: std::fmt::Arguments) {
+        use crate::num::Exact;
+        let dev = x.clone() - Exact::of(g.mid());
+        assert!(
+            !dev.gt_f64(g.rad()) && !(Exact::of(0.0) - dev).gt_f64(g.rad()),
+            "{what}: centre {:e} radius {:e}",
+            g.mid(),
+            g.rad()
+        );
+    }
+
+    /// F's coefficients from double-double points (`SpanPoly::refined`) against exact
+    /// rational pair sums and differences, on segments with extreme weights and cancelling
+    /// terms (the cases it is for), degrees 1 to F_DDI_MAX_DEGREE: each exact coefficient
+    /// within the radius of the centre, each radius that of the f64 centre's rounding plus
+    /// 2^-80 of the terms (the f64 sums' is 2^-53 of the terms), and `None` above the degree
+    /// limit.
+    #[test]
+    fn f_from_ddi_encloses_the_exact_coefficients() {
+        use crate::num::Exact;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(29);
+        let mut checked = 0;
+        for it in 0..300 {
+            let p = rng.random_range(1..=F_DDI_MAX_DEGREE);
+            let rational = it % 4 != 0;
+            let pts: Vec<f64> = (0..=p)
+                .flat_map(|i| {
+                    let a = match it % 3 {
+                        // nearly equal points: the differences cancel
+                        0 => 1.0 + (i as f64) * 1e-13 * rng.random_range(0.5..1.5),
+                        _ => rng.random_range(-1.0..1.0),
+                    };
+                    let w = 10f64.powf(rng.random_range(-6.0..6.0));
+                    if rational {
+                        vec![a * w, w]
+                    } else {
+                        vec![a]
+                    }
+                })
+                .collect();
+            let dseg = BezierSeg {
+                a: 0.0,
+                b: 1.0,
+                degree: p,
+                dim: 1,
+                rational,
+                pts: pts.iter().map(|&x| Ddi::exact(x)).collect(),
+            };
+            let got = f_from_ddi(&dseg).expect("within the degree limit");
+            let q: Vec<Exact> = pts.iter().map(|&x| Exact::of(x)).collect();
+            let binom_f64 =
+                |n: usize, k: usize| (0..k).fold(1u64, |b, i| b * (n - i) as u64 / (i + 1) as u64) as f64;
+            let binom = |n: usize, k: usize| Exact::of(binom_f64(n, k));
+            let (want, scale): (Vec<Exact>, Vec<f64>) = if rational {
+                let mut d = vec![Exact::of(0.0); 2 * p - 1];
+                let mut sc = vec![0.0f64; 2 * p - 1];
+                for i in 0..p {
+                    for l in i + 1..=p {
+                        let t = q[2 * l].clone() * q[2 * i + 1].clone()
+                            - q[2 * i].clone() * q[2 * l + 1].clone();
+                        let c = Exact::of((l - i) as f64) * binom(p, i) * binom(p, l)
+                            / binom(2 * p - 2, i + l - 1);
+                        d[i + l - 1] = d[i + l - 1].clone() + c * t;
+                        let cf = (l - i) as f64 * binom_f64(p, i) * binom_f64(p, l)
+                            / binom_f64(2 * p - 2, i + l - 1);
+                        sc[i + l - 1] += cf
+                            * ((pts[2 * l] * pts[2 * i + 1]).abs()
+                                + (pts[2 * i] * pts[2 * l + 1]).abs());
+                    }
+                }
+                (d, sc)
+            } else {
+                let d = (0..p).map(|i| q[i + 1].clone() - q[i].clone()).collect();
+                (d, (0..p).map(|i| pts[i].abs() + pts[i + 1].abs()).collect())
+            };
+            assert_eq!(got.len(), want.len());
+            for (k, ((g, x), sc)) in got.iter().zip(&want).zip(&scale).enumerate() {
+                assert_encloses(x, g, format_args!("it {it} p {p} k {k}"));
+                // (the rounding of the double-double value to an f64 centre, and 2^-80 of the
+                // terms where they cancel)
+                let bound = g.mid().abs() * f64::EPSILON + sc * 2f64.powi(-80) + 1e-300;
+                assert!(g.rad() <= bound, "it {it} p {p} k {k}: radius {:e}", g.rad());
+                checked += 1;
+            }
+        }
+        assert!(checked > 2000, "{checked}");
+        let big = BezierSeg {
+            a: 0.0,
+            b: 1.0,
+            degree: F_DDI_MAX_DEGREE + 1,
+            dim: 1,
+            rational: true,
+            pts: vec![Ddi::exact(1.0); 2 * F_DDI_MAX_DEGREE + 4],
+        };
+        assert!(f_from_ddi(&big).is_none());
+    }
+
     /// The a-priori bound of [`pair_sum_f64`] holds against exact rational sums: for inputs
     /// anywhere in their enclosures (centres, and corners at ± the radius, of the points and
     /// of the pair coefficients), every exact D_k lies within the returned radius of the
@@ -1771,13 +1940,7 @@ mod tests {
                     }
                 }
                 for (k, (x, g)) in d.iter().zip(&got).enumerate() {
-                    let dev = x.clone() - Exact::of(g.mid());
-                    assert!(
-                        !dev.gt_f64(g.rad()) && !(Exact::of(0.0) - dev).gt_f64(g.rad()),
-                        "it {it} p {p} k {k}: centre {:e} radius {:e}",
-                        g.mid(),
-                        g.rad()
-                    );
+                    assert_encloses(x, g, format_args!("it {it} p {p} k {k}"));
                     checked += 1;
                 }
             }
