@@ -87,6 +87,24 @@ pub(crate) fn up(r: f64) -> f64 {
     r * INFL + FLOOR
 }
 
+/// An upper bound of k 2^-1074 for k >= 0 (a count of underflow errors of products, each at
+/// most 2^-1074), formed without a floating-point product whose result is subnormal: such a
+/// product takes a microcode assist of about 45 ns per operation on Intel cores (measured on
+/// this project's Xeon machine, against 0.7 ns for a normal result), which the a-priori
+/// bounds would otherwise pay per coefficient. For k <= 2^52 the value is ceil(k) 2^-1074,
+/// exact as the bit pattern ceil(k) (a subnormal or 2^-1022); above, the product itself
+/// (normal then); NaN stays NaN.
+#[inline]
+pub(crate) fn eta_multiple(k: f64) -> f64 {
+    if k <= 4_503_599_627_370_496.0 {
+        // (k >= 0 here, so ceil(k) is an integer in [0, 2^52], exactly the bits of
+        // ceil(k) 2^-1074)
+        f64::from_bits(k.max(0.0).ceil() as u64)
+    } else {
+        k * f64::from_bits(1)
+    }
+}
+
 /// Upper bound of a sum of nonnegative f64 (Lemma B, second part); keeps 0 exact.
 #[inline(always)]
 fn up_sum(r: f64) -> f64 {
@@ -877,6 +895,39 @@ mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
+
+    /// `eta_multiple` is an upper bound of k 2^-1074, exact for integers up to 2^52, the
+    /// product itself above, NaN for NaN; checked against exact rational products.
+    #[test]
+    fn eta_multiple_bounds_the_product() {
+        use crate::num::Exact;
+        let tiny = Exact::of(f64::from_bits(1));
+        for k in [
+            0.0,
+            1.0,
+            17.0,
+            27.5,
+            1e3 + 0.25,
+            4_503_599_627_370_495.5,
+            4_503_599_627_370_496.0,
+            1e17,
+            1e300,
+        ] {
+            let got = eta_multiple(k);
+            let exact = Exact::of(k) * tiny.clone();
+            assert!(!exact.gt_f64(got), "{k}: {got:e}");
+            if k.fract() == 0.0 && k <= 4_503_599_627_370_496.0 {
+                assert_eq!(got.to_bits(), k as u64, "{k}");
+            }
+            // (at most one unit of 2^-1074 above, or one rounding for the normal products)
+            assert!(
+                got <= k * f64::from_bits(1) + f64::from_bits(1) || got == k * f64::from_bits(1),
+                "{k}"
+            );
+        }
+        assert!(eta_multiple(f64::NAN).is_nan());
+        assert_eq!(eta_multiple(f64::INFINITY), f64::INFINITY);
+    }
 
     #[test]
     fn lerp_encloses_exact_convex_combinations() {

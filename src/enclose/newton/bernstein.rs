@@ -5,7 +5,7 @@
 //! curve parameter u ([`SpanPoly::to_u`]).
 
 use super::param::{midpoint, T, U};
-use crate::num::ddi::{dist_up, up, Ddi};
+use crate::num::ddi::{dist_up, eta_multiple, up, Ddi};
 use crate::num::mr::Mr;
 use crate::num::{iv, Scalar};
 use crate::spline::bezier::{bernstein_value_s, de_casteljau_levels};
@@ -1014,7 +1014,6 @@ pub(crate) fn segment_values_f64(seg: &BezierSeg<Mr>, t0: f64, t1: f64) -> Optio
 /// weight near 1e-214). A non-finite centre or bound gives ENTIRE. Tested against exact rational
 /// sums over the corners of the input enclosures (`pair_sum_bound_holds_exactly`).
 fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize) -> Vec<Mr> {
-    const ETA: f64 = f64::from_bits(1); // 2^-1074 >= η
     const C: f64 = f64::EPSILON / 2.0; // u
     let n = 2 * p - 1;
     // per k: the centre d, the radius terms, sum |P| S, the η count, the number of terms m
@@ -1049,7 +1048,9 @@ fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize) -> Vec<Mr> {
     acc.into_iter()
         .map(|(d, r, g, h, m)| {
             let m_terms = (m - 1.0).max(0.0);
-            let e = (r + (3.03 + 1.03 * m_terms) * C * g + h * ETA) * (1.0 + 1.0 / 1_099_511_627_776.0);
+            // (h 2^-1074 by `eta_multiple`, without a product that underflows: an upper bound
+            // of h η' where η' = 2^-1074 >= η is the bound's own unit)
+            let e = (r + (3.03 + 1.03 * m_terms) * C * g + eta_multiple(h)) * (1.0 + 1.0 / 1_099_511_627_776.0);
             Mr::from_centre_radius(d, e)
         })
         .collect()
