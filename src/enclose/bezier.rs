@@ -516,7 +516,7 @@ impl Critical {
         // (where F's `Mr` coefficients are too wide for the proof, it is tried once more with
         // F from the double-double points, `SpanPoly::refined`: cheaper by far than the
         // subdivision that runs otherwise)
-        let found = match sp.critical_boxes(GENERAL_H).filter(|_| !sp.f_swamped()) {
+        let found = match (!sp.f_swamped()).then(|| sp.critical_boxes(GENERAL_H)).flatten() {
             Some(found) => found,
             None => {
                 sp = sp.refined()?;

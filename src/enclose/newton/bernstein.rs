@@ -1076,17 +1076,15 @@ fn f_from_ddi(dseg: &BezierSeg<Ddi>) -> Option<Vec<Mr>> {
         return Some(q.windows(2).map(|w| Mr::from_ddi(w[1] - w[0])).collect());
     }
     // C(n, k) exactly (n <= 2 F_DDI_MAX_DEGREE - 2: below 2^53)
-    let binom = |n: usize, k: usize| -> f64 {
-        (0..k).fold(1u64, |b, i| b * (n - i) as u64 / (i + 1) as u64) as f64
-    };
+    let binom = |n: usize, k: usize| crate::num::binom_exact(n, k);
     let mut acc = vec![Ddi::exact(0.0); 2 * p - 1];
     for i in 0..p {
         let (ai, wi) = (q[2 * i], q[2 * i + 1]);
         for l in i + 1..=p {
             let (al, wl) = (q[2 * l], q[2 * l + 1]);
             // (l - i) C(p, i) C(p, l) <= 20 * C(20, 10)^2 < 2^53: exact
-            let num = Ddi::exact((l - i) as f64 * binom(p, i) * binom(p, l));
-            let den = Ddi::exact(binom(2 * p - 2, i + l - 1));
+            let num = Ddi::exact((l - i) as f64 * binom(p, i)? * binom(p, l)?);
+            let den = Ddi::exact(binom(2 * p - 2, i + l - 1)?);
             let d = al * wi - ai * wl;
             acc[i + l - 1] = acc[i + l - 1] + num * d / den;
         }
@@ -1826,8 +1824,7 @@ mod tests {
             };
             let got = f_from_ddi(&dseg).expect("within the degree limit");
             let q: Vec<Exact> = pts.iter().map(|&x| Exact::of(x)).collect();
-            let binom_f64 =
-                |n: usize, k: usize| (0..k).fold(1u64, |b, i| b * (n - i) as u64 / (i + 1) as u64) as f64;
+            let binom_f64 = |n: usize, k: usize| crate::num::binom_exact(n, k).expect("exact");
             let binom = |n: usize, k: usize| Exact::of(binom_f64(n, k));
             let (want, scale): (Vec<Exact>, Vec<f64>) = if rational {
                 let mut d = vec![Exact::of(0.0); 2 * p - 1];
