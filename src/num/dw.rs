@@ -72,6 +72,7 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 /// is exact, keeps it); every other operation gives NaN there (no bound is claimed for it, and [`clamp_span_dw`] then falls back), so
 /// the type cannot silently produce an unproved radius.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
 pub(crate) struct Dw {
     hi: f64,
     lo: f64,
@@ -112,16 +113,15 @@ impl Dw {
     target_feature = "fma"
 ))]
 #[inline(always)]
-fn lerp4_avx(
-    [ah, al]: [[f64; 4]; 2],
-    [lh, ll, le]: [[f64; 4]; 3],
-    [hh, hl, he]: [[f64; 4]; 3],
-) -> ([f64; 4], [f64; 4], [f64; 4]) {
+unsafe fn lerp4_avx(
+    [ah, al]: [std::arch::x86_64::__m256d; 2],
+    [lh, ll, le]: [std::arch::x86_64::__m256d; 3],
+    [hh, hl, he]: [std::arch::x86_64::__m256d; 3],
+) -> [std::arch::x86_64::__m256d; 3] {
     use std::arch::x86_64::*;
-    // SAFETY: the target features are enabled at compile time (the cfg above); the loads and
-    // stores are unaligned ones of four-element arrays.
+    // SAFETY: the target features are enabled at compile time (the cfg above); register
+    // arithmetic only.
     unsafe {
-        let ld = |x: &[f64; 4]| _mm256_loadu_pd(x.as_ptr());
         let two_sum = |a: __m256d, b: __m256d| {
             let s = _mm256_add_pd(a, b);
             let bb = _mm256_sub_pd(s, a);
@@ -131,16 +131,6 @@ fn lerp4_avx(
         let sign = _mm256_set1_pd(-0.0);
         let neg = |x: __m256d| _mm256_xor_pd(x, sign);
         let abs = |x: __m256d| _mm256_andnot_pd(sign, x);
-        let (ah, al, lh, ll, le, hh, hl, he) = (
-            ld(&ah),
-            ld(&al),
-            ld(&lh),
-            ld(&ll),
-            ld(&le),
-            ld(&hh),
-            ld(&hl),
-            ld(&he),
-        );
         // d = hi - lo (`Add` of the negation)
         let (s, e) = two_sum(hh, neg(lh));
         let t = _mm256_add_pd(hl, neg(ll));
@@ -168,12 +158,78 @@ fn lerp4_avx(
             _mm256_mul_pd(r, _mm256_set1_pd(super::ddi::INFL)),
             _mm256_set1_pd(super::ddi::FLOOR),
         );
-        let (mut oh, mut ol, mut oe) = ([0.0; 4], [0.0; 4], [0.0; 4]);
-        _mm256_storeu_pd(oh.as_mut_ptr(), zh);
-        _mm256_storeu_pd(ol.as_mut_ptr(), zl);
-        _mm256_storeu_pd(oe.as_mut_ptr(), ze);
-        (oh, ol, oe)
+        [zh, zl, ze]
     }
+}
+
+/// Four consecutive `Dw` (hi, lo, e; `repr(C)`: twelve f64 in a row) as the three registers
+/// of their parts, [h0 h1 h2 h3], [l0 l1 l2 l3], [e0 e1 e2 e3]: three loads of the twelve
+/// values (v0 = [h0 l0 e0 h1], v1 = [l1 e1 h2 l2], v2 = [e2 h3 l3 e3]), then per part two
+/// blends that pick its lanes and one permutation that orders them (instead of twelve
+/// scalar loads and inserts).
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "avx2",
+    target_feature = "fma"
+))]
+#[inline(always)]
+fn load4(x: &[Dw; 4]) -> [std::arch::x86_64::__m256d; 3] {
+    use std::arch::x86_64::*;
+    let p = x.as_ptr() as *const f64;
+    // SAFETY: `Dw` is `repr(C)` with three f64 fields (size 24, no padding), so the array is
+    // twelve consecutive f64; unaligned loads of 4 + 4 + 4 of them; AVX2 is enabled at
+    // compile time (the cfg above).
+    unsafe {
+        let (v0, v1, v2) = (
+            _mm256_loadu_pd(p),
+            _mm256_loadu_pd(p.add(4)),
+            _mm256_loadu_pd(p.add(8)),
+        );
+        // h: v0[0], v0[3], v1[2], v2[1] -> [v0_0, v2_1, v1_2, v0_3], lanes 0 3 2 1
+        let h = _mm256_blend_pd::<0b0010>(_mm256_blend_pd::<0b0100>(v0, v1), v2);
+        let h = _mm256_permute4x64_pd::<0b01_10_11_00>(h);
+        // l: v0[1], v1[0], v1[3], v2[2] -> [v1_0, v0_1, v2_2, v1_3], lanes 1 0 3 2
+        let l = _mm256_blend_pd::<0b0100>(_mm256_blend_pd::<0b0010>(v1, v0), v2);
+        let l = _mm256_permute4x64_pd::<0b10_11_00_01>(l);
+        // e: v0[2], v1[1], v2[0], v2[3] -> [v2_0, v1_1, v0_2, v2_3], lanes 2 1 0 3
+        let e = _mm256_blend_pd::<0b0010>(_mm256_blend_pd::<0b0100>(v2, v0), v1);
+        let e = _mm256_permute4x64_pd::<0b11_00_01_10>(e);
+        [h, l, e]
+    }
+}
+
+/// The inverse of [`load4`]: the parts' registers as four consecutive `Dw`.
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "avx2",
+    target_feature = "fma"
+))]
+#[inline(always)]
+fn store4([h, l, e]: [std::arch::x86_64::__m256d; 3]) -> [Dw; 4] {
+    use std::arch::x86_64::*;
+    let mut out = [Dw {
+        hi: 0.0,
+        lo: 0.0,
+        e: 0.0,
+    }; 4];
+    let p = out.as_mut_ptr() as *mut f64;
+    // SAFETY: as in `load4` (twelve consecutive f64 in `out`); AVX2 enabled at compile time.
+    unsafe {
+        // back to lane order of each register's blend (the permutations of `load4` inverted)
+        let h = _mm256_permute4x64_pd::<0b01_10_11_00>(h); // [h0, h3, h2, h1]
+        let l = _mm256_permute4x64_pd::<0b10_11_00_01>(l); // [l1, l0, l3, l2]
+        let e = _mm256_permute4x64_pd::<0b11_00_01_10>(e); // [e2, e1, e0, e3]
+                                                           // v0 = [h0 l0 e0 h1]: h lanes 0, 3; l lane 1; e lane 2
+        let v0 = _mm256_blend_pd::<0b0100>(_mm256_blend_pd::<0b0010>(h, l), e);
+        // v1 = [l1 e1 h2 l2]: l lanes 0, 3; e lane 1; h lane 2
+        let v1 = _mm256_blend_pd::<0b0100>(_mm256_blend_pd::<0b0010>(l, e), h);
+        // v2 = [e2 h3 l3 e3]: e lanes 0, 3; h lane 1; l lane 2
+        let v2 = _mm256_blend_pd::<0b0100>(_mm256_blend_pd::<0b0010>(e, h), l);
+        _mm256_storeu_pd(p, v0);
+        _mm256_storeu_pd(p.add(4), v1);
+        _mm256_storeu_pd(p.add(8), v2);
+    }
+    out
 }
 
 impl Add for Dw {
@@ -236,25 +292,16 @@ impl Scalar for Dw {
     /// target has them ([`lerp4_avx`], per lane exactly the operations of `lerp`, in the same
     /// order: the same results and the same bound), else one after the other.
     #[inline(always)]
-    fn lerp4(a: [&Self; 4], lo: [&Self; 4], hi: [&Self; 4]) -> [Self; 4] {
+    fn lerp4(a: &[Self; 4], lo: &[Self; 4], hi: &[Self; 4]) -> [Self; 4] {
         #[cfg(all(
             target_arch = "x86_64",
             target_feature = "avx2",
             target_feature = "fma"
         ))]
         {
-            let g =
-                |v: [&Dw; 4], f: fn(&Dw) -> f64| -> [f64; 4] { std::array::from_fn(|l| f(v[l])) };
-            let (zh, zl, ze) = lerp4_avx(
-                [g(a, |x| x.hi), g(a, |x| x.lo)],
-                [g(lo, |x| x.hi), g(lo, |x| x.lo), g(lo, |x| x.e)],
-                [g(hi, |x| x.hi), g(hi, |x| x.lo), g(hi, |x| x.e)],
-            );
-            std::array::from_fn(|l| Dw {
-                hi: zh[l],
-                lo: zl[l],
-                e: ze[l],
-            })
+            let [ah, al, _] = load4(a);
+            // SAFETY: AVX2 and FMA are enabled at compile time (the cfg above).
+            store4(unsafe { lerp4_avx([ah, al], load4(lo), load4(hi)) })
         }
         #[cfg(not(all(
             target_arch = "x86_64",
@@ -262,7 +309,7 @@ impl Scalar for Dw {
             target_feature = "fma"
         )))]
         {
-            std::array::from_fn(|l| <Dw as Scalar>::lerp(a[l], lo[l], hi[l]))
+            std::array::from_fn(|l| <Dw as Scalar>::lerp(&a[l], &lo[l], &hi[l]))
         }
     }
     #[inline(always)]
@@ -464,11 +511,7 @@ mod tests {
             });
             let lo: [Dw; 4] = std::array::from_fn(|_| dw(&mut r));
             let hi: [Dw; 4] = std::array::from_fn(|_| dw(&mut r));
-            let got = <Dw as Scalar>::lerp4(
-                std::array::from_fn(|l| &a[l]),
-                std::array::from_fn(|l| &lo[l]),
-                std::array::from_fn(|l| &hi[l]),
-            );
+            let got = <Dw as Scalar>::lerp4(&a, &lo, &hi);
             for l in 0..4 {
                 let want = Dw::lerp(&a[l], &lo[l], &hi[l]);
                 assert_eq!(

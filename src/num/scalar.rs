@@ -67,10 +67,12 @@ pub trait Scalar:
     /// in blocks of four through [`Scalar::lerp4`] (a type whose four-lane form compiles to
     /// vector instructions).
     const SWEEP_BLOCKS: bool = false;
-    /// Four corner cuts [`Scalar::lerp`] at once (the default: one after the other).
+    /// Four corner cuts [`Scalar::lerp`] at once, on four consecutive entries of each operand
+    /// (the default: one after the other). Contiguous blocks rather than four references, so
+    /// that a vector form loads each operand whole (one bounds check per block).
     #[inline]
-    fn lerp4(a: [&Self; 4], lo: [&Self; 4], hi: [&Self; 4]) -> [Self; 4] {
-        std::array::from_fn(|l| Self::lerp(a[l], lo[l], hi[l]))
+    fn lerp4(a: &[Self; 4], lo: &[Self; 4], hi: &[Self; 4]) -> [Self; 4] {
+        std::array::from_fn(|l| Self::lerp(&a[l], &lo[l], &hi[l]))
     }
     /// Exact embedding of an f64 value (the curve data are f64 and are taken as exact).
     fn from_f64(x: f64) -> Self;

@@ -481,6 +481,12 @@ fn clamp_span_by<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
     reverse_points(h, q);
 }
 
+/// The four entries of `v` from `at` (one bounds check for the block, [`Scalar::lerp4`]).
+#[inline(always)]
+fn block4<S>(v: &[S], at: usize) -> &[S; 4] {
+    v[at..at + 4].try_into().expect("a block of four entries")
+}
+
 /// Point i of a row-major buffer (`h` values per point) becomes the convex combination
 /// lerp(alpha, P_i, P_{i+1}) (the corner cut of Boehm's knot insertion, NURBS Book A5.1).
 #[inline]
@@ -526,11 +532,7 @@ fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
             let end = aexp.len();
             let mut x = 0;
             while x + 4 <= end {
-                let v = S::lerp4(
-                    std::array::from_fn(|m| &aexp[x + m]),
-                    std::array::from_fn(|m| &q[x + m]),
-                    std::array::from_fn(|m| &q[x + m + h]),
-                );
+                let v = S::lerp4(block4(&aexp, x), block4(q, x), block4(q, x + h));
                 q[x..x + 4].clone_from_slice(&v);
                 x += 4;
             }
@@ -625,18 +627,18 @@ pub(crate) fn sweep_spans<S: Scalar>(
                 // entry is cut from the previous step's values exactly as in the order below.
                 while S::SWEEP_BLOCKS && end >= start + 4 {
                     let b = end - 4;
-                    let v = S::lerp4(
-                        std::array::from_fn(|m| &aexp[b + m - start]),
-                        std::array::from_fn(|m| &q[b + m - h]),
-                        std::array::from_fn(|m| &q[b + m]),
-                    );
+                    let v = S::lerp4(block4(&aexp, b - start), block4(&q, b - h), block4(&q, b));
                     q[b..end].clone_from_slice(&v);
                     end = b;
                 }
-                for i in (s..=p).rev() {
-                    if i * h >= end {
-                        continue;
-                    }
+                // (the points below the blocks: from the one holding entry end - 1 down, the
+                // entries at or above `end` being done)
+                let top = if end > start {
+                    ((end - 1) / h).min(p)
+                } else {
+                    0
+                };
+                for i in (s..=top).rev() {
                     let (lo, hi) = q[(i - 1) * h..(i + 1) * h].split_at_mut(h);
                     for (row, (x, l)) in hi.iter_mut().zip(lo.iter()).enumerate() {
                         if i * h + row < end {
