@@ -527,7 +527,9 @@ fn clamp_left<S: Scalar>(p: usize, h: usize, t: &mut [f64], q: &mut [S]) {
             aexp.clear();
             for i in 0..=p - j - s {
                 let a = S::knot_ratio_f64(u, t[j + i], t[i + p + 1]);
-                aexp.extend(std::iter::repeat_n(a, h));
+                for _ in 0..h {
+                    aexp.push(a.clone());
+                }
             }
             let end = aexp.len();
             let mut x = 0;
@@ -612,11 +614,11 @@ pub(crate) fn sweep_spans<S: Scalar>(
                 // (per entry its ratio: entry m h + row of a step starting at point s has
                 // alphas[m], so the blocks below read them without a division by h)
                 aexp.clear();
-                aexp.extend(
-                    alphas
-                        .iter()
-                        .flat_map(|a| std::iter::repeat_n(a.clone(), h)),
-                );
+                for a in &alphas {
+                    for _ in 0..h {
+                        aexp.push(a.clone());
+                    }
+                }
             }
             for j in 1..=r {
                 let s = mult + j;

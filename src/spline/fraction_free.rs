@@ -148,7 +148,7 @@ pub fn snap_exact_ends(c: &NurbsCurve, k: usize, pts: &mut [Ddi]) {
             let near = v.lo() == 0.0
                 && v.rad() > 0.0
                 && h.is_finite()
-                && v.rad() <= ulp(h) * 2f64.powi(-40);
+                && v.rad() <= ulp(h) * (1.0 / 1_099_511_627_776.0); // 2^-40
             if near && n < cands.len() {
                 cands[n] = (i, j, h);
                 n += 1;

@@ -1473,14 +1473,13 @@ pub(crate) fn pair_coefficients(p: usize) -> Vec<Mr> {
 
 /// [`pair_coefficients`], computed.
 fn pair_coefficients_uncached(p: usize) -> Vec<Mr> {
+    // (Pascal's rule on one row in place, from the right: the same sums as row by row)
     let binom = |n: usize| {
-        let mut row = vec![Mr::from_f64(1.0)];
-        for _ in 0..n {
-            let mut next = vec![Mr::from_f64(1.0); row.len() + 1];
-            for i in 1..row.len() {
-                next[i] = row[i - 1] + row[i];
+        let mut row = vec![Mr::from_f64(1.0); n + 1];
+        for m in 2..=n {
+            for i in (1..m).rev() {
+                row[i] = row[i - 1] + row[i];
             }
-            row = next;
         }
         row
     };
