@@ -449,7 +449,7 @@ struct Ctx<'a> {
     /// the other side of that coordinate)
     hulls: Vec<Option<(usize, SpanPoints)>>,
     /// the pair coefficients of the rational derivative numerator (built on first use)
-    pair: Option<Vec<Mr>>,
+    pair: Option<std::rc::Rc<[Mr]>>,
 }
 
 /// The degree up to which the general fast path runs (its derivative numerator, of degree at
@@ -768,7 +768,7 @@ impl BezierSubdivision {
                             if c.is_rational() {
                                 super::newton::bernstein::pair_coefficients(p)
                             } else {
-                                Vec::new()
+                                std::rc::Rc::from([])
                             }
                         });
                         crit[k] = Some((j, Critical::of(vals, pr, j, k)));

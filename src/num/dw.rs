@@ -468,18 +468,23 @@ pub(crate) fn sweep_dw(
         }
         return finite;
     }
-    let mut out: Vec<(usize, Vec<Dw>)> = Vec::with_capacity(done);
+    // (the block's spans converted into one buffer, emitted once all are known finite)
+    let len = (p + 1) * h;
+    let mut ks: smallvec::SmallVec<[usize; 8]> = smallvec::SmallVec::new();
+    let mut conv: Vec<Ddi> = Vec::with_capacity(done * len);
+    let mut finite = true;
     sweep_spans(p, h, &knots[off..], &buf, p, done, &mut |k, q| {
-        out.push((k + off, q.to_vec()))
+        finite &= all_finite(q);
+        if finite {
+            ks.push(k + off);
+            conv.extend(q.iter().map(to_ddi));
+        }
     });
-    if !out.iter().all(|(_, q)| all_finite(q)) {
+    if !finite {
         return false;
     }
-    let mut conv = Vec::with_capacity((p + 1) * h);
-    for (k, q) in &out {
-        conv.clear();
-        conv.extend(q.iter().map(to_ddi));
-        emit(*k, &conv);
+    for (k, q) in ks.iter().zip(conv.chunks_exact(len)) {
+        emit(*k, q);
     }
     true
 }

@@ -1453,17 +1453,18 @@ fn span_shift(xs: &mut [f64]) -> f64 {
 /// [`SpanPoly`]), enclosed: binomials by Pascal's rule in [`Mr`] (exact while below 2^53).
 /// They depend on p only: computed once per degree and thread, then copied (the Pascal rows
 /// and the p^2 / 2 enclosed quotients cost more than a span's Bernstein form at p = 10).
-pub(crate) fn pair_coefficients(p: usize) -> Vec<Mr> {
+pub(crate) fn pair_coefficients(p: usize) -> std::rc::Rc<[Mr]> {
     thread_local! {
-        static PAIRS: std::cell::RefCell<Vec<(usize, Vec<Mr>)>> =
+        static PAIRS: std::cell::RefCell<Vec<(usize, std::rc::Rc<[Mr]>)>> =
             const { std::cell::RefCell::new(Vec::new()) };
     }
+    // (shared, not copied: (p + 1)^2 values, 10 kB at p = 24, per curve)
     PAIRS.with(|cache| {
         let mut cache = cache.borrow_mut();
         if let Some((_, v)) = cache.iter().find(|(q, _)| *q == p) {
             return v.clone();
         }
-        let v = pair_coefficients_uncached(p);
+        let v: std::rc::Rc<[Mr]> = pair_coefficients_uncached(p).into();
         if cache.len() < 64 {
             cache.push((p, v.clone()));
         }
@@ -1535,7 +1536,7 @@ mod tests {
     fn pair_and_spans(c: &NurbsCurve) -> (Vec<Mr>, Vec<usize>) {
         let p = c.degree();
         let pair = if c.is_rational() {
-            pair_coefficients(p)
+            pair_coefficients(p).to_vec()
         } else {
             Vec::new()
         };
@@ -1700,7 +1701,7 @@ mod tests {
         for wt in [None, Some(w)] {
             let c = curve1(p, kn.clone(), &x, wt);
             let pair = if c.is_rational() {
-                pair_coefficients(p)
+                pair_coefficients(p).to_vec()
             } else {
                 Vec::new()
             };
@@ -1911,7 +1912,7 @@ mod tests {
                     [Mr::from_centre_radius(a, ra), Mr::from_centre_radius(w, rw)]
                 })
                 .collect();
-            let mut pair = pair_coefficients(p);
+            let mut pair = pair_coefficients(p).to_vec();
             if it % 3 == 1 {
                 // (wider pair enclosures than the cached ones, so that their radius counts)
                 for x in &mut pair {

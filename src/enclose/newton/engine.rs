@@ -89,7 +89,7 @@ pub(crate) struct Engine<'a> {
     bern: bool,
     /// `pair[i (p + 1) + l]` (i < l): (l - i) C(p, i) C(p, l) / C(2p - 2, i + l - 1), the
     /// coefficients of the rational derivative numerator (see [`SpanPoly::new`])
-    pair: Vec<Mr>,
+    pair: Option<std::rc::Rc<[Mr]>>,
     stats: Stats,
     /// evaluations allowed for the current coordinate ([`Newton::max_work`])
     budget: u64,
@@ -131,9 +131,9 @@ impl<'a> Engine<'a> {
                 && (s.bernstein || s.bezier_pretest)
                 && (1..=BERNSTEIN_MAX_DEGREE).contains(&p)
             {
-                pair_coefficients(p)
+                Some(pair_coefficients(p))
             } else {
-                Vec::new()
+                None
             },
             stats: Stats::default(),
             budget: u64::MAX,
@@ -821,7 +821,7 @@ impl<'a> Engine<'a> {
                     continue;
                 }
                 // (built only for a span the Bézier points leave open: O(p^2) per coordinate)
-                let sp = SpanPoly::new(self.c, self.j, k, &self.pair, pts);
+                let sp = SpanPoly::new(self.c, self.j, k, self.pair.as_deref().unwrap_or(&[]), pts);
                 let (inc, dec) = sp.f_signs();
                 if self.bern && self.s.pretest && (inc || dec) {
                     // F >= 0 (or <= 0) on the closed span, and sign F = sign C_j'
