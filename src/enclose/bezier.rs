@@ -1401,11 +1401,43 @@ fn refine_local(
 /// for a rational curve the outward-rounded quotient of the enclosures of w x_j and w
 /// ([`iv::div_positive`]: the whole line unless the weight's enclosure is positive).
 fn cartesian_point(pts: &[Ddi], d: usize, i: usize, j: usize, rational: bool) -> Interval {
-    let x = pts[i * d + j].to_interval();
+    let (lo, hi) = cartesian_ends(pts, d, i, j, rational);
+    iv::span(lo, hi)
+}
+
+/// The ends of [`cartesian_point`] as two f64, (-inf, inf) for the whole line: the same ends
+/// as its interval (a `Ddi`'s enclosure is [`Ddi::lower_end`], [`Ddi::upper_end`], the whole
+/// line where those do not make an interval; a quotient by a positive weight the quotients of
+/// ends stepped one ulp outward, as [`iv::div_positive`]), without building the intervals
+/// (the span filter converts every Bézier point of every span it meets).
+#[inline]
+fn cartesian_ends(pts: &[Ddi], d: usize, i: usize, j: usize, rational: bool) -> (f64, f64) {
+    const WHOLE: (f64, f64) = (f64::NEG_INFINITY, f64::INFINITY);
+    // (inari's rule for an interval [a, b]: a <= b, a < inf, b > -inf; NaN fails it)
+    let ends = |x: &Ddi| {
+        let (a, b) = (x.lower_end(), x.upper_end());
+        if a <= b && a < f64::INFINITY && b > f64::NEG_INFINITY {
+            (a, b)
+        } else {
+            WHOLE
+        }
+    };
+    let (xl, xu) = ends(&pts[i * d + j]);
     if !rational {
-        return x;
+        return (xl, xu);
     }
-    iv::div_positive(x, pts[i * d + d - 1].to_interval())
+    let (wl, wu) = ends(&pts[i * d + d - 1]);
+    if wl.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return WHOLE;
+    }
+    let lo = if xl >= 0.0 { xl / wu } else { xl / wl };
+    let hi = if xu >= 0.0 { xu / wl } else { xu / wu };
+    let (lo, hi) = (lo.next_down(), hi.next_up());
+    if lo <= hi && lo < f64::INFINITY && hi > f64::NEG_INFINITY {
+        (lo, hi)
+    } else {
+        WHOLE
+    }
 }
 
 /// Coordinate j of a span's Bézier points, enclosed ([`span_points`]): from its points `pts`
@@ -1461,26 +1493,25 @@ pub(crate) fn span_points(pts: &[Ddi], p: usize, j: usize, rational: bool) -> Sp
         first: cartesian_point(pts, d, 0, j, rational),
         last: cartesian_point(pts, d, p, j, rational),
     };
-    let mut prev = Interval::EMPTY;
+    // (the ends as f64 pairs, [`cartesian_ends`]: never NaN, (-inf, inf) for the whole line)
+    let mut prev = (f64::NEG_INFINITY, f64::INFINITY);
     for i in 0..=p {
-        // (an interval's ends are never NaN; an empty one, which no enclosure of a real is,
-        // would be skipped by min / max: the whole line then)
-        let v = match i {
-            0 => out.first,
-            _ if i == p => out.last,
-            _ => cartesian_point(pts, d, i, j, rational),
+        let (vl, vu) = match i {
+            0 => (out.first.inf(), out.first.sup()),
+            _ if i == p => (out.last.inf(), out.last.sup()),
+            _ => cartesian_ends(pts, d, i, j, rational),
         };
-        if v.is_empty() || v.is_entire() {
+        if vl == f64::NEG_INFINITY && vu == f64::INFINITY {
             (out.lo, out.hi, out.inc, out.dec) = (f64::NEG_INFINITY, f64::INFINITY, false, false);
             return out;
         }
-        out.lo = out.lo.min(v.inf());
-        out.hi = out.hi.max(v.sup());
+        out.lo = out.lo.min(vl);
+        out.hi = out.hi.max(vu);
         if i > 0 {
-            out.inc &= v.inf() >= prev.sup();
-            out.dec &= v.sup() <= prev.inf();
+            out.inc &= vl >= prev.1;
+            out.dec &= vu <= prev.0;
         }
-        prev = v;
+        prev = (vl, vu);
     }
     out
 }
