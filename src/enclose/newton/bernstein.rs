@@ -1474,8 +1474,16 @@ pub(crate) fn pair_coefficients(p: usize) -> std::rc::Rc<[Mr]> {
 
 /// [`pair_coefficients`], computed.
 fn pair_coefficients_uncached(p: usize) -> Vec<Mr> {
-    // (Pascal's rule on one row in place, from the right: the same sums as row by row)
+    // (the exact integers while they are below 2^53, which Pascal's rule in `Mr` gives too,
+    // exactly; beyond, Pascal's rule on one row in place, from the right: the same sums as
+    // row by row)
     let binom = |n: usize| {
+        if let Some(row) = (0..=n)
+            .map(|k| crate::num::binom_exact(n, k).map(Mr::from_f64))
+            .collect::<Option<Vec<Mr>>>()
+        {
+            return row;
+        }
         let mut row = vec![Mr::from_f64(1.0); n + 1];
         for m in 2..=n {
             for i in (1..m).rev() {
