@@ -1422,9 +1422,12 @@ fn cartesian_ends(pts: &[Ddi], d: usize, i: usize, j: usize, rational: bool) -> 
             WHOLE
         }
     };
+    // (zero ends signed as an interval's: inf -0, sup +0; `-((-x) + 0)` and `x + 0` change
+    // nothing else)
+    let signed = |(a, b): (f64, f64)| (-((-a) + 0.0), b + 0.0);
     let (xl, xu) = ends(&pts[i * d + j]);
     if !rational {
-        return (xl, xu);
+        return signed((xl, xu));
     }
     let (wl, wu) = ends(&pts[i * d + d - 1]);
     if wl.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
@@ -1434,7 +1437,7 @@ fn cartesian_ends(pts: &[Ddi], d: usize, i: usize, j: usize, rational: bool) -> 
     let hi = if xu >= 0.0 { xu / wl } else { xu / wu };
     let (lo, hi) = (lo.next_down(), hi.next_up());
     if lo <= hi && lo < f64::INFINITY && hi > f64::NEG_INFINITY {
-        (lo, hi)
+        signed((lo, hi))
     } else {
         WHOLE
     }
@@ -1805,6 +1808,58 @@ impl BoxEncloser for BezierSubdivision {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The span filter's end pairs are the ends of the intervals the filter built before:
+    /// the `Ddi` enclosure's interval, and for a rational point the quotient by the weight's
+    /// interval (`iv::div_positive`); the whole line for exactly the same points (unbounded or
+    /// overflowed parts, weights not proven positive). Random points of every magnitude,
+    /// double-word parts and radii, zero, negative, tiny and unbounded weights, ENTIRE.
+    #[test]
+    fn cartesian_ends_are_the_interval_route_s_ends() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let ddi = |r: &mut rand_chacha::ChaCha8Rng| -> Ddi {
+            match r.random_range(0..12) {
+                0 => Ddi::ENTIRE,
+                1 => Ddi::exact(0.0),
+                _ => {
+                    let h = r.random_range(-1.0..1.0) * 2f64.powi(r.random_range(-1074..1024));
+                    let l = h * r.random_range(-1.0..1.0) * 1e-17;
+                    let rad = match r.random_range(0..4) {
+                        0 => 0.0,
+                        1 => h.abs() * 1e-30,
+                        2 => h.abs() * r.random_range(0.0..2.0),
+                        _ => f64::from_bits(r.random_range(1..100)),
+                    };
+                    Ddi::from_parts(h, l, rad)
+                }
+            }
+        };
+        let (mut whole, mut finite) = (0, 0);
+        for _ in 0..200_000 {
+            let pts = [ddi(&mut r), ddi(&mut r)];
+            for rational in [false, true] {
+                let x = pts[0].to_interval();
+                let want = if rational {
+                    iv::div_positive(x, pts[1].to_interval())
+                } else {
+                    x
+                };
+                let got = cartesian_ends(&pts, 2, 0, 0, rational);
+                assert_eq!(
+                    (got.0.to_bits(), got.1.to_bits()),
+                    (want.inf().to_bits(), want.sup().to_bits()),
+                    "{pts:?} rational {rational}"
+                );
+                if want.is_entire() {
+                    whole += 1;
+                } else {
+                    finite += 1;
+                }
+            }
+        }
+        assert!(whole > 10_000 && finite > 100_000, "{whole} {finite}");
+    }
 
     /// A symmetric curve's extremum at a simple knot, where C_j' vanishes: the pieces ending
     /// there have equal last coefficients in exact arithmetic, so only the form about the span
