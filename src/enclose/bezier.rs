@@ -1429,17 +1429,11 @@ fn cartesian_ends(pts: &[Ddi], d: usize, i: usize, j: usize, rational: bool) -> 
     if !rational {
         return signed((xl, xu));
     }
-    let (wl, wu) = ends(&pts[i * d + d - 1]);
-    if wl.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-        return WHOLE;
-    }
-    let lo = if xl >= 0.0 { xl / wu } else { xl / wl };
-    let hi = if xu >= 0.0 { xu / wl } else { xu / wu };
-    let (lo, hi) = (lo.next_down(), hi.next_up());
-    if lo <= hi && lo < f64::INFINITY && hi > f64::NEG_INFINITY {
-        signed((lo, hi))
-    } else {
-        WHOLE
+    match iv::div_positive_ends((xl, xu), ends(&pts[i * d + d - 1])) {
+        Some((lo, hi)) if lo <= hi && lo < f64::INFINITY && hi > f64::NEG_INFINITY => {
+            signed((lo, hi))
+        }
+        _ => WHOLE,
     }
 }
 

@@ -216,10 +216,11 @@ fn store4([h, l, e]: [std::arch::x86_64::__m256d; 3]) -> [Dw; 4] {
     // SAFETY: as in `load4` (twelve consecutive f64 in `out`); AVX2 enabled at compile time.
     unsafe {
         // back to lane order of each register's blend (the permutations of `load4` inverted)
-        let h = _mm256_permute4x64_pd::<0b01_10_11_00>(h); // [h0, h3, h2, h1]
-        let l = _mm256_permute4x64_pd::<0b10_11_00_01>(l); // [l1, l0, l3, l2]
-        let e = _mm256_permute4x64_pd::<0b11_00_01_10>(e); // [e2, e1, e0, e3]
-                                                           // v0 = [h0 l0 e0 h1]: h lanes 0, 3; l lane 1; e lane 2
+        // h = [h0, h3, h2, h1], l = [l1, l0, l3, l2], e = [e2, e1, e0, e3]
+        let h = _mm256_permute4x64_pd::<0b01_10_11_00>(h);
+        let l = _mm256_permute4x64_pd::<0b10_11_00_01>(l);
+        let e = _mm256_permute4x64_pd::<0b11_00_01_10>(e);
+        // v0 = [h0 l0 e0 h1]: h lanes 0, 3; l lane 1; e lane 2
         let v0 = _mm256_blend_pd::<0b0100>(_mm256_blend_pd::<0b0010>(h, l), e);
         // v1 = [l1 e1 h2 l2]: l lanes 0, 3; e lane 1; h lane 2
         let v1 = _mm256_blend_pd::<0b0100>(_mm256_blend_pd::<0b0010>(l, e), h);

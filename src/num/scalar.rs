@@ -306,16 +306,26 @@ pub mod iv {
     /// for unbounded x and w) gives ENTIRE. Tested against inari's division.
     #[inline]
     pub fn div_positive(x: Interval, w: Interval) -> Interval {
-        if x.is_empty()
-            || w.is_empty()
-            || w.inf().partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
-        {
+        if x.is_empty() || w.is_empty() {
             return Interval::ENTIRE;
         }
-        let (xl, xu, wl, wu) = (x.inf(), x.sup(), w.inf(), w.sup());
+        match div_positive_ends((x.inf(), x.sup()), (w.inf(), w.sup())) {
+            Some((lo, hi)) => span(lo, hi),
+            None => Interval::ENTIRE,
+        }
+    }
+
+    /// The ends of [`div_positive`] from the operands' ends (xl <= xu, wl <= wu): the
+    /// quotients of ends stepped one ulp outward, or `None` (the whole line) unless wl > 0.
+    /// Not yet checked to make an interval (a NaN end, inf / inf, is left to the caller).
+    #[inline]
+    pub fn div_positive_ends((xl, xu): (f64, f64), (wl, wu): (f64, f64)) -> Option<(f64, f64)> {
+        if wl.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return None;
+        }
         let lo = if xl >= 0.0 { xl / wu } else { xl / wl };
         let hi = if xu >= 0.0 { xu / wl } else { xu / wu };
-        span(lo.next_down(), hi.next_up())
+        Some((lo.next_down(), hi.next_up()))
     }
 }
 

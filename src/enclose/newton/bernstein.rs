@@ -1450,9 +1450,9 @@ fn span_shift(xs: &mut [f64]) -> f64 {
 }
 
 /// `pair[i (p + 1) + l]` = (l - i) C(p, i) C(p, l) / C(2p - 2, i + l - 1) for i < l (see
-/// [`SpanPoly`]), enclosed: binomials by Pascal's rule in [`Mr`] (exact while below 2^53).
-/// They depend on p only: computed once per degree and thread, then copied (the Pascal rows
-/// and the p^2 / 2 enclosed quotients cost more than a span's Bernstein form at p = 10).
+/// [`SpanPoly`]), enclosed: binomials as exact integers while below 2^53, beyond by Pascal's
+/// rule in [`Mr`]. They depend on p only: computed once per degree and thread, then shared
+/// (the p^2 / 2 enclosed quotients cost more than a span's Bernstein form at p = 10).
 pub(crate) fn pair_coefficients(p: usize) -> std::rc::Rc<[Mr]> {
     thread_local! {
         static PAIRS: std::cell::RefCell<Vec<(usize, std::rc::Rc<[Mr]>)>> =
@@ -1541,6 +1541,36 @@ mod tests {
     }
 
     /// The pair coefficients of `c` (empty without weights) and its non-empty spans.
+    /// The cached pair coefficients enclose the exact rationals (l - i) C(p, i) C(p, l) /
+    /// C(2p - 2, i + l - 1) for i < l, degrees 1..=40: binomials below 2^53 as exact integers,
+    /// above (2p - 2 > 56) by Pascal's rule in `Mr`; exact (radius 0) where every factor is.
+    #[test]
+    fn pair_coefficients_enclose_the_exact_ratios() {
+        use num_bigint::BigInt;
+        use num_rational::BigRational;
+        let binom = |n: usize, k: usize| -> BigInt {
+            (0..k).fold(BigInt::from(1), |b, i| b * (n - i) / (i + 1))
+        };
+        for p in 1..=40usize {
+            let pair = pair_coefficients(p);
+            assert_eq!(pair.len(), (p + 1) * (p + 1));
+            for i in 0..p {
+                for l in i + 1..=p {
+                    let want = crate::num::Exact::from_ratio(BigRational::new(
+                        BigInt::from(l - i) * binom(p, i) * binom(p, l),
+                        binom(2 * p - 2, i + l - 1),
+                    ));
+                    let (lo, hi) = pair[i * (p + 1) + l].bounds();
+                    assert!(
+                        want.cmp_f64(lo) != Some(std::cmp::Ordering::Less)
+                            && want.cmp_f64(hi) != Some(std::cmp::Ordering::Greater),
+                        "p {p}, ({i}, {l}): [{lo}, {hi}]"
+                    );
+                }
+            }
+        }
+    }
+
     fn pair_and_spans(c: &NurbsCurve) -> (Vec<Mr>, Vec<usize>) {
         let p = c.degree();
         let pair = if c.is_rational() {
