@@ -27,7 +27,7 @@
 //! here; any side they leave open goes to the full certification (`certify::certify`), so the
 //! flags are those of the general path.
 
-use super::bezier::single::{raw_sides_into, RawSide, Segment};
+use super::bezier::single::{extremum, f64_sides, raw_sides_into, RawSide, Segment};
 use super::bezier::{end_kind, span_bounds};
 use super::driver::apply_facts;
 use super::driver::{pow2, COORD_WINDOW};
@@ -318,18 +318,6 @@ fn reaching<'e>(
     }
 }
 
-/// The side `sign` of `cb` proven by the root isolation (`fast_proofs`).
-fn put_proven(s: &Simple, cb: &mut CoordBox, sign: f64, r: &RawSide) {
-    let counts = [
-        0,
-        1,
-        r.derivative_evaluations as u32,
-        r.point_evaluations as u32,
-    ];
-    put(cb, sign, (r.upper, r.attained, r.witness), counts);
-    reaching(s, r.attained, r.cands[..r.n].iter(), args_of(cb, sign));
-}
-
 /// The side `sign` (1: max, -1: min) of coordinate j of a polyline (degree 1, see
 /// [`Simple::of`]): the bound is the extreme control value m (exact; every value of the curve
 /// lies between two control values). Each control point P_i with value m is a candidate at
@@ -397,27 +385,43 @@ fn tight_sides(s: &Simple, j: usize, cb: &mut CoordBox) -> Option<()> {
     }
     let p = s.p;
     let need = [exits[0].is_none(), exits[1].is_none()];
-    let mut c = [Ddi::exact(0.0); 4];
-    for (i, x) in c.iter_mut().enumerate().take(p + 1) {
-        *x = Ddi::exact(s.pts[i * s.d + j]);
-    }
-    let seg = Segment {
-        c: &c[..=p],
-        a: s.a,
-        b: s.b,
-        end_kinds: [CandidateKind::EndPoint; 2],
-        right_attained: true,
-    };
-    let mut raw = [RawSide::new(), RawSide::new()];
-    raw_sides_into(&seg, need, &mut raw)?;
+    let fv: [f64; 4] = std::array::from_fn(|i| if i <= p { s.pts[i * s.d + j] } else { 0.0 });
+    let pr = f64_sides(&fv, p, true, need)?;
     let gap = max_gap(s, j);
-    if need.iter().zip(&raw).any(|(&nd, r)| nd && !r.tight(gap)) {
+    if need
+        .iter()
+        .zip(&pr.sides)
+        .any(|(&nd, f)| nd && !f.tight(gap))
+    {
         return None;
     }
-    for ((ex, sign), r) in exits.into_iter().zip([1.0, -1.0]).zip(&raw) {
+    for (((ex, sign), f), de) in exits
+        .into_iter()
+        .zip([1.0, -1.0])
+        .zip(&pr.sides)
+        .zip([pr.derivative_evaluations, 0])
+    {
         match ex {
             Some(ex) => put_exit(cb, sign, ex),
-            None => put_proven(s, cb, sign, r),
+            None => {
+                let pe = f.crit.is_some() as u32;
+                put(cb, sign, (f.upper, f.attained, f.witness), [0, 1, de, pe]);
+                // the candidates: the end values (c_0 at a, c_p at b, sign-adjusted) and the
+                // bracket, those whose bound reaches the attained value
+                let ends = [(sign * fv[0], end(s.a)), (sign * fv[p], end(s.b))];
+                let crit = f.crit.map(|(ub, t0, t1)| {
+                    (
+                        ub,
+                        extremum(s.a, s.b, t0, t1, true, CandidateKind::Critical),
+                    )
+                });
+                reaching(
+                    s,
+                    f.attained,
+                    ends.iter().chain(crit.iter()),
+                    args_of(cb, sign),
+                );
+            }
         }
     }
     Some(())
