@@ -127,7 +127,7 @@ const END_PIECE: f64 = 1.0 / 256.0;
 /// ([`TightEval`]: rigorous double-double, ~1 ulp; its per-span data are built lazily).
 struct Values<'a> {
     curve: &'a NurbsCurve,
-    tight: TightEval,
+    tight: TightEval<'a>,
 }
 
 impl<'a> Values<'a> {

@@ -125,8 +125,8 @@ struct CoordEval {
 /// Verified, ~1-ulp-tight evaluation of the coordinates of one curve. Cheap to build (the
 /// per-span data are computed on first use); `Send + Sync`.
 #[derive(Debug)]
-pub struct TightEval {
-    curve: NurbsCurve,
+pub struct TightEval<'a> {
+    curve: &'a NurbsCurve,
     spans: Vec<SpanSlot>,
     hom: OnceLock<HSpline<Ddi>>,
     generic: OnceLock<Vec<CoordEval>>,
@@ -242,11 +242,11 @@ impl Taylor {
     }
 }
 
-impl TightEval {
+impl<'a> TightEval<'a> {
     /// Build for a curve (clones it; everything else is computed lazily on first use).
-    pub fn new(curve: &NurbsCurve) -> Self {
+    pub fn new(curve: &'a NurbsCurve) -> Self {
         TightEval {
-            curve: curve.clone(),
+            curve,
             spans: (0..curve.num_points())
                 .map(|_| SpanSlot::default())
                 .collect(),
@@ -260,7 +260,7 @@ impl TightEval {
     /// searches of the Newton and Bézier strategies): [`TightEval::bezier_points`] then extracts up to
     /// [`SWEEP_BLOCK`] spans at once by one sweep of Boehm insertion (NURBS Book A5.6), about
     /// half the per-span cost; for a caller that needs a few spans it would be wasted work.
-    pub fn sweeping(curve: &NurbsCurve) -> Self {
+    pub fn sweeping(curve: &'a NurbsCurve) -> Self {
         TightEval {
             sweep: true,
             ..TightEval::new(curve)

@@ -68,7 +68,7 @@ pub(crate) struct Engine<'a> {
     /// `nd[i]`: the knot between spans i and i + 1 is non-differentiable (multiplicity >= p)
     nd: Vec<bool>,
     /// tight candidate evaluation
-    tight: TightEval,
+    tight: TightEval<'a>,
     /// scratch for de Boor
     buf: Vec<Interval>,
     /// Newton box stack
