@@ -120,10 +120,33 @@ pub(crate) fn clamp_span_ints_with<T: FfInt>(
     p: usize,
     knots: &[f64],
     rows: &mut [&mut [T]],
+    factor: Option<&mut T>,
+) -> Option<()> {
+    clamp_span_ints_ends(p, knots, rows, factor, [true, true])
+}
+
+/// [`clamp_span_ints_with`] at the ends in `ends` ([left, right]) only. A clamp at one end
+/// makes the row's point there the piece's value at that knot (times the common factor) by
+/// itself: Boehm's insertion of u_k (u_{k+1}) up to multiplicity p gives the blossom value
+/// f(u_k, ..., u_k) (f(u_{k+1}, ..., u_{k+1})) whatever was inserted at the other end (the
+/// blossom is symmetric and multi-affine; NURBS Book sec. 5.2), and the other end's clamp only
+/// multiplies that point, like every other value and `factor`, by positive level factors. So a
+/// caller that reads the end points of one end only needs that end's clamp (the other points
+/// are then not the Bézier points).
+pub(crate) fn clamp_span_ints_ends<T: FfInt>(
+    p: usize,
+    knots: &[f64],
+    rows: &mut [&mut [T]],
     mut factor: Option<&mut T>,
+    ends: [bool; 2],
 ) -> Option<()> {
     let (mut kn, _) = dyadic_ints::<T>(knots.iter().copied())?;
-    clamp_left_integer(p, &mut kn, rows, factor.as_deref_mut())?;
+    if ends[0] {
+        clamp_left_integer(p, &mut kn, rows, factor.as_deref_mut())?;
+    }
+    if !ends[1] {
+        return Some(());
+    }
     rows.iter_mut().for_each(|q| q.reverse());
     kn.reverse();
     for x in kn.iter_mut() {

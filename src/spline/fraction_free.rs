@@ -4,7 +4,7 @@
 //! Bézier segments get exact end points where the curve's value there is a double
 //! ([`snap_exact_ends`]).
 
-use crate::num::ffint::{clamp_span_ints, clamp_span_ints_with, dyadic_ints, dyadic_parts, FfInt};
+use crate::num::ffint::{clamp_span_ints, clamp_span_ints_ends, dyadic_ints, dyadic_parts, FfInt};
 use crate::num::{ulp, Ddi};
 use crate::spline::curve::NurbsCurve;
 use num_bigint::BigInt;
@@ -96,28 +96,42 @@ fn exact_end_values<T: FfInt>(
     cands: &[(usize, usize, f64)],
 ) -> Option<[bool; 8]> {
     let (p, d) = (c.degree(), c.dim());
-    let mut rows: Vec<Vec<T>> = Vec::with_capacity(d + 1);
+    // Only the rows of the coordinates asked about, and only the clamps of the ends asked about
+    // (`clamp_span_ints_ends`: an end's point needs that end's clamp alone); every row and
+    // the factor get the same positive factors, so the comparisons below do not change.
+    let wanted = |j: usize| cands.iter().any(|x| x.1 == j);
+    let ends = [0, p].map(|i| cands.iter().any(|x| x.0 == i));
+    // (row of coordinate j at `slot[j]`)
+    let mut slot: smallvec::SmallVec<[usize; 8]> = smallvec::smallvec![usize::MAX; d];
+    let mut rows: Vec<Vec<T>> = Vec::with_capacity(d);
     let mut exps: Vec<i64> = Vec::with_capacity(d);
-    for j in 0..d {
+    for j in (0..d).filter(|&j| wanted(j)) {
         let (row, e) = dyadic_ints::<T>((k - p..=k).map(|i| c.control_point(i)[j]))?;
+        slot[j] = rows.len();
         rows.push(row);
         exps.push(e);
     }
     // (the weights' row of ones is a constant row: clamped as the common factor alone,
-    // `clamp_span_ints_with`)
+    // `clamp_span_ints_ends`)
     let mut f = T::from_i64(1);
     {
         let mut refs: Vec<&mut [T]> = rows.iter_mut().map(|r| r.as_mut_slice()).collect();
-        clamp_span_ints_with(p, &c.knots()[k - p..=k + p + 1], &mut refs, Some(&mut f))?;
+        clamp_span_ints_ends(
+            p,
+            &c.knots()[k - p..=k + p + 1],
+            &mut refs,
+            Some(&mut f),
+            ends,
+        )?;
     }
-    rows.push(vec![f; p + 1]);
     let mut out = [false; 8];
     for (o, &(i, j, h)) in out.iter_mut().zip(cands) {
         let (m, e) = dyadic_parts(h)?;
-        let (ej, w) = (exps[j], &rows[d][i]);
+        let r = *slot.get(j)?;
+        let ej = exps[r];
         let e0 = ej.min(e);
-        let lhs = rows[j][i].shl((ej - e0) as u64)?;
-        let rhs = w.mul(&T::from_i64(m))?.shl((e - e0) as u64)?;
+        let lhs = rows[r][i].shl((ej - e0) as u64)?;
+        let rhs = f.mul(&T::from_i64(m))?.shl((e - e0) as u64)?;
         *o = lhs.is_eq(&rhs);
     }
     Some(out)
