@@ -269,7 +269,7 @@ impl<'a> TightEval<'a> {
 
     /// The curve this evaluator was built for.
     pub fn curve(&self) -> &NurbsCurve {
-        &self.curve
+        self.curve
     }
 
     fn generic(&self) -> &[CoordEval] {
@@ -310,7 +310,7 @@ impl<'a> TightEval<'a> {
         if let Some(v) = cell(&self.spans[k]).get() {
             return v;
         }
-        let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
+        let hs = self.hom.get_or_init(|| HSpline::from_curve(self.curve));
         let kn = self.curve.knots();
         let n = self.curve.num_points() - 1;
         // (the run of empty slots from k: non-empty spans only, stopping at a filled one)
@@ -323,7 +323,7 @@ impl<'a> TightEval<'a> {
             let slot = cell(&self.spans[i]);
             if slot.get().is_none() {
                 let mut pts = q.to_vec();
-                crate::spline::fraction_free::snap_exact_ends(&self.curve, i, &mut pts);
+                crate::spline::fraction_free::snap_exact_ends(self.curve, i, &mut pts);
                 // (another thread may have filled it meanwhile: either enclosure is sound)
                 let _ = slot.set(pts);
             }
@@ -356,13 +356,13 @@ impl<'a> TightEval<'a> {
     /// type's faster route, the double words of `num::dw`), its end points that are exactly
     /// doubles made exact (an extremum at an unclamped end or a knot is then not straddled).
     fn extract(&self, k: usize, tight: bool) -> Vec<Ddi> {
-        let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
+        let hs = self.hom.get_or_init(|| HSpline::from_curve(self.curve));
         let mut pts = if tight {
             hs.bezier_segment_tight(k).pts
         } else {
             hs.bezier_segment(k).pts
         };
-        crate::spline::fraction_free::snap_exact_ends(&self.curve, k, &mut pts);
+        crate::spline::fraction_free::snap_exact_ends(self.curve, k, &mut pts);
         pts
     }
 
@@ -372,7 +372,7 @@ impl<'a> TightEval<'a> {
         let cell = if right { &slot.right } else { &slot.left };
         cell.get_or_init(|| {
             let pts = self.span_points(k);
-            let hs = self.hom.get_or_init(|| HSpline::from_curve(&self.curve));
+            let hs = self.hom.get_or_init(|| HSpline::from_curve(self.curve));
             let (p, h) = (hs.degree, hs.hdim());
             let len = Ddi::diff(hs.knots[k + 1], hs.knots[k]);
             if right {
