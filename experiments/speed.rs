@@ -52,11 +52,17 @@ fn best(reps: usize, f: &mut dyn FnMut() -> f64) -> f64 {
 }
 
 /// Minima over `reps` runs of `a` and of `b`, run alternately (a, b, a, b, ...): the two
-/// times of a ratio see the same load, which drifts on a shared machine within a run.
+/// times of a ratio see the same load, which drifts on a shared machine within a run. Each
+/// timed run follows an untimed run of the same work, so that both are timed in their steady
+/// state: otherwise each starts with the data the other left in the caches (kurbo's 1,000
+/// cubics, 64 kB, came out at 54-87 ns per cubic after the strategies' runs where their
+/// steady state is 54 ns, and its rows' ratios moved with that).
 fn paired(reps: usize, a: &mut dyn FnMut() -> f64, b: &mut dyn FnMut() -> f64) -> (f64, f64) {
     let (mut ta, mut tb) = (f64::INFINITY, f64::INFINITY);
     for _ in 0..reps {
+        black_box(a());
         ta = ta.min(best(1, a));
+        black_box(b());
         tb = tb.min(best(1, b));
     }
     (ta, tb)
