@@ -1540,10 +1540,9 @@ mod tests {
         local.bezier_segment(p)
     }
 
-    /// The pair coefficients of `c` (empty without weights) and its non-empty spans.
     /// The cached pair coefficients enclose the exact rationals (l - i) C(p, i) C(p, l) /
     /// C(2p - 2, i + l - 1) for i < l, degrees 1..=40: binomials below 2^53 as exact integers,
-    /// above (2p - 2 > 56) by Pascal's rule in `Mr`; exact (radius 0) where every factor is.
+    /// above (2p - 2 > 56) by Pascal's rule in `Mr`.
     #[test]
     fn pair_coefficients_enclose_the_exact_ratios() {
         use num_bigint::BigInt;
@@ -1571,6 +1570,7 @@ mod tests {
         }
     }
 
+    /// The pair coefficients of `c` (empty without weights) and its non-empty spans.
     fn pair_and_spans(c: &NurbsCurve) -> (Vec<Mr>, Vec<usize>) {
         let p = c.degree();
         let pair = if c.is_rational() {
