@@ -11,6 +11,7 @@ pub mod exact;
 pub(crate) mod ffint;
 pub mod mr;
 mod poly;
+pub(crate) mod pool;
 mod scalar;
 
 pub use ddi::Ddi;

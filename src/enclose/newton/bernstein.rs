@@ -7,7 +7,7 @@
 use super::param::{midpoint, T, U};
 use crate::num::ddi::{dist_up, eta_multiple, up, Ddi};
 use crate::num::mr::Mr;
-use crate::num::{iv, Scalar};
+use crate::num::{iv, pool, Scalar};
 use crate::spline::bezier::{bernstein_value_s, de_casteljau_levels};
 use crate::spline::bspline::BezierSeg;
 use crate::spline::curve::NurbsCurve;
@@ -60,6 +60,17 @@ pub(crate) struct SpanPoly {
     wmin: f64,
 }
 
+/// The form's vectors go back to this thread's pool (`num::pool`) for the next span's form:
+/// a batch allocates them once per thread instead of once per span and coordinate.
+impl Drop for SpanPoly {
+    fn drop(&mut self) {
+        pool::give(std::mem::take(&mut self.seg.pts));
+        pool::give(std::mem::take(&mut self.f.pts));
+        pool::give(std::mem::take(&mut self.df.pts));
+        pool::give(std::mem::take(&mut self.dseg.pts));
+    }
+}
+
 /// Push the parts of the closed interval [lo, hi] that the closed intervals `free`
 /// (increasing; F proven zero-free there: [`SpanPoly::zero_estimates`]) do not cover, each as a
 /// closed interval with depth 0, to `gaps`: the parts still to be excluded. (A part's ends may
@@ -103,17 +114,22 @@ impl SpanPoly {
             degree: p,
             dim: 1,
             rational,
-            pts: dseg.pts.iter().map(|&x| Mr::from_ddi(x)).collect(),
+            pts: {
+                let mut v = pool::take(dseg.pts.len());
+                v.extend(dseg.pts.iter().map(|&x| Mr::from_ddi(x)));
+                v
+            },
         };
         let q = &seg.pts;
-        let fco: Vec<Mr> = if rational && pair.is_empty() {
+        let mut fco: Vec<Mr> = pool::take(2 * p);
+        if rational && pair.is_empty() {
             // degree above BERNSTEIN_MAX_DEGREE: F unknown
-            vec![Mr::ENTIRE]
+            fco.push(Mr::ENTIRE);
         } else if rational {
-            pair_sum_f64(q, pair, p)
+            pair_sum_f64(q, pair, p, &mut fco);
         } else {
-            q.windows(2).map(|w| w[1] - w[0]).collect()
-        };
+            fco.extend(q.windows(2).map(|w| w[1] - w[0]));
+        }
         Self::with_f(k, shift, seg, dseg, fco, rational && pair.is_empty())
     }
 
@@ -147,14 +163,15 @@ impl SpanPoly {
     ) -> Self {
         let rational = seg.rational;
         let n = fco.len() - 1;
-        let dco: Vec<Mr> = if unknown {
-            vec![Mr::ENTIRE]
+        let mut dco: Vec<Mr> = pool::take(n.max(1));
+        if unknown {
+            dco.push(Mr::ENTIRE);
         } else if n == 0 {
-            vec![Mr::from_f64(0.0)]
+            dco.push(Mr::from_f64(0.0));
         } else {
             let nm = Mr::from_usize(n);
-            fco.windows(2).map(|w| nm * (w[1] - w[0])).collect()
-        };
+            dco.extend(fco.windows(2).map(|w| nm * (w[1] - w[0])));
+        }
         let poly = |pts: Vec<Mr>| BezierSeg {
             a: seg.a,
             b: seg.b,
@@ -933,7 +950,7 @@ fn shifted_from_points(
     let rational = c.is_rational();
     let h = c.dim() + rational as usize;
     let neg = Ddi::exact(-shift);
-    let mut out = Vec::with_capacity((p + 1) * (1 + rational as usize));
+    let mut out = pool::take((p + 1) * (1 + rational as usize));
     for i in 0..=p {
         let a = pts[i * h + j];
         if rational {
@@ -1013,11 +1030,12 @@ pub(crate) fn segment_values_f64(seg: &BezierSeg<Mr>, t0: f64, t1: f64) -> Optio
 /// computed radius terms underflowed to 0 (a zero centre with a subnormal radius times a
 /// weight near 1e-214). A non-finite centre or bound gives ENTIRE. Tested against exact rational
 /// sums over the corners of the input enclosures (`pair_sum_bound_holds_exactly`).
-fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize) -> Vec<Mr> {
+fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize, out: &mut Vec<Mr>) {
     const C: f64 = f64::EPSILON / 2.0; // u
     let n = 2 * p - 1;
     // per k: the centre d, the radius terms, sum |P| S, the η count, the number of terms m
-    let mut acc = vec![(0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64); n];
+    type Terms = (f64, f64, f64, f64, f64);
+    let mut acc: SmallVec<[Terms; 24]> = SmallVec::from_elem((0.0, 0.0, 0.0, 0.0, 0.0), n);
     for i in 0..p {
         let (ai, wi) = (q[2 * i], q[2 * i + 1]);
         for l in i + 1..=p {
@@ -1045,15 +1063,13 @@ fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize) -> Vec<Mr> {
             }
         }
     }
-    acc.into_iter()
-        .map(|(d, r, g, h, m)| {
-            let m_terms = (m - 1.0).max(0.0);
-            // (h 2^-1074 by `eta_multiple`, without a product that underflows: an upper bound
-            // of h η' where η' = 2^-1074 >= η is the bound's own unit)
-            let e = (r + (3.03 + 1.03 * m_terms) * C * g + eta_multiple(h)) * (1.0 + 1.0 / 1_099_511_627_776.0);
-            Mr::from_centre_radius(d, e)
-        })
-        .collect()
+    out.extend(acc.into_iter().map(|(d, r, g, h, m)| {
+        let m_terms = (m - 1.0).max(0.0);
+        // (h 2^-1074 by `eta_multiple`, without a product that underflows: an upper bound
+        // of h η' where η' = 2^-1074 >= η is the bound's own unit)
+        let e = (r + (3.03 + 1.03 * m_terms) * C * g + eta_multiple(h)) * (1.0 + 1.0 / 1_099_511_627_776.0);
+        Mr::from_centre_radius(d, e)
+    }));
 }
 
 /// The degree up to which [`f_from_ddi`] computes F in double-double: its integer factors
@@ -1957,7 +1973,8 @@ mod tests {
                     *x = Mr::from_centre_radius(x.mid(), x.mid().abs() * 1e-12);
                 }
             }
-            let got = pair_sum_f64(&q, &pair, p);
+            let mut got = Vec::new();
+            pair_sum_f64(&q, &pair, p, &mut got);
             assert_eq!(got.len(), 2 * p - 1);
             for trial in 0..3 {
                 // an exact value in each enclosure: the centre or a corner

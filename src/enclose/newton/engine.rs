@@ -12,7 +12,7 @@ use super::param::{can_split, midpoint, Space, SpanParam, T, U};
 use super::{DerivForm, Newton, Split, BERNSTEIN_MAX_DEGREE, EVALS_PER_SPAN, WORK_PER_SPAN};
 use crate::enclose::{CandidateKind, CoordBox, Stats, Termination};
 use crate::num::ddi::Ddi;
-use crate::num::{iv, Scalar};
+use crate::num::{iv, pool, Scalar};
 use crate::num::mr::Mr;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
@@ -51,6 +51,8 @@ struct ZeroBox {
     x: SpanParam,
     unique: bool,
 }
+
+pool::pooled!(ZeroBox => ZERO_BOX_POOL);
 
 /// Shared machinery of the Newton-based strategies (`newton`, `search-region`,
 /// `search-region-verified`): one per curve, reused over the coordinates.
@@ -95,19 +97,34 @@ pub(crate) struct Engine<'a> {
     budget: u64,
 }
 
+/// The engine's vectors go back to this thread's pool (`num::pool`) for the next curve.
+impl Drop for Engine<'_> {
+    fn drop(&mut self) {
+        pool::give(std::mem::take(&mut self.spans));
+        pool::give(std::mem::take(&mut self.nd));
+        pool::give(std::mem::take(&mut self.buf));
+        pool::give(std::mem::take(&mut self.stack));
+        pool::give(std::mem::take(&mut self.est));
+        pool::give(std::mem::take(&mut self.free));
+        pool::give(std::mem::take(&mut self.seed_boxes));
+        pool::give(std::mem::take(&mut self.seed_gaps));
+    }
+}
+
 impl<'a> Engine<'a> {
     /// Precompute derivative splines and the span structure of `c`.
     pub(crate) fn new(c: &'a NurbsCurve, s: &'a Newton) -> Self {
         let p = c.degree();
         let kn = c.knots();
-        let spans: Vec<(usize, f64, f64)> = (p..c.num_points())
-            .filter(|&k| kn[k] < kn[k + 1])
-            .map(|k| (k, kn[k], kn[k + 1]))
-            .collect();
-        let nd = spans
-            .windows(2)
-            .map(|w| multiplicity(kn, w[0].2) >= p)
-            .collect();
+        // (the vectors from this thread's pool, `num::pool`, handed back on drop)
+        let mut spans: Vec<(usize, f64, f64)> = pool::take(c.num_points() - p);
+        spans.extend(
+            (p..c.num_points())
+                .filter(|&k| kn[k] < kn[k + 1])
+                .map(|k| (k, kn[k], kn[k + 1])),
+        );
+        let mut nd = pool::take(spans.len());
+        nd.extend(spans.windows(2).map(|w| multiplicity(kn, w[0].2) >= p));
         Engine {
             c,
             s,
@@ -118,12 +135,12 @@ impl<'a> Engine<'a> {
             spans,
             nd,
             tight: TightEval::sweeping(c),
-            buf: Vec::with_capacity(2 * (p + 1)),
-            stack: Vec::new(),
-            est: Vec::new(),
-            free: Vec::new(),
-            seed_boxes: Vec::new(),
-            seed_gaps: Vec::new(),
+            buf: pool::take(2 * (p + 1)),
+            stack: pool::take(0),
+            est: pool::take(0),
+            free: pool::take(0),
+            seed_boxes: pool::take(0),
+            seed_gaps: pool::take(0),
             j: 0,
             poly: None,
             bern: s.bernstein && (1..=BERNSTEIN_MAX_DEGREE).contains(&p),
@@ -141,13 +158,13 @@ impl<'a> Engine<'a> {
     }
 
     /// Span indices (into `spans`) with the spans meeting the supports of the control points
-    /// `first` in front, then all others in order.
+    /// `first` in front, then all others in order (a vector from this thread's pool: hand it
+    /// back with `num::pool::give` after use).
     pub(crate) fn order_with_first(&self, first: &[usize]) -> Vec<usize> {
         let p = self.p;
         let near = |k: usize| first.iter().any(|&i| k >= i && k <= i + p);
-        let mut order: Vec<usize> = (0..self.spans.len())
-            .filter(|&s| near(self.spans[s].0))
-            .collect();
+        let mut order: Vec<usize> = pool::take(self.spans.len());
+        order.extend((0..self.spans.len()).filter(|&s| near(self.spans[s].0)));
         order.extend((0..self.spans.len()).filter(|&s| !near(self.spans[s].0)));
         order
     }
@@ -770,7 +787,7 @@ impl<'a> Engine<'a> {
         // values the curve attains on both sides: the accumulator's inner bounds (kept up to
         // date below after each candidate) and the cheap bounds of the Newton boxes
         let (mut cheap_lo, mut cheap_hi) = (acc.inner_lo, acc.inner_hi);
-        let mut boxes: Vec<ZeroBox> = Vec::new();
+        let mut boxes: Vec<ZeroBox> = pool::take(0);
         for &si in order {
             let (k, sa, sb) = self.spans[si];
             // whether the search of this span evaluates through `poly`: `bern`, unless the
@@ -926,6 +943,7 @@ impl<'a> Engine<'a> {
                 cheap_hi = cheap_hi.max(acc.inner_hi);
             }
         }
+        pool::give(boxes);
         // Knot rule (see the doc comment): smooth knots between two monotone spans.
         for i in 0..ns - 1 {
             if self.nd[i] {

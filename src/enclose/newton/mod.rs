@@ -254,7 +254,7 @@ impl BoxEncloser for Newton {
             return e;
         }
         // Built only when some coordinate needs the search.
-        let mut engine: Option<(Engine, Vec<SpanMode>)> = None;
+        let mut engine: Option<(Engine, smallvec::SmallVec<[SpanMode; 32]>)> = None;
         let (a, b) = c.domain();
         let mut coords = super::Coords::new();
         for j in 0..c.dim() {
@@ -273,7 +273,7 @@ impl BoxEncloser for Newton {
             let (e, modes) = engine.get_or_insert_with(|| {
                 let e = Engine::new(c, self);
                 let n = e.spans.len();
-                (e, vec![mode; n])
+                (e, smallvec::SmallVec::<[SpanMode; 32]>::from_elem(mode, n))
             });
             // Search the spans around the extreme control points first: their candidates
             // make the box big early, so pruning skips more of the others.
@@ -281,6 +281,7 @@ impl BoxEncloser for Newton {
             let order = e.order_with_first(&first);
             modes.iter_mut().for_each(|m| *m = mode);
             let mut cb = e.coord(j, &order, modes);
+            crate::num::pool::give(order);
             if self.fast_path {
                 // A side the search left more than an ulp of the scale loose (it ran out of
                 // boxes), or, above the degree where the certificate lowers bounds, more than
