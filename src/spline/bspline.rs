@@ -592,7 +592,8 @@ pub(crate) fn sweep_spans<S: Scalar>(
 ) {
     let n = pts.len() / h - 1;
     debug_assert!(p <= k0 && k0 <= n && knots[k0] < knots[k0 + 1]);
-    let mut q: Vec<S> = pts[(k0 - p) * h..(k0 + 1) * h].to_vec();
+    // (on the stack for the usual degrees and dimensions)
+    let mut q: SmallVec<[S; 32]> = pts[(k0 - p) * h..(k0 + 1) * h].iter().cloned().collect();
     let mut t: SmallVec<[f64; 24]> = SmallVec::from_slice(&knots[k0 - p..=k0 + p + 1]);
     clamp_left(p, h, &mut t, &mut q);
     let mut next = q.clone();

@@ -690,11 +690,16 @@ impl SpanPoly {
     /// gap. Since F has the sign and the zeros of C_j' on the closed span, every interior
     /// extremum of the piece lies in a box.
     pub(crate) fn critical_boxes(&self, h: f64) -> Option<Vec<(f64, f64)>> {
-        let (mut est, mut free, mut boxes, mut gaps) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        // (the scratch vectors from this thread's pool, `num::pool`, and handed back)
+        let (mut est, mut free, mut gaps) = (pool::take(0), pool::take(0), pool::take(0));
+        let mut boxes = Vec::new();
         let max = self.f.pts.len() + 1;
-        (self.zero_boxes(h, max, (&mut est, &mut free), &mut boxes, &mut gaps)
-            && self.exclude_gaps(&mut gaps, &mut 0))
-        .then_some(boxes)
+        let found = self.zero_boxes(h, max, (&mut est, &mut free), &mut boxes, &mut gaps)
+            && self.exclude_gaps(&mut gaps, &mut 0);
+        pool::give(est);
+        pool::give(free);
+        pool::give(gaps);
+        found.then_some(boxes)
     }
 
     /// Whether F provably has no zero in any of the `gaps` ([t0, t1, depth] in [0, 1], used
