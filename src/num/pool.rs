@@ -12,8 +12,9 @@ use std::cell::RefCell;
 const KEEP: usize = 16;
 
 /// The largest capacity kept (elements): a vector of a rare high-degree span that is larger
-/// is freed, so the pool stays small.
-const KEEP_CAPACITY: usize = 4096;
+/// is freed, so the pool stays small (at most 16 x 1,024 elements per type and thread, under
+/// 0.5 MB for the largest element type; the usual degrees need a few dozen elements).
+const KEEP_CAPACITY: usize = 1024;
 
 /// Element types with a per-thread pool of vectors.
 pub(crate) trait Pooled: Copy + 'static {
