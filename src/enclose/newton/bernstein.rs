@@ -1038,43 +1038,180 @@ pub(crate) fn segment_values_f64(seg: &BezierSeg<Mr>, t0: f64, t1: f64) -> Optio
 fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize, out: &mut Vec<Mr>) {
     const C: f64 = f64::EPSILON / 2.0; // u
     let n = 2 * p - 1;
+    let m1 = p + 1;
+    // The points as rows (centres and radii of the a_i and the w_i, and whether each is an
+    // exact zero), so that the terms of the consecutive sums k = 2i + x (l = i + 1 + x) for
+    // one i come from contiguous values, four at a time where AVX2 is enabled
+    // ([`pair_terms4`]); the same IEEE operations in the same order for every term and sum as
+    // [`pair_term`], so the same result bit for bit either way.
+    // (exactly zero: centre and radius; a test on the computed ρ would let a radius product
+    // that underflowed to 0 pass)
+    let nil = |x: Mr| x.mid() == 0.0 && x.rad() == 0.0;
+    // (on the stack up to degree 31, zeroed by a few wide stores)
+    let (mut rows_s, mut rows_h) = ([0.0f64; 192], Vec::new());
+    let rows = zeroed(&mut rows_s, &mut rows_h, 6 * m1);
+    for (i, x) in q.chunks_exact(2).take(m1).enumerate() {
+        rows[i] = x[0].mid();
+        rows[m1 + i] = x[1].mid();
+        rows[2 * m1 + i] = x[0].rad();
+        rows[3 * m1 + i] = x[1].rad();
+        // (as all-ones / all-zero bit masks)
+        rows[4 * m1 + i] = f64::from_bits(if nil(x[0]) { u64::MAX } else { 0 });
+        rows[5 * m1 + i] = f64::from_bits(if nil(x[1]) { u64::MAX } else { 0 });
+    }
+    let row = |r: usize| &rows[r * m1..(r + 1) * m1];
+    let pts = PairRows {
+        a: row(0),
+        w: row(1),
+        ra: row(2),
+        rw: row(3),
+        an: row(4),
+        wn: row(5),
+    };
     // per k: the centre d, the radius terms, sum |P| S, the η count, the number of terms m
-    type Terms = (f64, f64, f64, f64, f64);
-    let mut acc: SmallVec<[Terms; 24]> = SmallVec::from_elem((0.0, 0.0, 0.0, 0.0, 0.0), n);
+    let (mut acc_s, mut acc_h) = ([0.0f64; 160], Vec::new());
+    let acc = zeroed(&mut acc_s, &mut acc_h, 5 * n);
     for i in 0..p {
-        let (ai, wi) = (q[2 * i], q[2 * i + 1]);
-        for l in i + 1..=p {
-            let (al, wl) = (q[2 * l], q[2 * l + 1]);
-            let pc = pair[i * (p + 1) + l];
-            let (a_l, w_i, a_i, w_l) = (al.mid(), wi.mid(), ai.mid(), wl.mid());
-            let x1 = a_l * w_i;
-            let x2 = a_i * w_l;
-            let v = pc.mid() * (x1 - x2);
-            let rho1 = a_l.abs() * wi.rad() + w_i.abs() * al.rad() + al.rad() * wi.rad();
-            let rho2 = a_i.abs() * wl.rad() + w_l.abs() * ai.rad() + ai.rad() * wl.rad();
-            // (exactly zero: a factor of each product is an exact 0, centre and radius; a test
-            // on the computed ρ would let a radius product that underflowed to 0 pass)
-            let nil = |x: Mr| x.mid() == 0.0 && x.rad() == 0.0;
-            let zero = (nil(al) || nil(wi)) && (nil(ai) || nil(wl));
-            let (pa, pr) = (pc.mid().abs(), pc.rad());
-            let sum = x1.abs() + x2.abs();
-            let e = &mut acc[i + l - 1];
-            e.0 += v;
-            if !zero {
-                e.1 += pr * (1.01 * sum + rho1 + rho2) + pa * (rho1 + rho2);
-                e.2 += pa * sum;
-                e.3 += 10.0 * (pr + pa) + 17.0;
-                e.4 += 1.0;
+        let len = p - i;
+        let pcs = &pair[i * m1 + i + 1..i * m1 + i + 1 + len];
+        let mut x = 0;
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+        while x + 4 <= len {
+            // SAFETY: AVX2 is enabled at compile time (the cfg above); the indices of the four
+            // terms, l = i + 1 + x..+4 <= p and k = 2i + x..+4 <= i + p - 1 < n, are inside
+            // `pts`, `pcs` and every row of `acc` (checked by the slices inside).
+            unsafe { pair_terms4(&pts, i, x, &pcs[x..x + 4], acc, n) };
+            x += 4;
+        }
+        while x < len {
+            let t = pair_term(&pts, i, i + 1 + x, pcs[x]);
+            let k = 2 * i + x;
+            for (r, v) in t.into_iter().enumerate() {
+                acc[r * n + k] += v;
             }
+            x += 1;
         }
     }
-    out.extend(acc.into_iter().map(|(d, r, g, h, m)| {
+    out.extend((0..n).map(|k| {
+        let (d, r, g, h, m) = (acc[k], acc[n + k], acc[2 * n + k], acc[3 * n + k], acc[4 * n + k]);
         let m_terms = (m - 1.0).max(0.0);
         // (h 2^-1074 by `eta_multiple`, without a product that underflows: an upper bound
         // of h η' where η' = 2^-1074 >= η is the bound's own unit)
         let e = (r + (3.03 + 1.03 * m_terms) * C * g + eta_multiple(h)) * (1.0 + 1.0 / 1_099_511_627_776.0);
         Mr::from_centre_radius(d, e)
     }));
+}
+
+/// `len` zeros: the front of the zeroed array `stack` where it is long enough, else `heap`
+/// resized.
+fn zeroed<'a, const N: usize>(stack: &'a mut [f64; N], heap: &'a mut Vec<f64>, len: usize) -> &'a mut [f64] {
+    if len <= N {
+        &mut stack[..len]
+    } else {
+        heap.resize(len, 0.0);
+        heap
+    }
+}
+
+/// The rows of the points for [`pair_sum_f64`]: centres and radii of the a_i and w_i, and
+/// exact-zero flags as all-ones bit masks.
+struct PairRows<'a> {
+    a: &'a [f64],
+    w: &'a [f64],
+    ra: &'a [f64],
+    rw: &'a [f64],
+    an: &'a [f64],
+    wn: &'a [f64],
+}
+
+/// The five summands of the pair (i, l) in [`pair_sum_f64`] with the coefficient `pc`: its
+/// centre term pc (a_l w_i - a_i w_l), and unless a factor of each product is an exact zero
+/// (then +0.0 each, which leaves the nonnegative sums as they are) its radius terms, pa S, its
+/// η share and its count.
+#[inline(always)]
+fn pair_term(pts: &PairRows, i: usize, l: usize, pc: Mr) -> [f64; 5] {
+    let (a_l, w_i, a_i, w_l) = (pts.a[l], pts.w[i], pts.a[i], pts.w[l]);
+    let (ra_l, rw_i, ra_i, rw_l) = (pts.ra[l], pts.rw[i], pts.ra[i], pts.rw[l]);
+    let x1 = a_l * w_i;
+    let x2 = a_i * w_l;
+    let v = pc.mid() * (x1 - x2);
+    let rho1 = a_l.abs() * rw_i + w_i.abs() * ra_l + ra_l * rw_i;
+    let rho2 = a_i.abs() * rw_l + w_l.abs() * ra_i + ra_i * rw_l;
+    let flag = |x: f64| x.to_bits() != 0;
+    let zero = (flag(pts.an[l]) || flag(pts.wn[i])) && (flag(pts.an[i]) || flag(pts.wn[l]));
+    let (pa, pr) = (pc.mid().abs(), pc.rad());
+    let sum = x1.abs() + x2.abs();
+    if zero {
+        return [v, 0.0, 0.0, 0.0, 0.0];
+    }
+    [
+        v,
+        pr * (1.01 * sum + rho1 + rho2) + pa * (rho1 + rho2),
+        pa * sum,
+        10.0 * (pr + pa) + 17.0,
+        1.0,
+    ]
+}
+
+/// [`pair_term`] for l = i + 1 + x .. i + 1 + x + 4 in the four lanes of AVX2 registers, each
+/// added to its sum k = 2i + x + lane (row r of `acc` at r n + k): per lane the same IEEE
+/// operations in the same order (products and sums unfused), the exact-zero case by a bit
+/// mask (+0.0), so bit for bit the scalar results (`pair_sum_lanes_are_scalar_terms`).
+#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+#[inline(always)]
+unsafe fn pair_terms4(pts: &PairRows, i: usize, x: usize, pcs: &[Mr], acc: &mut [f64], n: usize) {
+    use std::arch::x86_64::*;
+    let l = i + 1 + x;
+    let k = 2 * i + x;
+    // (bounds checked once: four values of each row)
+    let (a_l, w_l, ra_l, rw_l) = (&pts.a[l..l + 4], &pts.w[l..l + 4], &pts.ra[l..l + 4], &pts.rw[l..l + 4]);
+    let (an_l, wn_l) = (&pts.an[l..l + 4], &pts.wn[l..l + 4]);
+    let pcs = &pcs[..4];
+    let rows = &mut acc[..5 * n];
+    let _ = &rows[4 * n + k..4 * n + k + 4];
+    // SAFETY: AVX2 is enabled at compile time (the caller's cfg); loads and stores of four
+    // f64 from slices of at least four elements (checked above), register arithmetic.
+    unsafe {
+        let ld = |s: &[f64]| _mm256_loadu_pd(s.as_ptr());
+        let set1 = _mm256_set1_pd;
+        let sign = set1(-0.0);
+        let abs = |x: __m256d| _mm256_andnot_pd(sign, x);
+        let (a_l, w_l, ra_l, rw_l) = (ld(a_l), ld(w_l), ld(ra_l), ld(rw_l));
+        let (w_i, a_i, rw_i, ra_i) = (set1(pts.w[i]), set1(pts.a[i]), set1(pts.rw[i]), set1(pts.ra[i]));
+        let pcm = _mm256_set_pd(pcs[3].mid(), pcs[2].mid(), pcs[1].mid(), pcs[0].mid());
+        let pr = _mm256_set_pd(pcs[3].rad(), pcs[2].rad(), pcs[1].rad(), pcs[0].rad());
+        let x1 = _mm256_mul_pd(a_l, w_i);
+        let x2 = _mm256_mul_pd(a_i, w_l);
+        let v = _mm256_mul_pd(pcm, _mm256_sub_pd(x1, x2));
+        let rho1 = _mm256_add_pd(
+            _mm256_add_pd(_mm256_mul_pd(abs(a_l), rw_i), _mm256_mul_pd(abs(w_i), ra_l)),
+            _mm256_mul_pd(ra_l, rw_i),
+        );
+        let rho2 = _mm256_add_pd(
+            _mm256_add_pd(_mm256_mul_pd(abs(a_i), rw_l), _mm256_mul_pd(abs(w_l), ra_i)),
+            _mm256_mul_pd(ra_i, rw_l),
+        );
+        // zero = (an_l | wn_i) & (an_i | wn_l), as all-ones masks
+        let zero = _mm256_and_pd(
+            _mm256_or_pd(ld(an_l), set1(pts.wn[i])),
+            _mm256_or_pd(set1(pts.an[i]), ld(wn_l)),
+        );
+        let keep = |t: __m256d| _mm256_andnot_pd(zero, t);
+        let pa = abs(pcm);
+        let sum = _mm256_add_pd(abs(x1), abs(x2));
+        let rr = _mm256_add_pd(rho1, rho2);
+        let r = _mm256_add_pd(
+            _mm256_mul_pd(pr, _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(set1(1.01), sum), rho1), rho2)),
+            _mm256_mul_pd(pa, rr),
+        );
+        let g = _mm256_mul_pd(pa, sum);
+        let h = _mm256_add_pd(_mm256_mul_pd(set1(10.0), _mm256_add_pd(pr, pa)), set1(17.0));
+        let terms = [v, keep(r), keep(g), keep(h), keep(set1(1.0))];
+        for (r, t) in terms.into_iter().enumerate() {
+            let p = rows.as_mut_ptr().add(r * n + k);
+            _mm256_storeu_pd(p, _mm256_add_pd(_mm256_loadu_pd(p), t));
+        }
+    }
 }
 
 /// The degree up to which [`f_from_ddi`] computes F in double-double: its integer factors
@@ -1934,6 +2071,90 @@ mod tests {
     /// of the pair coefficients), every exact D_k lies within the returned radius of the
     /// centre; degrees 1 to 40, magnitudes 2^±60, radii from 0 to 2^-30 relative, exact zeros
     /// (flat runs, which must stay exact zeros), cancelling and alternating values.
+    /// The pair sums as one loop over the interleaved points, term by term in the order of i
+    /// (the form [`pair_sum_f64`] had before its rows and lanes): the reference its results
+    /// must equal bit for bit.
+    fn pair_sum_reference(q: &[Mr], pair: &[Mr], p: usize) -> Vec<Mr> {
+        const C: f64 = f64::EPSILON / 2.0;
+        let n = 2 * p - 1;
+        let mut acc = vec![(0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64); n];
+        for i in 0..p {
+            let (ai, wi) = (q[2 * i], q[2 * i + 1]);
+            for l in i + 1..=p {
+                let (al, wl) = (q[2 * l], q[2 * l + 1]);
+                let pc = pair[i * (p + 1) + l];
+                let (a_l, w_i, a_i, w_l) = (al.mid(), wi.mid(), ai.mid(), wl.mid());
+                let x1 = a_l * w_i;
+                let x2 = a_i * w_l;
+                let v = pc.mid() * (x1 - x2);
+                let rho1 = a_l.abs() * wi.rad() + w_i.abs() * al.rad() + al.rad() * wi.rad();
+                let rho2 = a_i.abs() * wl.rad() + w_l.abs() * ai.rad() + ai.rad() * wl.rad();
+                let nil = |x: Mr| x.mid() == 0.0 && x.rad() == 0.0;
+                let zero = (nil(al) || nil(wi)) && (nil(ai) || nil(wl));
+                let (pa, pr) = (pc.mid().abs(), pc.rad());
+                let sum = x1.abs() + x2.abs();
+                let e = &mut acc[i + l - 1];
+                e.0 += v;
+                if !zero {
+                    e.1 += pr * (1.01 * sum + rho1 + rho2) + pa * (rho1 + rho2);
+                    e.2 += pa * sum;
+                    e.3 += 10.0 * (pr + pa) + 17.0;
+                    e.4 += 1.0;
+                }
+            }
+        }
+        acc.into_iter()
+            .map(|(d, r, g, h, m)| {
+                let m_terms = (m - 1.0).max(0.0);
+                let e = (r + (3.03 + 1.03 * m_terms) * C * g + eta_multiple(h)) * (1.0 + 1.0 / 1_099_511_627_776.0);
+                Mr::from_centre_radius(d, e)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn pair_sum_lanes_are_scalar_terms() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
+        for it in 0..3000 {
+            let p = if it % 10 == 3 { rng.random_range(13..=40) } else { rng.random_range(1..=12) };
+            let mag = 2f64.powi(rng.random_range(-300..=300));
+            let pick = |rng: &mut rand_chacha::ChaCha8Rng, scale: f64| -> Mr {
+                match rng.random_range(0..10) {
+                    // exact zeros (flat runs), and zero centres with a radius
+                    0 => Mr::from_f64(0.0),
+                    1 => Mr::from_centre_radius(0.0, scale * 1e-17),
+                    _ => {
+                        let c = rng.random_range(-1.0..1.0) * scale;
+                        Mr::from_centre_radius(c, c.abs() * [0.0, 1e-30, 1e-16, 1e-3][rng.random_range(0..4)])
+                    }
+                }
+            };
+            let q: Vec<Mr> = (0..=p)
+                .flat_map(|_| {
+                    let a = pick(&mut rng, mag);
+                    let w = if rng.random_range(0..8) == 0 { pick(&mut rng, 1.0) } else { pick(&mut rng, 10.0) };
+                    [a, w]
+                })
+                .collect();
+            let pair: Vec<Mr> = if it % 2 == 0 {
+                pair_coefficients(p).to_vec()
+            } else {
+                (0..(p + 1) * (p + 1)).map(|_| pick(&mut rng, 1e3)).collect()
+            };
+            let mut got = Vec::new();
+            pair_sum_f64(&q, &pair, p, &mut got);
+            let want = pair_sum_reference(&q, &pair, p);
+            assert_eq!(got.len(), want.len());
+            for (k, (g, w)) in got.iter().zip(&want).enumerate() {
+                assert!(
+                    g.mid().to_bits() == w.mid().to_bits() && g.rad().to_bits() == w.rad().to_bits(),
+                    "p {p}, sum {k}: {g:?} != {w:?}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn pair_sum_bound_holds_exactly() {
         use crate::num::Exact;
