@@ -437,3 +437,37 @@ fn float_first_search_against_reference_and_plain_search() {
     }
     assert!(seeded > 50, "the seeding ran on {seeded} spans only");
 }
+
+/// The span filter covers a span whose Bézier points peak at an end only because C_j' is not
+/// zero there: a maximum (or minimum) exactly at a smooth knot where the curve is flat (the
+/// end point equals its neighbour, a tie, not a peak) must still be found. A rational cubic
+/// (so not the driver's lane) with a double interior knot at 1 (C^1) and P = (0.5, 0.2, 1, 1,
+/// 0.4, -1): span 0's Bézier points are (0.5, 0.2, 1, 1) (not monotone, its maximum tied at
+/// the knot: C'(1) = 0), span 1's (1, 1, 0.4, -1) (monotone), the ends 0.5 and -1. So the
+/// maximum 1 is at the knot and nowhere else a candidate; the second coordinate is the
+/// first negated (the minimum there). Fails if the filter takes a tie for a peak (span 0 is
+/// then skipped and the box ends at 0.5).
+#[test]
+fn a_flat_extremum_at_a_smooth_knot_is_found() {
+    let x = [0.5, 0.2, 1.0, 1.0, 0.4, -1.0];
+    let pts: Vec<Vec<f64>> = x.iter().map(|&v| vec![v, -v]).collect();
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0];
+    let w = vec![1.0, 2.0, 2.0, 2.0, 2.0, 1.0];
+    let c = NurbsCurve::new(3, knots, pts, Some(w)).unwrap();
+    for s in [
+        Newton::default(),
+        Newton {
+            fast_path: false,
+            ..Default::default()
+        },
+    ] {
+        let e = nurbs_box::enclose::drive_with(&s, &c, true);
+        let (x, y) = (&e.coords[0], &e.coords[1]);
+        assert_eq!((x.lo, x.hi, y.lo, y.hi), (-1.0, 1.0, -1.0, 1.0), "{e:?}");
+        assert!(x.optimal_hi && y.optimal_lo, "{e:?}");
+        assert!(
+            x.inner_hi >= 1.0 - 1e-15 && y.inner_lo <= -1.0 + 1e-15,
+            "{e:?}"
+        );
+    }
+}

@@ -1456,6 +1456,9 @@ pub(crate) struct SpanPoints {
     /// the enclosures of the first and the last point: C(u_k), and the left limit at u_{k+1}
     pub first: Interval,
     pub last: Interval,
+    /// the hull of the enclosures of the inner points b_1 .. b_{p-1} (empty: (inf, -inf))
+    pub inner_lo: f64,
+    pub inner_hi: f64,
 }
 
 impl SpanPoints {
@@ -1471,6 +1474,23 @@ impl SpanPoints {
             end(self.first)
         };
         (if sign > 0.0 { self.hi } else { -self.lo }, at)
+    }
+
+    /// Whether every inner Bézier point b_1 .. b_{p-1} lies strictly below the larger end
+    /// point (`sign` 1), or strictly above the smaller one (-1), proven by the enclosures
+    /// (always for p = 1). Then the piece's extreme on that side over the closed span is an
+    /// end value, max(b_0, b_p) (convex hull property), and each end that reaches it lies
+    /// strictly beyond its neighbour point (b_1 or b_{p-1}), so the piece's derivative there
+    /// is not zero: at C(u_k) = b_0 it points into the span away from the extreme, at b_p
+    /// out of it towards larger values (`newton`'s span filter, `Engine::coord`).
+    pub(crate) fn end_peaked(&self, sign: f64) -> bool {
+        let (f, l) = (self.first, self.last);
+        // (an empty or unbounded enclosure has an infinite end and fails)
+        if sign > 0.0 {
+            self.inner_hi < f.inf().max(l.inf())
+        } else {
+            self.inner_lo > f.sup().min(l.sup())
+        }
     }
 }
 
@@ -1489,6 +1509,8 @@ pub(crate) fn span_points(pts: &[Ddi], p: usize, j: usize, rational: bool) -> Sp
         dec: true,
         first: cartesian_point(pts, d, 0, j, rational),
         last: cartesian_point(pts, d, p, j, rational),
+        inner_lo: f64::INFINITY,
+        inner_hi: f64::NEG_INFINITY,
     };
     // (the ends as f64 pairs, [`cartesian_ends`]: never NaN, (-inf, inf) for the whole line)
     let mut prev = (f64::NEG_INFINITY, f64::INFINITY);
@@ -1500,7 +1522,12 @@ pub(crate) fn span_points(pts: &[Ddi], p: usize, j: usize, rational: bool) -> Sp
         };
         if vl == f64::NEG_INFINITY && vu == f64::INFINITY {
             (out.lo, out.hi, out.inc, out.dec) = (f64::NEG_INFINITY, f64::INFINITY, false, false);
+            (out.inner_lo, out.inner_hi) = (f64::NEG_INFINITY, f64::INFINITY);
             return out;
+        }
+        if i > 0 && i < p {
+            out.inner_lo = out.inner_lo.min(vl);
+            out.inner_hi = out.inner_hi.max(vu);
         }
         out.lo = out.lo.min(vl);
         out.hi = out.hi.max(vu);
@@ -1802,6 +1829,51 @@ impl BoxEncloser for BezierSubdivision {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `SpanPoints::end_peaked` claims a side only where every inner point's enclosure lies
+    /// strictly beyond the larger (smaller) end's: exact points with a peak at either end, a
+    /// tie with an inner point (not a peak: C' is zero at that end), an inner peak, points
+    /// enclosed an ulp wide that overlap the end's enclosure (not proven), and p = 1 (no inner
+    /// point: always). Fails with a non-strict comparison, or with the other end of an
+    /// enclosure.
+    #[test]
+    fn end_peaked_needs_a_proven_strict_peak() {
+        let pts = |v: &[(f64, f64)]| -> Vec<Ddi> {
+            // (centre, radius): one coordinate, not rational
+            v.iter().map(|&(x, r)| Ddi::from_parts(x, 0.0, r)).collect()
+        };
+        let sp = |v: &[(f64, f64)]| span_points(&pts(v), v.len() - 1, 0, false);
+        let e = |x: f64| (x, 0.0);
+        // peak at the right end, the minimum inside
+        let s = sp(&[e(0.3), e(0.5), e(0.2), e(1.0)]);
+        assert!(s.end_peaked(1.0) && !s.end_peaked(-1.0));
+        // peak at the left end; minimum at the right end
+        let s = sp(&[e(2.0), e(1.0), e(1.5), e(-1.0)]);
+        assert!(s.end_peaked(1.0) && s.end_peaked(-1.0));
+        // a tie of the end with its neighbour is no peak (either side)
+        let s = sp(&[e(0.0), e(1.0), e(1.0)]);
+        assert!(!s.end_peaked(1.0) && s.end_peaked(-1.0));
+        let s = sp(&[e(0.0), e(0.0), e(1.0)]);
+        assert!(s.end_peaked(1.0) && !s.end_peaked(-1.0));
+        // an inner peak
+        let s = sp(&[e(0.0), e(3.0), e(1.0)]);
+        assert!(!s.end_peaked(1.0));
+        // enclosures that overlap: the inner point may reach the end's value
+        let u = f64::EPSILON;
+        let s = sp(&[(0.0, 0.0), (1.0 - u, u), (1.0, 0.0)]);
+        assert!(!s.end_peaked(1.0));
+        let s = sp(&[(0.0, 0.0), (1.0 - 4.0 * u, u), (1.0, 4.0 * u)]);
+        assert!(!s.end_peaked(1.0));
+        let s = sp(&[(0.0, 0.0), (1.0 - 8.0 * u, u), (1.0, u)]);
+        assert!(s.end_peaked(1.0));
+        let s = sp(&[(1.0, u), (1.0 - 8.0 * u, u), (0.0, 0.0)]);
+        assert!(s.end_peaked(1.0));
+        let s = sp(&[(-1.0, u), (-1.0 + 2.0 * u, u), (0.0, 0.0)]);
+        assert!(!s.end_peaked(-1.0));
+        // p = 1: no inner point
+        let s = sp(&[e(0.0), e(1.0)]);
+        assert!(s.end_peaked(1.0) && s.end_peaked(-1.0));
+    }
 
     /// The span filter's end pairs are the ends of the intervals the filter built before:
     /// the `Ddi` enclosure's interval, and for a rational point the quotient by the weight's

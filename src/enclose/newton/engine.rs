@@ -730,7 +730,11 @@ impl<'a> Engine<'a> {
     /// Why nothing is missed (for the max; the min is symmetric). Let u* be a maximizer. If it
     /// is a domain end or non-differentiable knot, it is a candidate. Otherwise C_j is C^1 at
     /// u* and C_j'(u*) = 0. If u* lies in a closed span that was searched, a kept Newton box
-    /// contains it; if in a covered span, the box contains the span's control hull. Otherwise
+    /// contains it; if in a covered span whose control hull lies between values the curve
+    /// attains, the extremes are elsewhere; a span covered because its Bézier points peak at
+    /// an end on each side they leave open (`SpanPoints::end_peaked`) holds no maximizer
+    /// but a domain end or a non-differentiable knot (the piece's maximum over the span is at
+    /// such an end, where C_j' is not zero: a smooth knot there is no maximizer). Otherwise
     /// u* lies in a run of monotone spans: moving u* right through non-decreasing spans and
     /// left through non-increasing ones keeps it a maximizer, and it ends at a run end
     /// (handled above) or at a knot with a non-decreasing span on the left and a span on the
@@ -835,6 +839,24 @@ impl<'a> Engine<'a> {
                 self.poly = None;
                 if bp && self.s.pretest && (inc || dec) {
                     status[si] = Status::Mono { inc, dec };
+                    continue;
+                }
+                // A span that the Bézier points leave open only on sides where they peak at
+                // an end (`SpanPoints::end_peaked`): on such a side the piece's extreme over
+                // the closed span is an end value, at an end where the piece's derivative is
+                // not zero. At a domain end or a non-differentiable knot that value is a
+                // candidate already (for a jump at u_{k+1}, b_p is the left limit, also one);
+                // at a smooth knot (multiplicity < p, C^1) C_j' is not zero there, so the
+                // neighbouring span holds larger (smaller) values and no extreme lies in this
+                // span. A side the prune test's values attained enclose needs nothing either.
+                // So the span holds no extreme but at candidates: covered, as in the argument
+                // above, without its Bernstein form.
+                if mode == SpanMode::Prune
+                    && (self.s.fast_path || bp)
+                    && (bhi <= cheap_hi || sp.end_peaked(1.0))
+                    && (blo >= cheap_lo || sp.end_peaked(-1.0))
+                {
+                    self.stats.fast_exits += 1;
                     continue;
                 }
                 // (built only for a span the Bézier points leave open: O(p^2) per coordinate)
