@@ -313,6 +313,19 @@ impl<'a> TightEval<'a> {
         let hs = self.hom.get_or_init(|| HSpline::from_curve(self.curve));
         let kn = self.curve.knots();
         let n = self.curve.num_points() - 1;
+        let p = self.curve.degree();
+        if (k + 1 - p..=k).all(|i| kn[i] == kn[k]) && (k + 1..=k + p).all(|i| kn[i] == kn[k + 1]) {
+            // A span already in Bézier form (u_{k-p+1} = ... = u_k, u_{k+1} = ... = u_{k+p}):
+            // on it the basis functions N_{k-p,p} .. N_{k,p} are the Bernstein polynomials of
+            // degree p (NURBS Book sec. 2.2), so its Bézier points are its homogeneous control
+            // points themselves, with their enclosures; the sweep would insert no knot and
+            // return them unchanged (a single clamped segment, a piecewise Bézier spline).
+            let h = hs.hdim();
+            let mut pts = hs.pts[(k - p) * h..(k + 1) * h].to_vec();
+            crate::spline::fraction_free::snap_exact_ends(self.curve, k, &mut pts);
+            let _ = cell(&self.spans[k]).set(pts);
+            return cell(&self.spans[k]).get().expect("just set");
+        }
         // (the run of empty slots from k: non-empty spans only, stopping at a filled one)
         let (mut count, mut i) = (1, k + 1);
         while count < SWEEP_BLOCK && i <= n && cell(&self.spans[i]).get().is_none() {
@@ -1320,6 +1333,70 @@ pub(crate) mod tests {
             }
         }
         assert!(checked > 1000, "{checked}");
+    }
+
+    /// A span already in Bézier form (its end knots of multiplicity >= p) takes its
+    /// homogeneous control points as its Bézier points without a sweep (`TightEval::swept`):
+    /// on piecewise Bézier splines of degree 1 to 12 (interior knots of multiplicity p, some
+    /// of them lower, so that both routes run), rational or not, every span's points from
+    /// the sweeping evaluator meet the `Ddi` extraction's (`HSpline::bezier_segment`, an
+    /// independent route: both enclose the exact points), value by value, and a span in
+    /// Bézier form gets exact points. Fails with the wrong block of control points or a span
+    /// taken for Bézier form that is not.
+    #[test]
+    fn spans_in_bezier_form_are_their_control_points() {
+        let mut rng = ChaCha8Rng::seed_from_u64(47);
+        let (mut shortcut, mut swept) = (0, 0);
+        for it in 0..200 {
+            let p = 1 + it % 12;
+            let dim = 1 + it % 3;
+            let pieces = rng.random_range(1..=4usize);
+            let mut knots = vec![0.0; p + 1];
+            for i in 1..pieces {
+                // (multiplicity p, or lower for some knots)
+                let m = if rng.random_bool(0.7) {
+                    p
+                } else {
+                    rng.random_range(1..=p)
+                };
+                knots.extend(std::iter::repeat_n(i as f64 * 0.75, m));
+            }
+            knots.extend(std::iter::repeat_n(pieces as f64 * 0.75, p + 1));
+            let n = knots.len() - p - 1;
+            let pts: Vec<Vec<f64>> = (0..n)
+                .map(|_| (0..dim).map(|_| rng.random_range(-4.0..4.0)).collect())
+                .collect();
+            let w = rng
+                .random_bool(0.5)
+                .then(|| (0..n).map(|_| rng.random_range(0.25..4.0)).collect());
+            let c = NurbsCurve::new(p, knots, pts, w).unwrap();
+            let t = TightEval::sweeping(&c);
+            let hs = HSpline::<Ddi>::from_curve(&c);
+            let kn = c.knots();
+            for k in p..n {
+                if kn[k] == kn[k + 1] {
+                    continue;
+                }
+                let bez = (k + 1 - p..=k).all(|i| kn[i] == kn[k])
+                    && (k + 1..=k + p).all(|i| kn[i] == kn[k + 1]);
+                let got = t.bezier_points(k);
+                let want = hs.bezier_segment(k).pts;
+                assert_eq!(got.len(), want.len());
+                for (i, (g, w)) in got.iter().zip(&want).enumerate() {
+                    let meet = !g.to_interval().intersection(w.to_interval()).is_empty();
+                    assert!(meet, "{c:?} span {k} value {i}: {g:?} vs {w:?}");
+                    if bez {
+                        assert_eq!(g.rad(), 0.0, "{c:?} span {k} value {i}: {g:?}");
+                    }
+                }
+                if bez {
+                    shortcut += 1;
+                } else {
+                    swept += 1;
+                }
+            }
+        }
+        assert!(shortcut > 100 && swept > 20, "{shortcut} {swept}");
     }
 
     #[test]
