@@ -5,7 +5,7 @@
 //! curve parameter u ([`SpanPoly::to_u`]).
 
 use super::param::{midpoint, T, U};
-use crate::num::ddi::{dist_up, eta_multiple, up, Ddi};
+use crate::num::ddi::{dist_up, eta_multiple, up, Ddi, ETA16, U1};
 use crate::num::mr::Mr;
 use crate::num::{iv, pool, Scalar};
 use crate::spline::bezier::{bernstein_value_s, de_casteljau_levels};
@@ -180,21 +180,8 @@ impl SpanPoly {
             rational: false,
             pts,
         };
-        // hull of F'' over [0, 1]: its Bernstein coefficients (n - 1)(F'_{i+1} - F'_i) (the
-        // ends of their enclosures as plain f64, `Mr::bounds`, min and max without an inari
-        // call per coefficient)
-        let d2 = if dco.len() < 2 {
-            iv::point(0.0)
-        } else {
-            let nm = Mr::from_usize(dco.len() - 1);
-            let (lo, hi) = dco.windows(2).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), w| {
-                let (l, h) = (nm * (w[1] - w[0])).bounds();
-                (lo.min(l), hi.max(h))
-            });
-            Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
-        };
-        let mag = |v: &[Mr]| v.iter().fold(0.0f64, |m, x| m.max(x.mag()));
-        let (fmax, dfmax) = (mag(&fco), mag(&dco));
+        let d2 = second_hull(&dco);
+        let (fmax, dfmax) = (mag_bound(&fco), mag_bound(&dco));
         let wmin = if rational {
             seg.pts
                 .iter()
@@ -791,6 +778,57 @@ impl SpanPoly {
         });
         (lo >= 0.0, hi <= 0.0)
     }
+}
+
+/// The hull of F'' over [0, 1] from the Bernstein coefficients D'_i of F' (m of them, each
+/// within its radius r_i of its centre c_i): the coefficients of F'' are X_i = (m - 1)
+/// (D'_{i+1} - D'_i) (NURBS Book eq. 1.10, the hodograph), whose hull contains F'' (convex
+/// hull property), taken in plain f64 with one a-priori bound. With nm = m - 1 (an exact small
+/// integer), s_i = fl(c_{i+1} - c_i) and v_i = fl(nm s_i), |X_i - v_i| is at most
+/// nm (r_{i+1} + r_i) plus nm |s_i - (c_{i+1} - c_i)| plus |nm s_i - v_i|, so at most
+/// 2 nm R + nm U1 |s_i| + U1 |v_i| + eta; with nm |s_i| <= (1 + U1) |v_i| + eta,
+/// |X_i - v_i| <= E = 2 nm R + 4 U1 V + 16 eta (R, V
+/// the largest r_i and |v_i|), three terms of Lemma B (`up`). The hull [min v_i - E,
+/// max v_i + E] rounded outward one step holds every X_i for every choice of the D'_i in
+/// their enclosures; the whole line where something is not finite, the point 0 for fewer
+/// than two coefficients (F' constant; an unknown F' is one ENTIRE coefficient, and every use
+/// of this hull adds it to an F'(m) that is then ENTIRE too).
+fn second_hull(dco: &[Mr]) -> Interval {
+    if dco.len() < 2 {
+        return iv::point(0.0);
+    }
+    let nm = (dco.len() - 1) as f64;
+    let (mut lo, mut hi, mut rmax) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
+    let mut finite = true;
+    for w in dco.windows(2) {
+        let v = nm * (w[1].mid() - w[0].mid());
+        finite &= v.is_finite();
+        lo = lo.min(v);
+        hi = hi.max(v);
+        rmax = rmax.max(w[0].rad()).max(w[1].rad());
+    }
+    let e = up(nm * (rmax + rmax) + 4.0 * U1 * (-lo).max(hi) + ETA16);
+    if !(finite && e.is_finite()) {
+        return Interval::ENTIRE;
+    }
+    Interval::try_from(((lo - e).next_down(), (hi + e).next_up())).unwrap_or(Interval::ENTIRE)
+}
+
+/// The largest [`Mr::mag`] of `v` (at least 0): Mr::mag is max(-lo, hi) of [`Mr::bounds`],
+/// (next_down(fl(c - r)), next_up(fl(c + r))) for r > 0, which is next_up(fl(|c| + r)) since
+/// round to nearest is odd and monotone, and |c| for r = 0; next_up is monotone, so the
+/// largest of those is next_up of the largest |c| + r, with the exact ones beside: the same
+/// value, without two steps per coefficient.
+fn mag_bound(v: &[Mr]) -> f64 {
+    let (mut exact, mut wide) = (0.0f64, f64::NEG_INFINITY);
+    for x in v {
+        if x.rad() == 0.0 {
+            exact = exact.max(x.mid().abs());
+        } else {
+            wide = wide.max(x.mid().abs() + x.rad());
+        }
+    }
+    exact.max(wide.next_up())
 }
 
 /// de Casteljau's split at 1/2 (NURBS Book A1.5) of the f64 Bernstein coefficients `b`
@@ -2169,6 +2207,75 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `second_hull` holds F'''s exact Bernstein coefficients (m - 1)(D'_{i+1} - D'_i) for
+    /// the corners D'_i = c_i ± r_i of the enclosures (exact rational arithmetic), on random,
+    /// cancelling, exact (all of them, in a fifth of the cases) and wide coefficients of
+    /// magnitudes 2^±300 (tiny ones too), and is
+    /// the whole line where something is not finite; `mag_bound` is the largest `Mr::mag`,
+    /// bit for bit. Fails without the radii's term, or with the largest magnitude not
+    /// stepped up. (The rounding's term and the outward step are margins a random test does
+    /// not reach: the f64 hull errs by at most about 1.5 ulps there.)
+    #[test]
+    fn second_hull_and_mag_bound_hold() {
+        use crate::num::Exact;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(53);
+        for it in 0..3000 {
+            let m = rng.random_range(1..=24usize);
+            let mag = 2f64.powi(rng.random_range(-300..=300));
+            let base = rng.random_range(-1.0..1.0) * mag;
+            let co: Vec<Mr> = (0..m)
+                .map(|_| {
+                    let c = match it % 4 {
+                        // nearly equal: the differences cancel
+                        0 => base * (1.0 + rng.random_range(-1e-12..1e-12)),
+                        1 => rng.random_range(-8.0f64..8.0).round() * mag,
+                        _ => rng.random_range(-1.0..1.0) * mag,
+                    };
+                    let r = match rng.random_range(0..4) {
+                        // (every fifth case exact centres only: the rounding's term alone)
+                        _ if it % 5 == 4 => 0.0,
+                        0 => 0.0,
+                        1 => c.abs() * 1e-16,
+                        2 => c.abs() * rng.random_range(0.0..1e-3),
+                        _ => f64::from_bits(rng.random_range(1..64)),
+                    };
+                    Mr::from_centre_radius(c, r)
+                })
+                .collect();
+            let want = co.iter().fold(0.0f64, |a, x| a.max(x.mag()));
+            assert_eq!(mag_bound(&co).to_bits(), want.to_bits(), "{co:?}");
+            let h = second_hull(&co);
+            if m < 2 {
+                assert_eq!((h.inf(), h.sup()), (0.0, 0.0));
+                continue;
+            }
+            let nm = Exact::of((m - 1) as f64);
+            for _ in 0..4 {
+                let d: Vec<Exact> = co
+                    .iter()
+                    .map(|x| {
+                        let s = [-1.0, 0.0, 1.0][rng.random_range(0..3)];
+                        Exact::of(x.mid()) + Exact::of(s) * Exact::of(x.rad())
+                    })
+                    .collect();
+                for w in d.windows(2) {
+                    let x = nm.clone() * (w[1].clone() - w[0].clone());
+                    assert!(
+                        !x.gt_f64(h.sup()) && !(Exact::of(0.0) - x).gt_f64(-h.inf()),
+                        "{co:?}: {h:?}"
+                    );
+                }
+            }
+        }
+        let mut co = vec![Mr::from_f64(1.0), Mr::from_f64(2.0)];
+        co.push(Mr::ENTIRE);
+        assert!(second_hull(&co).is_entire());
+        co[2] = Mr::from_f64(f64::MAX);
+        co[0] = Mr::from_f64(-f64::MAX);
+        assert!(second_hull(&co).is_entire());
     }
 
     #[test]
