@@ -4,6 +4,7 @@
 use nurbs_box::enclose::{
     BezierSubdivision, BoxEncloser, ControlHull, DerivForm, Newton, SearchRegion,
 };
+use nurbs_box::num::ulp;
 use nurbs_box::testkit::validate::{check_containment, dense_params};
 use nurbs_box::{Enclosure, NurbsCurve};
 use proptest::prelude::*;
@@ -469,5 +470,76 @@ fn a_flat_extremum_at_a_smooth_knot_is_found() {
             x.inner_hi >= 1.0 - 1e-15 && y.inner_lo <= -1.0 + 1e-15,
             "{e:?}"
         );
+    }
+}
+
+/// An adversary for the span filter that covers spans peaking at an end
+/// (`SpanPoints::end_peaked`): curves on a small integer grid (control values -3..3, weights
+/// 1/2, 1 or 2, integer knots with interior multiplicities 1..p + 1), so that Bézier points tie
+/// exactly, extrema sit exactly at knots (smooth and not), spans are flat, and jumps peak
+/// at their unattained limits; degrees 2..6, one or two coordinates.
+fn grid_curve(r: &mut ChaCha8Rng) -> NurbsCurve {
+    loop {
+        let p = r.random_range(2..=6usize);
+        let dim = r.random_range(1..=2usize);
+        let mut knots = vec![0.0; p + 1];
+        let inner = r.random_range(1..=4usize);
+        for i in 1..=inner {
+            let m = r.random_range(1..=p + 1);
+            knots.extend(std::iter::repeat_n(i as f64, m));
+        }
+        knots.extend(std::iter::repeat_n((inner + 1) as f64, p + 1));
+        let n = knots.len() - p - 1;
+        let pts: Vec<Vec<f64>> = (0..n)
+            .map(|_| (0..dim).map(|_| r.random_range(-3..=3) as f64).collect())
+            .collect();
+        let w = r.random_bool(0.5).then(|| {
+            (0..n)
+                .map(|_| [0.5, 1.0, 2.0][r.random_range(0..3)])
+                .collect()
+        });
+        if let Ok(c) = NurbsCurve::new(p, knots, pts, w) {
+            return c;
+        }
+    }
+}
+
+/// `newton` and `bezier` on [`grid_curve`]s: every box contains the curve at dense parameters
+/// (interval de Boor), the inner bounds lie inside the outer ones, and both strategies give
+/// the same bounds (each is within an ulp of the exact extremum on such data, and certified).
+#[test]
+fn grid_curves_with_ties_and_knot_extrema_are_sound() {
+    let mut r = ChaCha8Rng::seed_from_u64(2612);
+    let (nw, bz) = (Newton::default(), BezierSubdivision::default());
+    for i in 0..400 {
+        let c = grid_curve(&mut r);
+        let en = nw.enclose(&c);
+        let eb = bz.enclose(&c);
+        check_sound(&c, &en)
+            .unwrap_or_else(|e| panic!("#{i} {e}\n{}", nurbs_box::curve_to_json(&c)));
+        check_sound(&c, &eb)
+            .unwrap_or_else(|e| panic!("#{i} {e}\n{}", nurbs_box::curve_to_json(&c)));
+        for (a, b) in en.coords.iter().zip(&eb.coords) {
+            assert!(
+                (a.lo - b.lo).abs() <= 2.0 * ulp(a.lo.abs().max(1.0))
+                    && (a.hi - b.hi).abs() <= 2.0 * ulp(a.hi.abs().max(1.0)),
+                "#{i}: newton {:?} bezier {:?}\n{}",
+                (a.lo, a.hi),
+                (b.lo, b.hi),
+                nurbs_box::curve_to_json(&c)
+            );
+        }
+    }
+}
+
+/// [`grid_curve`]s against the 256-bit reference box: every bound of `newton` on the safe side
+/// of the exact extremum, its inner bounds reached and its certificates MPFR's rounding.
+#[cfg(feature = "mpfr")]
+#[test]
+fn grid_curves_against_reference() {
+    let mut r = ChaCha8Rng::seed_from_u64(2613);
+    for i in 0..150 {
+        let c = grid_curve(&mut r);
+        common::check_reference(&format!("grid #{i}"), &c, &[Newton::default().enclose(&c)]);
     }
 }
