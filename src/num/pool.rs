@@ -2,8 +2,9 @@
 //! keeps its heap block for the next span or curve on the same thread, so a batch does not
 //! pay one allocation and one free per buffer, span and coordinate (the per-span Bernstein
 //! forms, `enclose::newton::bernstein::SpanPoly`, take four each; the Newton engine's span
-//! list and scratch vectors, eight per curve). Only capacity is shared:
-//! a taken vector is always empty, so no value of one use can reach another.
+//! list and scratch vectors, eight per curve; the tight evaluator's per-span slots, one per
+//! curve). Only capacity is shared: a vector is emptied when it is given back and a taken one
+//! is always empty, so no value of one use can reach another.
 
 use std::cell::RefCell;
 
@@ -17,7 +18,7 @@ const KEEP: usize = 16;
 const KEEP_CAPACITY: usize = 1024;
 
 /// Element types with a per-thread pool of vectors.
-pub(crate) trait Pooled: Copy + 'static {
+pub(crate) trait Pooled: 'static {
     /// Runs `f` with this thread's pool of the type.
     fn with_pool<R>(f: impl FnOnce(&RefCell<Vec<Vec<Self>>>) -> R) -> R;
 }
@@ -62,12 +63,13 @@ pub(crate) fn take<T: Pooled>(cap: usize) -> Vec<T> {
     }
 }
 
-/// Hands `v` back to this thread's pool (its values are dropped by the next [`take`]; they
-/// are `Copy`), or frees it where the pool is full or `v` is large or has no heap block.
-pub(crate) fn give<T: Pooled>(v: Vec<T>) {
+/// Hands `v` back to this thread's pool, its values dropped here (nothing to do for `Copy`
+/// elements), or frees it where the pool is full or `v` is large or has no heap block.
+pub(crate) fn give<T: Pooled>(mut v: Vec<T>) {
     if v.capacity() == 0 || v.capacity() > KEEP_CAPACITY {
         return;
     }
+    v.clear();
     T::with_pool(|p| {
         if let Ok(mut p) = p.try_borrow_mut() {
             if p.len() < KEEP {
@@ -81,6 +83,30 @@ pub(crate) fn give<T: Pooled>(v: Vec<T>) {
 mod tests {
     use super::*;
     use crate::num::{Mr, Scalar};
+
+    /// A value that counts its live copies (through the `Rc`): not `Copy`, with a destructor.
+    struct Tracked(std::rc::Rc<()>);
+    pooled!(Tracked => TRACKED_POOL);
+
+    /// A vector of values with destructors given back drops them at once (nothing of one use
+    /// stays alive in the pool), and its block is reused empty.
+    #[test]
+    fn a_given_vector_drops_its_values() {
+        let live = std::rc::Rc::new(());
+        let mut v: Vec<Tracked> = take(4);
+        v.extend((0..3).map(|_| Tracked(live.clone())));
+        assert_eq!(std::rc::Rc::strong_count(&live), 4);
+        let ptr = v.as_ptr();
+        give(v);
+        assert_eq!(
+            std::rc::Rc::strong_count(&live),
+            1,
+            "dropped when given back"
+        );
+        let w: Vec<Tracked> = take(2);
+        assert!(w.is_empty());
+        assert_eq!(w.as_ptr(), ptr);
+    }
 
     #[test]
     fn a_taken_vector_is_empty_and_reuses_a_given_block() {

@@ -42,7 +42,7 @@
 //! `coord_over` on a small box ~150 ns, the lazily built span data ~600 ns once per curve.
 
 use crate::num::ddi::{dist_up, up, Ddi};
-use crate::num::{iv, Scalar};
+use crate::num::{iv, pool, Scalar};
 use crate::spline::bspline::HSpline;
 use crate::spline::curve::NurbsCurve;
 use crate::spline::eval::CurveEval;
@@ -133,6 +133,15 @@ pub struct TightEval<'a> {
     /// whether [`TightEval::bezier_points`] extracts blocks of spans ([`TightEval::sweeping`])
     sweep: bool,
 }
+
+/// The slots go back to this thread's pool (emptied there) for the next curve.
+impl Drop for TightEval<'_> {
+    fn drop(&mut self) {
+        pool::give(std::mem::take(&mut self.spans));
+    }
+}
+
+pool::pooled!(SpanSlot => SPAN_SLOT_POOL);
 
 /// Horner's rule in `Ddi`: the shared [`crate::num::horner`] (whose `Ddi` step is the fused
 /// [`Ddi::mul_add`]), with the point or set `s` by value.
@@ -245,11 +254,14 @@ impl Taylor {
 impl<'a> TightEval<'a> {
     /// Build for a curve (clones it; everything else is computed lazily on first use).
     pub fn new(curve: &'a NurbsCurve) -> Self {
+        // (the slots' vector from this thread's pool, `num::pool`, handed back on drop: at
+        // 128 bytes a slot it is a large block for the allocator, whose requests of that size
+        // first consolidate its free lists)
+        let mut spans = pool::take(curve.num_points());
+        spans.resize_with(curve.num_points(), SpanSlot::default);
         TightEval {
             curve,
-            spans: (0..curve.num_points())
-                .map(|_| SpanSlot::default())
-                .collect(),
+            spans,
             hom: OnceLock::new(),
             generic: OnceLock::new(),
             sweep: false,
@@ -261,10 +273,9 @@ impl<'a> TightEval<'a> {
     /// [`SWEEP_BLOCK`] spans at once by one sweep of Boehm insertion (NURBS Book A5.6), about
     /// half the per-span cost; for a caller that needs a few spans it would be wasted work.
     pub fn sweeping(curve: &'a NurbsCurve) -> Self {
-        TightEval {
-            sweep: true,
-            ..TightEval::new(curve)
-        }
+        let mut t = TightEval::new(curve);
+        t.sweep = true;
+        t
     }
 
     /// The curve this evaluator was built for.
