@@ -252,8 +252,10 @@ fn main() {
     let batch_ref = batch.as_slice();
     let run = |name: &str| {
         let st = [strategy_by_name(name, None).expect("registered")];
+        // (grouped by kind of curve as the command line does: unless `hull` is alone)
         let opts = nurbs_box::io::batch::StreamOptions {
             threads: 1,
+            group: nurbs_box::io::batch::group_for(&st),
             ..Default::default()
         };
         move || {

@@ -3,7 +3,7 @@
 use crate::{default_strategy, run_stream, Fatal, InputArgs, Outcome};
 use clap::Args;
 use nurbs_box::enclose::{strategy_by_name, BoxEncloser, STRATEGY_NAMES};
-use nurbs_box::io::batch::{enclose_shape_records, SurfaceStrategies};
+use nurbs_box::io::batch::{enclose_shape_records, group_for, SurfaceStrategies};
 use nurbs_box::surface::{surface_strategy_by_name, SURFACE_STRATEGY_NAMES};
 
 #[derive(Args, Debug)]
@@ -68,7 +68,8 @@ pub(crate) fn run(a: EncloseArgs) -> Result<Outcome, Fatal> {
     let timings = a.timings;
     // the strategies read the clock only when asked (it costs more than a cubic's box)
     nurbs_box::enclose::set_timing(timings);
-    run_stream(&a.input, |index, shape, buf| {
+    // each chunk grouped by kind of curve unless `hull` is the only strategy (`group_for`)
+    run_stream(&a.input, group_for(&strategies), |index, shape, buf| {
         enclose_shape_records(index, shape, &strategies, &surfaces, timings, buf)
     })
 }

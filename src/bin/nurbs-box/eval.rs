@@ -59,7 +59,7 @@ pub(crate) fn run(a: EvalArgs) -> Result<Outcome, Fatal> {
             )))
         }
     };
-    run_stream(&a.input, |index, shape, buf| match shape {
+    run_stream(&a.input, false, |index, shape, buf| match shape {
         Ok(Shape::Curve(c)) => eval_curve(index, &c, &params, k, buf),
         Ok(Shape::Surface(s)) => eval_surface(index, &s, &params, (k, l), buf),
         Err(e) => {

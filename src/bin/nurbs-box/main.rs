@@ -138,12 +138,15 @@ pub(crate) fn open_input(path: &PathBuf) -> Result<(Box<dyn Read + Send>, Option
 }
 
 /// Run `work` on every curve of the input in parallel, writing to stdout in input order.
-pub(crate) fn run_stream<F>(args: &InputArgs, work: F) -> Result<Outcome, Fatal>
+/// `group`: process each chunk grouped by kind of curve (`StreamOptions::group`; the output
+/// order is the input order either way).
+pub(crate) fn run_stream<F>(args: &InputArgs, group: bool, work: F) -> Result<Outcome, Fatal>
 where
     F: Fn(usize, Result<Shape, InputError>, &mut Vec<u8>) -> bool + Sync,
 {
     let (input, total_bytes) = open_input(&args.input)?;
     let opts = StreamOptions {
+        group,
         threads: args.threads,
         progress: !args.no_progress,
         total_bytes,
