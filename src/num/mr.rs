@@ -126,6 +126,33 @@ impl Mr {
         Mr::checked(c, r)
     }
 
+    /// An enclosure of the rational num / den (integers, den > 0; `None` for den = 0): the
+    /// quotient q = fl(fl(num) / fl(den)) of the integers rounded to nearest (Rust's integer
+    /// to float conversion). Both below 2^53 (exact as f64): q is the correctly rounded
+    /// quotient, |q - num/den| <= u |num/den| <= U1 |q| (no underflow: q >= 1/den >= 2^-53),
+    /// and exact (radius 0) where the FMA residual num - q den is 0. Otherwise each conversion
+    /// and the division round once: |q - num/den| <= ((1 + u)^2 / (1 - u) - 1) |num/den|
+    /// <= 4 U1 |q| (as in the f64 knot ratio of the `Scalar` impl below; num, den < 2^128, so
+    /// no overflow and q >= 2^-128 no underflow). The radius is rounded up (Lemma B).
+    pub(crate) fn ratio(num: u128, den: u128) -> Option<Mr> {
+        if den == 0 {
+            return None;
+        }
+        if num == 0 {
+            return Some(Mr::checked(0.0, 0.0));
+        }
+        const EXACT: u128 = 1 << 53;
+        let (n, d) = (num as f64, den as f64);
+        let q = n / d;
+        if num <= EXACT && den <= EXACT {
+            if (-q).mul_add(d, n) == 0.0 {
+                return Some(Mr::checked(q, 0.0));
+            }
+            return Some(Mr::checked(q, up(U1 * q)));
+        }
+        Some(Mr::checked(q, up(4.0 * U1 * q)))
+    }
+
     /// Centre.
     #[inline]
     pub fn mid(&self) -> f64 {
@@ -429,6 +456,55 @@ mod tests {
             inexact += (z.r > 0.0) as usize;
         }
         assert!(inexact > 10_000, "only {inexact} inexact ratios checked");
+    }
+
+    /// `Mr::ratio` encloses num / den exactly (rationals), on random integers of every size
+    /// up to u128 (both below 2^53: one rounding; above: three), quotients that are exact
+    /// (radius 0 only then), powers of two and neighbours of 2^53; den = 0 gives `None`.
+    #[test]
+    fn ratio_encloses_integer_quotients() {
+        use super::Mr;
+        use crate::num::exact::Exact;
+        use num_bigint::BigInt;
+        use num_rational::BigRational;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(13);
+        let (mut exact, mut big) = (0, 0);
+        assert!(Mr::ratio(5, 0).is_none());
+        for k in 0..20_000 {
+            let bits = |r: &mut rand_chacha::ChaCha8Rng| r.random_range(1..=127u32);
+            let mut int = |r: &mut rand_chacha::ChaCha8Rng| -> u128 {
+                let b = bits(r);
+                r.random::<u128>() >> (128 - b)
+            };
+            let (mut num, mut den) = (int(&mut rng), int(&mut rng).max(1));
+            match k % 5 {
+                0 => num = den.saturating_mul(rng.random_range(1..1000)),
+                1 => (num, den) = ((1 << 53) + rng.random_range(0..3u128), (1 << 53) - 1),
+                2 => den = 1 << rng.random_range(0..100),
+                _ => {}
+            }
+            let z = Mr::ratio(num, den).unwrap();
+            let want = Exact::from_ratio(BigRational::new(BigInt::from(num), BigInt::from(den)));
+            let off = want - Exact::of(z.c);
+            assert_ne!(
+                off.cmp_f64(z.r),
+                Some(std::cmp::Ordering::Greater),
+                "{num} / {den}"
+            );
+            assert_ne!(
+                off.cmp_f64(-z.r),
+                Some(std::cmp::Ordering::Less),
+                "{num} / {den}"
+            );
+            if z.r == 0.0 {
+                assert_eq!(off.cmp_f64(0.0), Some(std::cmp::Ordering::Equal));
+                exact += 1;
+            }
+            big += usize::from(num > 1 << 53 || den > 1 << 53);
+            assert!(z.r <= 4.01 * crate::num::ulp(z.c), "{num} / {den}: wide");
+        }
+        assert!(exact > 2000 && big > 5000, "{exact} {big}");
     }
 
     #[test]

@@ -1668,8 +1668,44 @@ pub(crate) fn pair_coefficients(p: usize) -> std::rc::Rc<[Mr]> {
     })
 }
 
-/// [`pair_coefficients`], computed.
+/// The pair coefficients from exact integers: the binomial rows by the multiplicative
+/// recurrence C(n, k + 1) = C(n, k) (n - k) / (k + 1) in u128 (the division exact:
+/// C(n, k) (n - k) = C(n, k + 1) (k + 1)), the numerators (l - i) C(p, i) C(p, l) exact too,
+/// each quotient enclosed once ([`Mr::ratio`]: one correctly rounded division where both
+/// integers are below 2^53) instead of a chain of `Mr` products and a quotient, each
+/// rounded. `None` where a product would overflow u128.
+fn pair_coefficients_exact(p: usize) -> Option<Vec<Mr>> {
+    let row = |n: usize| -> Option<Vec<u128>> {
+        let mut r = Vec::with_capacity(n + 1);
+        let mut c: u128 = 1;
+        for k in 0..=n {
+            r.push(c);
+            if k < n {
+                c = c.checked_mul((n - k) as u128)? / (k as u128 + 1);
+            }
+        }
+        Some(r)
+    };
+    let (bp, b2) = (row(p)?, row((2 * p).checked_sub(2)?)?);
+    let mut pair = vec![Mr::from_f64(0.0); (p + 1) * (p + 1)];
+    for i in 0..p {
+        for l in i + 1..=p {
+            let num = ((l - i) as u128).checked_mul(bp[i])?.checked_mul(bp[l])?;
+            pair[i * (p + 1) + l] = Mr::ratio(num, b2[i + l - 1])?;
+        }
+    }
+    Some(pair)
+}
+
+/// [`pair_coefficients`], computed: from exact integers where they fit in u128 (degrees up
+/// to 63, [`pair_coefficients_exact`]), else with binomials in `Mr`.
 fn pair_coefficients_uncached(p: usize) -> Vec<Mr> {
+    pair_coefficients_exact(p).unwrap_or_else(|| pair_coefficients_fallback(p))
+}
+
+/// The pair coefficients with the binomials in `Mr`: exact integers while below 2^53, beyond
+/// by Pascal's rule (the degrees whose integers overflow u128).
+fn pair_coefficients_fallback(p: usize) -> Vec<Mr> {
     // (the exact integers while they are below 2^53, which Pascal's rule in `Mr` gives too,
     // exactly; beyond, Pascal's rule on one row in place, from the right: the same sums as
     // row by row)
@@ -1753,8 +1789,9 @@ mod tests {
     }
 
     /// The cached pair coefficients enclose the exact rationals (l - i) C(p, i) C(p, l) /
-    /// C(2p - 2, i + l - 1) for i < l, degrees 1..=40: binomials below 2^53 as exact integers,
-    /// above (2p - 2 > 56) by Pascal's rule in `Mr`.
+    /// C(2p - 2, i + l - 1) for i < l, degrees 1..=40 and some up to 80: from exact u128
+    /// integers while they fit (p <= 63), beyond by the binomials in `Mr`; both routes where
+    /// both run, the exact one within four ulps of the quotient.
     #[test]
     fn pair_coefficients_enclose_the_exact_ratios() {
         use num_bigint::BigInt;
@@ -1762,24 +1799,43 @@ mod tests {
         let binom = |n: usize, k: usize| -> BigInt {
             (0..k).fold(BigInt::from(1), |b, i| b * (n - i) / (i + 1))
         };
-        for p in 1..=40usize {
+        let mut exact_route = 0;
+        for p in (1..=40usize).chain([47, 55, 61, 62, 63, 64, 70, 80]) {
             let pair = pair_coefficients(p);
             assert_eq!(pair.len(), (p + 1) * (p + 1));
-            for i in 0..p {
-                for l in i + 1..=p {
-                    let want = crate::num::Exact::from_ratio(BigRational::new(
-                        BigInt::from(l - i) * binom(p, i) * binom(p, l),
-                        binom(2 * p - 2, i + l - 1),
-                    ));
-                    let (lo, hi) = pair[i * (p + 1) + l].bounds();
-                    assert!(
-                        want.cmp_f64(lo) != Some(std::cmp::Ordering::Less)
-                            && want.cmp_f64(hi) != Some(std::cmp::Ordering::Greater),
-                        "p {p}, ({i}, {l}): [{lo}, {hi}]"
-                    );
+            let exact = pair_coefficients_exact(p);
+            if let Some(ex) = &exact {
+                exact_route += 1;
+                assert_eq!(&ex[..], &pair[..], "p {p}: the cache holds the exact route's");
+            }
+            // every route that runs at this degree
+            let fallback = pair_coefficients_fallback(p);
+            let routes = exact.iter().chain(std::iter::once(&fallback));
+            for (r, route) in routes.enumerate() {
+                for i in 0..p {
+                    for l in i + 1..=p {
+                        let want = crate::num::Exact::from_ratio(BigRational::new(
+                            BigInt::from(l - i) * binom(p, i) * binom(p, l),
+                            binom(2 * p - 2, i + l - 1),
+                        ));
+                        let m = route[i * (p + 1) + l];
+                        let (lo, hi) = m.bounds();
+                        assert!(
+                            want.cmp_f64(lo) != Some(std::cmp::Ordering::Less)
+                                && want.cmp_f64(hi) != Some(std::cmp::Ordering::Greater),
+                            "p {p}, route {r}, ({i}, {l}): [{lo}, {hi}]"
+                        );
+                        if r == 0 && exact.is_some() {
+                            // one rounding (or three above 2^53): a few ulps of the quotient
+                            assert!(m.rad() <= 4.01 * crate::num::ulp(m.mid()), "p {p} ({i}, {l})");
+                        }
+                    }
                 }
             }
         }
+        // the exact route up to p = 63, the fallback above (a product beyond u128)
+        assert_eq!(exact_route, 40 + 5);
+        assert!(pair_coefficients_exact(64).is_none() && pair_coefficients_exact(80).is_none());
     }
 
     /// The pair coefficients of `c` (empty without weights) and its non-empty spans.
