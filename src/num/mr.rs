@@ -473,7 +473,7 @@ mod tests {
         assert!(Mr::ratio(5, 0).is_none());
         for k in 0..20_000 {
             let bits = |r: &mut rand_chacha::ChaCha8Rng| r.random_range(1..=127u32);
-            let mut int = |r: &mut rand_chacha::ChaCha8Rng| -> u128 {
+            let int = |r: &mut rand_chacha::ChaCha8Rng| -> u128 {
                 let b = bits(r);
                 r.random::<u128>() >> (128 - b)
             };

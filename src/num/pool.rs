@@ -85,7 +85,9 @@ mod tests {
     use crate::num::{Mr, Scalar};
 
     /// A value that counts its live copies (through the `Rc`): not `Copy`, with a destructor.
-    struct Tracked(std::rc::Rc<()>);
+    struct Tracked {
+        _live: std::rc::Rc<()>,
+    }
     pooled!(Tracked => TRACKED_POOL);
 
     /// A vector of values with destructors given back drops them at once (nothing of one use
@@ -94,7 +96,9 @@ mod tests {
     fn a_given_vector_drops_its_values() {
         let live = std::rc::Rc::new(());
         let mut v: Vec<Tracked> = take(4);
-        v.extend((0..3).map(|_| Tracked(live.clone())));
+        v.extend((0..3).map(|_| Tracked {
+            _live: live.clone(),
+        }));
         assert_eq!(std::rc::Rc::strong_count(&live), 4);
         let ptr = v.as_ptr();
         give(v);
