@@ -532,14 +532,67 @@ fn grid_curves_with_ties_and_knot_extrema_are_sound() {
     }
 }
 
-/// [`grid_curve`]s against the 256-bit reference box: every bound of `newton` on the safe side
-/// of the exact extremum, its inner bounds reached and its certificates MPFR's rounding.
+/// The supremum of a coordinate that is the left limit at a jump (a knot of multiplicity
+/// p + 1) is a bound but not a value the curve reaches: the piece before the jump rises
+/// strictly to it (its inner Bézier points below its last one: the span peaks at that end),
+/// the next piece starts far below. Both searches bound it (hi >= the limit) without
+/// claiming it attained (inner_hi < the limit), on both sides (the mirror image), with and
+/// without weights, for quadratics and cubics.
+#[test]
+fn a_left_limit_at_a_jump_is_bounded_not_attained() {
+    let (nw, bz) = (Newton::default(), BezierSubdivision::default());
+    for (p, first, second) in [
+        (2, vec![0.0, 0.5, 1.0], vec![0.0, 0.25, 0.125]),
+        (3, vec![0.25, 0.5, 0.75, 1.0], vec![-0.5, 0.25, 0.5, 0.125]),
+    ] {
+        for (sign, rational) in [(1.0, false), (-1.0, false), (1.0, true), (-1.0, true)] {
+            let mut knots = vec![0.0; p + 1];
+            knots.extend(vec![1.0; p + 1]);
+            knots.extend(vec![2.0; p + 1]);
+            let pts: Vec<Vec<f64>> = first
+                .iter()
+                .chain(&second)
+                .enumerate()
+                .map(|(i, &x)| vec![sign * x, i as f64])
+                .collect();
+            let w = rational.then(|| (0..pts.len()).map(|i| [1.0, 2.0, 0.5][i % 3]).collect());
+            let c = NurbsCurve::new(p, knots, pts, w).unwrap();
+            for e in [nw.enclose(&c), bz.enclose(&c)] {
+                let cb = &e.coords[0];
+                let (bound, inner) = if sign > 0.0 {
+                    (cb.hi, cb.inner_hi)
+                } else {
+                    (-cb.lo, -cb.inner_lo)
+                };
+                assert!(
+                    bound >= 1.0,
+                    "{} p {p} sign {sign}: bound {bound}",
+                    e.strategy
+                );
+                assert!(
+                    inner < 1.0,
+                    "{} p {p} sign {sign} rational {rational}: the left limit 1 claimed attained",
+                    e.strategy
+                );
+                check_sound(&c, &e).unwrap();
+            }
+        }
+    }
+}
+
+/// [`grid_curve`]s against the 256-bit reference box: every bound of `newton` and `bezier` on
+/// the safe side of the exact extremum, their inner bounds reached and their certificates
+/// MPFR's rounding (spans peaking at an end, jumps whose left limit is the supremum).
 #[cfg(feature = "mpfr")]
 #[test]
 fn grid_curves_against_reference() {
     let mut r = ChaCha8Rng::seed_from_u64(2613);
     for i in 0..150 {
         let c = grid_curve(&mut r);
-        common::check_reference(&format!("grid #{i}"), &c, &[Newton::default().enclose(&c)]);
+        let encs = [
+            Newton::default().enclose(&c),
+            BezierSubdivision::default().enclose(&c),
+        ];
+        common::check_reference(&format!("grid #{i}"), &c, &encs);
     }
 }
