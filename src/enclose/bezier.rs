@@ -732,34 +732,22 @@ impl BezierSubdivision {
                 // A span that peaks at an end on this side (`SpanPoints::end_peaked`, as
                 // `newton`'s span filter): every inner Bézier point lies strictly below the
                 // larger end point, so the piece's maximum over the closed span is an end value,
-                // max(b_0, b_p) (convex hull property, positive weights). Where both ends are
-                // curve values (b_0 = C(u_k); b_p = C(u_{k+1}) unless u_{k+1} is a jump), the
-                // side of the span is its ends' double-double enclosures (`TightEval::end_value`),
-                // taken as the fast path's proof takes them (`Critical::side`): each bounds the
-                // span by its upper end and is attained by its lower end, the largest f64
-                // strictly below it a witness; within the gap tolerance, without the Bernstein
-                // form and its critical boxes.
+                // max(b_0, b_p) (convex hull property, positive weights). Its side is then the
+                // fast path's proof with no critical box (`Critical::side` on the ends'
+                // double-double enclosures, `TightEval::end_value`): each end bounds the span,
+                // b_0 = C(u_k) is attained, b_p only where u_{k+1} is no jump; `None` beyond
+                // the gap tolerance (a peak at an unattained left limit), and the search below
+                // runs. No Bernstein form and no critical boxes.
                 if let Some((jj, h)) = hulls[k] {
                     if jj == j && h.end_peaked(sign) {
-                        let kn = c.knots();
-                        let last = spans[spans.len() - 1];
-                        if right_end_attained(kn, p, k, last) {
-                            let mut s = Side::new();
-                            for (i, right) in [(0, false), (1, true)] {
-                                let v = vals.tight.end_value(j, k, right);
-                                let v = if sign < 0.0 { -v } else { v };
-                                s.attain_f64(v.lower_end());
-                                s.witness = s.witness.max(v.strictly_below());
-                                let u = kn[k + i];
-                                let e = single::extremum(u, u, 0.0, 0.0, false, end_kind(c, u));
-                                s.bound(v.to_interval().sup(), e);
-                            }
-                            if s.upper - s.attained <= self.max_gap(c, j) {
-                                s.stats.fast_exits += 1;
-                                s.stats.point_evaluations += 2;
-                                side.absorb(s);
-                                continue;
-                            }
+                        let cr = Critical {
+                            ends: [false, true].map(|right| vals.tight.end_value(j, k, right)),
+                            boxes: SmallVec::new(),
+                        };
+                        let ra = right_end_attained(c.knots(), p, k, spans[spans.len() - 1]);
+                        if let Some(s) = cr.side(c, k, sign, ra, self.max_gap(c, j)) {
+                            side.absorb(s);
+                            continue;
                         }
                     }
                 }

@@ -1703,35 +1703,11 @@ fn pair_coefficients_uncached(p: usize) -> Vec<Mr> {
     pair_coefficients_exact(p).unwrap_or_else(|| pair_coefficients_fallback(p))
 }
 
-/// The pair coefficients with the binomials in `Mr`: exact integers while below 2^53, beyond
-/// by Pascal's rule (the degrees whose integers overflow u128).
+/// The pair coefficients with the binomials in `Mr`, for the degrees whose integers overflow
+/// u128 (p >= 64): each binomial row by Pascal's rule on one row in place, from the right (the
+/// same sums as row by row; exact while the values stay below 2^53, enclosed beyond).
 fn pair_coefficients_fallback(p: usize) -> Vec<Mr> {
-    // (the exact integers while they are below 2^53, which Pascal's rule in `Mr` gives too,
-    // exactly; beyond, Pascal's rule on one row in place, from the right: the same sums as
-    // row by row)
     let binom = |n: usize| {
-        // (the row by the recurrence C(n, k + 1) = C(n, k) (n - k) / (k + 1), exact in u64
-        // while C(n, k) <= 2^53 (then C(n, k) (n - k) < 2^64 for n < 2^11) and the division
-        // exact (C(n, k) (n - k) = C(n, k + 1) (k + 1)); the row's largest value is its middle
-        // one, so the row is exact iff every value up to the middle stays <= 2^53, the values
-        // `num::binom_exact` gives one by one)
-        if n < 2048 {
-            let mut row = Vec::with_capacity(n + 1);
-            let mut c: u64 = 1;
-            for k in 0..=n / 2 {
-                if c > 1u64 << 53 {
-                    break;
-                }
-                row.push(Mr::from_f64(c as f64));
-                c = c * (n - k) as u64 / (k as u64 + 1);
-            }
-            if row.len() == n / 2 + 1 {
-                for k in n / 2 + 1..=n {
-                    row.push(row[n - k]);
-                }
-                return row;
-            }
-        }
         let mut row = vec![Mr::from_f64(1.0); n + 1];
         for m in 2..=n {
             for i in (1..m).rev() {
