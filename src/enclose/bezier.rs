@@ -572,8 +572,9 @@ impl Critical {
     }
 
     /// The side (sign * C_j, sign = +-1) of span k = [u0, u1] from the proof: the end values
-    /// (the right one attained only if `right_attained`; it bounds the span either way) and
-    /// the boxes' enclosures; `None` unless its certified gap is at most `max_gap`.
+    /// (the right one attained only if `right_attained`, else a left limit that the curve
+    /// approaches; it bounds the span either way) and the boxes' enclosures; `None` unless its
+    /// certified gap is at most `max_gap`.
     fn side(
         &self,
         c: &NurbsCurve,
@@ -591,6 +592,16 @@ impl Critical {
             if i == 0 || right_attained {
                 side.attain_f64(v.lower_end());
                 side.witness = side.witness.max(v.strictly_below());
+            } else {
+                // The left limit L at a jump u1 is no value of the curve, but the piece is
+                // continuous on the closed span and equals the curve on [u0, u1): its values
+                // come arbitrarily close to L. So the curve exceeds every number w < L: the
+                // largest double strictly below the enclosure of L (`Ddi::strictly_below`, -inf
+                // when there is none) is a strict witness and a value reached (a value above it
+                // is).
+                let w = v.strictly_below();
+                side.attain_f64(w);
+                side.witness = side.witness.max(w);
             }
             let (t, u) = if i == 0 { (0.0, u0) } else { (1.0, u1) };
             let ub = v.to_interval().sup();
@@ -657,17 +668,43 @@ impl BezierSubdivision {
         let gap_tol = self.tol * scale;
         let sg = iv::point(sign);
         let mut side = Side::new();
-        let mut heap: std::collections::BinaryHeap<Item> = spans
-            .iter()
-            .map(|&k| Item {
-                pri: (k - p..=k)
-                    .map(|i| sign * c.control_point(i)[j])
-                    .fold(f64::NEG_INFINITY, f64::max),
-                span: k,
-                piece: None,
-                filtered: false,
-            })
-            .collect();
+        // Spans enter with the bound of their local control values. A span where those are
+        // all equal (the coordinate is that constant there: a convex combination, weights
+        // > 0; interval Bézier coefficients of a rational span would be a few ulps wide, so
+        // that subdivision could never resolve it) is done at once: its value is attained and
+        // bounds it. (Taken from the heap instead, it came after the spans next to it whose
+        // bound it often equals, and each of those was then searched up to the knot where it
+        // meets the constant with a zero of C_j'.)
+        let mut items: Vec<Item> = Vec::with_capacity(spans.len());
+        for &k in spans.iter() {
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for i in k - p..=k {
+                let x = sign * c.control_point(i)[j];
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+            if lo < hi {
+                items.push(Item {
+                    pri: hi,
+                    span: k,
+                    piece: None,
+                    filtered: false,
+                });
+            } else if hi > side.attained {
+                // (one candidate per value: a constant coordinate has many such spans)
+                side.attain_f64(hi);
+                side.bound(
+                    hi,
+                    Extremum {
+                        u_lo: c.knots()[k],
+                        u_hi: c.knots()[k + 1],
+                        unique: false,
+                        kind: CandidateKind::Critical,
+                    },
+                );
+            }
+        }
+        let mut heap = std::collections::BinaryHeap::from(items);
         let ub = |c: &[Interval]| c.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.sup()));
         let mut pieces = 0usize;
         let mut csegs: Vec<Option<BezierSeg<Mr>>> = vec![None; segs.len()];
@@ -686,24 +723,6 @@ impl BezierSubdivision {
             }
             let k = item.span;
             if item.piece.is_none() {
-                // A coordinate equal at the span's p + 1 local control points is exactly that
-                // constant on the span (a convex combination, weights > 0): its value is
-                // attained and bounds the span. (Interval Bézier coefficients of a rational
-                // span are a few ulps wide there, so subdivision could never resolve it.)
-                let x = c.control_point(k - p)[j];
-                if (k - p..=k).all(|i| c.control_point(i)[j] == x) {
-                    side.attain(iv::point(sign * x));
-                    side.bound(
-                        sign * x,
-                        Extremum {
-                            u_lo: c.knots()[k],
-                            u_hi: c.knots()[k + 1],
-                            unique: false,
-                            kind: CandidateKind::Critical,
-                        },
-                    );
-                    continue;
-                }
                 // Hull filter: a cheap upper bound of the span and a value it attains from its
                 // double-double Bézier points (`span_points`; the quotients of the homogeneous
                 // points for a rational curve), before any proof and before the `Mr` segment

@@ -8,7 +8,8 @@
 //! values c_i that are exact f64 (a single segment) or `Ddi` enclosures of the exact ones (a
 //! span; then every step below holds for the exact polynomial, the end slopes' signs come from
 //! the filter of step 3 instead of exact comparisons, and the end values are enclosures; the
-//! value at the right end counts as attained only where the curve is continuous):
+//! value at the right end counts as attained only where the curve is continuous; at a jump it
+//! is a left limit, which the piece approaches, so every double below it is exceeded):
 //!
 //! 1. Power form x(t) = a_0 + a_1 t + a_2 t^2 + a_3 t^3 from the forward differences
 //!    a_k = binom(p, k) Δ^k c_0 (Farin, *Curves and Surfaces for CAGD*, monomial form of a
@@ -583,6 +584,15 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
         if attained {
             hi.attain(vl);
             lo.attain(-vu);
+        } else {
+            // a left limit L at a jump: no value of the curve, but the piece equals the curve
+            // left of the knot and is continuous there, so its values come arbitrarily close
+            // to L and exceed (fall below) every number below (above) it: the doubles strictly
+            // outside the enclosure of L are strict witnesses and values reached
+            for (side, w) in [(&mut *hi, v.strictly_below()), (&mut *lo, (-v).strictly_below())] {
+                side.attain(w);
+                side.witness = side.witness.max(w);
+            }
         }
         hi.bound(vu, e);
         lo.bound(-vl, e);
@@ -702,7 +712,8 @@ pub(crate) struct F64Proof {
 /// The proof of the module docs for exact f64 coefficients c_0 .. c_p (`fv[..=p]`, p = 2 or
 /// 3), in f64 and double-double on the stack, without candidate records: the form the lane
 /// reads directly (a cubic Bézier's coordinate), and [`raw_sides_into`] maps to [`RawSide`]s.
-/// The end values are c_0 (attained) and c_p (attained if `right_attained`); each side has at
+/// The end values are c_0 (attained) and c_p (attained if `right_attained`, else a left limit
+/// at a jump, approached: its next double down reached and a strict witness); each side has at
 /// most one sign-change bracket (the sign changes alternate, and there are at most R <= 2 of
 /// them; a second one for a side, impossible, gives up). `None` where a step cannot be proven;
 /// a side not in `need` comes back with its end values only. The caller checks the gaps.
@@ -761,11 +772,21 @@ pub(crate) fn f64_sides(
         }
     }
     let (c0, cp) = (c[0], c[p]);
-    let end_side = |v0: f64, vp: f64| F64Side {
-        upper: v0.max(vp),
-        attained: if right_attained { v0.max(vp) } else { v0 },
-        witness: f64::NEG_INFINITY,
-        crit: None,
+    // (c_p is a value of the curve if `right_attained`, else a left limit at a jump that the
+    // piece approaches, continuous on [0, 1] and equal to the curve left of the knot: every
+    // double below it is exceeded, next_down(c_p) a strict witness and a value reached)
+    let end_side = |v0: f64, vp: f64| {
+        let (att, witness) = if right_attained {
+            (vp, f64::NEG_INFINITY)
+        } else {
+            (vp.next_down(), vp.next_down())
+        };
+        F64Side {
+            upper: v0.max(vp),
+            attained: v0.max(att),
+            witness,
+            crit: None,
+        }
     };
     let mut sides = [end_side(c0, cp), end_side(-c0, -cp)];
     // max |x''(ξ) / 2| over [0, 1] <= m2: x''/2 = p (p - 1)/2 sum_i (D_{i+1} - D_i) B_i^{p-2}

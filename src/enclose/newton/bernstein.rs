@@ -617,11 +617,11 @@ impl SpanPoly {
             // (a piece with at most one sign change that the rules above leave open: a zero at
             // the span's end)
             if !proved && n <= 1 {
-                if let Some((end, f0, f1)) = self.end_rule(&v, e, t0, t1, h) {
+                if let Some((end, f0, f1, hr)) = self.end_rule(&v, e, t0, t1, h) {
                     if out.len() >= max {
                         return false;
                     }
-                    out.push((end, h));
+                    out.push((end, hr));
                     push_free(free, f0, f1);
                 }
             }
@@ -737,21 +737,41 @@ impl SpanPoly {
     /// has sign -s there is one in (x0, 1) (intermediate values), and that is the only one;
     /// otherwise there is none. F(t0), the first coefficient, is not 0. So [t0, x0] holds no
     /// zero, and the box [1 - h, 1] holds every zero of the piece beyond it.
-    fn end_rule(&self, v: &[f64], e: f64, t0: f64, t1: f64, h: f64) -> Option<(f64, f64, f64)> {
+    ///
+    /// Where F(1 - h) lies below its error bound (F's slope at the end small against its
+    /// largest coefficients, which set the bound of [`value_f64`]: a symmetric curve's
+    /// extremum at a knot, the span steep at its far end) the box is widened once to
+    /// [`FLOAT_FIRST_H`], as for the estimates of [`SpanPoly::zero_estimates`] (the same proof
+    /// with h' in place of h). Returned: the end, the zero-free interval and the box's
+    /// half-width.
+    fn end_rule(
+        &self,
+        v: &[f64],
+        e: f64,
+        t0: f64,
+        t1: f64,
+        h: f64,
+    ) -> Option<(f64, f64, f64, f64)> {
         let len = v.len();
         if len < 2 {
             return None;
         }
+        let widths = [h, FLOAT_FIRST_H];
+        let widths = &widths[..if h < FLOAT_FIRST_H { 2 } else { 1 }];
         if t1 == 1.0 && proven_changes(&v[..len - 1], e) == Some(0) {
-            let x0 = 1.0 - h;
-            if t0 < x0 && self.f_has_sign(x0, v[0] > 0.0) {
-                return Some((1.0, t0, x0));
+            for &hr in widths {
+                let x0 = 1.0 - hr;
+                if t0 < x0 && self.f_has_sign(x0, v[0] > 0.0) {
+                    return Some((1.0, t0, x0, hr));
+                }
             }
         }
         if t0 == 0.0 && proven_changes(&v[1..], e) == Some(0) {
-            let x1 = h;
-            if x1 < t1 && self.f_has_sign(x1, v[len - 1] > 0.0) {
-                return Some((0.0, x1, t1));
+            for &hr in widths {
+                let x1 = hr;
+                if x1 < t1 && self.f_has_sign(x1, v[len - 1] > 0.0) {
+                    return Some((0.0, x1, t1, hr));
+                }
             }
         }
         None
