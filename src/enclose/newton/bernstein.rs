@@ -778,13 +778,17 @@ impl SpanPoly {
     }
 
     /// Whether F(t) provably is > 0 (`positive`) or < 0 at the point t in [0, 1]: the f64 value
-    /// with its a-priori bound ([`value_f64`]) excludes 0 on that side.
+    /// with its a-priori bound ([`value_f64`], else [`value_vs_f64_weighted`]) excludes 0 on
+    /// that side.
     fn f_has_sign(&self, t: f64, positive: bool) -> bool {
-        match value_f64(&self.f.pts, t) {
+        let proves = |v: Option<(Interval, f64)>| match v {
             Some((v, _)) if positive => v.inf() > 0.0,
             Some((v, _)) => v.sup() < 0.0,
             None => false,
-        }
+        };
+        // (the plain bound first; where it swamps the value, the one weighted by the basis at
+        // t, which sees only the coefficients near t)
+        proves(value_f64(&self.f.pts, t)) || proves(value_vs_f64_weighted(&self.f.pts, t))
     }
 
     /// Whether F >= 0 / F <= 0 on the whole span (all coefficients of one sign), i.e. C_j
@@ -1473,6 +1477,59 @@ fn vs_row(co: &[Mr], h: usize, row: usize, t: f64) -> Option<(Interval, f64)> {
         + r);
     Some((widened(acc, acc, e), e))
 }
+
+/// [`value_vs_f64`] with its bound weighted by the basis at t instead of taken from the
+/// largest coefficient and radius: where F's coefficients near t are tiny against those far
+/// away (a zero of F close to an end of the span, next to coefficients a million times larger
+/// at the other end), the plain bound swamps a value that this one still decides. About
+/// twice the plain evaluation; used only where the plain one cannot prove a sign
+/// ([`SpanPoly::f_has_sign`]).
+///
+/// Error bound. With the notation of [`value_vs_f64`] (W_j = C(n, j) x^j (1 - x)^(n-j) >= 0,
+/// summing to 1; γ = γ_{3n+4}; M the largest |b_j|), the computed value ŷ satisfies
+/// |ŷ - sum_j β_j W_j| <= sum_j r_j W_j + γ sum_j |b_j| W_j + U_y for the exact coefficients
+/// β_j (|β_j - b_j| <= r_j), with U_y <= 2^-940 M + (3n + 3) η the underflow part. Both sums are
+/// at most A = sum_j a_j W_j with a_j = r_j + κ |b_j|, κ = (8n + 12) u >= γ. The scheme runs a
+/// second accumulator on â_j = fl(r_j + fl(κ |b_j|)) >= (1 - u)^2 a_j - η, with the same
+/// weights and roundings as the value's; its terms are nonnegative, so it is
+/// Â >= (1 - γ) sum_j â_j W_j - U_a (U_a <= 2^-940 max â_j + (3n + 3) η, as U_y). Hence
+/// A <= (Â + U_a + η) / ((1 - γ)(1 - u)^2) <= (Â + U_a + η)(1 + 2^-40) (γ < 2^-43 for n <= 127),
+/// and the error is at most E = up(Â + 2^-40 Â + 2^-900 (max â_j + M) + 16 (n + 1) η):
+/// (1 + 2^-40) 2^-940 <= 2^-900, (1 + 2^-40)(3n + 4) η + (3n + 3) η <= 16 (n + 1) η, and
+/// Lemma B of [`crate::num::ddi`] for the final sum (products of f64 with f64 or with a sum).
+/// A non-finite value or bound gives ENTIRE. Tested against exact rational evaluation
+/// (`weighted_vs_value_bound_holds_exactly`).
+fn value_vs_f64_weighted(co: &[Mr], t: f64) -> Option<(Interval, f64)> {
+    let n = co.len().checked_sub(1)?;
+    if n > VS_MAX || !(0.0..=1.0).contains(&t) {
+        return None;
+    }
+    let rev = t > 0.5;
+    // (1 - t is exact for t in [1/2, 1]: Sterbenz)
+    let (x, s) = if rev { (1.0 - t, t) } else { (t, 1.0 - t) };
+    let binom = &BINOMIALS[n];
+    let kappa = (4.0 * n as f64 + 6.0) * f64::EPSILON;
+    let at = |j: usize| if rev { co[n - j] } else { co[j] };
+    let weight = |c: Mr| c.rad() + kappa * c.mid().abs();
+    let c0 = at(0);
+    let (mut m, mut ma) = (c0.mid().abs(), weight(c0));
+    let (mut acc, mut accw, mut xp) = (c0.mid(), ma, 1.0f64);
+    for (j, &bj) in binom.iter().enumerate().take(n + 1).skip(1) {
+        let c = at(j);
+        let (b, a) = (c.mid(), weight(c));
+        m = m.max(b.abs());
+        ma = ma.max(a);
+        xp *= x;
+        let w = bj * xp;
+        acc = acc.mul_add(s, w * b);
+        accw = accw.mul_add(s, w * a);
+    }
+    let e = up(accw + accw * P2_M40 + P2_M900 * (ma + m) + f64::from_bits(16 * (n as u64 + 1)));
+    Some((widened(acc, acc, e), e))
+}
+
+/// 2^-40 (exact).
+const P2_M40: f64 = f64::from_bits((1023 - 40) << 52);
 
 /// 2^-900 and 2^-106 (exact; constants rather than `powi`, a library call with a loop).
 const P2_M900: f64 = f64::from_bits((1023 - 900) << 52);
@@ -2561,6 +2618,64 @@ mod tests {
 
     /// A parameter of the point-value tests, by the iteration `it`: near 0, near 1, near 1/2,
     /// tiny (underflowing powers), exactly 0, 1/2 or 1, or uniform.
+    /// The exact value at t of the polynomial whose Bernstein coefficients are the `co`
+    /// enclosures' corners on the side `sign` (centre + sign * radius): the left part of exact
+    /// de Casteljau at t ends in it.
+    fn exact_corner_value(co: &[Mr], sign: f64, t: f64) -> crate::num::Exact {
+        use crate::num::Exact;
+        let mut b: Vec<Exact> = co
+            .iter()
+            .map(|x| Exact::of(x.mid()) + Exact::of(sign * x.rad()))
+            .collect();
+        let mut out = b.clone();
+        restrict_in_place::<_, 1>(&mut b, &mut out, 0.0, t);
+        b.pop().unwrap()
+    }
+
+    /// Both corners' exact values ([`exact_corner_value`]: every coefficient at the same end of
+    /// its enclosure) lie in the enclosure `got` of a VS scheme at t; where `track`, the error of
+    /// its midpoint relative to its bound `e` raises `worst` (how much of the bound is used).
+    fn check_corners(co: &[Mr], t: f64, (got, e): (Interval, f64), track: bool, worst: &mut f64) {
+        use crate::num::Exact;
+        for sign in [-1.0, 1.0] {
+            let v = exact_corner_value(co, sign, t);
+            assert!(
+                !v.gt_f64(got.sup()) && !(Exact::of(got.inf()) - v.clone()).gt_f64(0.0),
+                "n = {}, at {t}, {:?}: {:e} .. {:e}",
+                co.len() - 1,
+                co.iter().map(|x| (x.mid(), x.rad())).collect::<Vec<_>>(),
+                got.inf(),
+                got.sup()
+            );
+            if track && e > 0.0 {
+                let mid = 0.5 * got.inf() + 0.5 * got.sup();
+                let err = (v - Exact::of(mid)).round_up().abs();
+                *worst = worst.max(err / e);
+            }
+        }
+    }
+
+    /// For the tests of the VS schemes: whether case `it` is one of the few of degree above 56
+    /// (whose binomials round; the exact check grows with the square of the degree and the
+    /// bits of t), its degree n and its magnitude (2^-60 .. 2^60, subnormal, or near the
+    /// overflow).
+    fn vs_degree_and_scale(rng: &mut rand_chacha::ChaCha8Rng, it: usize) -> (bool, usize, f64) {
+        use rand::Rng;
+        let high = it % 150 == 7;
+        let n = match it % 3 {
+            _ if high => rng.random_range(57..=VS_MAX),
+            0 => rng.random_range(0..=4),
+            1 => rng.random_range(5..=24),
+            _ => rng.random_range(25..=56),
+        };
+        let mag = match it % 9 {
+            7 => f64::MAX * rng.random_range(0.01..0.5),
+            8 => 2f64.powi(rng.random_range(-1060..=-1000)),
+            _ => 2f64.powi(rng.random_range(-60..=60)),
+        };
+        (high, n, mag)
+    }
+
     fn vs_test_param(rng: &mut rand_chacha::ChaCha8Rng, it: usize) -> f64 {
         use rand::Rng;
         match it % 7 {
@@ -2653,25 +2768,11 @@ mod tests {
     /// vacuous (the worst observed error is a sizeable share of it).
     #[test]
     fn vs_value_bound_holds_exactly() {
-        use crate::num::Exact;
         use rand::{Rng, SeedableRng};
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(23);
         let mut worst: f64 = 0.0;
         for it in 0..3000 {
-            // (degrees above 56, whose binomials round, a few: the exact check grows with the
-            // square of the degree and the bits of t)
-            let high = it % 150 == 7;
-            let n = match it % 3 {
-                _ if high => rng.random_range(57..=VS_MAX),
-                0 => rng.random_range(0..=4),
-                1 => rng.random_range(5..=24),
-                _ => rng.random_range(25..=56),
-            };
-            let mag = match it % 9 {
-                7 => f64::MAX * rng.random_range(0.01..0.5),
-                8 => 2f64.powi(rng.random_range(-1060..=-1000)),
-                _ => 2f64.powi(rng.random_range(-60..=60)),
-            };
+            let (high, n, mag) = vs_degree_and_scale(&mut rng, it);
             let base: f64 = rng.random_range(-1.0..1.0) * mag;
             let c: Vec<f64> = (0..=n)
                 .map(|i| match it % 5 {
@@ -2696,29 +2797,72 @@ mod tests {
                 assert!(it % 9 == 7, "n = {n}, t = {t}: {:e}", e);
                 continue;
             }
-            for sign in [-1.0, 1.0] {
-                let mut b: Vec<Exact> = c
-                    .iter()
-                    .map(|&x| Exact::of(x) + Exact::of(sign * rad))
-                    .collect();
-                let mut out = b.clone();
-                restrict_in_place::<_, 1>(&mut b, &mut out, 0.0, t);
-                let v = &b[n];
-                assert!(
-                    !v.gt_f64(got.sup()) && !(Exact::of(got.inf()) - v.clone()).gt_f64(0.0),
-                    "n = {n}, at {t}, {c:?}: {:e} .. {:e}",
-                    got.inf(),
-                    got.sup()
-                );
-                if rad == 0.0 && e > 0.0 {
-                    let mid = 0.5 * got.inf() + 0.5 * got.sup();
-                    let err = (v.clone() - Exact::of(mid)).round_up().abs();
-                    worst = worst.max(err / e);
-                }
-            }
+            check_corners(&co, t, (got, e), rad == 0.0, &mut worst);
         }
         // (the rounding errors reach a noticeable share of the bound somewhere)
         assert!(worst > 1e-3, "{worst}");
+    }
+
+    /// The weighted bound of [`value_vs_f64_weighted`] holds against exact rational evaluation:
+    /// degrees 0 ..= 127, coefficients graded over up to 2^-60 from one end to the other (F
+    /// near a zero next to an end of the span) as well as random, alternating and clustered
+    /// ones, each with its own radius (the exact coefficient at a corner of its enclosure),
+    /// magnitudes from 2^-1060 to near the overflow, parameters near 0, 1/2, 1 and tiny ones.
+    /// It is not vacuous: the rounding errors reach a sizeable share of it somewhere, and on
+    /// graded coefficients it is far below the plain bound of [`value_vs_f64`].
+    #[test]
+    fn weighted_vs_value_bound_holds_exactly() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(29);
+        let (mut worst, mut sharper): (f64, f64) = (0.0, 1.0);
+        for it in 0..3000 {
+            let (high, n, mag) = vs_degree_and_scale(&mut rng, it);
+            let base: f64 = rng.random_range(-1.0..1.0) * mag;
+            // (graded: |c_j| falls from mag by 2^-(60 j / n), towards either end)
+            let up_end = rng.random_bool(0.5);
+            let c: Vec<f64> = (0..=n)
+                .map(|i| match it % 5 {
+                    0 => base + rng.random_range(-1.0..1.0) * mag * 1e-9,
+                    1 => if i % 2 == 0 { mag } else { -mag * rng.random_range(0.5..1.0) },
+                    2 | 3 => {
+                        let k = if up_end { n - i } else { i } as f64;
+                        let g = 2f64.powf(-60.0 * k / (n.max(1) as f64));
+                        rng.random_range(-1.0..1.0) * mag * g
+                    }
+                    _ => rng.random_range(-1.0..1.0) * mag,
+                })
+                .collect();
+            let rads: Vec<f64> = c
+                .iter()
+                .map(|&x| if it % 4 == 0 { 0.0 } else { x.abs() * 2f64.powi(-rng.random_range(20..=60)) })
+                .collect();
+            let t = vs_test_param(&mut rng, it);
+            let t = if high {
+                (t * 4096.0).round() / 4096.0
+            } else {
+                t
+            };
+            let co: Vec<Mr> = c
+                .iter()
+                .zip(&rads)
+                .map(|(&x, &r)| Mr::from_centre_radius(x, r))
+                .collect();
+            let Some((got, e)) = value_vs_f64_weighted(&co, t) else {
+                panic!("n = {n}: no value");
+            };
+            if !got.is_common_interval() {
+                assert!(it % 9 == 7, "n = {n}, t = {t}: {:e}", e);
+                continue;
+            }
+            if let Some((_, plain)) = value_vs_f64(&co, t) {
+                if it % 5 >= 2 && it % 5 <= 3 && plain > 0.0 {
+                    sharper = sharper.min(e / plain);
+                }
+            }
+            check_corners(&co, t, (got, e), it % 4 == 0, &mut worst);
+        }
+        assert!(worst > 1e-3, "{worst}");
+        assert!(sharper < 1e-9, "{sharper}");
     }
 
     /// The bound of [`halving_bound`] holds against the same halvings in exact arithmetic, for
