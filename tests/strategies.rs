@@ -533,7 +533,10 @@ fn extremum_exactly_at_a_knot() {
 ///   (each was searched up to the knot where it meets the constant with a triple zero of C');
 /// * two sextics with clustered knots (one rational) where F has a zero close to a span end,
 ///   next to coefficients 1e5 .. 1e9 times larger at the other: the signs beside the zero are
-///   proven with the weighted bound.
+///   proven with the weighted bound;
+/// * two rational quartics of the same kind whose F (from `Mr` sums) has radii of 1e-5 of its
+///   small coefficients next to the zero (but below 2^-44 of the largest): F is recomputed in
+///   double-double there, as it was only for radii large against the largest coefficient.
 ///
 /// No subdivision; every box sound, equal to `newton`'s and certified.
 #[test]

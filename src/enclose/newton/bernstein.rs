@@ -135,15 +135,18 @@ impl SpanPoly {
 
     /// The form with F's coefficients recomputed from the span's double-double points
     /// (`dseg`) in [`Ddi`] and rounded to `Mr` ([`f_from_ddi`]), where the `Mr` sums of
-    /// [`SpanPoly::new`] left them wide: radii above 2^-44 of the largest coefficient, from
+    /// [`SpanPoly::new`] left them wide: radii above 2^-44 of their own coefficients, from
     /// products of extreme weights that cancel (terms ~1e6 for an F ~1e-6), or from Cartesian
     /// differences of nearly equal points. About 2^-100 of the terms instead of 2^-53, so that
-    /// the signs of F show close to its zeros again. `None` where nothing is to be gained (the
-    /// radii already small, F unknown, degree above [`F_DDI_MAX_DEGREE`]).
+    /// the signs of F show close to its zeros again. `None` where nothing is to be gained (every
+    /// radius already small against its own coefficient, F unknown, degree above
+    /// [`F_DDI_MAX_DEGREE`]).
     pub(crate) fn refined(&self) -> Option<SpanPoly> {
-        let mag = self.f.pts.iter().fold(0.0f64, |m, x| m.max(x.mid().abs()));
-        let rad = self.f.pts.iter().fold(0.0f64, |m, x| m.max(x.rad()));
-        if !rad.is_finite() || rad <= mag * (1.0 / 17_592_186_044_416.0) {
+        // (nothing to gain where every radius is already below 2^-44 of its own coefficient;
+        // a radius small against the largest coefficient may still swamp the small ones next
+        // to a zero of F, 1e5 .. 1e9 times smaller at the other end of the span)
+        let small = |x: &Mr| x.rad() <= x.mid().abs() * (1.0 / 17_592_186_044_416.0);
+        if self.f.pts.iter().all(small) || !self.f.pts.iter().all(|x| x.rad().is_finite()) {
             return None;
         }
         let fco = f_from_ddi(&self.dseg)?;
