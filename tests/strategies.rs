@@ -538,7 +538,9 @@ fn extremum_exactly_at_a_knot() {
 ///   small coefficients next to the zero (but below 2^-44 of the largest): F is recomputed in
 ///   double-double there, as it was only for radii large against the largest coefficient.
 ///
-/// No subdivision; every box sound, equal to `newton`'s and certified.
+/// No subdivision; every box sound, equal to `newton`'s and certified. `newton`, which
+/// shares the zero estimates, the weighted bound and the double-double F, seeds every span's
+/// search with proven zero boxes.
 #[test]
 fn bezier_fast_path_takes_knot_extrema_and_flat_runs() {
     let text = include_str!("data/bezier_fast_path_cases.jsonl");
@@ -552,6 +554,9 @@ fn bezier_fast_path_takes_knot_extrema_and_flat_runs() {
         let (e, f) = (bz.enclose(&c), nw.enclose(&c));
         check_sound(&c, &e, &pts).unwrap_or_else(|m| panic!("case {i}: {m}"));
         assert_eq!(e.stats().subdivisions, 0, "case {i}: {:?}", e.stats());
+        // (and `newton` seeds its search of every span with proven zero boxes: no fallback to
+        // the search of a whole span)
+        assert_eq!(f.stats().fast_fallbacks, 0, "case {i}: {:?}", f.stats());
         for (a, b) in e.coords.iter().zip(&f.coords) {
             assert_eq!((a.lo, a.hi), (b.lo, b.hi), "case {i}");
             assert!(a.optimal_lo && a.optimal_hi, "case {i}: {a:?}");

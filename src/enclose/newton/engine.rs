@@ -655,7 +655,10 @@ impl<'a> Engine<'a> {
     /// de Casteljau in `Mr`, every coefficient enclosing the exact one: the rounding error is
     /// inside the enclosure, no separate a-priori bound needed) excludes 0, after at most
     /// two halvings. If some gap is not excluded, nothing is pushed and the whole span is
-    /// searched as without the seeding (the fallback). Sound: the boxes and gaps cover
+    /// searched as without the seeding (the fallback); before that, where F's `Mr`
+    /// coefficients are wide against their own size ([`SpanPoly::refined`]), the same once
+    /// more with F recomputed from the span's double-double points, which the search then
+    /// uses too (the same polynomial, enclosed more tightly). Sound: the boxes and gaps cover
     /// [a, b], and a dropped gap holds no zero of F, i.e. of C_j' (same sign and zeros on the
     /// closed span). Returns whether the stack was seeded; counts the span in
     /// `Stats::fast_proofs` (seeded) or `Stats::fast_fallbacks` (estimates, but a gap not
@@ -671,18 +674,39 @@ impl<'a> Engine<'a> {
                 None => false,
             };
         (self.est, self.free) = (est, free);
-        let seeded = ok && self.exclude_gaps(k, &mut gaps);
+        let mut seeded = ok && self.exclude_gaps(k, &mut gaps);
+        let mut estimated = ok;
+        // (where F's `Mr` coefficients were too wide for the proof, against the small ones
+        // next to a zero or altogether: once more with F from the span's double-double points,
+        // `SpanPoly::refined`, which then also serves the search; the `bezier` strategy's
+        // general fast path does the same)
+        if !seeded && a == 0.0 && b == 1.0 {
+            if let Some(r) = self.span_poly(k).and_then(SpanPoly::refined) {
+                if !r.f_swamped() {
+                    self.poly = Some(r);
+                    let (mut est, mut free) =
+                        (std::mem::take(&mut self.est), std::mem::take(&mut self.free));
+                    let sp = self.span_poly(k).expect("the refined form of span k");
+                    let ok = sp.zero_boxes(H, 2 * self.p + 2, (&mut est, &mut free), &mut bx, &mut gaps);
+                    (self.est, self.free) = (est, free);
+                    estimated |= ok;
+                    seeded = ok && self.exclude_gaps(k, &mut gaps);
+                }
+            }
+        }
         if seeded {
             self.stack.extend(bx.iter().copied());
             self.stats.fast_proofs += 1;
+        } else if estimated {
+            self.stats.fast_fallbacks += 1;
         }
         (self.seed_boxes, self.seed_gaps) = (bx, gaps);
         seeded
     }
 
     /// The gaps of [`Engine::seed_float_first`] on span k excluded (F has no zero in them:
-    /// [`SpanPoly::exclude_gaps`]), or `false` (counted in `Stats::fast_fallbacks`): see
-    /// there. `gaps` is used up. (A gap not excluded: the whole span is searched as without
+    /// [`SpanPoly::exclude_gaps`]), or `false` (then counted in `Stats::fast_fallbacks` by the
+    /// caller): see there. `gaps` is used up. (A gap not excluded: the whole span is searched as without
     /// the seeding; a gap whose end is next to a zero just outside it would make the Newton
     /// steps crawl towards that end.)
     fn exclude_gaps(&mut self, k: usize, gaps: &mut Vec<(f64, f64, u32)>) -> bool {
@@ -693,9 +717,6 @@ impl<'a> Engine<'a> {
         let mut n = 0;
         let ok = sp.exclude_gaps(gaps, &mut n);
         self.stats.derivative_evaluations += n;
-        if !ok {
-            self.stats.fast_fallbacks += 1;
-        }
         ok
     }
 
