@@ -536,7 +536,10 @@ fn extremum_exactly_at_a_knot() {
 ///   proven with the weighted bound;
 /// * two rational quartics of the same kind whose F (from `Mr` sums) has radii of 1e-5 of its
 ///   small coefficients next to the zero (but below 2^-44 of the largest): F is recomputed in
-///   double-double there, as it was only for radii large against the largest coefficient.
+///   double-double there, as it was only for radii large against the largest coefficient;
+/// * a symmetric rational sextic whose F has a zero exactly at t = 1/2 of a span, where the
+///   zero estimation halves it: the end rule now also takes a zero at the end of a piece
+///   inside the span, whose box reaches into the neighbouring piece.
 ///
 /// No subdivision; every box sound, equal to `newton`'s and certified. `newton`, which
 /// shares the zero estimates, the weighted bound and the double-double F, seeds every span's

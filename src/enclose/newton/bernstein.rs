@@ -498,9 +498,10 @@ impl SpanPoly {
     ///   in (x0, x1) (intermediate values: the signs at x0 and x1 differ), and F(t0), F(t1)
     ///   (the end coefficients) are not 0: [t0, x0] and [x1, t1] hold none.
     ///
-    /// * **free but for a box at the span's end** ([`SpanPoly::end_rule`]), for a piece touching
-    ///   t = 0 or t = 1 whose coefficient there is rounding noise (a zero of F at a knot); the
-    ///   box's end (0 or 1) is then added to the estimates.
+    /// * **free but for a box at an end of the piece** ([`SpanPoly::end_rule`]), for a piece
+    ///   whose coefficient there is rounding noise (a zero of F at a knot, t = 0 or 1, or at
+    ///   the halving point t = 1/2 of a symmetric span); that end is then added to the
+    ///   estimates, its box reaching into the neighbouring piece.
     ///
     /// Nothing else is claimed; the caller excludes the rest of the gaps between the boxes as
     /// before.
@@ -564,11 +565,12 @@ impl SpanPoly {
             }
             let n = changes(&v);
             let e = halving_bound(len - 1, depth, m, rad);
-            // (one sign change and an end coefficient of the span that is rounding noise: a
-            // zero of F at the span's end, a knot, besides the one the change shows; halved
-            // like a piece of several changes, so that the end's piece is left to the end rule
-            // and the other zero to one of its own)
-            let noisy_end = (t0 == 0.0 && v[0].abs() <= e) || (t1 == 1.0 && v[len - 1].abs() <= e);
+            // (one sign change and an end coefficient of the piece that is rounding noise: a
+            // zero of F at the span's end, a knot, or at the halving point of a symmetric
+            // span, besides the one the change shows; halved like a piece of several changes,
+            // so that the end's piece is left to the end rule and the other zero to one of its
+            // own)
+            let noisy_end = v[0].abs() <= e || v[len - 1].abs() <= e;
             let n = if n == 1 && noisy_end && t1 - t0 > 1.0 / 1_048_576.0 { 2 } else { n };
             let proved = if n == 0 {
                 let free_piece = proven_changes(&v, e) == Some(0);
@@ -618,7 +620,7 @@ impl SpanPoly {
                 continue;
             };
             // (a piece with at most one sign change that the rules above leave open: a zero at
-            // the span's end)
+            // an end of the piece, the span's or the halving point)
             if !proved && n <= 1 {
                 if let Some((end, f0, f1, hr)) = self.end_rule(&v, e, t0, t1, h) {
                     if out.len() >= max {
@@ -730,18 +732,21 @@ impl SpanPoly {
     }
 
     /// The end rule of [`SpanPoly::zero_estimates`], for a zero of F at (or next to) an end of
-    /// the span, where the end coefficient of the piece touching it is rounding noise (a
-    /// symmetric curve's extremum at a knot): for a piece [t0, t1] with t1 = 1 whose f64
+    /// a piece, where the piece's end coefficient there is rounding noise: at an end of the
+    /// span (a symmetric curve's extremum at a knot), or at the midpoint where the pieces were
+    /// halved (a symmetric span's zero of F at t = 1/2). For a piece [t0, t1] whose f64
     /// coefficients `v` (within `e` of the exact ones) other than the last all have one proven
-    /// sign s, with t0 < x0 = 1 - h and F(x0) of proven sign s, it returns the box's end 1 and
-    /// the zero-free [t0, x0] (and symmetrically at t0 = 0: the end 0 and [h, t1]). Proof: the
+    /// sign s, with t0 < x0 = t1 - h and F(x0) of proven sign s, it returns the estimate t1
+    /// (whose box [t1 - h, t1 + h], clamped to [0, 1], the caller makes) and the zero-free
+    /// [t0, x0] (and symmetrically at t0: the estimate t0 and [t0 + h, t1]). Proof: the
     /// exact coefficients have at most one sign change (between the last two), so F has at most
-    /// one zero in (t0, 1) (Descartes' rule of signs for the Bernstein basis); if the last one
-    /// has sign -s there is one in (x0, 1) (intermediate values), and that is the only one;
+    /// one zero in (t0, t1) (Descartes' rule of signs for the Bernstein basis); if the last one
+    /// has sign -s there is one in (x0, t1) (intermediate values), and that is the only one;
     /// otherwise there is none. F(t0), the first coefficient, is not 0. So [t0, x0] holds no
-    /// zero, and the box [1 - h, 1] holds every zero of the piece beyond it.
+    /// zero, and the box holds every zero of the piece beyond it (and whatever zeros of the
+    /// next piece it covers: a box may hold any number).
     ///
-    /// Where F(1 - h) lies below its error bound (F's slope at the end small against its
+    /// Where F(t1 - h) lies below its error bound (F's slope at the end small against its
     /// largest coefficients, which set the bound of [`value_f64`]: a symmetric curve's
     /// extremum at a knot, the span steep at its far end) the box is widened once to
     /// [`FLOAT_FIRST_H`], as for the estimates of [`SpanPoly::zero_estimates`] (the same proof
@@ -761,19 +766,19 @@ impl SpanPoly {
         }
         let widths = [h, FLOAT_FIRST_H];
         let widths = &widths[..if h < FLOAT_FIRST_H { 2 } else { 1 }];
-        if t1 == 1.0 && proven_changes(&v[..len - 1], e) == Some(0) {
+        if proven_changes(&v[..len - 1], e) == Some(0) {
             for &hr in widths {
-                let x0 = 1.0 - hr;
+                let x0 = t1 - hr;
                 if t0 < x0 && self.f_has_sign(x0, v[0] > 0.0) {
-                    return Some((1.0, t0, x0, hr));
+                    return Some((t1, t0, x0, hr));
                 }
             }
         }
-        if t0 == 0.0 && proven_changes(&v[1..], e) == Some(0) {
+        if proven_changes(&v[1..], e) == Some(0) {
             for &hr in widths {
-                let x1 = hr;
+                let x1 = t0 + hr;
                 if x1 < t1 && self.f_has_sign(x1, v[len - 1] > 0.0) {
-                    return Some((0.0, x1, t1, hr));
+                    return Some((t0, x1, t1, hr));
                 }
             }
         }
