@@ -2982,6 +2982,39 @@ mod tests {
         }
     }
 
+    /// The end rule's box widened to 2^-30: F = (t - 0.3)(t - 1) with its last coefficient
+    /// (F(1) = 0) enclosed 1e-12 wide, so that F(1 - 2^-40) ~ -6e-13 cannot be told from 0 by
+    /// any bound, while F(1 - 2^-30) ~ -7e-10 can. The estimation with h = 2^-40 still proves
+    /// everything: the zero at 0.3 in its narrow box, the end's zero in [1 - 2^-30, 1], the
+    /// rest zero-free (fails without the wider box: the end is then left unproven).
+    #[test]
+    fn end_rule_widens_its_box_where_the_end_is_noisy() {
+        let mut sp = span_poly_of_roots(&[0.3, 1.0], 1.0);
+        let n = sp.f.pts.len() - 1;
+        let last = sp.f.pts[n];
+        sp.f.pts[n] = Mr::from_centre_radius(last.mid(), 1e-12);
+        let h = 1.0 / 1_099_511_627_776.0; // 2^-40
+        let (mut est, mut free) = (Vec::new(), Vec::new());
+        assert!(sp.zero_estimates(&mut est, 2 * n + 2, h, &mut free));
+        assert!(
+            est.iter().any(|&(r, hr)| r == 1.0 && hr == FLOAT_FIRST_H),
+            "{est:?}"
+        );
+        // every point of [0, 1] is free or in a box
+        let mut boxes: Vec<(f64, f64)> = est
+            .iter()
+            .map(|&(r, hr)| ((r - hr).max(0.0), (r + hr).min(1.0)))
+            .collect();
+        boxes.extend(free.iter().copied());
+        boxes.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut reach = 0.0f64;
+        for (lo, hi) in boxes {
+            assert!(lo <= reach, "a gap before {lo}: {est:?} {free:?}");
+            reach = reach.max(hi);
+        }
+        assert_eq!(reach, 1.0, "{est:?} {free:?}");
+    }
+
     /// A zero where F's slope is too small for its signs 2^-40 away to show through the
     /// coefficients' error bound (a tiny span: slope ~4e-6 against radii ~7e-15, as on the
     /// clustered-knots family) is located in a box widened to 2^-30, instead of leaving gaps
