@@ -1453,6 +1453,19 @@ fn value_vs_f64(co: &[Mr], t: f64) -> Option<(Interval, f64)> {
 
 /// [`value_vs_f64`] on row `row` of `h` interleaved rows (coefficient j at `co[j h + row]`).
 fn vs_row(co: &[Mr], h: usize, row: usize, t: f64) -> Option<(Interval, f64)> {
+    vs_scheme::<false>(co, h, row, t)
+}
+
+/// The VS scheme of [`value_vs_f64`] on row `row` of `h` interleaved rows, with the plain
+/// bound (largest coefficient and radius) or, for `WEIGHTED`, the bound weighted by the basis
+/// at t ([`value_vs_f64_weighted`]: a second accumulator with the same weights and roundings);
+/// one loop for both, compiled without the second accumulator where it is not asked for.
+fn vs_scheme<const WEIGHTED: bool>(
+    co: &[Mr],
+    h: usize,
+    row: usize,
+    t: f64,
+) -> Option<(Interval, f64)> {
     let n = (co.len() / h).checked_sub(1)?;
     if n > VS_MAX || !(0.0..=1.0).contains(&t) || co.len() % h != 0 {
         return None;
@@ -1466,9 +1479,15 @@ fn vs_row(co: &[Mr], h: usize, row: usize, t: f64) -> Option<(Interval, f64)> {
     } else {
         (row, h as isize)
     };
+    let nf = n as f64;
+    // (the weighted bound's a_j = r_j + (8n + 12) u |b_j|)
+    let kappa = (4.0 * nf + 6.0) * f64::EPSILON;
+    let weight = |c: Mr| c.rad() + kappa * c.mid().abs();
     let c0 = co[first];
     let (mut m, mut r) = (c0.mid().abs(), c0.rad());
     let (mut acc, mut xp) = (c0.mid(), 1.0f64);
+    let mut accw = if WEIGHTED { weight(c0) } else { 0.0 };
+    let mut ma = accw;
     let mut i = first as isize;
     for &bj in &binom[1..=n] {
         i += step;
@@ -1477,12 +1496,19 @@ fn vs_row(co: &[Mr], h: usize, row: usize, t: f64) -> Option<(Interval, f64)> {
         m = m.max(b.abs());
         r = r.max(c.rad());
         xp *= x;
-        acc = acc.mul_add(s, (bj * xp) * b);
+        let w = bj * xp;
+        acc = acc.mul_add(s, w * b);
+        if WEIGHTED {
+            let a = weight(c);
+            ma = ma.max(a);
+            accw = accw.mul_add(s, w * a);
+        }
     }
-    let nf = n as f64;
-    let e = up(((4.0 * nf + 6.0) * f64::EPSILON + P2_M900) * m
-        + f64::from_bits(16 * n as u64)
-        + r);
+    let e = if WEIGHTED {
+        up(accw + accw * P2_M40 + P2_M900 * (ma + m) + f64::from_bits(16 * (n as u64 + 1)))
+    } else {
+        up(((4.0 * nf + 6.0) * f64::EPSILON + P2_M900) * m + f64::from_bits(16 * n as u64) + r)
+    };
     Some((widened(acc, acc, e), e))
 }
 
@@ -1508,32 +1534,7 @@ fn vs_row(co: &[Mr], h: usize, row: usize, t: f64) -> Option<(Interval, f64)> {
 /// A non-finite value or bound gives ENTIRE. Tested against exact rational evaluation
 /// (`weighted_vs_value_bound_holds_exactly`).
 fn value_vs_f64_weighted(co: &[Mr], t: f64) -> Option<(Interval, f64)> {
-    let n = co.len().checked_sub(1)?;
-    if n > VS_MAX || !(0.0..=1.0).contains(&t) {
-        return None;
-    }
-    let rev = t > 0.5;
-    // (1 - t is exact for t in [1/2, 1]: Sterbenz)
-    let (x, s) = if rev { (1.0 - t, t) } else { (t, 1.0 - t) };
-    let binom = &BINOMIALS[n];
-    let kappa = (4.0 * n as f64 + 6.0) * f64::EPSILON;
-    let at = |j: usize| if rev { co[n - j] } else { co[j] };
-    let weight = |c: Mr| c.rad() + kappa * c.mid().abs();
-    let c0 = at(0);
-    let (mut m, mut ma) = (c0.mid().abs(), weight(c0));
-    let (mut acc, mut accw, mut xp) = (c0.mid(), ma, 1.0f64);
-    for (j, &bj) in binom.iter().enumerate().take(n + 1).skip(1) {
-        let c = at(j);
-        let (b, a) = (c.mid(), weight(c));
-        m = m.max(b.abs());
-        ma = ma.max(a);
-        xp *= x;
-        let w = bj * xp;
-        acc = acc.mul_add(s, w * b);
-        accw = accw.mul_add(s, w * a);
-    }
-    let e = up(accw + accw * P2_M40 + P2_M900 * (ma + m) + f64::from_bits(16 * (n as u64 + 1)));
-    Some((widened(acc, acc, e), e))
+    vs_scheme::<true>(co, 1, 0, t)
 }
 
 /// 2^-40 (exact).
@@ -2624,8 +2625,6 @@ mod tests {
         assert!(slack.is_finite());
     }
 
-    /// A parameter of the point-value tests, by the iteration `it`: near 0, near 1, near 1/2,
-    /// tiny (underflowing powers), exactly 0, 1/2 or 1, or uniform.
     /// The exact value at t of the polynomial whose Bernstein coefficients are the `co`
     /// enclosures' corners on the side `sign` (centre + sign * radius): the left part of exact
     /// de Casteljau at t ends in it.
@@ -2684,6 +2683,8 @@ mod tests {
         (high, n, mag)
     }
 
+    /// A parameter of the point-value tests, by the iteration `it`: near 0, near 1, near 1/2,
+    /// tiny (underflowing powers), exactly 0, 1/2 or 1, or uniform.
     fn vs_test_param(rng: &mut rand_chacha::ChaCha8Rng, it: usize) -> f64 {
         use rand::Rng;
         match it % 7 {

@@ -665,33 +665,32 @@ impl<'a> Engine<'a> {
     /// excluded).
     fn seed_float_first(&mut self, k: usize, a: f64, b: f64) -> bool {
         const H: f64 = super::bernstein::FLOAT_FIRST_H; // 2^-30
-        let (mut est, mut free) = (std::mem::take(&mut self.est), std::mem::take(&mut self.free));
         let (mut bx, mut gaps) = (std::mem::take(&mut self.seed_boxes), std::mem::take(&mut self.seed_gaps));
-        let ok = a == 0.0
-            && b == 1.0
-            && match self.span_poly(k) {
+        let (mut seeded, mut estimated) = (false, false);
+        // (the span's form, then, where F's `Mr` coefficients were too wide for the proof,
+        // against the small ones next to a zero or altogether, once more with F from the
+        // span's double-double points, `SpanPoly::refined`, which then also serves the search;
+        // the `bezier` strategy's general fast path does the same)
+        for retry in [false, true] {
+            if !(a == 0.0 && b == 1.0) {
+                break;
+            }
+            if retry {
+                match self.span_poly(k).and_then(SpanPoly::refined) {
+                    Some(r) if !r.f_swamped() => self.poly = Some(r),
+                    _ => break,
+                }
+            }
+            let (mut est, mut free) = (std::mem::take(&mut self.est), std::mem::take(&mut self.free));
+            let ok = match self.span_poly(k) {
                 Some(sp) => sp.zero_boxes(H, 2 * self.p + 2, (&mut est, &mut free), &mut bx, &mut gaps),
                 None => false,
             };
-        (self.est, self.free) = (est, free);
-        let mut seeded = ok && self.exclude_gaps(k, &mut gaps);
-        let mut estimated = ok;
-        // (where F's `Mr` coefficients were too wide for the proof, against the small ones
-        // next to a zero or altogether: once more with F from the span's double-double points,
-        // `SpanPoly::refined`, which then also serves the search; the `bezier` strategy's
-        // general fast path does the same)
-        if !seeded && a == 0.0 && b == 1.0 {
-            if let Some(r) = self.span_poly(k).and_then(SpanPoly::refined) {
-                if !r.f_swamped() {
-                    self.poly = Some(r);
-                    let (mut est, mut free) =
-                        (std::mem::take(&mut self.est), std::mem::take(&mut self.free));
-                    let sp = self.span_poly(k).expect("the refined form of span k");
-                    let ok = sp.zero_boxes(H, 2 * self.p + 2, (&mut est, &mut free), &mut bx, &mut gaps);
-                    (self.est, self.free) = (est, free);
-                    estimated |= ok;
-                    seeded = ok && self.exclude_gaps(k, &mut gaps);
-                }
+            (self.est, self.free) = (est, free);
+            estimated |= ok;
+            seeded = ok && self.exclude_gaps(k, &mut gaps);
+            if seeded {
+                break;
             }
         }
         if seeded {
@@ -706,9 +705,9 @@ impl<'a> Engine<'a> {
 
     /// The gaps of [`Engine::seed_float_first`] on span k excluded (F has no zero in them:
     /// [`SpanPoly::exclude_gaps`]), or `false` (then counted in `Stats::fast_fallbacks` by the
-    /// caller): see there. `gaps` is used up. (A gap not excluded: the whole span is searched as without
-    /// the seeding; a gap whose end is next to a zero just outside it would make the Newton
-    /// steps crawl towards that end.)
+    /// caller): see there. `gaps` is used up. (A gap not excluded: the whole span is searched
+    /// as without the seeding; a gap whose end is next to a zero just outside it would make
+    /// the Newton steps crawl towards that end.)
     fn exclude_gaps(&mut self, k: usize, gaps: &mut Vec<(f64, f64, u32)>) -> bool {
         let Some(sp) = self.local(k, T::new(0.0, 1.0)) else {
             return false;
