@@ -569,6 +569,52 @@ fn bezier_fast_path_takes_knot_extrema_and_flat_runs() {
     }
 }
 
+/// Béziers tangent to an axis at an interior point that is no double (a font's quadratic
+/// touching the baseline between its on-curve points, a cubic with a double root of y at
+/// t = 1/3), and the same with float data (a quadratic whose minimum is -7.8e-18 against
+/// coordinates of 0.3 .. 2): the extremum is zero or near it against the scale, where the
+/// doubles are far finer than a double-double value of the curve. `bezier` and `newton` (the
+/// lane, the root-isolating proof) decide it by exact comparisons, so the box's lo is the
+/// optimal double with the certificate's first rule: at an exact tangency lo = +0, attained
+/// (inner_lo = 0), as it was not before (the attained value was 1e-30 .. 1e-29 above it and
+/// the certification's exact search took 10^2 .. 10^3 times the enclosure's time).
+#[test]
+fn tangent_to_an_axis_is_decided_exactly() {
+    let bezier = |pts: &[[f64; 2]]| {
+        let p = pts.len() - 1;
+        let mut knots = vec![0.0; p + 1];
+        knots.extend(vec![1.0; p + 1]);
+        NurbsCurve::new(p, knots, pts.iter().map(|q| q.to_vec()).collect(), None).unwrap()
+    };
+    let tangent = [
+        bezier(&[[0.0, 4.0], [1.0, -2.0], [2.0, 1.0]]),
+        bezier(&[[100.0, 36.0], [150.0, -24.0], [200.0, 16.0]]),
+        bezier(&[[0.0, 3.0], [1.0, -2.0], [2.0, -4.0], [3.0, 24.0]]),
+    ];
+    let b = -(0.3f64 * 0.7).sqrt();
+    let float_data = bezier(&[[0.0, 0.3], [1.0, b], [2.0, 0.7]]);
+    for name in ["bezier", "newton"] {
+        let s = strategy_by_name(name, None).unwrap();
+        for (i, c) in tangent.iter().chain([&float_data]).enumerate() {
+            let e = s.enclose(c);
+            let cb = &e.coords[1];
+            check_sound(c, &e, &params(c, 64, &[1.0 / 3.0])).unwrap_or_else(|m| panic!("{m}"));
+            assert!(cb.optimal_lo && cb.optimal_hi, "{name} case {i}: {cb:?}");
+            if i < tangent.len() {
+                assert_eq!(
+                    (cb.lo.to_bits(), cb.inner_lo.to_bits()),
+                    (0, 0),
+                    "{name} case {i}: {cb:?}"
+                );
+            } else {
+                assert!(cb.lo < 0.0 && cb.lo > -1e-17, "{name}: {cb:?}");
+            }
+            #[cfg(feature = "mpfr")]
+            mpfr::check_reference(c, &e, tight_for(e.strategy)).unwrap_or_else(|m| panic!("{m}"));
+        }
+    }
+}
+
 /// Cubic with a triple interior knot at 0.4: C0 there, interpolating P3 = (1, 1.3), the
 /// maximum of y (left derivative > 0, right < 0: not a zero of C'); min of x at P0.
 /// Rational: the corner point lightly weighted, its neighbours heavily.

@@ -212,23 +212,31 @@ fn ratio_of_f64(x: f64) -> Option<BigRational> {
     })
 }
 
-/// An f64 near q (within a few ulps; ±inf or 0 when out of range): the integer part of
-/// q 2^s for an s that leaves ~64 significant bits, scaled back.
+/// An f64 near q (within a few ulps; ±inf or 0 when out of range): [`approx_ratio`] of its
+/// numerator and denominator.
 fn approx(q: &BigRational) -> f64 {
-    let (n, d) = (q.numer(), q.denom());
+    approx_ratio(q.numer(), q.denom(), 0)
+}
+
+/// An f64 near n / d 2^e (within a few ulps; ±inf or 0 when out of range, NaN for d = 0): the
+/// integer part of |n| 2^s / |d| for an s that leaves ~64 significant bits, scaled back by
+/// 2^(e - s) in steps that cannot overflow or underflow prematurely. An estimate, no bound.
+pub(crate) fn approx_ratio(n: &BigInt, d: &BigInt, e: i64) -> f64 {
+    if d.is_zero() {
+        return f64::NAN;
+    }
     if n.is_zero() {
         return 0.0;
     }
     let s = 64 - (n.bits() as i64 - d.bits() as i64);
+    let (na, da) = (n.abs(), d.abs());
     let m = if s >= 0 {
-        (n.abs() << (s as u64)) / d
+        (na << (s as u64)) / da
     } else {
-        n.abs() / (d << ((-s) as u64))
+        na / (da << ((-s) as u64))
     };
-    let mf = m.to_f64().unwrap_or(f64::INFINITY);
-    // mf 2^-s in steps that cannot overflow or underflow prematurely
-    let mut x = mf;
-    let mut k = -s;
+    let mut x = m.to_f64().unwrap_or(f64::INFINITY);
+    let mut k = e.saturating_sub(s);
     while k > 0 && x.is_finite() {
         let st = k.min(1000);
         x *= 2f64.powi(st as i32);
@@ -239,7 +247,7 @@ fn approx(q: &BigRational) -> f64 {
         x *= 2f64.powi(-(st as i32));
         k += st;
     }
-    if n.is_negative() {
+    if n.is_negative() != d.is_negative() {
         -x
     } else {
         x
