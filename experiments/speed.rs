@@ -310,12 +310,102 @@ fn main() {
          `Stats`): {}",
         counters(&strategies, &nc)
     ));
+    tangent_rows(&strategies, reps, &mut line);
     if let Some(dir) = std::path::Path::new(&out).parent() {
         let _ = std::fs::create_dir_all(dir);
     }
     match std::fs::write(&out, &rep) {
         Ok(()) => eprintln!("wrote {out}"),
         Err(e) => eprintln!("could not write {out}: {e}"),
+    }
+}
+
+/// Curves tangent to an axis at an interior parameter that is no double (an extremum of
+/// 0, or near it, against coordinates of ~1: the doubles there are far finer than a
+/// double-double value of the curve), per strategy the time of one enclosure (best of a few
+/// runs) and whether the lower bound of y is certified optimal.
+fn tangent_rows(strategies: &[Box<dyn BoxEncloser>], reps: usize, line: &mut dyn FnMut(String)) {
+    let curve = |p: usize, pts: &[[f64; 2]], w: Option<Vec<f64>>| {
+        let mut k = vec![0.0; p + 1];
+        k.extend(vec![1.0; p + 1]);
+        NurbsCurve::new(p, k, pts.iter().map(|q| q.to_vec()).collect(), w)
+            .expect("a valid Bézier curve")
+    };
+    let b = -(0.3f64 * 0.7).sqrt();
+    let cases = [
+        (
+            "quadratic (0, 4), (1, -2), (2, 1): min y = 0 at t = 2/3",
+            curve(2, &[[0.0, 4.0], [1.0, -2.0], [2.0, 1.0]], None),
+        ),
+        (
+            "cubic, y = 3 (3t - 1)^2 (t + 1): min y = 0 at t = 1/3",
+            curve(
+                3,
+                &[[0.0, 3.0], [1.0, -2.0], [2.0, -4.0], [3.0, 24.0]],
+                None,
+            ),
+        ),
+        (
+            "quadratic (0.3, -RN(sqrt(0.21)), 0.7): min y = -7.8e-18",
+            curve(2, &[[0.0, 0.3], [1.0, b], [2.0, 0.7]], None),
+        ),
+        (
+            "the cubic above elevated to degree 4 (min y = 0 at t = 1/3)",
+            curve(
+                4,
+                &[
+                    [0.0, 3.0],
+                    [1.0, -0.75],
+                    [2.0, -3.0],
+                    [3.0, 3.0],
+                    [4.0, 24.0],
+                ],
+                None,
+            ),
+        ),
+        (
+            "rational quarter circle about (3, -1), turned by 0.3: max y ~ -2.5e-17",
+            curve(
+                2,
+                &[
+                    [3.9553364891256058, -0.7044797933386604],
+                    [3.6598162824642664, 0.2508566957869456],
+                    [2.7044797933386606, -0.04466351087439402],
+                ],
+                Some(vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0]),
+            ),
+        ),
+    ];
+    line(String::new());
+    line("Curves tangent to an axis at an interior parameter that is no double (the extremum 0 or near it, against coordinates of ~1: the doubles there are far finer than a double-double value of the curve, so the optimal double takes exact arithmetic), time of one enclosure (best of a few runs) and whether y's extreme bound is certified optimal:".into());
+    line(String::new());
+    let head: Vec<String> = strategies
+        .iter()
+        .map(|s| format!("`{}`", s.name()))
+        .collect();
+    line(format!("| curve | {} |", head.join(" | ")));
+    line(format!("|---|{}", "---|".repeat(strategies.len())));
+    for (name, c) in &cases {
+        let mut cells = Vec::new();
+        for s in strategies {
+            let e = s.enclose(c);
+            let t = best(reps.min(5), &mut || {
+                (0..3)
+                    .map(|_| s.enclose(black_box(c)).coords[1].lo)
+                    .sum::<f64>()
+            }) / 3.0;
+            let cert = e.coords[1].optimal_lo && e.coords[1].optimal_hi;
+            cells.push(format!(
+                "{:.1} µs{}",
+                t * 1e6,
+                if cert {
+                    ", certified"
+                } else {
+                    ", not certified"
+                }
+            ));
+        }
+        line(format!("| {name} | {} |", cells.join(" | ")));
     }
 }
 

@@ -890,7 +890,10 @@ pub(crate) fn f64_sides(
                 } else {
                     next
                 };
-                guess.clamp(lo, next)
+                // (lo <= next: the witness lies below next, the bracket's value more than
+                // two doubles below the bound; max / min rather than a clamp, which would
+                // panic on anything else)
+                guess.max(lo).min(next)
             } else {
                 break;
             };
@@ -1209,16 +1212,24 @@ mod tests {
             let w = BigRational::new(BigInt::from(1), BigInt::from(1u64 << 30));
             let (mut lo, mut hi) = (near - &w, near + &w);
             assert!(bern(&dq, &lo).is_negative() && bern(&dq, &hi).is_positive(), "{c:?}");
-            for _ in 0..220 {
+            let lip: BigRational = dq.iter().map(|x| x.abs()).sum::<BigRational>() * int(3);
+            // (to 2^-80 of |M| at least, for minima as small as subnormals)
+            for i in 0.. {
                 let mid = (&lo + &hi) / int(2);
                 if bern(&dq, &mid).is_negative() {
                     lo = mid;
                 } else {
                     hi = mid;
                 }
+                if i >= 220 && i % 20 == 0 {
+                    let v = std::cmp::min(bern(&cq, &lo), bern(&cq, &hi));
+                    let tol = v.abs() / BigRational::from_integer(BigInt::from(1) << 80u32);
+                    if &lip * (&hi - &lo) <= tol || i > 1400 {
+                        break;
+                    }
+                }
             }
             let v = std::cmp::min(bern(&cq, &lo), bern(&cq, &hi));
-            let lip: BigRational = dq.iter().map(|x| x.abs()).sum::<BigRational>() * int(3);
             (&v - lip * (&hi - &lo), v)
         };
         let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(36);
