@@ -1174,8 +1174,9 @@ mod tests {
     /// exactly: (k m^2, -k m n, k n^2), and K (alpha t - beta)^2 (gamma t + delta) in
     /// Bernstein form), the same with one coefficient moved by an ulp (M tiny, either sign),
     /// and quadratics (a, -sqrt(a c), c) rounded (M ~ 1e-17 a). Each side comes back sound
-    /// against the exact M (a rational for quadratics; for cubics the bisection of
-    /// [`bracket_comparison_matches_bisection`]'s reference, 2^-220 wide) and with the optimal
+    /// against the exact M (a rational for quadratics, 0 for exact tangencies; otherwise an
+    /// exact bisection on the sign of x' near t*, to 2^-80 of |M| or 2^-1400, as in
+    /// [`bracket_comparison_matches_bisection`]'s reference) and with the optimal
     /// double proved by the first rule (the bound attained, or a strict witness at
     /// next_down(bound)): no certification search is left to do. An exact zero comes out
     /// attained, as +0 on the box's lo side.
@@ -1196,8 +1197,8 @@ mod tests {
             }
             b[0].clone()
         };
-        // the exact interior minimum, as an interval [lo, hi] of rationals 2^-220 wide at
-        // most: a quadratic's in closed form; a cubic's at the root t* of x' where it turns
+        // the exact interior minimum, as an interval [lo, hi] of rationals: a quadratic's in
+        // closed form (lo = hi); a cubic's by bisection at the root t* of x' where it turns
         // from - to + within 2^-30 of `near` (checked exactly; the other root is then a local
         // maximum, so that the minimum over [0, 1] is this one or an end value)
         let exact_min = |c: &[f64], near: &BigRational| -> (BigRational, BigRational) {

@@ -671,10 +671,8 @@ impl<'a> Engine<'a> {
         // against the small ones next to a zero or altogether, once more with F from the
         // span's double-double points, `SpanPoly::refined`, which then also serves the search;
         // the `bezier` strategy's general fast path does the same)
-        for retry in [false, true] {
-            if !(a == 0.0 && b == 1.0) {
-                break;
-            }
+        let local = a == 0.0 && b == 1.0;
+        for retry in [false, true].into_iter().filter(|_| local) {
             if retry {
                 match self.span_poly(k).and_then(SpanPoly::refined) {
                     Some(r) if !r.f_swamped() => self.poly = Some(r),
