@@ -1015,6 +1015,7 @@ fn certify_side(
     // the double-double value of the curve below g with the largest centre seen so far, in
     // its scaled units (`DdiOutcome::top`)
     let mut top_seen: Option<Ddi> = None;
+    let mut endgame_tried = false;
     for round in 0..=MAX_LOWERINGS {
         if !bound.is_finite() {
             break;
@@ -1030,11 +1031,29 @@ fn certify_side(
         // (1c. a clamped end's value, exactly the end control point, above t: after a
         // lowering the end value is often the new bound's witness)
         // (and the same for the values at knots of multiplicity >= p, control points too)
-        let ev = cv.below(sign);
         if end_value > t {
             proved = true;
             break;
         }
+        // A far tie: a bound the strategy nearly proved (within its tolerance of the scale)
+        // but not attained, whose doubles are far finer than the coordinate scale (an
+        // extremum far smaller than the scale: a curve tangent to an axis, a maximum near 0):
+        // no double-double value of the curve (~2^-100 of the scale) tells them apart, so
+        // the stages below could only spend their boxes and exact evaluations before the end
+        // game decided it anyway. The end game first.
+        if round == 0
+            && !far_below(bound, inner.max(end_value), scale, within)
+            && far_below(bound, inner, 0.0, 2)
+            && crate::num::ulp(bound.abs()) < scale * 2f64.powi(-FAR_TIE_BITS)
+        {
+            endgame_tried = true;
+            if let Some(t) = exact_endgame(cv.dn.orig, j, sign, bound, inner) {
+                bound = t;
+                proved = true;
+                break;
+            }
+        }
+        let ev = cv.below(sign);
         // The search stages only try to complete what the strategy nearly proved: when its
         // own attained value is more than LOWER_WITHIN_ULPS ulps of the coordinate scale below
         // the bound (a loose bound such as the control hull's), the answer is `false` at once.
@@ -1218,7 +1237,7 @@ fn certify_side(
     }
     // (the end game in exact arithmetic on the enclosed curve itself, where the stages above,
     // on copies scaled into the f64 range, could not decide: a nearly proved bound only)
-    if !proved && bound.is_finite() {
+    if !proved && bound.is_finite() && !endgame_tried {
         let own = cv.dn.orig;
         if !far_below(bound, inner, own.coord_scale(j), sc.within) {
             if let Some(t) = exact_endgame(own, j, sign, bound, inner) {
@@ -1234,6 +1253,15 @@ fn certify_side(
     }
     proved
 }
+
+/// The finest grid of [`SpanRows::newton_points`] (2^-1024: a maximum's value to ~2^-2000
+/// relative, below the subnormal spacing for any coordinate scale of f64).
+const NEWTON_MAX_BITS: u64 = 1024;
+
+/// A nearly proved bound whose ulp is below 2^-FAR_TIE_BITS of the coordinate scale, more than
+/// two of its ulps above the value attained, is a far tie ([`certify_side`]: the end game
+/// first): double-double values (~2^-100 of the scale) cannot tell its doubles apart.
+const FAR_TIE_BITS: i32 = 96;
 
 /// Rounds of [`exact_endgame`].
 pub const ENDGAME_ROUNDS: usize = 4;
@@ -1304,8 +1332,17 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
             match sign_rule(r.minus(t)?) {
                 Rule::AtMost => {}
                 Rule::Above(s) => {
-                    // f(s) > 0: g(s) > t >= A, a larger exact lower bound
+                    // f(s) > 0: g(s) > t >= A, a larger exact lower bound; and the values at
+                    // exact Newton iterates from s towards the piece's critical point (s is
+                    // near the maximiser: the split point of the sign rule, or a point where
+                    // f just turned positive), which bring A within ~2^-1000 relative of a
+                    // maximum there, so that RU(A) is RU(max g) at the next round
                     raise(&mut best, r.value(&s)?);
+                    for x in r.newton_points(&s) {
+                        if let Some(g) = r.value(&x) {
+                            raise(&mut best, g);
+                        }
+                    }
                     raised = true;
                     break;
                 }
@@ -1334,6 +1371,18 @@ impl SpanRows {
         let (va, _) = eval_integer(&self.a, s);
         let (vw, _) = eval_integer(&self.w, s);
         self.ratio(va, &vw)
+    }
+
+    /// Points near a critical point of the piece from s ([`crate::num::sturm::newton_critical`]
+    /// on A / W; the factor 2^d changes no critical point).
+    fn newton_points(&self, s: &BigRational) -> Vec<BigRational> {
+        use crate::num::sturm::{newton_critical, power_form};
+        newton_critical(
+            &power_form(&self.a),
+            &power_form(&self.w),
+            s,
+            NEWTON_MAX_BITS,
+        )
     }
 
     /// 2^d va / vw for values va, vw of A and W at one point (the same scale; at the span's
@@ -2259,7 +2308,7 @@ fn sign_rule(fi: Vec<BigInt>) -> Rule {
         return Rule::Above(end(1));
     }
     if fi.iter().map(BigInt::bits).max().unwrap_or(0) > EXACT_RULE_MAX_BITS {
-        return Rule::Undecided;
+        return sturm_rule(&fi);
     }
     let split_point = best_split(&fi);
     let exact = fi.clone();
@@ -2311,12 +2360,12 @@ fn sign_rule(fi: Vec<BigInt>) -> Rule {
                 .is_some_and(|x| !rounded || eval_integer(&exact, x).0.sign() == Sign::Plus);
             return match (above, at) {
                 (true, Some(x)) => Rule::Above(x),
-                _ => Rule::Undecided,
+                _ => sturm_rule(&exact),
             };
         }
         splits += 1;
         if splits > MAX_EXACT_SPLITS {
-            return Rule::Undecided;
+            return sturm_rule(&exact);
         }
         // split at s* when it lies strictly inside, else halve
         let positive = |x: Exact| x.signum() == Some(Ordering::Greater);
@@ -2329,13 +2378,32 @@ fn sign_rule(fi: Vec<BigInt>) -> Rule {
         };
         let m = s0.clone() + r.clone() * (s1.clone() - s0.clone());
         let Some(r) = r.value() else {
-            return Rule::Undecided;
+            return sturm_rule(&exact);
         };
         let (l, rt) = split_integer(&b, r);
         stack.push((rt, m.clone(), s1));
         stack.push((l, s0, m));
     }
     Rule::AtMost
+}
+
+/// Coefficients longer than this are not given to [`sturm_rule`].
+const STURM_MAX_BITS: u64 = 4096;
+
+/// The decision of [`sign_rule`] where its subdivision gave none (an exact tie at an
+/// irrational or non-dyadic point, which no split point holds; a near-tie whose pieces would
+/// have to be shorter than the split budget allows): Sturm's theorem on f's power form
+/// ([`crate::num::sturm`]: f <= 0 on [0, 1], or an exact point where f > 0).
+fn sturm_rule(fi: &[BigInt]) -> Rule {
+    use crate::num::sturm::{at_most_zero, power_form, Decision};
+    if fi.iter().map(BigInt::bits).max().unwrap_or(0) > STURM_MAX_BITS {
+        return Rule::Undecided;
+    }
+    match at_most_zero(&power_form(fi)) {
+        Decision::AtMost => Rule::AtMost,
+        Decision::Above(s) => Rule::Above(s),
+        Decision::Undecided => Rule::Undecided,
+    }
 }
 
 /// Whether the data of span k (coordinate j and weights of its control points, its knots
@@ -2578,15 +2646,7 @@ fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
     if !(2..=8).contains(&p) {
         return None;
     }
-    let mut d = fi.to_vec();
-    let mut ai: Vec<BigInt> = Vec::with_capacity(p + 1);
-    for k in 0..=p {
-        let b = BigInt::from(crate::num::binom(p, k) as u64);
-        ai.push(b * &d[0]);
-        for i in 0..p - k {
-            d[i] = &d[i + 1] - &d[i];
-        }
-    }
+    let ai = crate::num::sturm::power_form(fi);
     if squarefree_mod_prime(&ai) {
         return None;
     }

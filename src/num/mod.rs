@@ -13,6 +13,7 @@ pub mod mr;
 mod poly;
 pub(crate) mod pool;
 mod scalar;
+pub(crate) mod sturm;
 
 pub use ddi::Ddi;
 pub use exact::Exact;

@@ -1,0 +1,523 @@
+//! Exact sign decisions for a polynomial with integer coefficients on [0, 1], by Sturm
+//! sequences: whether f <= 0 on the whole interval, or an exact point where f > 0.
+//!
+//! This decides what subdivision of the Bernstein coefficients cannot: a maximum of f that is
+//! exactly 0 at an irrational or non-dyadic point (a double root of f, a curve touching its
+//! bound there), or a maximum a hair below or above 0, where the pieces would have to shrink
+//! below the gap's square root before their coefficients show a sign.
+//!
+//! Sturm's theorem (Sturm 1835; in the form of Basu, Pollack, Roy, *Algorithms in Real
+//! Algebraic Geometry*, Thm. 2.50, which needs no square-free assumption): for a polynomial
+//! F != 0 and a < b with F(a) F(b) != 0, the number of distinct real roots of F in (a, b) is
+//! Var(a) - Var(b), where Var(x) counts the sign changes (zeros dropped) of the sequence
+//! S_0 = F, S_1 = F', S_{i+1} = -rem(S_{i-1}, S_i) evaluated at x. Multiplying any element by
+//! a positive factor changes no sign, so each remainder is taken as a pseudo-remainder with the
+//! positive multiplier |lc(S_i)|^(deg S_{i-1} - deg S_i + 1) and divided by its content: all
+//! integers, no rational arithmetic (the primitive pseudo-remainder sequence, Collins 1967).
+//!
+//! Between consecutive distinct roots F has one sign, so F <= 0 on [0, 1] iff F is <= 0 at the
+//! ends and at points between its roots; the roots are isolated by bisection at dyadic points
+//! with the same counts, and an interval holding one root is decided by the signs at its two
+//! ends (F keeps the end's sign up to the root).
+
+use num_bigint::{BigInt, Sign};
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+
+/// What [`at_most_zero`] showed for f on [0, 1].
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Decision {
+    /// f <= 0 at every point of [0, 1]
+    AtMost,
+    /// f(s) > 0 at this s in [0, 1] (exactly)
+    Above(BigRational),
+    /// not decided within the bisection budget
+    Undecided,
+}
+
+/// Bisections of [`at_most_zero`] at most (each halves one interval: roots 2^-MAX_BISECTIONS
+/// apart are separated, deeper ones left undecided).
+const MAX_BISECTIONS: usize = 4096;
+
+/// The power form of the Bernstein polynomial sum b_i B_{i,p}(s) with integer coefficients:
+/// a_k = binom(p, k) Δ^k b_0 (forward differences; Farin's monomial form of a Bézier curve), so
+/// f(s) = sum a_k s^k, integers again.
+pub(crate) fn power_form(b: &[BigInt]) -> Vec<BigInt> {
+    let Some(p) = b.len().checked_sub(1) else {
+        return Vec::new();
+    };
+    let mut d = b.to_vec();
+    let mut a = Vec::with_capacity(p + 1);
+    for k in 0..=p {
+        // binom(p, k) as an integer (exact: the product of k consecutive integers over k!)
+        let mut c = BigInt::one();
+        for i in 0..k {
+            c = c * BigInt::from(p - i) / BigInt::from(i + 1);
+        }
+        a.push(c * &d[0]);
+        for i in 0..p - k {
+            d[i] = &d[i + 1] - &d[i];
+        }
+    }
+    a
+}
+
+/// Whether f(s) = sum a_k s^k (integer coefficients, power form) is <= 0 on [0, 1]; see the
+/// module docs.
+pub(crate) fn at_most_zero(a: &[BigInt]) -> Decision {
+    let mut f = a.to_vec();
+    trim(&mut f);
+    if f.is_empty() {
+        return Decision::AtMost; // f = 0
+    }
+    let half = BigRational::new(BigInt::one(), BigInt::from(2));
+    let (zero, one) = (BigRational::zero(), BigRational::one());
+    // the ends: f(0) = a_0, f(1) = sum a_k
+    if f[0].is_positive() {
+        return Decision::Above(zero);
+    }
+    if sum(&f).is_positive() {
+        return Decision::Above(one);
+    }
+    // Divide out the roots at the ends: f = s^m (s - 1)^r F with F(0) F(1) != 0. On (0, 1)
+    // s^m > 0 and (s - 1)^r has the sign (-1)^r, so f and (-1)^r F have the same sign there;
+    // F is replaced by (-1)^r F. (Exact divisions: the constant term is 0, the sum is 0.)
+    while f.len() > 1 && f[0].is_zero() {
+        f.remove(0);
+    }
+    let mut flip = false;
+    while f.len() > 1 && sum(&f).is_zero() {
+        // synthetic division by (s - 1): q_{n-1} = a_n, q_{k-1} = a_k + q_k
+        let n = f.len() - 1;
+        let mut q = vec![BigInt::zero(); n];
+        q[n - 1] = f[n].clone();
+        for k in (1..n).rev() {
+            q[k - 1] = &f[k] + &q[k];
+        }
+        f = q;
+        flip = !flip;
+    }
+    if flip {
+        f.iter_mut().for_each(|x| *x = -&*x);
+    }
+    if f.len() == 1 {
+        // F a non-zero constant (f(0) = 0 or f(1) = 0 was divided out, or f itself constant)
+        return if f[0].is_negative() {
+            Decision::AtMost
+        } else {
+            Decision::Above(half)
+        };
+    }
+    let seq = sturm_sequence(&f);
+    // a dyadic point n / 2^e and its data: Var, and the sign of F there
+    let at = |n: &BigInt, e: u64| -> (usize, Sign) {
+        let signs: Vec<Sign> = seq.iter().map(|s| sign_at(s, n, e)).collect();
+        (variations(&signs), signs[0])
+    };
+    let (n0, n1) = (BigInt::zero(), BigInt::one());
+    let (v0, s0) = at(&n0, 0);
+    let (v1, s1) = at(&n1, 0);
+    // (F(0), F(1) != 0 by construction)
+    // intervals (n_a / 2^e, n_b / 2^e) with their Var and F signs at the ends
+    let mut stack = vec![(n0, n1, 0u64, (v0, s0), (v1, s1))];
+    let mut bisections = 0usize;
+    while let Some((na, nb, e, (va, sa), (vb, sb))) = stack.pop() {
+        let roots = va.saturating_sub(vb);
+        let interior = |n: &BigInt| n.is_positive() && *n < (BigInt::one() << e);
+        let dy = |n: BigInt| crate::num::exact::dyadic(n, e);
+        // one sign on [a, b] (no root inside): that of F(a)
+        if roots == 0 {
+            if sa == Sign::Plus {
+                // F > 0 on [a, b]: the midpoint, inside (0, 1)
+                return Decision::Above(crate::num::exact::dyadic(&na + &nb, e + 1));
+            }
+            continue;
+        }
+        // one root r inside: F has F(a)'s sign on [a, r) and F(b)'s on (r, b]
+        if roots == 1 && sa == Sign::Minus && sb == Sign::Minus {
+            continue;
+        }
+        if roots == 1 && sa == Sign::Plus && interior(&na) {
+            return Decision::Above(dy(na));
+        }
+        if roots == 1 && sb == Sign::Plus && interior(&nb) {
+            return Decision::Above(dy(nb));
+        }
+        // bisect (at a point that is no root of F: among 1/2, 1/2 + 2^-k of the interval,
+        // at most deg F are roots)
+        bisections += 1;
+        if bisections > MAX_BISECTIONS {
+            return Decision::Undecided;
+        }
+        let (na, nb) = (na << 1u64, nb << 1u64);
+        let mut e = e + 1;
+        let mut m = (&na + &nb) >> 1u64;
+        let mut k = 0u64;
+        let (mut na, mut nb) = (na, nb);
+        let (vm, sm) = loop {
+            let r = at(&m, e);
+            if r.1 != Sign::NoSign {
+                break r;
+            }
+            // F(m) = 0: move right by (b - a) 2^-(k + 2), on a finer grid
+            k += 1;
+            if k > f.len() as u64 + 1 {
+                return Decision::Undecided;
+            }
+            na <<= 1u64;
+            nb <<= 1u64;
+            e += 1;
+            m = (m << 1u64) + ((&nb - &na) >> (k + 1));
+        };
+        stack.push((na.clone(), m.clone(), e, (va, sa), (vm, sm)));
+        stack.push((m, nb, e, (vm, sm), (vb, sb)));
+    }
+    Decision::AtMost
+}
+
+/// Exact Newton iterates towards a critical point of the quotient a / w (power forms with
+/// integer coefficients, w > 0 where it matters) from s0: the roots of h = a' w - a w' (the
+/// quotient rule's numerator; h = a' w for a constant w), s <- s - h(s) / h'(s) with
+/// h' = a'' w - a w'', each iterate rounded to the dyadic grid 2^-bits for bits = 64, 128, ... up to
+/// `max_bits` (Newton doubles the correct digits per step, so the grid keeps the iterates'
+/// length near what they have earned). Only points to try: every use of them evaluates the
+/// quotient exactly there. Stops at an exact root of h, a zero h', or a fixed point; iterates
+/// outside [0, 1] are dropped.
+pub(crate) fn newton_critical(
+    a: &[BigInt],
+    w: &[BigInt],
+    s0: &BigRational,
+    max_bits: u64,
+) -> Vec<BigRational> {
+    let h = sub(&mul(&derivative(a), w), &mul(a, &derivative(w)));
+    let dhp = sub(
+        &mul(&derivative(&derivative(a)), w),
+        &mul(a, &derivative(&derivative(w))),
+    );
+    let mut out = Vec::new();
+    // s = n / q, q > 0, unreduced (a reduction's gcd of long integers would cost more than
+    // the whole step)
+    let (mut n, mut q) = (s0.numer().clone(), s0.denom().clone());
+    if q.is_negative() {
+        (n, q) = (-n, -q);
+    }
+    let mut bits = 64u64;
+    while bits <= max_bits && q.is_positive() {
+        // h(s) = hn / q^dh, h'(s) = dn / q^dd (Horner in integers)
+        let (hn, dh) = eval_scaled(&h, &n, &q);
+        if hn.is_zero() {
+            break;
+        }
+        let (dn, dd) = eval_scaled(&dhp, &n, &q);
+        if dn.is_zero() {
+            break;
+        }
+        // s - h(s) / h'(s) = (n dn q^dh - hn q^(dd + 1)) / (q^(dh + 1) dn)
+        let qp = |e: usize| num_traits::pow(q.clone(), e);
+        let mut num = &n * &dn * qp(dh) - &hn * qp(dd + 1);
+        let mut den = qp(dh + 1) * &dn;
+        if den.is_negative() {
+            (num, den) = (-num, -den);
+        }
+        // the nearest point of the grid 2^-bits: floor((2 num 2^bits + den) / (2 den))
+        let m = ((num << (bits + 1)) + &den).div_floor(&(den << 1u64));
+        let one = BigInt::one() << bits;
+        let same = &m * &q == &n << bits;
+        if same || m.is_negative() || m > one {
+            break;
+        }
+        out.push(BigRational::new_raw(m.clone(), one.clone()));
+        (n, q) = (m, one);
+        bits *= 2;
+    }
+    out
+}
+
+/// a(n / q) q^deg a = sum a_k n^k q^(deg - k), and deg a (Horner in integers; q > 0).
+fn eval_scaled(a: &[BigInt], n: &BigInt, q: &BigInt) -> (BigInt, usize) {
+    let Some(d) = a.len().checked_sub(1) else {
+        return (BigInt::zero(), 0);
+    };
+    let mut acc = a[d].clone();
+    let mut qk = BigInt::one();
+    for k in (0..d).rev() {
+        qk *= q;
+        acc = acc * n + &a[k] * &qk;
+    }
+    (acc, d)
+}
+
+/// The derivative of a power form.
+fn derivative(a: &[BigInt]) -> Vec<BigInt> {
+    a.iter()
+        .enumerate()
+        .skip(1)
+        .map(|(k, x)| x * BigInt::from(k))
+        .collect()
+}
+
+/// The product of two power forms (empty: 0).
+fn mul(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+    if a.is_empty() || b.is_empty() {
+        return Vec::new();
+    }
+    let mut c = vec![BigInt::zero(); a.len() + b.len() - 1];
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            c[i + j] += x * y;
+        }
+    }
+    c
+}
+
+/// a - b.
+fn sub(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+    let mut c = vec![BigInt::zero(); a.len().max(b.len())];
+    for (i, x) in a.iter().enumerate() {
+        c[i] += x;
+    }
+    for (i, x) in b.iter().enumerate() {
+        c[i] -= x;
+    }
+    c
+}
+
+/// Drops leading zero coefficients (the highest powers).
+fn trim(f: &mut Vec<BigInt>) {
+    while f.last().is_some_and(Zero::is_zero) {
+        f.pop();
+    }
+}
+
+fn sum(f: &[BigInt]) -> BigInt {
+    f.iter().sum()
+}
+
+/// The Sturm sequence of F (degree >= 1) as the primitive signed pseudo-remainder sequence
+/// (module docs): each element a positive multiple of the classical one.
+fn sturm_sequence(f: &[BigInt]) -> Vec<Vec<BigInt>> {
+    let df: Vec<BigInt> = f
+        .iter()
+        .enumerate()
+        .skip(1)
+        .map(|(k, x)| x * BigInt::from(k))
+        .collect();
+    let mut seq = vec![primitive(f.to_vec()), primitive(df)];
+    loop {
+        let n = seq.len();
+        let mut r = pseudo_remainder(&seq[n - 2], &seq[n - 1]);
+        trim(&mut r);
+        if r.is_empty() {
+            break;
+        }
+        r.iter_mut().for_each(|x| *x = -&*x);
+        seq.push(primitive(r));
+    }
+    seq
+}
+
+/// x divided by the gcd of its coefficients (a positive factor).
+fn primitive(mut x: Vec<BigInt>) -> Vec<BigInt> {
+    let g = x.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
+    if !g.is_zero() && !g.is_one() {
+        x.iter_mut().for_each(|c| *c = &*c / &g);
+    }
+    x
+}
+
+/// The remainder of |lc(b)|^(deg a - deg b + 1) a by b (deg a >= deg b >= 0 not required: a
+/// of lower degree is its own remainder): a positive multiple of rem(a, b), in integers.
+fn pseudo_remainder(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+    let mut r = a.to_vec();
+    trim(&mut r);
+    let nb = b.len() - 1;
+    let lc = &b[nb];
+    if r.len() < b.len() {
+        return r;
+    }
+    let steps = r.len() - nb;
+    // classical pseudo-division: r <- lc r - r_top x^(i - nb) b, giving lc^steps a mod b
+    while r.len() > nb {
+        let top = r.pop().unwrap_or_default();
+        let i = r.len(); // the popped power
+        for x in r.iter_mut() {
+            *x *= lc;
+        }
+        for (k, bk) in b[..nb].iter().enumerate() {
+            r[i - nb + k] -= &top * bk;
+        }
+    }
+    // (lc^steps a mod b: negative multiple when lc < 0 and steps odd)
+    if lc.is_negative() && steps % 2 == 1 {
+        r.iter_mut().for_each(|x| *x = -&*x);
+    }
+    r
+}
+
+/// The sign of s(n / 2^e) = 2^-(e deg) sum s_k n^k 2^(e (deg - k)) (Horner in integers).
+fn sign_at(s: &[BigInt], n: &BigInt, e: u64) -> Sign {
+    let Some(d) = s.len().checked_sub(1) else {
+        return Sign::NoSign;
+    };
+    let mut acc = s[d].clone();
+    for k in (0..d).rev() {
+        acc = acc * n + (&s[k] << (e * (d - k) as u64));
+    }
+    acc.sign()
+}
+
+/// Sign changes in a sequence of signs, zeros dropped.
+fn variations(signs: &[Sign]) -> usize {
+    let mut last = Sign::NoSign;
+    let mut v = 0;
+    for &s in signs {
+        if s == Sign::NoSign {
+            continue;
+        }
+        if last != Sign::NoSign && s != last {
+            v += 1;
+        }
+        last = s;
+    }
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_traits::ToPrimitive;
+    use rand::{Rng, SeedableRng};
+
+    fn big(v: &[i64]) -> Vec<BigInt> {
+        v.iter().map(|&x| BigInt::from(x)).collect()
+    }
+
+    /// f(s) exactly at a rational s (Horner).
+    fn value(a: &[BigInt], s: &BigRational) -> BigRational {
+        a.iter().rev().fold(BigRational::zero(), |acc, c| {
+            acc * s + BigRational::from_integer(c.clone())
+        })
+    }
+
+    /// The power form against the Bernstein value at a few rationals.
+    #[test]
+    fn power_form_matches_bernstein_values() {
+        let b = big(&[3, -7, 2, 11, -5]);
+        let a = power_form(&b);
+        for (n, d) in [(0, 1), (1, 3), (1, 2), (5, 7), (1, 1)] {
+            let s = BigRational::new(BigInt::from(n), BigInt::from(d));
+            let p = b.len() - 1;
+            let mut bern = BigRational::zero();
+            for (i, bi) in b.iter().enumerate() {
+                let c = (0..i).fold(BigInt::one(), |c, k| {
+                    c * BigInt::from(p - k) / BigInt::from(k + 1)
+                });
+                let one = BigRational::one();
+                let mut term = BigRational::from_integer(c * bi);
+                for _ in 0..i {
+                    term *= &s;
+                }
+                for _ in i..p {
+                    term *= &one - &s;
+                }
+                bern += term;
+            }
+            assert_eq!(value(&a, &s), bern);
+        }
+    }
+
+    /// Exact ties and near-ties at irrational and non-dyadic points, decided without
+    /// subdivision: -(s^2 - 1/2)^2 (double root at 1/sqrt 2), -(3s - 1)^2 (s + 1), the same
+    /// moved by +-2^-200 (a hair above: a witness; below: at most 0), roots at the ends.
+    #[test]
+    fn ties_and_near_ties_are_decided() {
+        // -(2 s^2 - 1)^2 = -(4 s^4 - 4 s^2 + 1)
+        let irr = big(&[-1, 0, 4, 0, -4]);
+        assert_eq!(at_most_zero(&irr), Decision::AtMost);
+        let cub = mul(&big(&[-1, 3]), &mul(&big(&[-1, 3]), &big(&[1, 1])));
+        let cub: Vec<BigInt> = cub.iter().map(|x| -x).collect();
+        assert_eq!(at_most_zero(&cub), Decision::AtMost);
+        for base in [irr, cub] {
+            let eps = BigInt::one();
+            let shift = 200u64;
+            let scaled: Vec<BigInt> = base.iter().map(|x| x << shift).collect();
+            let mut up = scaled.clone();
+            up[0] += &eps;
+            match at_most_zero(&up) {
+                Decision::Above(s) => assert!(value(&up, &s).is_positive()),
+                d => panic!("{d:?}"),
+            }
+            let mut dn = scaled.clone();
+            dn[0] -= &eps;
+            assert_eq!(at_most_zero(&dn), Decision::AtMost);
+        }
+        // roots at both ends: -s (1 - s) <= 0, s (1 - s) is not; s^2 (s - 1) <= 0
+        assert_eq!(at_most_zero(&big(&[0, -1, 1])), Decision::AtMost);
+        assert!(matches!(
+            at_most_zero(&big(&[0, 1, -1])),
+            Decision::Above(_)
+        ));
+        assert_eq!(at_most_zero(&big(&[0, 0, -1, 1])), Decision::AtMost);
+        assert_eq!(at_most_zero(&big(&[])), Decision::AtMost);
+        assert_eq!(at_most_zero(&big(&[-3])), Decision::AtMost);
+        assert_eq!(at_most_zero(&big(&[0])), Decision::AtMost);
+    }
+
+    /// Random products of linear and quadratic factors with roots inside and outside [0, 1],
+    /// clustered roots, double roots: the decision against dense exact sampling (a witness
+    /// must have f > 0; `AtMost` must agree with f <= 0 at 501 points and at the roots'
+    /// neighbourhoods, which the construction knows).
+    #[test]
+    fn decisions_match_the_construction() {
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let mut above = 0;
+        let mut at_most = 0;
+        for _ in 0..400 {
+            // f = c prod (q_i s - p_i)^m_i, roots p_i / q_i
+            let mut f = big(&[if r.random_bool(0.5) { 1 } else { -1 }]);
+            let mut roots: Vec<(f64, u32)> = Vec::new();
+            for _ in 0..r.random_range(1..=4) {
+                let q: i64 = r.random_range(1..=40);
+                let p: i64 = r.random_range(-10..=50);
+                let m = r.random_range(1..=2);
+                for _ in 0..m {
+                    f = mul(&f, &big(&[-p, q]));
+                }
+                roots.push((p as f64 / q as f64, m));
+            }
+            let d = at_most_zero(&f);
+            // the truth: f <= 0 on [0, 1] iff f <= 0 at the sample points and just beside
+            // every root inside
+            let mut pts: Vec<BigRational> = (0..=500)
+                .map(|i| BigRational::new(BigInt::from(i), BigInt::from(500)))
+                .collect();
+            for &(x, _) in &roots {
+                for dx in [-1e-6, 1e-6] {
+                    let y = x + dx;
+                    if (0.0..=1.0).contains(&y) {
+                        pts.push(BigRational::from_float(y).unwrap());
+                    }
+                }
+            }
+            let truth = pts.iter().all(|s| !value(&f, s).is_positive());
+            match d {
+                Decision::AtMost => {
+                    assert!(truth, "{f:?}");
+                    at_most += 1;
+                }
+                Decision::Above(s) => {
+                    assert!(
+                        value(&f, &s).is_positive(),
+                        "{f:?} at {}",
+                        s.to_f64().unwrap()
+                    );
+                    assert!(s >= BigRational::zero() && s <= BigRational::one());
+                    above += 1;
+                }
+                Decision::Undecided => panic!("undecided {f:?}"),
+            }
+        }
+        assert!(above > 60 && at_most > 60, "{above} {at_most}");
+    }
+}
