@@ -364,6 +364,53 @@ fn tangent_rows(strategies: &[Box<dyn BoxEncloser>], reps: usize, line: &mut dyn
             ),
         ),
         (
+            "quartic y = 12 (t^2 - 1/2)^2: min y = 0 at the irrational t = 1/sqrt(2)",
+            curve(
+                4,
+                &[[0.0, 3.0], [1.0, 3.0], [2.0, 1.0], [3.0, -3.0], [4.0, 3.0]],
+                None,
+            ),
+        ),
+        (
+            "quartic spline (3 spans inserted), min y = 0 at u = 1/2, local parameter 1/3",
+            NurbsCurve::new(
+                4,
+                vec![
+                    0.0, 0.0, 0.0, 0.0, 0.0, 0.25, 0.375, 0.75, 1.0, 1.0, 1.0, 1.0, 1.0,
+                ],
+                [
+                    [0.0, 12.0],
+                    [0.25, 9.75],
+                    [0.625, 6.5625],
+                    [1.375, 0.75],
+                    [2.375, -2.125],
+                    [3.125, 4.4375],
+                    [3.75, 24.75],
+                    [4.0, 36.0],
+                ]
+                .iter()
+                .map(|q| q.to_vec())
+                .collect(),
+                None,
+            )
+            .expect("a valid spline"),
+        ),
+        (
+            "quintic (3t - 1)^2 (2 + t^2 + t^3) / 3, data rounded to doubles: min y ~ -6.6e-35",
+            curve(
+                5,
+                &[
+                    [0.0, 0.6666666666666666],
+                    [1.0, -0.13333333333333333],
+                    [2.0, -0.3],
+                    [3.0, 0.0],
+                    [4.0, 0.8],
+                    [5.0, 5.333333333333333],
+                ],
+                None,
+            ),
+        ),
+        (
             "rational quarter circle about (3, -1), turned by 0.3: max y ~ -2.5e-17",
             curve(
                 2,

@@ -1319,6 +1319,24 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
             }
         }
     }
+    // (and the values at exact Newton iterates to the critical point near the f64 maximiser
+    // of each span's f for the attained value: with the extremum in the span's interior, A is
+    // then within ~2^-2000 of it, and the first round's t = RU(A) is RU(sup g) already)
+    let t0 = Exact::from_ratio(best.clone()).round_down();
+    for (_, r) in &rows {
+        let Some(s) = r.minus(t0).as_deref().and_then(f64_maximiser) else {
+            continue;
+        };
+        let Some(s) = Exact::of(s).value().cloned() else {
+            continue;
+        };
+        // (the value at the last iterate, the most accurate one, and at the start)
+        for x in std::iter::once(s.clone()).chain(r.newton_points(&s).pop()) {
+            if let Some(g) = r.value(&x) {
+                raise(&mut best, g);
+            }
+        }
+    }
     for _ in 0..ENDGAME_ROUNDS {
         let t = Exact::from_ratio(best.clone()).round_up();
         if t.is_nan() || t > bound {
@@ -1338,10 +1356,8 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
                     // f just turned positive), which bring A within ~2^-1000 relative of a
                     // maximum there, so that RU(A) is RU(max g) at the next round
                     raise(&mut best, r.value(&s)?);
-                    for x in r.newton_points(&s) {
-                        if let Some(g) = r.value(&x) {
-                            raise(&mut best, g);
-                        }
+                    if let Some(g) = r.newton_points(&s).pop().and_then(|x| r.value(&x)) {
+                        raise(&mut best, g);
                     }
                     raised = true;
                     break;
@@ -2311,6 +2327,21 @@ fn sign_rule(fi: Vec<BigInt>) -> Rule {
         return sturm_rule(&fi);
     }
     let split_point = best_split(&fi);
+    // A near-tie: f at the split point (the best candidate for the maximiser) not 0 but within
+    // 2^-NEAR_TIE_BITS of the largest coefficient. The pieces beside it would be decided
+    // only once shorter than ~sqrt of that (f ~ f(s*) + f''(s*) h^2 there): more halvings
+    // than the split budget allows, so Sturm's theorem first (an exact tie at the split point
+    // itself, f(s*) = 0, is the subdivision's: two pieces ending there, a few halvings).
+    if let Some(x) = split_point.as_ref().and_then(Exact::value) {
+        let (v, sc) = eval_integer(&fi, x);
+        let big = fi.iter().map(BigInt::bits).max().unwrap_or(0);
+        if !v.is_zero() && v.bits() + NEAR_TIE_BITS < big + sc.bits() {
+            match sturm_rule(&fi) {
+                Rule::Undecided => {}
+                r => return r,
+            }
+        }
+    }
     let exact = fi.clone();
     let mut stack = vec![(fi, Exact::of(0.0), Exact::of(1.0))];
     // whether some coefficients were rounded up (then an end coefficient > 0 refutes nothing)
@@ -2386,6 +2417,10 @@ fn sign_rule(fi: Vec<BigInt>) -> Rule {
     }
     Rule::AtMost
 }
+
+/// A value at the split point within 2^-NEAR_TIE_BITS of the largest coefficient, not zero, is
+/// a near-tie ([`sign_rule`]: Sturm's theorem first).
+const NEAR_TIE_BITS: u64 = 40;
 
 /// Coefficients longer than this are not given to [`sturm_rule`].
 const STURM_MAX_BITS: u64 = 4096;
@@ -2500,15 +2535,11 @@ fn split_integer(b: &[BigInt], r: &BigRational) -> (Vec<BigInt>, Vec<BigInt>) {
     (left, right)
 }
 
-/// The split point s* of [`exact_bernstein_rule`] for the Bernstein coefficients `f` on [0, 1]:
-/// the candidate in (0, 1) with the largest exact value (`None` if none lies inside).
-fn best_split(fi: &[BigInt]) -> Option<Exact> {
-    // (coefficients of thousands of bits, range-limit data: no exact quadratic critical point,
-    // whose numerator and denominator are as long and make every later split as costly (the
-    // grid points below instead), and no double-root search, whose gcds cost milliseconds)
-    let long = fi.iter().map(BigInt::bits).max().unwrap_or(0) > EXACT_SPLIT_MAX_BITS;
-    // (the integer coefficients, the exact ones times a positive factor: the same signs,
-    // maximisers and double roots)
+/// The maximiser of the Bernstein polynomial with integer coefficients `fi` on [0, 1], roughly:
+/// the best of 16 samples of its coefficients rounded to f64 (normalised), then f64 Newton
+/// steps on f' (only a point to try: whoever uses it evaluates exactly there). `None` for
+/// coefficients that do not round to finite f64 even after a shift.
+fn f64_maximiser(fi: &[BigInt]) -> Option<f64> {
     let ff: Vec<f64> = fi.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect();
     let big = ff.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     // normalise (only to choose a point; f64 rounding is harmless here); coefficients
@@ -2550,6 +2581,19 @@ fn best_split(fi: &[BigInt]) -> Option<Exact> {
         }
         s = next;
     }
+    Some(s)
+}
+
+/// The split point s* of [`exact_bernstein_rule`] for the Bernstein coefficients `f` on [0, 1]:
+/// the candidate in (0, 1) with the largest exact value (`None` if none lies inside).
+fn best_split(fi: &[BigInt]) -> Option<Exact> {
+    // (coefficients of thousands of bits, range-limit data: no exact quadratic critical point,
+    // whose numerator and denominator are as long and make every later split as costly (the
+    // grid points below instead), and no double-root search, whose gcds cost milliseconds)
+    let long = fi.iter().map(BigInt::bits).max().unwrap_or(0) > EXACT_SPLIT_MAX_BITS;
+    // (the integer coefficients, the exact ones times a positive factor: the same signs,
+    // maximisers and double roots)
+    let s = f64_maximiser(fi)?;
     let zero = BigRational::from_integer(BigInt::from(0));
     let one = BigRational::one();
     let inside = |x: &BigRational| *x > zero && *x < one;

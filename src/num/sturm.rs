@@ -319,7 +319,14 @@ fn sturm_sequence(f: &[BigInt]) -> Vec<Vec<BigInt>> {
 
 /// x divided by the gcd of its coefficients (a positive factor).
 fn primitive(mut x: Vec<BigInt>) -> Vec<BigInt> {
-    let g = x.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
+    // (stopping at 1: a gcd with a long coefficient costs even then)
+    let mut g = BigInt::zero();
+    for c in &x {
+        g = g.gcd(c);
+        if g.is_one() {
+            return x;
+        }
+    }
     if !g.is_zero() && !g.is_one() {
         x.iter_mut().for_each(|c| *c = &*c / &g);
     }
