@@ -684,7 +684,7 @@ fn insert_exact(
     (kn, out)
 }
 
-/// Curves of degree 4 to 6 tangent to the x-axis inside a span, off the lane (the general path
+/// Curves of degree 4 to 8 tangent to the x-axis inside a span, off the lane (the general path
 /// of `bezier` and `newton`, then the certification): y = K (t - r)^2 m(t) with m > 0 on [0, 1]
 /// and y = K (t^2 - 1/2)^2 (tangent at the irrational 1/sqrt 2),
 /// as one Bézier segment and as a spline (knots 1/4, 3/8, 3/4 inserted, so that the tangency
@@ -709,7 +709,12 @@ fn tangent_on_the_general_path_is_certified() {
     let mut polys: Vec<(Vec<Q>, bool)> = Vec::new();
     for (r, exact) in [(q(1, 2), true), (q(1, 3), false)] {
         let lin = [-r.clone(), q(1, 1)];
-        for m in [&[1, 1, 1][..], &[2, 0, 1, 1], &[1, 1, 1, 1, 1]] {
+        for m in [
+            &[1, 1, 1][..],
+            &[2, 0, 1, 1],
+            &[1, 1, 1, 1, 1],
+            &[1, 1, 1, 1, 1, 1, 1],
+        ] {
             let m: Vec<Q> = m.iter().map(|&x| q(x, 1)).collect();
             polys.push((poly_mul(&poly_mul(&lin, &lin), &m), exact));
         }

@@ -195,7 +195,7 @@
 //! ±f64::MAX or with a subnormal bit, whose exact quotients have thousands of bits), at most
 //! [`MAX_EXACT_EVALS`] per evaluated curve and [`MAX_EXACT_POINTS`] box-end values per lowering
 //! proof. The local stage: at most [`LOCAL_MAX_SPANS`] spans and [`LOCAL_PIECES`] pieces. The
-//! end game: degree at most [`EXACT_MAX_DEGREE`], at most [`MAX_EXACT_SPANS`] spans and
+//! end game: degree at most [`ENDGAME_MAX_DEGREE`], at most [`MAX_EXACT_SPANS`] spans and
 //! [`ENDGAME_ROUNDS`] rounds, each rule within [`MAX_EXACT_SPLITS`] splits.
 //! When these are spent the answer is `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
@@ -231,6 +231,9 @@ pub const SEARCH_MAX_DEGREE: usize = 64;
 /// Highest degree for which exact rational evaluation is attempted (the rationals of a de
 /// Boor triangle grow with the degree).
 pub const EXACT_MAX_DEGREE: usize = 6;
+/// Highest degree of the end game ([`exact_endgame`]; on integer Bézier rows, no de Boor
+/// triangles of rationals: its cost grows like that of the exact Bernstein rule).
+pub const ENDGAME_MAX_DEGREE: usize = 12;
 /// The same for rational curves: the quotient rule multiplies the denominators of the exact
 /// values (a cubic's second derivative reached 10^4 bits and milliseconds per evaluation);
 /// conics (the circle's exact-double extrema) stay exact.
@@ -1254,9 +1257,20 @@ fn certify_side(
     proved
 }
 
-/// The finest grid of [`SpanRows::newton_points`] (2^-1024: a maximum's value to ~2^-2000
-/// relative, below the subnormal spacing for any coordinate scale of f64).
-const NEWTON_MAX_BITS: u64 = 1024;
+/// The finest grid of [`SpanRows::newton_points`] (2^-1100: a maximum's value within ~2^-2200 of
+/// the scale, below the subnormal spacing for any f64 scale).
+const NEWTON_MAX_BITS: u64 = 1100;
+
+/// The grid [`SpanRows::newton_points`] needs for a value A near a maximum of g on a coordinate
+/// of scale `scale` (f64 estimates; only a cost choice, never part of a proof): near a simple
+/// maximiser g loses ~|g''| d^2 ~ scale d^2 at a distance d, which must stay below A's ulp
+/// (2^-1074 for A near 0) for RU(A) to settle; so about (log2 scale - log2 ulp(A)) / 2 bits,
+/// with a margin of 24.
+fn newton_bits(a: f64, scale: f64) -> u64 {
+    let e = |x: f64| exponent(x.abs().max(f64::from_bits(1)));
+    let need = (e(scale) - e(crate::num::ulp(a.abs()))).max(0) / 2 + 24;
+    (need as u64).clamp(64, NEWTON_MAX_BITS)
+}
 
 /// A nearly proved bound whose ulp is below 2^-FAR_TIE_BITS of the coordinate scale, more than
 /// two of its ulps above the value attained, is a far tie ([`certify_side`]: the end game
@@ -1285,16 +1299,47 @@ pub const ENDGAME_ROUNDS: usize = 4;
 fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) -> Option<f64> {
     let (p, n) = (c.degree(), c.num_points() - 1);
     let kn = c.knots();
-    if p > EXACT_MAX_DEGREE || !inner.is_finite() {
+    if p > ENDGAME_MAX_DEGREE || !inner.is_finite() {
         return None;
     }
+    let scale = c.coord_scale(j);
     let top = |k: usize| {
         (k - p..=k)
             .map(|i| sign * c.control_point(i)[j])
             .fold(f64::NEG_INFINITY, f64::max)
     };
+    // The spans that can hold a value above the attained one: not those whose B-spline
+    // control values are <= inner (strong convex hull, exact comparisons), nor those whose
+    // Bézier points, enclosed in f64 intervals (the span's Bézier segment by Boehm insertion
+    // on outward rounded intervals, NURBS Book A5.6; for a rational piece the quotients
+    // Q_i = Q^w_i / w_i with weights enclosed above 0), all lie <= inner: the piece is a
+    // convex combination of those points (NURBS Book P4.3). Every target t of the rounds
+    // below is >= inner (t = RU(A), A >= inner), so g <= t on such spans in every round.
+    // (The cheap filter first: the exact rows of a span cost far more.)
+    let mut hs: Option<HSpline<Interval>> = None;
+    let mut below_inner = |k: usize| {
+        let seg = hs
+            .get_or_insert_with(|| HSpline::from_curve(c))
+            .bezier_segment(k);
+        let (hd, dim) = (seg.hdim(), seg.dim);
+        (0..=p).all(|i| {
+            let x = seg.pts[i * hd + j];
+            let q = if seg.rational {
+                let w = seg.pts[i * hd + dim];
+                if !(w.inf() > 0.0) {
+                    return false;
+                }
+                x / w
+            } else {
+                x
+            };
+            let g = if sign > 0.0 { q } else { -q };
+            // (an empty interval, whose sup is -inf, proves nothing)
+            !g.is_empty() && g.sup() <= inner
+        })
+    };
     let spans: Vec<usize> = (p..=n)
-        .filter(|&k| kn[k] < kn[k + 1] && top(k) > inner)
+        .filter(|&k| kn[k] < kn[k + 1] && top(k) > inner && !below_inner(k))
         .collect();
     if spans.len() > MAX_EXACT_SPANS {
         return None;
@@ -1312,6 +1357,29 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
             *best = g;
         }
     };
+    // Newton from s towards the piece's critical point, with the grid A needs
+    // ([`newton_bits`]): the value at the last iterate raises A
+    let refine = |r: &SpanRows, mut s: BigRational, best: &mut BigRational| {
+        let (mut from, mut to) = (
+            64,
+            newton_bits(Exact::from_ratio(best.clone()).to_f64(), scale),
+        );
+        while let Some(x) = r.newton_points(&s, (from, to)).pop() {
+            if let Some(g) = r.value(&x) {
+                raise(best, g);
+            }
+            // A value above the grid's own error (~scale 2^-2to at the grid's distance from
+            // the maximiser; 2^32 of margin) is resolved: its RU settled. One below it came
+            // out as near 0 as the grid allows: a maximum at 0 or within the grid's error of
+            // it, where each finer A would ask for more again; on with the finest grid.
+            let a = Exact::from_ratio(best.clone()).to_f64().abs();
+            let resolved = a > scale * 2f64.powi(32 - 2 * to as i32);
+            if resolved || to >= NEWTON_MAX_BITS {
+                break;
+            }
+            (from, to, s) = (2 * to, NEWTON_MAX_BITS, x);
+        }
+    };
     for (_, r) in &rows {
         for i in [0, p] {
             if let Some(g) = r.ratio(r.a[i].clone(), &r.w[i]) {
@@ -1322,7 +1390,9 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
     // (and the values at exact Newton iterates to the critical point near the f64 maximiser
     // of each span's f for the attained value: with the extremum in the span's interior, A is
     // then within ~2^-2000 of it, and the first round's t = RU(A) is RU(sup g) already)
+    // (Newton only from the span whose maximiser has the largest value)
     let t0 = Exact::from_ratio(best.clone()).round_down();
+    let mut start: Option<(&SpanRows, BigRational, BigRational)> = None;
     for (_, r) in &rows {
         let Some(s) = r.minus(t0).as_deref().and_then(f64_maximiser) else {
             continue;
@@ -1330,12 +1400,20 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
         let Some(s) = Exact::of(s).value().cloned() else {
             continue;
         };
-        // (the value at the last iterate, the most accurate one, and at the start)
-        for x in std::iter::once(s.clone()).chain(r.newton_points(&s).pop()) {
-            if let Some(g) = r.value(&x) {
-                raise(&mut best, g);
-            }
+        let Some(g) = r.value(&s) else {
+            continue;
+        };
+        if start
+            .as_ref()
+            .is_none_or(|(_, _, top)| crate::num::exact::ratio_gt(&g, top))
+        {
+            start = Some((r, s, g));
         }
+    }
+    if let Some((r, s, g)) = start {
+        raise(&mut best, g);
+        // (the value at the last iterate, the most accurate one)
+        refine(r, s, &mut best);
     }
     for _ in 0..ENDGAME_ROUNDS {
         let t = Exact::from_ratio(best.clone()).round_up();
@@ -1356,9 +1434,7 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
                     // f just turned positive), which bring A within ~2^-1000 relative of a
                     // maximum there, so that RU(A) is RU(max g) at the next round
                     raise(&mut best, r.value(&s)?);
-                    if let Some(g) = r.newton_points(&s).pop().and_then(|x| r.value(&x)) {
-                        raise(&mut best, g);
-                    }
+                    refine(r, s, &mut best);
                     raised = true;
                     break;
                 }
@@ -1391,14 +1467,9 @@ impl SpanRows {
 
     /// Points near a critical point of the piece from s ([`crate::num::sturm::newton_critical`]
     /// on A / W; the factor 2^d changes no critical point).
-    fn newton_points(&self, s: &BigRational) -> Vec<BigRational> {
+    fn newton_points(&self, s: &BigRational, bits: (u64, u64)) -> Vec<BigRational> {
         use crate::num::sturm::{newton_critical, power_form};
-        newton_critical(
-            &power_form(&self.a),
-            &power_form(&self.w),
-            s,
-            NEWTON_MAX_BITS,
-        )
+        newton_critical(&power_form(&self.a), &power_form(&self.w), s, bits)
     }
 
     /// 2^d va / vw for values va, vw of A and W at one point (the same scale; at the span's
@@ -2694,17 +2765,15 @@ fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
     if squarefree_mod_prime(&ai) {
         return None;
     }
-    let f: Vec<BigRational> = ai.into_iter().map(BigRational::from_integer).collect();
-    let df: Vec<BigRational> = (1..=p)
-        .map(|k| &f[k] * BigRational::from_integer(BigInt::from(k)))
-        .collect();
-    if p == 3 && !df[2].is_zero() {
-        // f' = c + b s + a s^2: a double root of f is a root of f', rational only if the
-        // discriminant is a rational square (checked on the integer numerators of a common
-        // denominator), and one where f vanishes too (else Euclid below, as for other degrees)
-        let den = df[0].denom() * df[1].denom() * df[2].denom();
-        let int = |x: &BigRational| (x * BigRational::from_integer(den.clone())).to_integer();
-        let (c0, b1, a2) = (int(&df[0]), int(&df[1]), int(&df[2]));
+    if p == 3 && !ai[3].is_zero() {
+        // f' = c + b s + a s^2 (integers: c = a_1, b = 2 a_2, a = 3 a_3): a double root of f
+        // is a root of f', rational only if the discriminant is a square, and one where f
+        // vanishes too
+        let (c0, b1, a2) = (
+            ai[1].clone(),
+            BigInt::from(2) * &ai[2],
+            BigInt::from(3) * &ai[3],
+        );
         let disc = &b1 * &b1 - BigInt::from(4) * &a2 * &c0;
         if disc.sign() == Sign::Minus {
             return None;
@@ -2720,13 +2789,16 @@ fn rational_double_root(fi: &[BigInt]) -> Option<BigRational> {
             .into_iter()
             .find(|x| eval_integer(fi, x).0.sign() == Sign::NoSign);
     }
-    let a = rational_gcd(f, df);
-    (a.len() == 2).then(|| -&a[0] / &a[1])
+    // (Euclid on the integer primitive pseudo-remainders: no rational reductions)
+    let a = crate::num::sturm::gcd_with_derivative(&ai);
+    (a.len() == 2).then(|| BigRational::new(-&a[0], a[1].clone()))
 }
 
 /// The greatest common divisor of two polynomials with rational power coefficients (lowest
 /// first), up to a constant factor, by Euclid's algorithm: the last non-zero remainder
-/// (empty when both are zero).
+/// (empty when both are zero). (The tests' oracle for the integer one,
+/// [`crate::num::sturm::gcd_with_derivative`].)
+#[cfg(test)]
 fn rational_gcd(a: Vec<BigRational>, b: Vec<BigRational>) -> Vec<BigRational> {
     let trim = |mut v: Vec<BigRational>| {
         while v.last().is_some_and(|x| x.is_zero()) {
@@ -3528,7 +3600,11 @@ mod tests {
             let df: Vec<BigRational> = (1..f.len())
                 .map(|k| &f[k] * BigRational::from_integer(BigInt::from(k)))
                 .collect();
-            rational_gcd(f, df).len().saturating_sub(1)
+            let d = rational_gcd(f, df).len().saturating_sub(1);
+            // (the integer one that `rational_double_root` uses agrees)
+            let int = crate::num::sturm::gcd_with_derivative(a);
+            assert_eq!(int.len().saturating_sub(1), d, "{a:?}");
+            d
         };
         let big = |r: &mut rand_chacha::ChaCha8Rng, bits: u32| -> BigInt {
             let mut x = BigInt::from(r.random_range(-1000i64..=1000));

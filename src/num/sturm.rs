@@ -179,8 +179,8 @@ pub(crate) fn at_most_zero(a: &[BigInt]) -> Decision {
 /// Exact Newton iterates towards a critical point of the quotient a / w (power forms with
 /// integer coefficients, w > 0 where it matters) from s0: the roots of h = a' w - a w' (the
 /// quotient rule's numerator; h = a' w for a constant w), s <- s - h(s) / h'(s) with
-/// h' = a'' w - a w'', each iterate rounded to the dyadic grid 2^-bits for bits = 64, 128, ... up to
-/// `max_bits` (Newton doubles the correct digits per step, so the grid keeps the iterates'
+/// h' = a'' w - a w'', each iterate rounded to the dyadic grid 2^-bits for bits = `from_bits`,
+/// twice that, ... and last `max_bits` (Newton doubles the correct digits per step, so the grid keeps the iterates'
 /// length near what they have earned). Only points to try: every use of them evaluates the
 /// quotient exactly there. Stops at an exact root of h, a zero h', or a fixed point; iterates
 /// outside [0, 1] are dropped.
@@ -188,7 +188,7 @@ pub(crate) fn newton_critical(
     a: &[BigInt],
     w: &[BigInt],
     s0: &BigRational,
-    max_bits: u64,
+    (from_bits, max_bits): (u64, u64),
 ) -> Vec<BigRational> {
     let h = sub(&mul(&derivative(a), w), &mul(a, &derivative(w)));
     let dhp = sub(
@@ -202,8 +202,8 @@ pub(crate) fn newton_critical(
     if q.is_negative() {
         (n, q) = (-n, -q);
     }
-    let mut bits = 64u64;
-    while bits <= max_bits && q.is_positive() {
+    let mut bits = from_bits.min(max_bits);
+    while q.is_positive() {
         // h(s) = hn / q^dh, h'(s) = dn / q^dd (Horner in integers)
         let (hn, dh) = eval_scaled(&h, &n, &q);
         if hn.is_zero() {
@@ -229,7 +229,10 @@ pub(crate) fn newton_critical(
         }
         out.push(BigRational::new_raw(m.clone(), one.clone()));
         (n, q) = (m, one);
-        bits *= 2;
+        if bits >= max_bits {
+            break;
+        }
+        bits = (2 * bits).min(max_bits);
     }
     out
 }
@@ -281,6 +284,18 @@ fn sub(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
         c[i] -= x;
     }
     c
+}
+
+/// gcd(f, f') of the power form f (integer coefficients), up to a non-zero constant factor: the
+/// last element of its Sturm sequence (Euclid's algorithm on the primitive pseudo-remainders;
+/// empty for f = 0, a constant for a constant f or a square-free one).
+pub(crate) fn gcd_with_derivative(a: &[BigInt]) -> Vec<BigInt> {
+    let mut f = a.to_vec();
+    trim(&mut f);
+    if f.len() <= 1 {
+        return f;
+    }
+    sturm_sequence(&f).pop().unwrap_or_default()
 }
 
 /// Drops leading zero coefficients (the highest powers).
