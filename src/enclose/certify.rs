@@ -1326,7 +1326,7 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
             let x = seg.pts[i * hd + j];
             let q = if seg.rational {
                 let w = seg.pts[i * hd + dim];
-                if !(w.inf() > 0.0) {
+                if w.is_empty() || w.inf() <= 0.0 {
                     return false;
                 }
                 x / w
