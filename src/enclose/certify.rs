@@ -166,13 +166,41 @@
 //! to [`exact_endgame`], on the enclosed curve itself: each span's piece g = 2^d A / W as two
 //! integer Bernstein rows (exact, fraction-free Boehm insertion; [`span_rows_integer`]), A
 //! a lower bound of sup g (the attained value, then the exact values of the pieces at their
-//! ends), and t = RU(A) tried as the bound with the exact Bernstein rule on every span whose
-//! control values exceed t. All spans at most t: sup g <= t = RU(A) <= RU(sup g), so t is the
-//! optimal bound, certified. A value above t at a split point: the next, larger A. At most
+//! ends, and at exact Newton iterates towards the critical point of the most promising span's
+//! piece), and t = RU(A) tried as the bound with the exact Bernstein rule on every span whose
+//! control values exceed t (and whose Bézier points, enclosed in f64 intervals, do not all lie
+//! at or below the attained value, which bounds the piece below every t tried). All spans at
+//! most t: sup g <= t = RU(A) <= RU(sup g), so t is the optimal bound, certified. A value
+//! above t at a split point: the next, larger A, with Newton iterates from that point. At most
 //! [`ENDGAME_ROUNDS`] rounds. (Where the rule rounds long coefficients up, it keeps each
 //! coefficient's leading bits rather than a fixed number below the largest one, so that the
 //! small coefficients that decide a piece near a subnormal extremum keep their signs, and a
 //! refutation at a piece's end is checked by the exact value there.)
+//!
+//! The Newton iterates ([`crate::num::sturm::newton_critical`], on the quotient rule's
+//! numerator A'W - AW' in integers, each iterate rounded to a dyadic grid) are only points to
+//! try; their grid is chosen for the value sought ([`newton_bits`]: near a simple maximiser
+//! g(s) falls short of the maximum by ~|g''| d^2 at a distance d, which must stay below the
+//! value's ulp), the finest one (2^-1100) when a value comes out at the grid's own error (a
+//! maximum at 0). With A that close, RU(A) is RU(sup g) unless sup g is itself a double (a
+//! tie: f = 2^d A - t W then touches 0 at the maximiser, a double root). The Bernstein rule
+//! decides a tie at a rational point by splitting there (the root of gcd(f, f'), from the
+//! integer Sturm sequence), and where its subdivision cannot decide (a tie at an irrational
+//! point, or a near-tie whose pieces would have to be shorter than its split budget allows:
+//! a value at the split point within 2^-[`NEAR_TIE_BITS`] of the coefficients) Sturm's
+//! theorem does ([`sturm_rule`]: the distinct roots of f in (0, 1) counted and isolated
+//! exactly, f's sign between them; [`crate::num::sturm`]).
+//!
+//! # Far ties (an extremum far below the coordinate scale)
+//!
+//! A curve tangent to an axis (a spline touching y = 0 inside a span), or any extremum much
+//! smaller than the coordinate's scale, has a bound the strategy proves to within ~2^-100 of
+//! the scale, while the doubles near the extremum are far finer: no double-double value tells
+//! them apart, and the stages above would spend their boxes and exact evaluations (0.5-3 ms a
+//! side) before the end game decided it anyway, or fail (an exact tangency stayed ~1e-31 below
+//! 0). A bound nearly proved, more than two of its ulps above the attained value, with its
+//! ulp below 2^-[`FAR_TIE_BITS`] of the scale goes to the end game first (and not again at
+//! the end if it fails there).
 //!
 //! # Limits (bounded work)
 //!
@@ -196,7 +224,8 @@
 //! [`MAX_EXACT_EVALS`] per evaluated curve and [`MAX_EXACT_POINTS`] box-end values per lowering
 //! proof. The local stage: at most [`LOCAL_MAX_SPANS`] spans and [`LOCAL_PIECES`] pieces. The
 //! end game: degree at most [`ENDGAME_MAX_DEGREE`], at most [`MAX_EXACT_SPANS`] spans and
-//! [`ENDGAME_ROUNDS`] rounds, each rule within [`MAX_EXACT_SPLITS`] splits.
+//! [`ENDGAME_ROUNDS`] rounds, each rule within [`MAX_EXACT_SPLITS`] splits, then Sturm's
+//! theorem on coefficients of at most [`STURM_MAX_BITS`] bits and at most 4,096 bisections.
 //! When these are spent the answer is `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
 //! optimal). A heuristic strategy always reports `false`.
 
