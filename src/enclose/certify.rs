@@ -1388,6 +1388,7 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
     };
     // Newton from s towards the piece's critical point, with the grid A needs
     // ([`newton_bits`]): the value at the last iterate raises A
+    // (returns the point of an exact tie at 0 found on the way, the sign rule's split point)
     let refine = |r: &SpanRows, mut s: BigRational, best: &mut BigRational| {
         let (mut from, mut to) = (
             64,
@@ -1406,8 +1407,25 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
             if resolved || to >= NEWTON_MAX_BITS {
                 break;
             }
+            // (a maximum exactly 0 at a rational point is a double root of the numerator A,
+            // a root of gcd(A, A'): its exact value 0 is then A at once, without the finest
+            // grid's long iterates)
+            let zero = r
+                .minus(0.0)
+                .as_deref()
+                .and_then(rational_double_root)
+                .filter(|x| *x >= BigRational::zero() && *x <= BigRational::one())
+                .and_then(|x| Some((x.clone(), r.value(&x)?)));
+            if let Some((x, g)) = zero {
+                let tie = g.is_zero();
+                raise(best, g);
+                if tie {
+                    return Some(x);
+                }
+            }
             (from, to, s) = (2 * to, NEWTON_MAX_BITS, x);
         }
+        None
     };
     for (_, r) in &rows {
         for i in [0, p] {
@@ -1421,8 +1439,8 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
     // then within ~2^-2000 of it, and the first round's t = RU(A) is RU(sup g) already)
     // (Newton only from the span whose maximiser has the largest value)
     let t0 = Exact::from_ratio(best.clone()).round_down();
-    let mut start: Option<(&SpanRows, BigRational, BigRational)> = None;
-    for (_, r) in &rows {
+    let mut start: Option<(usize, &SpanRows, BigRational, BigRational)> = None;
+    for (k, r) in &rows {
         let Some(s) = r.minus(t0).as_deref().and_then(f64_maximiser) else {
             continue;
         };
@@ -1434,15 +1452,17 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
         };
         if start
             .as_ref()
-            .is_none_or(|(_, _, top)| crate::num::exact::ratio_gt(&g, top))
+            .is_none_or(|(_, _, _, top)| crate::num::exact::ratio_gt(&g, top))
         {
-            start = Some((r, s, g));
+            start = Some((*k, r, s, g));
         }
     }
-    if let Some((r, s, g)) = start {
+    // (span and point of an exact tie at 0)
+    let mut tie: Option<(usize, BigRational)> = None;
+    if let Some((k, r, s, g)) = start {
         raise(&mut best, g);
         // (the value at the last iterate, the most accurate one)
-        refine(r, s, &mut best);
+        tie = refine(r, s, &mut best).map(|x| (k, x));
     }
     for _ in 0..ENDGAME_ROUNDS {
         let t = Exact::from_ratio(best.clone()).round_up();
@@ -1454,7 +1474,12 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
             if top(*k) <= t {
                 continue;
             }
-            match sign_rule(r.minus(t)?) {
+            // (at t = 0 the tie's point, where f = 2^d A has its double root, is the split)
+            let hint = tie
+                .as_ref()
+                .filter(|(at, _)| t == 0.0 && at == k)
+                .map(|(_, x)| x.clone());
+            match sign_rule_with(r.minus(t)?, hint) {
                 Rule::AtMost => {}
                 Rule::Above(s) => {
                     // f(s) > 0: g(s) > t >= A, a larger exact lower bound; and the values at
@@ -1463,7 +1488,9 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
                     // f just turned positive), which bring A within ~2^-1000 relative of a
                     // maximum there, so that RU(A) is RU(max g) at the next round
                     raise(&mut best, r.value(&s)?);
-                    refine(r, s, &mut best);
+                    if let Some(x) = refine(r, s, &mut best) {
+                        tie = Some((*k, x));
+                    }
                     raised = true;
                     break;
                 }
@@ -2411,6 +2438,12 @@ enum Rule {
 /// whose end coefficient (the value there) is > 0. Where coefficients were rounded up, an end
 /// coefficient > 0 is checked by the exact value of f at that end (de Casteljau in integers).
 fn sign_rule(fi: Vec<BigInt>) -> Rule {
+    sign_rule_with(fi, None)
+}
+
+/// [`sign_rule`], with a known zero of f as its split point when `hint` is one (a double root
+/// found already: the tie of the end game), else the best split ([`best_split`]).
+fn sign_rule_with(fi: Vec<BigInt>, hint: Option<BigRational>) -> Rule {
     let p = fi.len() - 1;
     let pos = |x: &BigInt| x.sign() == Sign::Plus;
     if fi.iter().all(|x| !pos(x)) {
@@ -2426,7 +2459,10 @@ fn sign_rule(fi: Vec<BigInt>) -> Rule {
     if fi.iter().map(BigInt::bits).max().unwrap_or(0) > EXACT_RULE_MAX_BITS {
         return sturm_rule(&fi);
     }
-    let split_point = best_split(&fi);
+    let split_point = match hint {
+        Some(x) if eval_integer(&fi, &x).0.is_zero() => Some(Exact::from_ratio(x)),
+        _ => best_split(&fi),
+    };
     // A near-tie: f at the split point (the best candidate for the maximiser) not 0 but within
     // 2^-NEAR_TIE_BITS of the largest coefficient. The pieces beside it would be decided
     // only once shorter than ~sqrt of that (f ~ f(s*) + f''(s*) h^2 there): more halvings
