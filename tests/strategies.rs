@@ -784,7 +784,8 @@ fn tangent_on_the_general_path_is_certified() {
 
 /// Random tangencies: y = K (t - r)^2 m(t) with r = a / b (b up to 12: mostly not dyadic), m of
 /// degree 0 to 6 with positive coefficients (so m > 0 on [0, 1] and min y = 0 at t = r), as a
-/// Bézier or with up to four random knots inserted (exactly, in rationals), mirrored (-y: a
+/// Bézier or with up to four random knots inserted (exactly, in rationals), for a third of the
+/// cases rational (weights 1/2 .. 4, that polynomial the numerator of y), mirrored (-y: a
 /// maximum of 0) at random, scaled by 2^k (k in -40..40), with x = t; the data are made exact
 /// in about half the cases (all values multiplied by the common denominator), else rounded
 /// unless they are doubles already (a near tie, min y a hair from 0). Every box sound at dense parameters, an exact
@@ -817,10 +818,21 @@ fn random_tangencies_are_sound_and_certified() {
         let p = c.len() - 1;
         let mut knots = vec![q(0, 1); p + 1];
         knots.extend(vec![q(1, 1); p + 1]);
+        // homogeneous points (w x, w y, w): for a third of the cases rational, with weights
+        // 1/2 .. 4 and w y the Bernstein coefficients of the polynomial (so that y = c / W has
+        // its minimum 0 at t = r too)
+        let rational = r.random_bool(1.0 / 3.0);
         let mut pts: Vec<Vec<Q>> = bernstein_of(&c)
             .into_iter()
             .enumerate()
-            .map(|(i, y)| vec![q(i as i64, p as i64), y])
+            .map(|(i, wy)| {
+                let w = if rational {
+                    q(1 << r.random_range(0..4), 2)
+                } else {
+                    q(1, 1)
+                };
+                vec![q(i as i64, p as i64) * &w, wy, w]
+            })
             .collect();
         let mut inserted = Vec::new();
         for _ in 0..r.random_range(0..=4) {
@@ -831,9 +843,15 @@ fn random_tangencies_are_sound_and_certified() {
             (knots, pts) = insert_exact(p, &knots, &pts, &u);
             inserted.push(u);
         }
+        // the Cartesian points and the weights
+        let weights: Vec<Q> = pts.iter().map(|v| v[2].clone()).collect();
+        let pts: Vec<Vec<Q>> = pts
+            .iter()
+            .map(|v| vec![&v[0] / &v[2], &v[1] / &v[2]])
+            .collect();
         let mirror = r.random_bool(0.5);
         let sign = if mirror { -1 } else { 1 };
-        // the common denominator of every value (knots stay dyadic: they are exact)
+        // the common denominator of every coordinate (knots stay dyadic: they are exact)
         let lcm = pts
             .iter()
             .flatten()
@@ -856,7 +874,7 @@ fn random_tangencies_are_sound_and_certified() {
         } else {
             pts
         };
-        let exact = fits(&data);
+        let exact = fits(&data) && fits(std::slice::from_ref(&weights));
         let k = r.random_range(-40..=40);
         let s2 = 2f64.powi(k);
         let curve = NurbsCurve::new(
@@ -870,7 +888,7 @@ fn random_tangencies_are_sound_and_certified() {
                     ]
                 })
                 .collect(),
-            None,
+            rational.then(|| weights.iter().map(|w| w.to_f64().unwrap()).collect()),
         )
         .unwrap();
         exact_n += exact as usize;
