@@ -160,7 +160,7 @@ pub(crate) fn at_most_zero(a: &[BigInt]) -> Decision {
             if r.1 != Sign::NoSign {
                 break r;
             }
-            // F(m) = 0: move right by (b - a) 2^-(k + 2), on a finer grid
+            // F(m) = 0: m moves right, to 3/4, 7/8, ... of [a, b] (each on a finer grid)
             k += 1;
             if k > f.len() as u64 + 1 {
                 return Decision::Undecided;
