@@ -1306,6 +1306,31 @@ fn newton_bits(a: f64, scale: f64) -> u64 {
 /// first): double-double values (~2^-100 of the scale) cannot tell its doubles apart.
 const FAR_TIE_BITS: i32 = 96;
 
+/// Whether g = sign C_j <= v on span k's piece, by the convex hull of its Bézier points enclosed
+/// in f64 intervals (`h` the curve's interval B-spline: Boehm insertion on outward rounded
+/// intervals, NURBS Book A5.6; for a rational piece the quotients Q_i = Q^w_i / w_i with
+/// weights enclosed above 0; the piece is a convex combination of them, NURBS Book P4.3).
+/// `false` means only "not shown".
+fn span_at_most(h: &HSpline<Interval>, k: usize, j: usize, sign: f64, v: f64) -> bool {
+    let seg = h.bezier_segment(k);
+    let (hd, dim) = (seg.hdim(), seg.dim);
+    (0..=seg.degree).all(|i| {
+        let x = seg.pts[i * hd + j];
+        let q = if seg.rational {
+            let w = seg.pts[i * hd + dim];
+            if w.is_empty() || w.inf() <= 0.0 {
+                return false;
+            }
+            x / w
+        } else {
+            x
+        };
+        let g = if sign > 0.0 { q } else { -q };
+        // (an empty interval, whose sup is -inf, proves nothing)
+        !g.is_empty() && g.sup() <= v
+    })
+}
+
 /// Rounds of [`exact_endgame`].
 pub const ENDGAME_ROUNDS: usize = 4;
 
@@ -1347,25 +1372,8 @@ fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) ->
     // (The cheap filter first: the exact rows of a span cost far more.)
     let mut hs: Option<HSpline<Interval>> = None;
     let mut below_inner = |k: usize| {
-        let seg = hs
-            .get_or_insert_with(|| HSpline::from_curve(c))
-            .bezier_segment(k);
-        let (hd, dim) = (seg.hdim(), seg.dim);
-        (0..=p).all(|i| {
-            let x = seg.pts[i * hd + j];
-            let q = if seg.rational {
-                let w = seg.pts[i * hd + dim];
-                if w.is_empty() || w.inf() <= 0.0 {
-                    return false;
-                }
-                x / w
-            } else {
-                x
-            };
-            let g = if sign > 0.0 { q } else { -q };
-            // (an empty interval, whose sup is -inf, proves nothing)
-            !g.is_empty() && g.sup() <= inner
-        })
+        let h = hs.get_or_insert_with(|| HSpline::from_curve(c));
+        span_at_most(h, k, j, sign, inner)
     };
     let spans: Vec<usize> = (p..=n)
         .filter(|&k| kn[k] < kn[k + 1] && top(k) > inner && !below_inner(k))
@@ -2459,16 +2467,23 @@ fn sign_rule_with(fi: Vec<BigInt>, hint: Option<BigRational>) -> Rule {
     if fi.iter().map(BigInt::bits).max().unwrap_or(0) > EXACT_RULE_MAX_BITS {
         return sturm_rule(&fi);
     }
+    let hint = hint.filter(|x| eval_integer(&fi, x).0.is_zero());
+    let known_zero = hint.is_some();
     let split_point = match hint {
-        Some(x) if eval_integer(&fi, &x).0.is_zero() => Some(Exact::from_ratio(x)),
-        _ => best_split(&fi),
+        Some(x) => Some(Exact::from_ratio(x)),
+        None => best_split(&fi),
     };
     // A near-tie: f at the split point (the best candidate for the maximiser) not 0 but within
     // 2^-NEAR_TIE_BITS of the largest coefficient. The pieces beside it would be decided
     // only once shorter than ~sqrt of that (f ~ f(s*) + f''(s*) h^2 there): more halvings
     // than the split budget allows, so Sturm's theorem first (an exact tie at the split point
-    // itself, f(s*) = 0, is the subdivision's: two pieces ending there, a few halvings).
-    if let Some(x) = split_point.as_ref().and_then(Exact::value) {
+    // itself, f(s*) = 0, is the subdivision's: two pieces ending there, a few halvings; a
+    // hint is such a zero already).
+    if let Some(x) = split_point
+        .as_ref()
+        .filter(|_| !known_zero)
+        .and_then(Exact::value)
+    {
         let (v, sc) = eval_integer(&fi, x);
         let big = fi.iter().map(BigInt::bits).max().unwrap_or(0);
         if !v.is_zero() && v.bits() + NEAR_TIE_BITS < big + sc.bits() {
@@ -3638,6 +3653,59 @@ mod tests {
         assert_eq!(rational_double_root(&b(&[18, -5, -2, 3])), None);
         // f = 1 + 3t: f' constant, no root
         assert_eq!(rational_double_root(&b(&[1, 2, 3, 4])), None);
+    }
+
+    /// `span_at_most` against the curve itself: on random curves of the test families
+    /// (rational ones included), both signs, the level v the median control value: wherever it
+    /// says g <= v on a span, the interval value of its piece at 17 parameters of the span has its
+    /// lower end <= v (a wrong sign or a missing weight division shows as values above v).
+    #[test]
+    fn span_at_most_is_a_bound_of_the_piece() {
+        use crate::testkit::gen::{self, Family};
+        let mut r = gen::rng(37);
+        let (mut said, mut checked) = (0, 0);
+        for fam in [
+            Family::ClampedUniform,
+            Family::ExtremeWeights,
+            Family::Mixed,
+        ] {
+            for _ in 0..40 {
+                let c = fam.curve(&mut r);
+                let h = HSpline::<Interval>::from_curve(&c);
+                let kn = c.knots();
+                let (p, n) = (c.degree(), c.num_points() - 1);
+                for j in 0..c.dim() {
+                    let mut vals: Vec<f64> = (0..=n).map(|i| c.control_point(i)[j]).collect();
+                    vals.sort_by(f64::total_cmp);
+                    for sign in [1.0, -1.0] {
+                        let v = sign * vals[vals.len() / 2];
+                        for k in (p..=n).filter(|&k| kn[k] < kn[k + 1]) {
+                            if !span_at_most(&h, k, j, sign, v) {
+                                continue;
+                            }
+                            said += 1;
+                            for i in 0..=16 {
+                                let u = kn[k] + (kn[k + 1] - kn[k]) * i as f64 / 16.0;
+                                let u = u.clamp(kn[k], kn[k + 1]);
+                                // (span k's own piece, also at its right end: a jump
+                                // there belongs to the next span's piece)
+                                let mut pt = Vec::new();
+                                h.eval_span(k, &Interval::from_f64(u), &mut pt);
+                                let x = if c.is_rational() {
+                                    pt[j] / pt[c.dim()]
+                                } else {
+                                    pt[j]
+                                };
+                                let g = if sign > 0.0 { x } else { -x };
+                                assert!(g.inf() <= v, "{fam:?} k {k} j {j} sign {sign} i {i} u {u} g [{}, {}] v {v} {}", g.inf(), g.sup(), crate::curve_to_json(&c));
+                                checked += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(said > 50 && checked > 800, "{said} {checked}");
     }
 
     /// The modular square-free test against exact rational Euclid: polynomials with a squared

@@ -237,16 +237,24 @@ pub(crate) fn newton_critical(
     out
 }
 
-/// a(n / q) q^deg a = sum a_k n^k q^(deg - k), and deg a (Horner in integers; q > 0).
+/// a(n / q) q^deg a = sum a_k n^k q^(deg - k), and deg a (Horner in integers; q > 0; a power
+/// of two q, the dyadic points of the Newton grid and of the Sturm bisection, by shifts).
 fn eval_scaled(a: &[BigInt], n: &BigInt, q: &BigInt) -> (BigInt, usize) {
     let Some(d) = a.len().checked_sub(1) else {
         return (BigInt::zero(), 0);
     };
+    let pow2 = q.trailing_zeros().filter(|&e| e + 1 == q.bits());
     let mut acc = a[d].clone();
     let mut qk = BigInt::one();
     for k in (0..d).rev() {
-        qk *= q;
-        acc = acc * n + &a[k] * &qk;
+        let term = match pow2 {
+            Some(e) => &a[k] << (e * (d - k) as u64),
+            None => {
+                qk *= q;
+                &a[k] * &qk
+            }
+        };
+        acc = acc * n + term;
     }
     (acc, d)
 }
@@ -377,16 +385,9 @@ fn pseudo_remainder(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
     r
 }
 
-/// The sign of s(n / 2^e) = 2^-(e deg) sum s_k n^k 2^(e (deg - k)) (Horner in integers).
+/// The sign of s(n / 2^e) ([`eval_scaled`]: the same sign, times 2^(e deg)).
 fn sign_at(s: &[BigInt], n: &BigInt, e: u64) -> Sign {
-    let Some(d) = s.len().checked_sub(1) else {
-        return Sign::NoSign;
-    };
-    let mut acc = s[d].clone();
-    for k in (0..d).rev() {
-        acc = acc * n + (&s[k] << (e * (d - k) as u64));
-    }
-    acc.sign()
+    eval_scaled(s, n, &(BigInt::one() << e)).0.sign()
 }
 
 /// Sign changes in a sequence of signs, zeros dropped.
