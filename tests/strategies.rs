@@ -644,6 +644,35 @@ fn poly_mul(
     c
 }
 
+/// The polynomial B-spline of degree p with the knots and points given as exact rationals,
+/// each rounded to the nearest double; `exact`: each must be a double already (asserted).
+fn rational_data_curve(
+    p: usize,
+    knots: &[num_rational::BigRational],
+    pts: &[Vec<num_rational::BigRational>],
+    exact: bool,
+) -> NurbsCurve {
+    use num_traits::ToPrimitive;
+    let f = |x: &num_rational::BigRational| {
+        let v = x.to_f64().unwrap();
+        if exact {
+            assert_eq!(
+                num_rational::BigRational::from_float(v).unwrap(),
+                *x,
+                "not a double"
+            );
+        }
+        v
+    };
+    NurbsCurve::new(
+        p,
+        knots.iter().map(f).collect(),
+        pts.iter().map(|v| v.iter().map(f).collect()).collect(),
+        None,
+    )
+    .unwrap()
+}
+
 /// Boehm's knot insertion (NURBS Book A5.1) of u into the B-spline (p, knots, points), in exact
 /// rationals.
 fn insert_exact(
@@ -700,7 +729,6 @@ fn insert_exact(
 #[test]
 fn tangent_on_the_general_path_is_certified() {
     use num_rational::BigRational as Q;
-    use num_traits::ToPrimitive;
     let q = |n: i64, d: i64| Q::new(n.into(), d.into());
     let mut exact_ties = Vec::new();
     let mut near_ties = Vec::new();
@@ -737,22 +765,7 @@ fn tangent_on_the_general_path_is_certified() {
             .enumerate()
             .map(|(i, y)| vec![q(i as i64, 1), y.clone()])
             .collect();
-        let to_curve = |knots: &[Q], pts: &[Vec<Q>]| {
-            let f = |x: &Q| {
-                let v = x.to_f64().unwrap();
-                if exact {
-                    assert_eq!(Q::from_float(v).unwrap(), *x, "not a double");
-                }
-                v
-            };
-            NurbsCurve::new(
-                p,
-                knots.iter().map(f).collect(),
-                pts.iter().map(|v| v.iter().map(f).collect()).collect(),
-                None,
-            )
-            .unwrap()
-        };
+        let to_curve = |knots: &[Q], pts: &[Vec<Q>]| rational_data_curve(p, knots, pts, exact);
         let list = if exact {
             &mut exact_ties
         } else {
@@ -775,6 +788,79 @@ fn tangent_on_the_general_path_is_certified() {
                 assert_eq!(cb.lo.to_bits(), 0, "{name} case {i}: {cb:?}");
             } else {
                 assert!(cb.lo.abs() < 1e-15, "{name} case {i}: {cb:?}");
+            }
+            #[cfg(feature = "mpfr")]
+            mpfr::check_reference(c, &e, tight_for(e.strategy)).unwrap_or_else(|m| panic!("{m}"));
+        }
+    }
+}
+
+/// Polynomial curves of degree 14 to 32 tangent to the x-axis at t = 1/2, off the lane and
+/// above the end game's former degree limit 12: y = n (n - 1) (2t - 1)^2 written in the
+/// Bernstein basis of degree n (integer Bézier points n (n - 1) - 4 i (n - 1) + 4 i (i - 1),
+/// so min y = 0 exactly, a double root; x = n t), as one segment and, at degree 16, as a spline with the
+/// knots 1/4 and 3/4 inserted exactly (y scaled by the common denominator, asserted doubles);
+/// and the same with the scale 240 (not
+/// a multiple of n (n - 1): points rounded to doubles, min y a hair from 0). Every bound
+/// certified optimal and lo = +0 at each exact tangency, with `mpfr` also against the
+/// reference. With the end game limited to degree 12 the exact ties stayed at lo ~ -1e-38 and
+/// no y bound of these curves was certified.
+#[test]
+fn high_degree_polynomial_tangencies_are_certified() {
+    use num_rational::BigRational as Q;
+    let q = |n: i64, d: i64| Q::new(n.into(), d.into());
+    let curve = rational_data_curve;
+    let mut cases = Vec::new();
+    for (n, scale, exact) in [
+        (14, None, true),
+        (16, None, true),
+        (24, None, true),
+        (32, None, true),
+        (20, Some(240), false),
+        (24, Some(240), false),
+    ] {
+        let n: usize = n;
+        let k = scale.unwrap_or((n * (n - 1)) as i64);
+        let nn = (n * (n - 1)) as i64;
+        let pts: Vec<Vec<Q>> = (0..=n as i64)
+            .map(|i| {
+                let y = q(k, 1) * q(nn - 4 * i * (n as i64 - 1) + 4 * i * (i - 1), nn);
+                vec![q(i, 1), y]
+            })
+            .collect();
+        let mut knots = vec![q(0, 1); n + 1];
+        knots.extend(vec![q(1, 1); n + 1]);
+        cases.push((curve(n, &knots, &pts, exact), exact));
+        if n == 16 {
+            let (mut kn, mut pt) = (knots.clone(), pts.clone());
+            for u in [q(1, 4), q(3, 4)] {
+                (kn, pt) = insert_exact(n, &kn, &pt, &u);
+            }
+            // (the inserted points' denominators: a power of 4 times n (n - 1)'s factors)
+            let lcm = pt
+                .iter()
+                .flatten()
+                .fold(num_bigint::BigInt::from(1), |l, x| {
+                    num_integer::Integer::lcm(&l, x.denom())
+                });
+            let y: Vec<Vec<Q>> = pt
+                .iter()
+                .map(|v| vec![v[0].clone(), &v[1] * Q::from_integer(lcm.clone())])
+                .collect();
+            cases.push((curve(n, &kn, &y, exact), exact));
+        }
+    }
+    for name in ["bezier", "newton"] {
+        let s = strategy_by_name(name, None).unwrap();
+        for (i, (c, exact)) in cases.iter().enumerate() {
+            let e = s.enclose(c);
+            let cb = &e.coords[1];
+            check_sound(c, &e, &params(c, 64, &[0.5])).unwrap_or_else(|m| panic!("{m}"));
+            assert!(cb.optimal_lo && cb.optimal_hi, "{name} case {i}: {cb:?}");
+            if *exact {
+                assert_eq!(cb.lo.to_bits(), 0, "{name} case {i}: {cb:?}");
+            } else {
+                assert!(cb.lo.abs() < 1e-12, "{name} case {i}: {cb:?}");
             }
             #[cfg(feature = "mpfr")]
             mpfr::check_reference(c, &e, tight_for(e.strategy)).unwrap_or_else(|m| panic!("{m}"));

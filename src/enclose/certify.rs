@@ -223,7 +223,8 @@
 //! ±f64::MAX or with a subnormal bit, whose exact quotients have thousands of bits), at most
 //! [`MAX_EXACT_EVALS`] per evaluated curve and [`MAX_EXACT_POINTS`] box-end values per lowering
 //! proof. The local stage: at most [`LOCAL_MAX_SPANS`] spans and [`LOCAL_PIECES`] pieces. The
-//! end game: degree at most [`ENDGAME_MAX_DEGREE`], at most [`MAX_EXACT_SPANS`] spans and
+//! end game: degree at most [`ENDGAME_MAX_DEGREE`] ([`ENDGAME_MAX_DEGREE_RATIONAL`] for a
+//! rational curve), at most [`MAX_EXACT_SPANS`] spans and
 //! [`ENDGAME_ROUNDS`] rounds, each rule within [`MAX_EXACT_SPLITS`] splits, then Sturm's
 //! theorem on coefficients of at most [`STURM_MAX_BITS`] bits and at most 4,096 bisections.
 //! When these are spent the answer is `false` ("not proved") and the bound stays as it is (sound, maybe one ulp or a few above
@@ -261,8 +262,16 @@ pub const SEARCH_MAX_DEGREE: usize = 64;
 /// Boor triangle grow with the degree).
 pub const EXACT_MAX_DEGREE: usize = 6;
 /// Highest degree of the end game ([`exact_endgame`]; on integer Bézier rows, no de Boor
-/// triangles of rationals: its cost grows like that of the exact Bernstein rule).
-pub const ENDGAME_MAX_DEGREE: usize = 12;
+/// triangles of rationals: its cost grows like that of the exact Bernstein rule) for a
+/// polynomial curve. Measured on Béziers tangent to an axis (`y = c (2t - 1)^2` with integer
+/// Bézier points, and the same rounded): certified in 0.1-0.5 ms per enclosure up to degree
+/// 32, where with the limit 12 they took 0.16-0.7 ms and stayed ~1e-38 loose, uncertified.
+pub const ENDGAME_MAX_DEGREE: usize = 32;
+/// The end game's highest degree for a rational curve: its numerator A'W - AW' has degree
+/// 2p - 2 and the products of the weights' rows lengthen every integer, so the Sturm sequences
+/// cost far more (degree 16: 3 ms, 24: 16 ms, 32: 51 ms for one rounded tangency, against
+/// 0.3-0.8 ms uncertified).
+pub const ENDGAME_MAX_DEGREE_RATIONAL: usize = 12;
 /// The same for rational curves: the quotient rule multiplies the denominators of the exact
 /// values (a cubic's second derivative reached 10^4 bits and milliseconds per evaluation);
 /// conics (the circle's exact-double extrema) stay exact.
@@ -1353,7 +1362,12 @@ pub const ENDGAME_ROUNDS: usize = 4;
 fn exact_endgame(c: &NurbsCurve, j: usize, sign: f64, bound: f64, inner: f64) -> Option<f64> {
     let (p, n) = (c.degree(), c.num_points() - 1);
     let kn = c.knots();
-    if p > ENDGAME_MAX_DEGREE || !inner.is_finite() {
+    let max_degree = if c.is_rational() {
+        ENDGAME_MAX_DEGREE_RATIONAL
+    } else {
+        ENDGAME_MAX_DEGREE
+    };
+    if p > max_degree || !inner.is_finite() {
         return None;
     }
     let scale = c.coord_scale(j);

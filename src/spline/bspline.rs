@@ -621,8 +621,12 @@ pub(crate) fn sweep_spans<S: Scalar>(
                     }
                 }
             }
+            // (slices taken once: indexing the small vectors themselves tests where their
+            // storage is at every access)
+            let ae: &[S] = &aexp;
             for j in 1..=r {
                 let s = mult + j;
+                let qs: &mut [S] = &mut q;
                 // (descending: Q_{i-1} is still the previous step's when Q_i is cut)
                 let (start, mut end) = (s * h, (p + 1) * h);
                 // Blocks of four entries from the top (`Scalar::SWEEP_BLOCKS`), every read of a
@@ -630,8 +634,8 @@ pub(crate) fn sweep_spans<S: Scalar>(
                 // entry is cut from the previous step's values exactly as in the order below.
                 while S::SWEEP_BLOCKS && end >= start + 4 {
                     let b = end - 4;
-                    let v = S::lerp4(block4(&aexp, b - start), block4(&q, b - h), block4(&q, b));
-                    q[b..end].clone_from_slice(&v);
+                    let v = S::lerp4(block4(ae, b - start), block4(qs, b - h), block4(qs, b));
+                    qs[b..end].clone_from_slice(&v);
                     end = b;
                 }
                 // (the points below the blocks: from the one holding entry end - 1 down, the
@@ -642,7 +646,7 @@ pub(crate) fn sweep_spans<S: Scalar>(
                     0
                 };
                 for i in (s..=top).rev() {
-                    let (lo, hi) = q[(i - 1) * h..(i + 1) * h].split_at_mut(h);
+                    let (lo, hi) = qs[(i - 1) * h..(i + 1) * h].split_at_mut(h);
                     for (row, (x, l)) in hi.iter_mut().zip(lo.iter()).enumerate() {
                         if i * h + row < end {
                             *x = S::lerp(&alphas[i - s], l, x);
@@ -650,7 +654,7 @@ pub(crate) fn sweep_spans<S: Scalar>(
                     }
                 }
                 if more {
-                    next[(r - j) * h..(r - j + 1) * h].clone_from_slice(&q[p * h..(p + 1) * h]);
+                    next[(r - j) * h..(r - j + 1) * h].clone_from_slice(&qs[p * h..(p + 1) * h]);
                 }
             }
         }
