@@ -402,7 +402,7 @@ impl Ddi {
     /// bound. Else, with g = hi - next_down(hi) (exact: neighbours), |t| <= |fl(t)| / (1 - u)
     /// <= fl(|fl(t)| (1 + 2^-50)) (no underflow error: a tiny difference is exact), so if that
     /// is <= g then next_down(hi) <= v. Otherwise (large radius) the general `lower_sum3`.
-    #[inline]
+    #[inline(always)]
     pub fn lower_end(&self) -> f64 {
         if self.is_entire() {
             return f64::NEG_INFINITY;
@@ -423,7 +423,7 @@ impl Ddi {
 
     /// The upper end of [`Scalar::to_interval`] (+inf for ENTIRE): [`Ddi::lower_end`] of the
     /// negation, negated (negation is exact).
-    #[inline]
+    #[inline(always)]
     pub fn upper_end(&self) -> f64 {
         -(-*self).lower_end()
     }
