@@ -411,6 +411,16 @@ fn tangent_rows(strategies: &[Box<dyn BoxEncloser>], reps: usize, line: &mut dyn
             ),
         ),
         (
+            "degree 16, y = 240 (2t - 1)^2 (integer Bézier points): min y = 0 at t = 1/2",
+            curve(
+                16,
+                &(0..=16i32)
+                    .map(|i| [i as f64, (240 - 60 * i + 4 * i * (i - 1)) as f64])
+                    .collect::<Vec<_>>(),
+                None,
+            ),
+        ),
+        (
             "rational quarter circle about (3, -1), turned by 0.3: max y ~ -2.5e-17",
             curve(
                 2,
