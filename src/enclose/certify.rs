@@ -265,14 +265,14 @@ pub const EXACT_MAX_DEGREE: usize = 6;
 /// triangles of rationals: its cost grows like that of the exact Bernstein rule) for a
 /// polynomial curve. Measured on random tangencies (y = K (t - r)^2 m(t), up to four knots
 /// inserted, exact or rounded data; the generator of the test
-/// `random_tangencies_are_sound_and_certified` at degrees 11-31): at degree 11-12 the end
-/// game took a median 1.3-1.9 ms per enclosure (at most 4 ms), at 13-16 1.7-2.8 ms (at most
-/// 8.6 ms), at 17-20 4.4-7.5 ms (at most 28 ms), at 21-30 8-88 ms (at most 190 ms); without it
-/// 0.2-0.5 ms, not certified. So up to 16, where it costs what it costs at 12.
+/// `random_tangencies_are_sound_and_certified` at degrees 11-31, every side certified), time
+/// per enclosure: median 1.0-1.3 ms at degree 11-12 (at most 1.9 ms), 1.5-2.2 ms at 13-16 (at
+/// most 4.9 ms), 3-4 ms at 17-20 (at most 14 ms), 6-26 ms at 21-30 (at most 74 ms); without the
+/// end game 0.2-0.5 ms, not certified. So up to 16, where it costs about what it costs at 12.
 pub const ENDGAME_MAX_DEGREE: usize = 16;
 /// The end game's highest degree for a rational curve: its numerator A'W - AW' has degree
 /// 2p - 2 and the products of the weights' rows lengthen every integer, so the Sturm sequences
-/// cost far more (one rounded tangency of a Bézier: degree 16 3 ms, 24 16 ms, 32 51 ms,
+/// cost far more (one rounded tangency of a Bézier: degree 16 3 ms, 24 11 ms, 32 28 ms,
 /// against 0.3-0.8 ms uncertified).
 pub const ENDGAME_MAX_DEGREE_RATIONAL: usize = 12;
 /// The same for rational curves: the quotient rule multiplies the denominators of the exact

@@ -342,10 +342,27 @@ fn sturm_sequence(f: &[BigInt]) -> Vec<Vec<BigInt>> {
 
 /// x divided by the gcd of its coefficients (a positive factor).
 fn primitive(mut x: Vec<BigInt>) -> Vec<BigInt> {
-    // (stopping at 1: a gcd with a long coefficient costs even then)
+    // The coefficients from the shortest up, each first reduced modulo the running gcd g
+    // (Euclid's step, one division: gcd(g, c) = gcd(g, c mod g)), so that the binary gcd of
+    // num-integer, whose steps each remove about one bit of its longer operand, runs on
+    // operands no longer than g; a coefficient that g divides (every one, once g is the
+    // content) costs that division alone. Before, each coefficient went into the binary gcd
+    // whole: at degree 20-30 those gcds were 85% of an end game of 20-100 ms. (Stopping at 1.)
+    let mut order: Vec<usize> = (0..x.len()).filter(|&i| !x[i].is_zero()).collect();
+    order.sort_by_key(|&i| x[i].bits());
     let mut g = BigInt::zero();
-    for c in &x {
-        g = g.gcd(c);
+    for &i in &order {
+        let c = &x[i];
+        g = if g.is_zero() {
+            c.abs()
+        } else {
+            let r = c % &g;
+            if r.is_zero() {
+                g
+            } else {
+                g.gcd(&r)
+            }
+        };
         if g.is_one() {
             return x;
         }
