@@ -266,13 +266,13 @@ pub const EXACT_MAX_DEGREE: usize = 6;
 /// polynomial curve. Measured on random tangencies (y = K (t - r)^2 m(t), up to four knots
 /// inserted, exact or rounded data; the generator of the test
 /// `random_tangencies_are_sound_and_certified` at degrees 11-31, every side certified), time
-/// per enclosure: median 1.0-1.3 ms at degree 11-12 (at most 1.9 ms), 1.5-2.2 ms at 13-16 (at
-/// most 4.9 ms), 3-4 ms at 17-20 (at most 14 ms), 6-26 ms at 21-30 (at most 74 ms); without the
-/// end game 0.2-0.5 ms, not certified. So up to 16, where it costs about what it costs at 12.
-pub const ENDGAME_MAX_DEGREE: usize = 16;
+/// per enclosure: median 0.7-1.2 ms at degree 11-12 (at most 1.9 ms), 1.3-2.0 ms at 13-16 (at
+/// most 3.5 ms), 2.6-3.4 ms at 17-20 (at most 8.3 ms), 4.4-15 ms at 21-30 (at most 62 ms);
+/// without the end game 0.2-0.5 ms, not certified. So up to 20.
+pub const ENDGAME_MAX_DEGREE: usize = 20;
 /// The end game's highest degree for a rational curve: its numerator A'W - AW' has degree
 /// 2p - 2 and the products of the weights' rows lengthen every integer, so the Sturm sequences
-/// cost far more (one rounded tangency of a Bézier: degree 16 3 ms, 24 11 ms, 32 28 ms,
+/// cost far more (one rounded tangency of a Bézier: degree 16 1.6 ms, 24 5 ms, 32 10-13 ms,
 /// against 0.3-0.8 ms uncertified).
 pub const ENDGAME_MAX_DEGREE_RATIONAL: usize = 12;
 /// The same for rational curves: the quotient rule multiplies the denominators of the exact
