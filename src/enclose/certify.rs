@@ -923,15 +923,49 @@ fn first_round(
     inner: f64,
     witness: f64,
     exact: f64,
-    (scale, within): (f64, usize),
+    window: (f64, usize),
 ) -> Option<bool> {
-    if !bound.is_finite() {
-        return Some(false);
+    match first_round_flags(bound, inner, witness, exact, window) {
+        (true, _) => Some(true),
+        (_, true) => None,
+        _ => Some(false),
     }
-    if attained_rule(bound, inner, witness) || exact > bound.next_down() {
-        return Some(true);
-    }
-    far_below(bound, inner.max(exact), scale, within).then_some(false)
+}
+
+/// [`first_round`] as two flags, (certified, open): `Some(true)` is (true, false), `None`
+/// (false, true), `Some(false)` (false, false). Computed without branches on the data (every
+/// rule evaluated, combined by `&` and `|`; next_down by [`next_down_finite`]): on random
+/// curves whether a side is attained, and the sign of its bound, are coin tosses, and the
+/// mispredicted jumps of the short-circuit form cost more than the `hull` lane's whole box.
+/// Where the bound is not finite both flags are false whatever the other rules give (they are
+/// masked by `finite`), as the first rule's `Some(false)`.
+#[inline]
+pub(crate) fn first_round_flags(
+    bound: f64,
+    inner: f64,
+    witness: f64,
+    exact: f64,
+    (scale, within): (f64, usize),
+) -> (bool, bool) {
+    let finite = bound.is_finite();
+    let nd = next_down_finite(bound);
+    // rules 1, 1b (`attained_rule`) and 1c
+    let attained = (inner == bound) | (witness >= nd) | (exact > nd);
+    let far = far_below(bound, inner.max(exact), scale, within);
+    (finite & attained, finite & !attained & !far)
+}
+
+/// `x.next_down()` for a finite x, by bit operations without branches (the sign of x decides
+/// the direction of the step in its bits: down for x > 0, up for x < 0; +0 and -0 step to the
+/// negative subnormal -2^-1074); for a non-finite x an unspecified value.
+#[inline]
+fn next_down_finite(x: f64) -> f64 {
+    let bits = x.to_bits();
+    // all ones for a negative sign, else 0: bits - 1 for x > 0, bits + 1 for x < 0
+    let neg = ((bits as i64) >> 63) as u64;
+    let stepped = bits.wrapping_sub(neg | 1);
+    let zero = bits << 1 == 0;
+    f64::from_bits(if zero { 0x8000_0000_0000_0001 } else { stepped })
 }
 
 fn signed(x: Ddi, sign: f64) -> Ddi {
@@ -953,9 +987,22 @@ fn signed(x: Ddi, sign: f64) -> Ddi {
 /// already, and a side that an interior knot's exact value would decide is left to the full
 /// certification; the `hull` lane passes the control values at such knots, which the curve
 /// passes through).
-#[inline]
+#[cfg(test)]
 pub(crate) fn quick(bound: f64, inner: f64, witness: f64, exact: f64, scale: f64) -> Option<bool> {
     first_round(bound, inner, witness, exact, (scale, LOWER_WITHIN_ULPS))
+}
+
+/// [`quick`] as the flags of [`first_round_flags`] (certified, open), without branches on the
+/// data: the lanes' form.
+#[inline]
+pub(crate) fn quick_flags(
+    bound: f64,
+    inner: f64,
+    witness: f64,
+    exact: f64,
+    scale: f64,
+) -> (bool, bool) {
+    first_round_flags(bound, inner, witness, exact, (scale, LOWER_WITHIN_ULPS))
 }
 
 /// The first rule: an attained value equal to the bound, or a strict witness at or above
@@ -3324,6 +3371,93 @@ fn exponent_of(x: f64) -> i32 {
 
 #[cfg(test)]
 mod tests {
+    /// The branch-free first round against its short-circuit definition: the flags agree with
+    /// `Some(true)` / `None` / `Some(false)` of the rules taken in order, and next_down by bits
+    /// is `f64::next_down` on every finite double class (zeros, subnormals, powers of two and
+    /// their neighbours, the extremes, random bits).
+    #[test]
+    fn branch_free_first_round_is_the_short_circuit_one() {
+        use rand::{Rng, SeedableRng};
+        let reference =
+            |bound: f64, inner: f64, witness: f64, exact: f64, (scale, within): (f64, usize)| {
+                if !bound.is_finite() {
+                    return Some(false);
+                }
+                if inner == bound || witness >= bound.next_down() || exact > bound.next_down() {
+                    return Some(true);
+                }
+                far_below(bound, inner.max(exact), scale, within).then_some(false)
+            };
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(43);
+        let mut specials = vec![
+            0.0,
+            -0.0,
+            f64::MIN_POSITIVE,
+            f64::from_bits(1),
+            f64::MAX,
+            1.0,
+            0.5,
+            3.0,
+        ];
+        for k in [-1074, -1022, -1, 0, 1, 52, 1023] {
+            let p = 2f64.powi(k);
+            specials.extend([p, p.next_up(), p.next_down()]);
+        }
+        let specials: Vec<f64> = specials.iter().flat_map(|&x| [x, -x]).collect();
+        for &x in &specials {
+            assert_eq!(
+                next_down_finite(x).to_bits(),
+                x.next_down().to_bits(),
+                "{x:e}"
+            );
+        }
+        for _ in 0..100_000 {
+            let x = f64::from_bits(r.random::<u64>());
+            if x.is_finite() {
+                assert_eq!(
+                    next_down_finite(x).to_bits(),
+                    x.next_down().to_bits(),
+                    "{x:e}"
+                );
+            }
+        }
+        let pick = |r: &mut rand_chacha::ChaCha8Rng, b: f64| -> f64 {
+            match r.random_range(0..8) {
+                0 => b,
+                1 => b.next_down(),
+                2 => b.next_down().next_down(),
+                3 => b - 8.0 * crate::num::ulp(b) * r.random_range(0.5..2.0),
+                4 => f64::NEG_INFINITY,
+                5 => f64::NAN,
+                6 => specials[r.random_range(0..specials.len())],
+                _ => b - r.random_range(0.0..1e-3),
+            }
+        };
+        for _ in 0..200_000 {
+            let bound = match r.random_range(0..10) {
+                0 => [f64::INFINITY, f64::NEG_INFINITY, f64::NAN][r.random_range(0..3)],
+                1..=3 => specials[r.random_range(0..specials.len())],
+                _ => r.random_range(-10.0..10.0),
+            };
+            let (inner, witness, exact) = (
+                pick(&mut r, bound),
+                pick(&mut r, bound),
+                pick(&mut r, bound),
+            );
+            let window = (
+                [1.0, 1e-300, 5.0, f64::MIN_POSITIVE][r.random_range(0..4)],
+                [LOWER_WITHIN_ULPS, LOWER_WITHIN_ULPS_RESCALED][r.random_range(0..2)],
+            );
+            let want = reference(bound, inner, witness, exact, window);
+            let flags = first_round_flags(bound, inner, witness, exact, window);
+            assert_eq!(
+                flags,
+                (want == Some(true), want.is_none()),
+                "{bound:e} {inner:e} {witness:e} {exact:e}"
+            );
+            assert_eq!(first_round(bound, inner, witness, exact, window), want);
+        }
+    }
     use super::*;
     use crate::enclose::{BoxEncloser, Newton};
 

@@ -200,6 +200,14 @@ impl<'a> Simple<'a> {
 
 /// Per coordinate of the points `pts` (D coordinates each, at least one point) the range
 /// (min, max) and the first indices of the smallest and of the largest value.
+///
+/// Without branches on the data: on random curves whether a point is a new minimum is a coin
+/// toss, and the mispredicted branches of a compare-and-jump scan cost more than the rest of
+/// the `hull` lane. The running min (max) is `if x < lo { x } else { lo }`, the select that
+/// x86's `minsd` computes (the first strict minimum is kept, a later equal value, also the
+/// other zero, is not: the same as the jump); its index is taken by a bit mask. The result is
+/// the same as that of the compare-and-jump scan, bit for bit
+/// (`scan_matches_the_compare_and_jump_scan`).
 #[inline]
 fn scan<const D: usize>(
     pts: &[f64],
@@ -207,20 +215,25 @@ fn scan<const D: usize>(
     extreme_at: &mut [(usize, usize); MAX_DIM],
 ) {
     let (first, rest) = pts.split_at(D);
-    for (r, &x) in range.iter_mut().zip(first) {
-        *r = (x, x);
-    }
+    let (mut lo, mut hi) = ([0.0f64; D], [0.0f64; D]);
+    lo.copy_from_slice(first);
+    hi.copy_from_slice(first);
+    let (mut ilo, mut ihi) = ([0usize; D], [0usize; D]);
+    // (the mask of a condition: all ones if it holds, else 0)
+    let mask = |b: bool| (b as usize).wrapping_neg();
     for (i, q) in rest.chunks_exact(D).enumerate() {
-        for ((r, at), &x) in range.iter_mut().zip(extreme_at.iter_mut()).zip(q) {
-            if x < r.0 {
-                r.0 = x;
-                at.0 = i + 1;
-            }
-            if x > r.1 {
-                r.1 = x;
-                at.1 = i + 1;
-            }
+        for j in 0..D {
+            let x = q[j];
+            let (below, above) = (x < lo[j], x > hi[j]);
+            lo[j] = if x < lo[j] { x } else { lo[j] };
+            hi[j] = if x > hi[j] { x } else { hi[j] };
+            ilo[j] ^= (ilo[j] ^ (i + 1)) & mask(below);
+            ihi[j] ^= (ihi[j] ^ (i + 1)) & mask(above);
         }
+    }
+    for j in 0..D {
+        range[j] = (lo[j], hi[j]);
+        extreme_at[j] = (ilo[j], ihi[j]);
     }
 }
 
@@ -767,11 +780,11 @@ fn blank_slot(e: &mut Enclosure) -> &mut CoordBox {
 #[inline]
 fn first_rounds(cb: &mut CoordBox, (plo, phi): (f64, f64), (klo, khi): (f64, f64)) -> bool {
     let scale = plo.abs().max(phi.abs()).max(f64::MIN_POSITIVE);
-    let q_hi = certify::quick(cb.hi, cb.inner_hi, cb.witness_hi, khi, scale);
-    let q_lo = certify::quick(-cb.lo, -cb.inner_lo, -cb.witness_lo, -klo, scale);
-    cb.optimal_hi = q_hi == Some(true);
-    cb.optimal_lo = q_lo == Some(true);
-    q_hi.is_none() || q_lo.is_none()
+    let (ok_hi, open_hi) = certify::quick_flags(cb.hi, cb.inner_hi, cb.witness_hi, khi, scale);
+    let (ok_lo, open_lo) = certify::quick_flags(-cb.lo, -cb.inner_lo, -cb.witness_lo, -klo, scale);
+    cb.optimal_hi = ok_hi;
+    cb.optimal_lo = ok_lo;
+    open_hi | open_lo
 }
 
 /// The `hull` lane's coordinates, written to `e` (empty): [`hull_coord`] per coordinate, with
@@ -885,6 +898,80 @@ mod tests {
             );
             for y in [x, -x] {
                 assert_eq!(beyond_knot_window(y), exponent(y) > KNOT_EXP, "{y:e}");
+            }
+        }
+    }
+
+    /// The branch-free `scan` against the compare-and-jump scan it replaced, bit for bit:
+    /// random points with many ties, both zeros, subnormals and the extremes, D = 1..4.
+    #[test]
+    fn scan_matches_the_compare_and_jump_scan() {
+        use rand::Rng;
+        type Scan<const D: usize> = ([(u64, u64); D], [(usize, usize); D]);
+        fn reference<const D: usize>(pts: &[f64]) -> Scan<D> {
+            let mut range = [(0.0f64, 0.0f64); D];
+            let mut at = [(0usize, 0usize); D];
+            for (j, r) in range.iter_mut().enumerate() {
+                *r = (pts[j], pts[j]);
+            }
+            for (i, q) in pts[D..].chunks_exact(D).enumerate() {
+                for j in 0..D {
+                    let x = q[j];
+                    if x < range[j].0 {
+                        range[j].0 = x;
+                        at[j].0 = i + 1;
+                    }
+                    if x > range[j].1 {
+                        range[j].1 = x;
+                        at[j].1 = i + 1;
+                    }
+                }
+            }
+            (range.map(|(a, b)| (a.to_bits(), b.to_bits())), at)
+        }
+        fn check<const D: usize>(pts: &[f64]) {
+            let (mut range, mut at) = ([(0.0, 0.0); MAX_DIM], [(0, 0); MAX_DIM]);
+            scan::<D>(pts, &mut range, &mut at);
+            let (want_range, want_at) = reference::<D>(pts);
+            for j in 0..D {
+                assert_eq!(
+                    (range[j].0.to_bits(), range[j].1.to_bits()),
+                    want_range[j],
+                    "{pts:?}"
+                );
+                assert_eq!(at[j], want_at[j], "{pts:?}");
+            }
+        }
+        let mut r = gen::rng(41);
+        let pool = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            2.5,
+            f64::MIN_POSITIVE,
+            f64::from_bits(1),
+            -f64::MAX,
+            f64::MAX,
+            1e-300,
+        ];
+        for it in 0..20_000 {
+            let n = r.random_range(1..9);
+            let d = 1 + it % 4;
+            let pts: Vec<f64> = (0..n * d)
+                .map(|_| {
+                    if r.random_range(0..3) == 0 {
+                        r.random_range(-1e3..1e3)
+                    } else {
+                        pool[r.random_range(0..pool.len())]
+                    }
+                })
+                .collect();
+            match d {
+                1 => check::<1>(&pts),
+                2 => check::<2>(&pts),
+                3 => check::<3>(&pts),
+                _ => check::<4>(&pts),
             }
         }
     }
