@@ -293,13 +293,11 @@ fn end(u: f64) -> Extremum {
 fn cheap_exit(s: &Simple, j: usize, sign: f64) -> Option<(f64, f64)> {
     let (lo, hi) = s.range[j];
     let m = if sign > 0.0 { hi } else { -lo };
-    if sign * s.pts[j] == m {
-        Some((m, s.a))
-    } else if sign * s.pts[s.n * s.d + j] == m {
-        Some((m, s.b))
-    } else {
-        None
-    }
+    // (both tests evaluated and combined without jumps: whether an end holds the extreme
+    // control value is a coin toss on random curves)
+    let (first, last) = (sign * s.pts[j] == m, sign * s.pts[s.n * s.d + j] == m);
+    let u = if first { s.a } else { s.b };
+    (first | last).then_some((m, u))
 }
 
 /// The side `sign` of `cb` from its cheap exit (m, u) ([`cheap_exit`]): `fast_exits`.
@@ -401,11 +399,9 @@ fn tight_sides(s: &Simple, j: usize, cb: &mut CoordBox) -> Option<()> {
     let fv: [f64; 4] = std::array::from_fn(|i| if i <= p { s.pts[i * s.d + j] } else { 0.0 });
     let pr = f64_sides(&fv, p, true, need)?;
     let gap = max_gap(s, j);
-    if need
-        .iter()
-        .zip(&pr.sides)
-        .any(|(&nd, f)| nd && !f.tight(gap))
-    {
+    // (both sides tested, combined by `&` and `|`: no jump on each side's outcome)
+    let loose = |i: usize| need[i] & !pr.sides[i].tight(gap);
+    if loose(0) | loose(1) {
         return None;
     }
     for (((ex, sign), f), de) in exits

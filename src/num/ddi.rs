@@ -172,16 +172,13 @@ fn is_pow2(x: f64) -> bool {
 }
 
 /// The next f64 below a finite x (-MAX goes to -inf; +inf to MAX; NaN and -inf to NaN).
+/// (Without a branch on the sign of x: [`crate::num::next_down`].)
 #[inline]
 fn next_down(x: f64) -> f64 {
-    if x.is_nan() || x == f64::NEG_INFINITY {
+    if x == f64::NEG_INFINITY {
         f64::NAN
-    } else if x == 0.0 {
-        -f64::from_bits(1)
-    } else if x > 0.0 {
-        f64::from_bits(x.to_bits() - 1)
     } else {
-        f64::from_bits(x.to_bits() + 1)
+        crate::num::next_down(x)
     }
 }
 
@@ -409,15 +406,18 @@ impl Ddi {
         }
         let (h, l, r) = (self.hi, self.lo, self.rad);
         let t = l - r;
-        if t >= 0.0 {
+        // (both fast cases decided first and the answer taken by a select: whether t >= 0 is
+        // a coin toss on random data; only the rare general case branches)
+        let below = next_down(h);
+        let nonneg = t >= 0.0;
+        let within = -t * (1.0 + 1.0 / 1_125_899_906_842_624.0) <= h - below;
+        if !(nonneg | within) {
+            return lower_sum3(h, l, -r);
+        }
+        if nonneg {
             h
         } else {
-            let below = next_down(h);
-            if -t * (1.0 + 1.0 / 1_125_899_906_842_624.0) <= h - below {
-                below
-            } else {
-                lower_sum3(h, l, -r)
-            }
+            below
         }
     }
 
@@ -756,6 +756,20 @@ impl Sub for Ddi {
     #[inline]
     fn sub(self, y: Ddi) -> Ddi {
         Ddi::add_impl(self, -y)
+    }
+}
+
+impl Ddi {
+    /// `self` for s = 1, `-self` for s = -1 (exact, the same parts as [`Neg`]), by products
+    /// with s rather than a branch on the sign (for callers whose sign is a coin toss).
+    #[inline]
+    pub fn signed(self, s: f64) -> Ddi {
+        debug_assert!(s == 1.0 || s == -1.0);
+        Ddi {
+            hi: s * self.hi,
+            lo: s * self.lo,
+            rad: self.rad,
+        }
     }
 }
 

@@ -838,7 +838,9 @@ pub(crate) fn f64_sides(
         derivative_evaluations += 1;
         // x(m) by the compensated de Casteljau algorithm (a priori bound, no power form)
         let xm = Ddi::de_casteljau_f64(c, m);
-        let v = if is_max { xm } else { -xm };
+        // (-xm by products with the sign, exact as the negation, without a jump on the side:
+        // which side a bracket serves is a coin toss on random data)
+        let v = xm.signed(if is_max { 1.0 } else { -1.0 });
         let side = &mut sides[which];
         if side.crit.is_some() {
             return None;
