@@ -369,20 +369,23 @@ fn knots_guarded(t: &[f64]) -> bool {
 
 /// The `Ddi` inputs as double words carrying their radii, or `None` where the guard of the
 /// module docs fails (a non-finite or huge value).
-fn to_dw<const N: usize>(q: &[Ddi]) -> Option<smallvec::SmallVec<[Dw; N]>>
+fn to_dw<const N: usize>(q: &[Ddi], buf: &mut smallvec::SmallVec<[Dw; N]>) -> bool
 where
     [Dw; N]: smallvec::Array<Item = Dw>,
 {
-    let mut buf = smallvec::SmallVec::with_capacity(q.len());
+    // (into the caller's buffer: a returned inline buffer of 96 double words is 2.3 kB moved
+    // per call)
+    buf.clear();
+    buf.reserve(q.len());
     for x in q {
         let (hi, lo, rad) = x.parts();
         // (a NaN fails the comparison too)
         if hi.is_nan() || rad.is_nan() || hi.abs() + rad >= BIG {
-            return None;
+            return false;
         }
         buf.push(Dw { hi, lo, e: rad });
     }
-    Some(buf)
+    true
 }
 
 /// Whether every part of every result is finite (else the caller runs the `Ddi` route).
@@ -403,10 +406,12 @@ pub(crate) fn clamp_span_dw(p: usize, h: usize, t: &mut [f64], q: &mut [Ddi]) ->
     if !knots_guarded(t) {
         return false;
     }
-    let Some(mut buf) = to_dw::<96>(q) else {
+    let mut buf = smallvec::SmallVec::<[Dw; 96]>::new();
+    if !to_dw(q, &mut buf) {
         return false;
-    };
-    let mut tt: smallvec::SmallVec<[f64; 96]> = smallvec::SmallVec::from_slice(t);
+    }
+    let mut tt: smallvec::SmallVec<[f64; 96]> = smallvec::SmallVec::new();
+    tt.extend_from_slice(t);
     clamp_span(p, h, &mut tt, &mut buf);
     if !all_finite(&buf) {
         return false;
@@ -448,9 +453,10 @@ pub(crate) fn sweep_dw(
     if !knots_guarded(&knots[k0 - p..=kend]) {
         return false;
     }
-    let Some(buf) = to_dw::<96>(&pts[(k0 - p) * h..(last + 1) * h]) else {
+    let mut buf = smallvec::SmallVec::<[Dw; 96]>::new();
+    if !to_dw(&pts[(k0 - p) * h..(last + 1) * h], &mut buf) {
         return false;
-    };
+    }
     // the sweep on the block's points alone (span k0 - p + i of the block's local indices)
     let off = k0 - p;
     if done == 1 {

@@ -512,7 +512,10 @@ impl SpanPoly {
         h: f64,
         free: &mut Vec<(f64, f64)>,
     ) -> bool {
-        let c: SmallVec<[f64; 64]> = self.f.pts.iter().map(|x| x.mid()).collect();
+        // (the buffers filled in place: inline buffers returned by value, as `collect` and
+        // `from_slice` give them, are moved whole, up to 4 kB per call)
+        let mut c: SmallVec<[f64; 64]> = SmallVec::new();
+        c.extend(self.f.pts.iter().map(|x| x.mid()));
         let len = c.len();
         if len < 2 || !c.iter().all(|x| x.is_finite()) {
             return false;
@@ -521,7 +524,8 @@ impl SpanPoly {
         // infinite bound, which proves nothing)
         let m = c.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         let rad = self.f.pts.iter().fold(0.0f64, |a, x| a.max(x.rad()));
-        let dc: SmallVec<[f64; 64]> = crate::spline::bezier::hodograph_iter(&c).collect();
+        let mut dc: SmallVec<[f64; 64]> = SmallVec::new();
+        dc.extend(crate::spline::bezier::hodograph_iter(&c));
         let changes = |v: &[f64]| {
             // (without a zero coefficient, the usual case, by comparisons summed without
             // branches: the signs of the coefficients are unpredictable)
@@ -548,7 +552,8 @@ impl SpanPoly {
         // truncating (no allocation per piece for the usual degrees). The left half is popped
         // first, so the pieces come in increasing order of t.
         let mut stack: SmallVec<[(f64, f64, usize, u32); 16]> = SmallVec::new();
-        let mut arena: SmallVec<[f64; 512]> = SmallVec::from_slice(&c);
+        let mut arena: SmallVec<[f64; 512]> = SmallVec::new();
+        arena.extend_from_slice(&c);
         stack.push((0.0, 1.0, 0, 0));
         let mut v: SmallVec<[f64; 64]> = SmallVec::new();
         // (at most 8 (max + 1) pieces examined: noise-level coefficients of a nearly flat F
@@ -831,7 +836,9 @@ fn second_hull(dco: &[Mr]) -> Interval {
     }
     let nm = (dco.len() - 1) as f64;
     // (the v_i by the shared hodograph kernel on the centres)
-    let mids: SmallVec<[f64; 128]> = dco.iter().map(|x| x.mid()).collect();
+    // (filled in place: a collected inline buffer is moved whole)
+    let mut mids: SmallVec<[f64; 128]> = SmallVec::new();
+    mids.extend(dco.iter().map(|x| x.mid()));
     let rmax = dco.iter().fold(0.0f64, |m, x| m.max(x.rad()));
     let (mut lo, mut hi, mut finite) = (f64::INFINITY, f64::NEG_INFINITY, true);
     for v in crate::spline::bezier::hodograph_iter(&mids) {
