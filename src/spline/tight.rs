@@ -134,9 +134,18 @@ pub struct TightEval<'a> {
     sweep: bool,
 }
 
-/// The slots go back to this thread's pool (emptied there) for the next curve.
+/// The slots go back to this thread's pool (emptied there) for the next curve, and so do the
+/// vectors of their Bézier points (a sweep fills one per span: a batch of splines allocated
+/// and freed one per span and curve before).
 impl Drop for TightEval<'_> {
     fn drop(&mut self) {
+        for slot in &mut self.spans {
+            for cell in [&mut slot.seg, &mut slot.fast] {
+                if let Some(v) = cell.take() {
+                    pool::give(v);
+                }
+            }
+        }
         pool::give(std::mem::take(&mut self.spans));
     }
 }
@@ -332,7 +341,8 @@ impl<'a> TightEval<'a> {
             // points themselves, with their enclosures; the sweep would insert no knot and
             // return them unchanged (a single clamped segment, a piecewise Bézier spline).
             let h = hs.hdim();
-            let mut pts = hs.pts[(k - p) * h..(k + 1) * h].to_vec();
+            let mut pts = pool::take(h * (p + 1));
+            pts.extend_from_slice(&hs.pts[(k - p) * h..(k + 1) * h]);
             crate::spline::fraction_free::snap_exact_ends(self.curve, k, &mut pts);
             let _ = cell(&self.spans[k]).set(pts);
             return cell(&self.spans[k]).get().expect("just set");
@@ -346,7 +356,8 @@ impl<'a> TightEval<'a> {
         hs.bezier_sweep(k, count, &mut |i, q| {
             let slot = cell(&self.spans[i]);
             if slot.get().is_none() {
-                let mut pts = q.to_vec();
+                let mut pts = pool::take(q.len());
+                pts.extend_from_slice(q);
                 crate::spline::fraction_free::snap_exact_ends(self.curve, i, &mut pts);
                 // (another thread may have filled it meanwhile: either enclosure is sound)
                 let _ = slot.set(pts);
