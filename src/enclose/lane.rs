@@ -320,12 +320,19 @@ fn reaching<'e>(
         }
     }
     if args.is_empty() {
-        args.push(Extremum {
-            u_lo: s.a,
-            u_hi: s.b,
-            unique: false,
-            kind: CandidateKind::Unresolved,
-        });
+        args.push(unresolved(s));
+    }
+}
+
+/// The whole domain as an unresolved candidate (a side none of whose candidates reaches its
+/// attained value).
+#[inline]
+fn unresolved(s: &Simple) -> Extremum {
+    Extremum {
+        u_lo: s.a,
+        u_hi: s.b,
+        unique: false,
+        kind: CandidateKind::Unresolved,
     }
 }
 
@@ -416,20 +423,26 @@ fn tight_sides(s: &Simple, j: usize, cb: &mut CoordBox) -> Option<()> {
                 let pe = f.crit.is_some() as u32;
                 put(cb, sign, (f.upper, f.attained, f.witness), [0, 1, de, pe]);
                 // the candidates: the end values (c_0 at a, c_p at b, sign-adjusted) and the
-                // bracket, those whose bound reaches the attained value
-                let ends = [(sign * fv[0], end(s.a)), (sign * fv[p], end(s.b))];
-                let crit = f.crit.map(|(ub, t0, t1)| {
-                    (
-                        ub,
-                        extremum(s.a, s.b, t0, t1, true, CandidateKind::Critical),
-                    )
-                });
-                reaching(
-                    s,
-                    f.attained,
-                    ends.iter().chain(crit.iter()),
-                    args_of(cb, sign),
-                );
+                // bracket, those whose bound reaches the attained value (as `reaching`, each
+                // candidate built where it is pushed: a list of candidates built on the stack
+                // and copied from there was read back by wide loads from narrow stores, which
+                // the processor cannot forward)
+                let args = args_of(cb, sign);
+                let a = f.attained;
+                if sign * fv[0] >= a {
+                    args.push(end(s.a));
+                }
+                if sign * fv[p] >= a {
+                    args.push(end(s.b));
+                }
+                if let Some((ub, t0, t1)) = f.crit {
+                    if ub >= a {
+                        args.push(extremum(s.a, s.b, t0, t1, true, CandidateKind::Critical));
+                    }
+                }
+                if args.is_empty() {
+                    args.push(unresolved(s));
+                }
             }
         }
     }

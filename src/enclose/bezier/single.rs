@@ -747,6 +747,7 @@ pub(crate) struct F64Proof {
 /// most one sign-change bracket (the sign changes alternate, and there are at most R <= 2 of
 /// them; a second one for a side, impossible, gives up). `None` where a step cannot be proven;
 /// a side not in `need` comes back with its end values only. The caller checks the gaps.
+#[inline]
 pub(crate) fn f64_sides(
     fv: &[f64; 4],
     p: usize,
