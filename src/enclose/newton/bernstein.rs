@@ -378,7 +378,10 @@ impl SpanPoly {
     ///   derivative numerator of the form) or p F (polynomial): |C_j'(ξ)| <= |F([t0, t1])| /
     ///   wmin^2 (or p |F|), with F([t0, t1]) from [`restrict_hull_f64`] and wmin > 0 a lower
     ///   bound of the weights on the span (their Bézier points' lower ends: convex hull
-    ///   property). So enc = v + [-e, e] with e an upper bound of r |F| / wmin^2 (or r p |F|)
+    ///   property), or where that is not far below an ulp of v the larger of wmin and
+    ///   W(t_m) - r max |W'| (mean value theorem on W over the box, |W'| <= [`weight_slope`]),
+    ///   a lower bound of W over the box alone. So enc = v + [-e, e] with e an upper bound of
+    ///   r |F| / wb^2 (wb that lower bound; or r p |F|)
     ///   (outward interval arithmetic; the widening in `Ddi`, then one outward rounding). Near
     ///   a zero of F, |F| over a box of width w is about |F'| w, so e ~ |F'| w^2: far below an
     ///   ulp for the converged boxes;
@@ -427,7 +430,20 @@ impl SpanPoly {
             });
             let v = x / w + shift;
             let v0 = seg.pts[0] / seg.pts[1] + shift;
-            let e = iv::div_up(iv::div_up(iv::mul_up(r, fm), wmin), wmin);
+            let rf = iv::mul_up(r, fm);
+            let e = iv::div_up(iv::div_up(rf, wmin), wmin);
+            // (where that is not far below an ulp of the value: W over the box is at least
+            // W(t_m) - r max |W'| by the mean value theorem, often far above the span's smallest
+            // weight wmin when the weights vary over the span (|W'| bounded by
+            // [`weight_slope`], computed only here); either bound holds, the larger is taken; a
+            // NaN or infinite term fails the comparison and leaves wmin)
+            let e = if e <= 0.125 * crate::num::ulp(v.hi()) {
+                e
+            } else {
+                let local = (w.lower_end() - iv::mul_up(r, weight_slope(&self.seg.pts))).next_down();
+                let wb = if local > wmin { local } else { wmin };
+                iv::div_up(iv::div_up(rf, wb), wb)
+            };
             (v, v0, e)
         } else {
             let [x] = value_vs_dw::<1>(&seg.pts, h, tm)
@@ -851,6 +867,29 @@ fn second_hull(dco: &[Mr]) -> Interval {
         return Interval::ENTIRE;
     }
     Interval::try_from(((lo - e).next_down(), (hi + e).next_up())).unwrap_or(Interval::ENTIRE)
+}
+
+/// An upper bound of |W'(t)| for t in [0, 1], W the weight of a rational Bézier segment whose
+/// homogeneous points `pts` are (x w, w) pairs of degree p (`Mr` enclosures): W' = p sum_i
+/// (w_{i+1} - w_i) B_i^{p-1} (the hodograph, NURBS Book eq. 1.10) with nonnegative Bernstein
+/// polynomials summing to 1, so |W'| <= p max_i |w_{i+1} - w_i|, and for every choice of the weights
+/// in their enclosures [l_i, h_i] (`Mr::bounds`, outward) |w_{i+1} - w_i| <= max(h_{i+1} - l_i,
+/// h_i - l_{i+1}); each difference in round to nearest stepped one ulp up, the product by
+/// `iv::mul_up`. +inf where something is not finite (then the bound is of no use and the
+/// caller keeps its other one).
+fn weight_slope(pts: &[Mr]) -> f64 {
+    let w: SmallVec<[(f64, f64); 32]> = pts.iter().skip(1).step_by(2).map(|x| x.bounds()).collect();
+    let p = w.len().saturating_sub(1);
+    let mut m = 0.0f64;
+    for pair in w.windows(2) {
+        let ((l0, h0), (l1, h1)) = (pair[0], pair[1]);
+        let d = (h1 - l0).max(h0 - l1);
+        if !d.is_finite() {
+            return f64::INFINITY;
+        }
+        m = m.max(d.next_up());
+    }
+    iv::mul_up(p as f64, m)
 }
 
 /// The largest [`Mr::mag`] of `v` (at least 0): Mr::mag is max(-lo, hi) of [`Mr::bounds`],
@@ -1977,7 +2016,8 @@ mod tests {
     /// `enc`, its value at the box's midpoint meets `v`, and `v0` is the first Bézier point;
     /// the cheap values of [`SpanPoly::values`] contain the same values (below 2^-20 the O(p)
     /// form of `values_small`), and F' over the box meets F' at each sample. (Fails with the mean-value term e left out: `enc` is then the
-    /// midpoint's value alone; and with `values_small`'s r L term left out.)
+    /// midpoint's value alone; with `values_small`'s r L term left out; and with the local
+    /// weight bound's slope term r max |W'| left out, or that bound halved.)
     #[test]
     fn tight_over_encloses_the_piece() {
         use crate::spline::bezier::de_casteljau_eval_in_place;
