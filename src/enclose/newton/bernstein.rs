@@ -369,7 +369,9 @@ impl SpanPoly {
     /// v0)` with
     ///
     /// * v: the piece at the midpoint t_m of the box (an f64 strictly inside it, so u(t_m) is
-    ///   a parameter inside the span: a value the curve attains), in `Ddi`: c + A(t_m) / W(t_m)
+    ///   a parameter inside the span: a value the curve attains; for a box without a double
+    ///   strictly inside, its lower end t0, which lies in [0, 1) since t0 < t1 <= 1: u(t0) is
+    ///   in [u_k, u_{k+1}), where the curve is the piece, right-continuous at u_k), in `Ddi`: c + A(t_m) / W(t_m)
     ///   (rational) or c + A(t_m) from the shifted rows by the VS algorithm
     ///   ([`bernstein_value_s`], every step an enclosure);
     /// * enc ⊇ C_j(t) for every t in [t0, t1]: by the mean value theorem
@@ -393,10 +395,13 @@ impl SpanPoly {
         let seg = &self.dseg;
         let p = seg.degree;
         let (t0, t1) = (t.lo, t.hi);
-        let tm = midpoint(t0, t1);
-        if !(t0 < tm && tm < t1) {
+        if !(0.0 <= t0 && t0 < t1 && t1 <= 1.0) {
             return None;
         }
+        // (a box of two neighbouring doubles, as the search leaves at machine precision, has no
+        // double strictly inside: then its lower end)
+        let mid = midpoint(t0, t1);
+        let tm = if t0 < mid && mid < t1 { mid } else { t0 };
         let r = dist_up(tm, t0).max(dist_up(t1, tm));
         let h = if seg.rational { 2 } else { 1 };
         let row = |i: usize| -> SmallVec<[Ddi; 32]> {
@@ -2011,7 +2016,8 @@ mod tests {
     }
 
     /// `SpanPoly::tight_over` encloses the piece on its box (degrees 1..=10 and 30..=40): at
-    /// random parameters of random boxes (widths from 2^-50 to 1/2) the piece's value by
+    /// random parameters of random boxes (widths from 2^-50 to 1/2, and boxes of two
+    /// neighbouring doubles, evaluated at their lower end) the piece's value by
     /// double-double de Casteljau on the shifted rows (an independent enclosure of the exact value, about 2^-100 wide) lies in
     /// `enc`, its value at the box's midpoint meets `v`, and `v0` is the first Bézier point;
     /// the cheap values of [`SpanPoly::values`] contain the same values (below 2^-20 the O(p)
@@ -2036,7 +2042,7 @@ mod tests {
             };
             v + Ddi::exact(sp.c)
         };
-        let (mut boxes, mut wide, mut small) = (0, 0, 0);
+        let (mut boxes, mut wide, mut small, mut ulp_boxes) = (0, 0, 0, 0);
         for n in 0..230 {
             let dim = rng.random_range(1..=2usize);
             let c = if n < 200 {
@@ -2059,10 +2065,12 @@ mod tests {
             let tight = crate::spline::tight::TightEval::new(&c);
             for k in spans {
                 let sp = SpanPoly::new(&c, 0, k, &pair, tight.bezier_points(k));
-                for _ in 0..4 {
+                for it in 0..5 {
                     let w = 2f64.powf(rng.random_range(-50.0..-1.0));
                     let t0 = rng.random_range(0.0..1.0 - w);
-                    let t = T::new(t0, t0 + w);
+                    // (and a box of two neighbouring doubles, as the search leaves them at
+                    // machine precision: no double strictly inside)
+                    let t = if it == 4 { T::new(t0, t0.next_up()) } else { T::new(t0, t0 + w) };
                     // the cheap values too (below 2^-20 the O(p) value at the midpoint widened
                     // by r max |C'|, `values_small`; above, the restriction)
                     let cheap = sp.values(t);
@@ -2081,8 +2089,10 @@ mod tests {
                         continue;
                     };
                     boxes += 1;
-                    wide += (w > 1e-3) as usize;
-                    let tm = midpoint(t.lo, t.hi);
+                    wide += (it < 4 && w > 1e-3) as usize;
+                    ulp_boxes += (it == 4) as usize;
+                    let mid = midpoint(t.lo, t.hi);
+                    let tm = if t.lo < mid && mid < t.hi { mid } else { t.lo };
                     let at = piece(&sp, tm);
                     assert!(!at.to_interval().intersection(v.to_interval()).is_empty());
                     for i in 0..=8 {
@@ -2100,7 +2110,10 @@ mod tests {
                 }
             }
         }
-        assert!(boxes > 500 && wide > 100 && small > 300, "{boxes} {wide} {small}");
+        assert!(
+            boxes > 500 && wide > 100 && small > 300 && ulp_boxes > 100,
+            "{boxes} {wide} {small} {ulp_boxes}"
+        );
     }
 
     #[test]
