@@ -641,7 +641,7 @@ impl<'a> Evals<'a> {
         let rows = &rows[..1 + h.rational as usize];
         let v = h.eval_span_rows(h.span(u), &Ddi::from_f64(u), rows, &mut self.buf);
         let x = if h.rational { v[0] / v[1] } else { v[0] };
-        Some(signed(x, sign))
+        Some(x.signed(sign))
     }
 
     /// The Bézier segment of span k in double-double (Boehm insertion on the homogeneous curve,
@@ -860,7 +860,7 @@ impl<'a> Evals<'a> {
         let e = self.ddi.get_or_insert_with(|| CurveEval::new(c, 2));
         e.coord_derivs_in_span(span, &u, k, j)
             .into_iter()
-            .map(|d| signed(d, sign))
+            .map(|d| d.signed(sign))
             .collect()
     }
 }
@@ -953,14 +953,6 @@ pub(crate) fn first_round_flags(
     let attained = (inner == bound) | (witness >= nd) | (exact > nd);
     let far = far_below(bound, inner.max(exact), scale, within);
     (finite & attained, finite & !attained & !far)
-}
-
-fn signed(x: Ddi, sign: f64) -> Ddi {
-    if sign < 0.0 {
-        -x
-    } else {
-        x
-    }
 }
 
 /// The certificate's cheap part for one side, sign-adjusted (the strategy proved max g <=
@@ -2095,7 +2087,7 @@ fn bezier_search(
                             Some(w) => num / de_casteljau_eval(w, &vd),
                             None => num,
                         };
-                        signed(g, sign)
+                        g.signed(sign)
                     }
                 };
                 *guess = guess.max(g.to_interval().sup());
@@ -2324,7 +2316,7 @@ fn bezier_rule(
             } else {
                 pts[i * hd + j]
             };
-            let x = signed(x, sign);
+            let x = x.signed(sign);
             let exact = match i {
                 0 if s0 == 0.0 => exact_start,
                 _ if i == p && s1 == 1.0 => exact_end,
@@ -3358,6 +3350,9 @@ fn exponent_of(x: f64) -> i32 {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+    use crate::enclose::{BoxEncloser, Newton};
+
     /// The branch-free first round against its short-circuit definition: the flags agree with
     /// `Some(true)` / `None` / `Some(false)` of the rules taken in order (bounds, attained
     /// values and witnesses at and next to each other, zeros, subnormals, the extremes,
@@ -3428,8 +3423,6 @@ mod tests {
             assert_eq!(first_round(bound, inner, witness, exact, window), want);
         }
     }
-    use super::*;
-    use crate::enclose::{BoxEncloser, Newton};
 
     /// The i128 fraction-free Bézier coefficients are the BigInt ones wherever no operation
     /// overflows (the same steps), and an overflow is reported, never wrapped: random

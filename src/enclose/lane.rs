@@ -225,8 +225,8 @@ fn scan<const D: usize>(
         for j in 0..D {
             let x = q[j];
             let (below, above) = (x < lo[j], x > hi[j]);
-            lo[j] = if x < lo[j] { x } else { lo[j] };
-            hi[j] = if x > hi[j] { x } else { hi[j] };
+            lo[j] = if below { x } else { lo[j] };
+            hi[j] = if above { x } else { hi[j] };
             ilo[j] ^= (ilo[j] ^ (i + 1)) & mask(below);
             ihi[j] ^= (ihi[j] ^ (i + 1)) & mask(above);
         }

@@ -760,11 +760,12 @@ impl Sub for Ddi {
 }
 
 impl Ddi {
-    /// `self` for s = 1, `-self` for s = -1 (exact, the same parts as [`Neg`]), by products
-    /// with s rather than a branch on the sign (for callers whose sign is a coin toss).
+    /// `-self` where `sign` < 0, else `self` (exact: the parts of [`Neg`]), by products with
+    /// +-1 rather than a branch on the sign (for callers whose sign is a coin toss on random
+    /// data); the sign-adjusted values of the min side (the max side of -C_j).
     #[inline]
-    pub fn signed(self, s: f64) -> Ddi {
-        debug_assert!(s == 1.0 || s == -1.0);
+    pub fn signed(self, sign: f64) -> Ddi {
+        let s = if sign < 0.0 { -1.0 } else { 1.0 };
         Ddi {
             hi: s * self.hi,
             lo: s * self.lo,

@@ -883,11 +883,11 @@ fn second_hull(dco: &[Mr]) -> Interval {
 /// `iv::mul_up`. +inf where something is not finite (then the bound is of no use and the
 /// caller keeps its other one).
 fn weight_slope(pts: &[Mr]) -> f64 {
-    let w: SmallVec<[(f64, f64); 32]> = pts.iter().skip(1).step_by(2).map(|x| x.bounds()).collect();
-    let p = w.len().saturating_sub(1);
+    // (the weights w_i = pts[2 i + 1])
+    let p = (pts.len() / 2).saturating_sub(1);
     let mut m = 0.0f64;
-    for pair in w.windows(2) {
-        let ((l0, h0), (l1, h1)) = (pair[0], pair[1]);
+    for i in 0..p {
+        let ((l0, h0), (l1, h1)) = (pts[2 * i + 1].bounds(), pts[2 * i + 3].bounds());
         let d = (h1 - l0).max(h0 - l1);
         if !d.is_finite() {
             return f64::INFINITY;
