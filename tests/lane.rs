@@ -1,5 +1,5 @@
-//! The driver's allocation-free lane (src/enclose/lane.rs) for single Bézier segments of
-//! degree <= 3 and clamped polynomial splines of degree 2 and 3: every lane result is checked
+//! The driver's lane (src/enclose/lane.rs) for single polynomial Bézier segments of degree
+//! <= 5 and clamped polynomial splines of degree 2 to 5: every lane result is checked
 //! against the general path of the same strategy family (`fast_path: false`: the interval
 //! Newton search, the Bézier branch and bound), which is independent code. Both are verified,
 //! so each one's outer box must contain the other's inner bounds (values the curve provably
@@ -20,7 +20,7 @@ mod common;
 
 /// A clamped spline of degree p with `spans` spans of the given shape.
 fn adversarial(r: &mut impl Rng) -> NurbsCurve {
-    let p = r.random_range(2..=3usize);
+    let p = r.random_range(2..=5usize);
     let kind = r.random_range(0..6u32);
     let spans = r.random_range(1..=12usize);
     // interior knots (sorted), possibly clustered or repeated up to multiplicity p
@@ -72,7 +72,7 @@ fn family_curve(r: &mut impl Rng) -> NurbsCurve {
         Family::Unclamped,
     ][r.random_range(0..7usize)];
     let params = GenParams {
-        degree: 1..=3,
+        degree: 1..=5,
         rational: 0.1,
         ..fam.params()
     };
@@ -175,7 +175,7 @@ fn the_lane_takes_most_splines_tightly() {
 }
 
 /// What the lane refuses goes to the general path unchanged: rational, unclamped, jumps,
-/// degree above 3, extreme magnitudes, dimension above 4.
+/// degree above 5, extreme magnitudes, dimension above 4.
 #[test]
 fn the_lane_refuses_what_it_does_not_cover() {
     let bez = |p: usize, pts: Vec<Vec<f64>>, w: Option<Vec<f64>>| {
@@ -187,7 +187,10 @@ fn the_lane_refuses_what_it_does_not_cover() {
     assert!(Simple::of(&bez(3, cubic.clone(), None)).is_some());
     assert!(Simple::of(&bez(3, cubic.clone(), Some(vec![1.0, 2.0, 1.0, 1.0]))).is_none());
     let quartic = vec![vec![0.0], vec![1.0], vec![-1.0], vec![0.5], vec![2.0]];
-    assert!(Simple::of(&bez(4, quartic, None)).is_none());
+    assert!(Simple::of(&bez(4, quartic.clone(), None)).is_some());
+    assert!(Simple::of(&bez(4, quartic, Some(vec![1.0, 2.0, 1.0, 1.0, 1.0]))).is_none());
+    let sextic = (0..7).map(|i| vec![(i % 3) as f64]).collect();
+    assert!(Simple::of(&bez(6, sextic, None)).is_none());
     assert!(Simple::of(&bez(
         3,
         cubic.iter().map(|v| vec![v[0] * 1e300]).collect(),

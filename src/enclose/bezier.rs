@@ -56,6 +56,7 @@ use crate::num::Scalar;
 use crate::spline::bezier::{bernstein_value as bern, cartesian, hodograph};
 use crate::spline::bspline::BezierSeg;
 use crate::spline::curve::NurbsCurve;
+use crate::enclose::newton::bernstein::SpanPoly;
 use crate::spline::tight::TightEval;
 use inari::Interval;
 
@@ -366,14 +367,14 @@ fn piece_bound_f64(seg: &BezierSeg<Mr>, s0: f64, s1: f64, sign: f64) -> Option<f
 
 pub(crate) struct Side {
     /// largest lower end of enclosures of values the curve attains (sign-adjusted)
-    attained: f64,
+    pub(super) attained: f64,
     /// upper bound so far (sign-adjusted)
-    upper: f64,
+    pub(super) upper: f64,
     /// the curve provably reaches a value > witness (sign-adjusted; see
     /// [`CoordBox::witness_hi`])
-    witness: f64,
-    cands: SmallVec<[(f64, Extremum); 4]>,
-    stats: Stats,
+    pub(super) witness: f64,
+    pub(super) cands: SmallVec<[(f64, Extremum); 4]>,
+    pub(super) stats: Stats,
     term: Termination,
 }
 
@@ -510,9 +511,24 @@ const GENERAL_H: f64 = 1.0 / 1_099_511_627_776.0; // 2^-40
 impl Critical {
     /// The proof on span k for coordinate j, or `None` where some step is not proven.
     fn of(vals: &Values, pair: &[Mr], j: usize, k: usize) -> Option<Critical> {
-        use crate::enclose::newton::bernstein::SpanPoly;
         let c = vals.curve;
-        let mut sp = SpanPoly::new(c, j, k, pair, vals.tight.bezier_points(k));
+        let sp = SpanPoly::new(c, j, k, pair, vals.tight.bezier_points(k));
+        // (the end values after the boxes: a span without a proof needs none)
+        let ends = || [vals.tight.end_value(j, k, false), vals.tight.end_value(j, k, true)];
+        Self::prove(sp, c, k, ends, |at| Some(vals.tight.coord_over(j, at.u_lo, at.u_hi)))
+    }
+
+    /// The proof on the span of `sp` (span k of `c`) with the piece's enclosed end values
+    /// (`ends`: C_j at u_k, the limit at u_{k+1}), and `taylor`, a second enclosure of the
+    /// piece's values over a box in u (or `None`), for boxes whose mean value form is wider
+    /// than an ulp.
+    fn prove(
+        mut sp: SpanPoly,
+        c: &NurbsCurve,
+        k: usize,
+        ends: impl FnOnce() -> [Ddi; 2],
+        taylor: impl Fn(&Extremum) -> Option<Interval>,
+    ) -> Option<Critical> {
         // (where F's `Mr` coefficients are too wide for the proof, it is tried once more with
         // F from the double-double points, `SpanPoly::refined`: cheaper by far than the
         // subdivision that runs otherwise)
@@ -526,7 +542,7 @@ impl Critical {
                 sp.critical_boxes(GENERAL_H)?
             }
         };
-        let (left, right) = (vals.tight.end_value(j, k, false), vals.tight.end_value(j, k, true));
+        let [left, right] = ends();
         // Every box's values cheaply first (O(p)); the tight enclosure only for boxes that
         // may hold an extreme of the piece: a box whose cheap values lie strictly between values
         // the piece attains (the left end, the boxes' own cheap ends: every value over a box is
@@ -555,10 +571,11 @@ impl Critical {
                     // both enclose the piece's values over the box; wider than one ulp of the
                     // value, as `newton` decides: a bound an ulp or two above the optimal
                     // double costs the certificate a lowering proof)
-                    let t = vals.tight.coord_over(j, b.at.u_lo, b.at.u_hi);
-                    let both = enc.intersection(t);
-                    if !both.is_empty() {
-                        enc = both;
+                    if let Some(t) = taylor(&b.at) {
+                        let both = enc.intersection(t);
+                        if !both.is_empty() {
+                            enc = both;
+                        }
                     }
                 }
                 b.enc = enc;
@@ -626,6 +643,27 @@ impl Critical {
         Some(side)
     }
 }
+/// One side (sign * C_j, sign = +-1) of span k of a non-rational curve `c` by the general
+/// fast path ([`Critical`]) from the span's double-double Bézier coefficients of coordinate j
+/// alone, `q` (enclosures of the exact ones; the driver's lane computes them per span without
+/// the curve-wide sweep of [`TightEval`]): its end coefficients are the piece's values at the
+/// span's ends (C(u_k), and at u_{k+1} the curve's value: the lane's splines are continuous),
+/// and the boxes' mean value forms from the same points bound the rest. `None` where the
+/// proof fails or leaves a gap above `max_gap` (without the Taylor form in u that the `bezier`
+/// strategy adds for wide boxes).
+pub(crate) fn coefficient_side(
+    c: &NurbsCurve,
+    j: usize,
+    k: usize,
+    q: &[Ddi],
+    sign: f64,
+    max_gap: f64,
+) -> Option<Side> {
+    let sp = SpanPoly::from_coefficients(c, j, k, q);
+    let p = q.len() - 1;
+    Critical::prove(sp, c, k, || [q[0], q[p]], |_| None)?.side(c, k, sign, true, max_gap)
+}
+
 impl PartialEq for Item {
     fn eq(&self, o: &Self) -> bool {
         self.pri.total_cmp(&o.pri).is_eq()

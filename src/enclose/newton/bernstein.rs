@@ -104,10 +104,33 @@ impl SpanPoly {
     /// evaluations ([`shifted_from_points`]; before, each coordinate ran its own knot
     /// insertion of its shifted rows in `Mr`).
     pub(crate) fn new(c: &NurbsCurve, j: usize, k: usize, pair: &[Mr], pts: &[Ddi]) -> Self {
+        let h = c.dim() + c.is_rational() as usize;
+        Self::from_rows(c, j, k, pair, |i| (pts[i * h + j], pts[i * h + h - 1]))
+    }
+
+    /// The form of coordinate j of a non-rational `c` on span k from that coordinate's
+    /// double-double Bézier points alone, `q` (p + 1 enclosures of the exact ones; the driver's
+    /// lane computes them per span, without the curve-wide [`TightEval`] sweep).
+    ///
+    /// [`TightEval`]: crate::spline::tight::TightEval
+    pub(crate) fn from_coefficients(c: &NurbsCurve, j: usize, k: usize, q: &[Ddi]) -> Self {
+        debug_assert!(!c.is_rational() && q.len() == c.degree() + 1);
+        Self::from_rows(c, j, k, &[], |i| (q[i], Ddi::exact(1.0)))
+    }
+
+    /// [`SpanPoly::new`] with point i's coordinate j and weight given by `row(i)` (the weight
+    /// is read for a rational curve only).
+    fn from_rows(
+        c: &NurbsCurve,
+        j: usize,
+        k: usize,
+        pair: &[Mr],
+        row: impl Fn(usize) -> (Ddi, Ddi),
+    ) -> Self {
         let p = c.degree();
         let rational = c.is_rational();
         let shift = span_shift(&mut (k - p..=k).map(|i| c.control_point(i)[j]).collect::<SmallVec<[f64; 32]>>());
-        let dseg = shifted_from_points(c, j, k, shift, pts);
+        let dseg = shifted_from_points(c, k, shift, row);
         let seg = BezierSeg {
             a: dseg.a,
             b: dseg.b,
@@ -1058,8 +1081,9 @@ fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64, start: f64) -> f64 {
 }
 
 /// The homogeneous Bézier segment of the shifted piece C_j - c on span k of `c`, rows
-/// ((x - c) w, w) (rational) or x - c, from the span's double-double Bézier points `pts` (every
-/// row of the homogeneous curve, [`crate::spline::tight::TightEval::bezier_points`]): knot
+/// ((x - c) w, w) (rational) or x - c, from the span's double-double Bézier points, point i's
+/// coordinate j and weight given by `row(i)` (from every row of the homogeneous curve,
+/// [`crate::spline::tight::TightEval::bezier_points`], or the lane's own points): knot
 /// insertion is linear in the control points, so the shifted piece's Bézier points are
 /// A_i - c W_i (A_i, W_i the points of the rows w x_j and w; x_i - c without weights), each
 /// enclosed by one `Ddi` operation (a fused multiply-add: about 2^-100 relative to |A_i|, so a
@@ -1067,20 +1091,17 @@ fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64, start: f64) -> f64 {
 /// points in `Mr` gave exact zeros and a few hundred ulps elsewhere).
 fn shifted_from_points(
     c: &NurbsCurve,
-    j: usize,
     k: usize,
     shift: f64,
-    pts: &[Ddi],
+    row: impl Fn(usize) -> (Ddi, Ddi),
 ) -> BezierSeg<Ddi> {
     let p = c.degree();
     let rational = c.is_rational();
-    let h = c.dim() + rational as usize;
     let neg = Ddi::exact(-shift);
     let mut out = pool::take((p + 1) * (1 + rational as usize));
     for i in 0..=p {
-        let a = pts[i * h + j];
+        let (a, w) = row(i);
         if rational {
-            let w = pts[i * h + h - 1];
             out.push(w.mul_add(neg, a));
             out.push(w);
         } else {
