@@ -651,6 +651,9 @@ impl Critical {
 /// and the boxes' mean value forms from the same points bound the rest. `None` where the
 /// proof fails or leaves a gap above `max_gap` (without the Taylor form in u that the `bezier`
 /// strategy adds for wide boxes).
+///
+/// The proof itself ([`CoefficientProof`]) does not depend on the side: `proof` keeps it for
+/// the other side of the same span and coordinate (`None` inside: it proved nothing).
 pub(crate) fn coefficient_side(
     c: &NurbsCurve,
     j: usize,
@@ -658,11 +661,19 @@ pub(crate) fn coefficient_side(
     q: &[Ddi],
     sign: f64,
     max_gap: f64,
+    proof: &mut Option<CoefficientProof>,
 ) -> Option<Side> {
-    let sp = SpanPoly::from_coefficients(c, j, k, q);
-    let p = q.len() - 1;
-    Critical::prove(sp, c, k, || [q[0], q[p]], |_| None)?.side(c, k, sign, true, max_gap)
+    let pr = proof.get_or_insert_with(|| {
+        let sp = SpanPoly::from_coefficients(c, j, k, q);
+        let p = q.len() - 1;
+        CoefficientProof(Critical::prove(sp, c, k, || [q[0], q[p]], |_| None))
+    });
+    pr.0.as_ref()?.side(c, k, sign, true, max_gap)
 }
+
+/// The general fast path's proof on one span and coordinate ([`coefficient_side`]), or
+/// `None` where it proved nothing.
+pub(crate) struct CoefficientProof(Option<Critical>);
 
 impl PartialEq for Item {
     fn eq(&self, o: &Self) -> bool {

@@ -32,7 +32,7 @@
 //! flags are those of the general path.
 
 use super::bezier::single::{extremum, f64_sides, raw_sides_into, RawSide, Segment};
-use super::bezier::{end_kind, span_bounds};
+use super::bezier::{end_kind, span_bounds, CoefficientProof};
 use super::driver::apply_facts;
 use super::driver::{pow2, COORD_WINDOW};
 use super::Termination;
@@ -151,10 +151,10 @@ impl<'a> Simple<'a> {
                 return None;
             }
         } else {
-            // a spline: degree 2 to LANE_MAX_DEGREE, no interior knot of multiplicity above p (so the curve
-            // is continuous and both end coefficients of every span are curve values), knots
-            // that the driver would not rescale (every knot difference is finite and normal
-            // enough for the a-priori bound of the f64 span coefficients)
+            // a spline: degree 2 to LANE_MAX_DEGREE, no interior knot of multiplicity above p
+            // (so the curve is continuous and both end coefficients of every span are curve
+            // values), knots that the driver would not rescale (every knot difference is finite
+            // and normal enough for the a-priori bound of the f64 span coefficients)
             if super::driver::knot_scaling(c) != (0, true) {
                 return None;
             }
@@ -670,7 +670,8 @@ fn spline_side(
         if p > 3 {
             // (above degree 3: the general fast path's proof on the span's coefficients, the
             // zeros of C_j' located by Bernstein subdivision with proven sign counts)
-            let sd = super::bezier::coefficient_side(s.curve, j, k, &qd[..=p], sign, gap)?;
+            let proof = cache.proof(k, j);
+            let sd = super::bezier::coefficient_side(s.curve, j, k, &qd[..=p], sign, gap, proof)?;
             attained = attained.max(sd.attained);
             upper = upper.max(sd.upper);
             witness = witness.max(sd.witness);
@@ -819,14 +820,21 @@ const SPAN_ROWS: usize = (LANE_MAX_DEGREE + 1) * MAX_DIM;
 struct SpanCache {
     rows: SmallVec<[(usize, [f64; SPAN_ROWS]); 4]>,
     ddi: SmallVec<[(usize, [Ddi; SPAN_ROWS]); 2]>,
+    /// the proofs of step 3 by span and coordinate (a single segment's two sides prove the
+    /// same span)
+    proofs: SmallVec<[ProofSlot; 2]>,
 }
 
-/// The entry for span k of a list of span coefficients, computed by `new` on first use.
-fn cached<T, A: smallvec::Array<Item = (usize, T)>>(
-    list: &mut SmallVec<A>,
-    k: usize,
+/// A proof slot of [`SpanCache`]: (span, coordinate), and the proof once made.
+type ProofSlot = ((usize, usize), Option<CoefficientProof>);
+
+/// The entry for key k (a span, or a span and a coordinate) of a short list, made by `new` on
+/// first use.
+fn cached<'a, K: PartialEq + 'a, T: 'a, A: smallvec::Array<Item = (K, T)>>(
+    list: &'a mut SmallVec<A>,
+    k: K,
     new: impl FnOnce() -> T,
-) -> &T {
+) -> &'a mut T {
     let at = match list.iter().position(|r| r.0 == k) {
         Some(i) => i,
         None => {
@@ -834,13 +842,18 @@ fn cached<T, A: smallvec::Array<Item = (usize, T)>>(
             list.len() - 1
         }
     };
-    &list[at].1
+    &mut list[at].1
 }
 
 impl SpanCache {
     /// Span k's f64 coefficients ([`span_coefficients_rows`]).
     fn get(&mut self, s: &Simple, k: usize) -> &[f64; SPAN_ROWS] {
         cached(&mut self.rows, k, || span_coefficients_rows(s, k))
+    }
+
+    /// The slot of the proof on span k for coordinate j (empty until the first side asks).
+    fn proof(&mut self, k: usize, j: usize) -> &mut Option<CoefficientProof> {
+        cached(&mut self.proofs, (k, j), || None)
     }
 
     /// Span k's `Ddi` coefficients ([`span_coefficients_rows`]), end values that are exactly
@@ -1295,7 +1308,8 @@ mod tests {
     /// bits whether one coordinate or all are inserted, and the `Ddi` values (one row, and all
     /// rows with exact ends snapped, as the proof reads them) enclose them.
     /// Quartic and quintic splines with clustered knots (down to a few ulps apart), knots of
-    /// multiplicity up to p, uneven intervals and magnitudes across the lane's window.
+    /// multiplicity up to p, uneven intervals, domains moved and scaled across the knot window
+    /// and magnitudes across the coordinate window.
     #[test]
     fn inserted_span_coefficients_are_within_their_bound() {
         use rand::Rng;
@@ -1328,13 +1342,22 @@ mod tests {
                 }
             }
             knots.extend(vec![1.0; p + 1]);
+            // (the domain moved and scaled within the lane's knot window: [off, off + 2^w],
+            // knots rounded there, so their differences are not the unit ones)
+            if r.random_range(0..2) == 0 {
+                let w = 2f64.powi(r.random_range(-25..=25));
+                let off = [0.0, -w * 0.3, w * 1e6, -w * 3e3][r.random_range(0..4usize)];
+                knots.iter_mut().for_each(|u| *u = off + *u * w);
+            }
             let n = knots.len() - p - 2;
             let d = r.random_range(1..=3usize);
             let mag = 2f64.powi(r.random_range(-70..70));
             let pts: Vec<Vec<f64>> = (0..=n)
                 .map(|_| (0..d).map(|_| r.random_range(-1.0..1.0) * mag).collect())
                 .collect();
-            let c = NurbsCurve::new(p, knots, pts, None).unwrap();
+            let Ok(c) = NurbsCurve::new(p, knots, pts, None) else {
+                continue;
+            };
             let Some(s) = Simple::of(&c) else { continue };
             let eval = crate::spline::eval::CurveEval::<Exact>::new(&c, 0);
             for k in p..=n {
