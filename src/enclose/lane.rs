@@ -395,7 +395,12 @@ fn max_gap(s: &Simple, j: usize) -> f64 {
 
 /// The tight sides of coordinate j, written to the blank box `cb`, or `None` (fall back to the
 /// general path; `cb` is then unspecified).
-fn tight_sides(s: &Simple, j: usize, cb: &mut CoordBox, cache: &mut SpanCache) -> Option<()> {
+fn tight_sides(
+    s: &Simple,
+    j: usize,
+    cb: &mut CoordBox,
+    cache: &mut Option<SpanCache>,
+) -> Option<()> {
     let exits = [cheap_exit(s, j, 1.0), cheap_exit(s, j, -1.0)];
     // (both exits: a monotone coordinate, or a line; a polyline or a spline side by side)
     // (a single segment above degree 3 goes the spline's way too: its one span)
@@ -404,7 +409,8 @@ fn tight_sides(s: &Simple, j: usize, cb: &mut CoordBox, cache: &mut SpanCache) -
             match ex {
                 Some(ex) => put_exit(cb, sign, ex),
                 None if s.p == 1 => polyline_side(s, j, sign, cb),
-                None => spline_side(s, j, sign, cb, cache)?,
+                // (the cache made only here: a single cubic, the hot path, needs none)
+                None => spline_side(s, j, sign, cb, cache.get_or_insert_with(Default::default))?,
             }
         }
         return Some(());
@@ -1003,7 +1009,7 @@ pub fn enclose_into(
         hull_into(e, c, s, certify);
         return true;
     }
-    let mut cache = SpanCache::default();
+    let mut cache = None;
     for j in 0..s.d {
         let clock = Clock::start();
         // (written in place into the blank box, whose termination is `Converged`)
