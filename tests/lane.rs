@@ -1,5 +1,6 @@
 //! The driver's lane (src/enclose/lane.rs) for single polynomial Bézier segments of degree
-//! <= 5 and clamped polynomial splines of degree 2 to 5: every lane result is checked
+//! <= 5, clamped polynomial splines of degree 2 to 5 and rational conics (degree 2, one
+//! segment or a spline, moderate weights): every lane result is checked
 //! against the general path of the same strategy family (`fast_path: false`: the interval
 //! Newton search, the Bézier branch and bound), which is independent code. Both are verified,
 //! so each one's outer box must contain the other's inner bounds (values the curve provably
@@ -57,7 +58,26 @@ fn adversarial(r: &mut impl Rng) -> NurbsCurve {
                 .collect()
         })
         .collect();
-    NurbsCurve::new(p, knots, pts, None).expect("a valid spline")
+    // a rational conic half the time at degree 2: weights near 1, a NURBS circle's pattern
+    // (1, sqrt(2)/2, 1, ...), a spread near the lane's limit of 2^12 (beyond it refused), a
+    // tiny or a huge scale
+    let weights = (p == 2 && r.random_range(0..2) == 0).then(|| {
+        let kind = r.random_range(0..5u32);
+        let scale = [1.0, 1e-25, 1e25][r.random_range(0..3usize)];
+        (0..=n)
+            .map(|i| {
+                scale
+                    * match kind {
+                        0 => r.random_range(0.5..2.0),
+                        1 => [1.0, std::f64::consts::FRAC_1_SQRT_2][i % 2],
+                        2 => 2f64.powf(r.random_range(-6.5..6.5)),
+                        3 => [1.0, 3.0, 0.25][i % 3],
+                        _ => r.random_range(0.01..100.0),
+                    }
+            })
+            .collect()
+    });
+    NurbsCurve::new(p, knots, pts, weights).expect("a valid spline")
 }
 
 /// Random curves of the families the lane takes, and some it does not (rational, unclamped).
@@ -174,8 +194,9 @@ fn the_lane_takes_most_splines_tightly() {
     assert!(worst <= 2.0, "gap {worst} ulps");
 }
 
-/// What the lane refuses goes to the general path unchanged: rational, unclamped, jumps,
-/// degree above 5, extreme magnitudes, dimension above 4.
+/// What the lane refuses goes to the general path unchanged: rational (above degree 2, or
+/// with extreme weights), unclamped, jumps, degree above 5, extreme magnitudes, dimension
+/// above 4.
 #[test]
 fn the_lane_refuses_what_it_does_not_cover() {
     let bez = |p: usize, pts: Vec<Vec<f64>>, w: Option<Vec<f64>>| {
@@ -186,6 +207,14 @@ fn the_lane_refuses_what_it_does_not_cover() {
     let cubic = vec![vec![0.0], vec![1.0], vec![-1.0], vec![0.5]];
     assert!(Simple::of(&bez(3, cubic.clone(), None)).is_some());
     assert!(Simple::of(&bez(3, cubic.clone(), Some(vec![1.0, 2.0, 1.0, 1.0]))).is_none());
+    // a rational conic is taken, with moderate weights (spread at most 2^12, within
+    // 2^-100 .. 2^100)
+    let quad = vec![vec![0.0], vec![1.0], vec![-1.0]];
+    assert!(Simple::of(&bez(2, quad.clone(), Some(vec![1.0, 0.5, 3.0]))).is_some());
+    assert!(Simple::of(&bez(2, quad.clone(), Some(vec![1.0, 4096.0, 1.0]))).is_some());
+    assert!(Simple::of(&bez(2, quad.clone(), Some(vec![1.0, 4097.0, 1.0]))).is_none());
+    assert!(Simple::of(&bez(2, quad.clone(), Some(vec![1e31, 1e31, 1e31]))).is_none());
+    assert!(Simple::of(&bez(2, quad, Some(vec![1e-31, 1e-31, 1e-31]))).is_none());
     let quartic = vec![vec![0.0], vec![1.0], vec![-1.0], vec![0.5], vec![2.0]];
     assert!(Simple::of(&bez(4, quartic.clone(), None)).is_some());
     assert!(Simple::of(&bez(4, quartic, Some(vec![1.0, 2.0, 1.0, 1.0, 1.0]))).is_none());
@@ -228,6 +257,50 @@ fn the_lane_refuses_what_it_does_not_cover() {
     // C(0.5) = P_2 = 3 exactly: the maximum, attained at the kink and certified optimal
     assert_eq!((e.coords[0].hi, e.coords[0].inner_hi), (3.0, 3.0));
     assert!(e.coords[0].optimal_hi && e.coords[0].optimal_lo);
+}
+
+/// The NURBS circle (NURBS Book ex. 7.1: nine control points on the unit square, weights 1 and
+/// sqrt(2)/2, double knots) and a quarter circle in the lane: the box is [-1, 1]^2 (the
+/// quarter [0, 1]^2), every bound attained at a control point the curve passes through
+/// (double knots: the ends snapped exact) and certified optimal; the general path agrees.
+#[test]
+fn nurbs_circles_in_the_lane_are_exact() {
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let pts = [
+        [1.0, 0.0],
+        [1.0, 1.0],
+        [0.0, 1.0],
+        [-1.0, 1.0],
+        [-1.0, 0.0],
+        [-1.0, -1.0],
+        [0.0, -1.0],
+        [1.0, -1.0],
+        [1.0, 0.0],
+    ];
+    let circle = NurbsCurve::new(
+        2,
+        vec![0., 0., 0., 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1., 1., 1.],
+        pts.iter().map(|q| q.to_vec()).collect(),
+        Some((0..9).map(|i| if i % 2 == 1 { h } else { 1.0 }).collect()),
+    )
+    .unwrap();
+    let quarter = NurbsCurve::new(
+        2,
+        vec![0., 0., 0., 1., 1., 1.],
+        pts[..3].iter().map(|q| q.to_vec()).collect(),
+        Some(vec![1.0, h, 1.0]),
+    )
+    .unwrap();
+    for (c, lo) in [(circle, -1.0), (quarter, 0.0)] {
+        assert!(Simple::of(&c).is_some());
+        check(&c).unwrap();
+        let e = drive(&Newton::default(), &c);
+        assert_eq!(e.stats().fast_fallbacks, 0);
+        for cb in &e.coords {
+            assert_eq!((cb.lo, cb.hi, cb.inner_lo, cb.inner_hi), (lo, 1.0, lo, 1.0));
+            assert!(cb.optimal_lo && cb.optimal_hi);
+        }
+    }
 }
 
 /// Degree-1 curves are polylines through their control points (rational or not, clamped or

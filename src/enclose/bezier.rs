@@ -60,6 +60,7 @@ use crate::enclose::newton::bernstein::SpanPoly;
 use crate::spline::tight::TightEval;
 use inari::Interval;
 
+pub(crate) mod conic;
 pub(crate) mod single;
 
 /// Settings of the Bézier-subdivision strategy.

@@ -31,6 +31,7 @@
 //! here; any side they leave open goes to the full certification (`certify::certify`), so the
 //! flags are those of the general path.
 
+use super::bezier::conic::{conic_sides, ConicSeg};
 use super::bezier::single::{extremum, f64_sides, raw_sides_into, RawSide, Segment};
 use super::bezier::{end_kind, span_bounds, CoefficientProof};
 use super::driver::apply_facts;
@@ -71,6 +72,9 @@ pub struct Simple<'a> {
     a: f64,
     b: f64,
     pts: &'a [f64],
+    /// the weights of a rational conic (degree 2), `None` otherwise (a rational polyline's
+    /// weights are not needed: its bounds are control values)
+    w: Option<&'a [f64]>,
     knots: &'a [f64],
     /// per coordinate the exact control-point range (min, max)
     range: [(f64, f64); MAX_DIM],
@@ -98,6 +102,13 @@ fn beyond_coord_window(m: f64) -> bool {
 /// The lane takes curves of dimension up to this (the result's inline storage holds three).
 const MAX_DIM: usize = 4;
 
+/// A rational conic's weights must lie in [2^-WEIGHT_EXP, 2^WEIGHT_EXP) ([`Simple::of`]).
+const WEIGHT_EXP: i32 = 100;
+
+/// A rational conic's largest weight is at most 2^WEIGHT_SPREAD times its smallest
+/// ([`Simple::of`]).
+const WEIGHT_SPREAD: i32 = 12;
+
 impl<'a> Simple<'a> {
     /// The curve as a [`Simple`] one, or `None`: rational (above degree 1), degree above
     /// [`LANE_MAX_DEGREE`], dimension above [`MAX_DIM`], extreme magnitudes; and a curve of
@@ -108,9 +119,32 @@ impl<'a> Simple<'a> {
         let p = c.degree();
         let k = c.knots();
         let n = c.num_points() - 1;
-        if !(1..=LANE_MAX_DEGREE).contains(&p) || n < p || (c.is_rational() && p > 1) {
+        if !(1..=LANE_MAX_DEGREE).contains(&p) || n < p || (c.is_rational() && p > 2) {
             return None;
         }
+        // A rational conic (degree 2, one segment or a spline): every weight within
+        // [2^-WEIGHT_EXP, 2^WEIGHT_EXP) (exact comparisons with powers of two; a NaN fails),
+        // so that the homogeneous coefficients and their products of `bezier::conic` stay far
+        // from overflow and underflow with the coordinates' window; and the largest weight at
+        // most 2^WEIGHT_SPREAD times the smallest (the conic proof's correction grows with
+        // the square of that ratio: beyond it the general path, whose enclosures do not,
+        // answers).
+        let w = match c.weights() {
+            Some(w) if p == 2 => {
+                const LO: f64 = pow2(-WEIGHT_EXP);
+                const HI: f64 = pow2(WEIGHT_EXP);
+                const SPREAD: f64 = pow2(WEIGHT_SPREAD);
+                let (lo, hi) = w
+                    .iter()
+                    .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+                // (lo * SPREAD is exact: a power of two times a double far from the extremes)
+                if !(lo >= LO && hi < HI && hi <= lo * SPREAD) {
+                    return None;
+                }
+                Some(w)
+            }
+            _ => None,
+        };
         let (a, b) = if p == 1 {
             // A polyline (degree 1, weights or not, clamped or not): on span [u_i, u_{i+1}]
             // the curve is (w_{i-1} P_{i-1} N_{i-1,1} + w_i P_i N_{i,1}) / (w_{i-1} N_{i-1,1} +
@@ -198,6 +232,7 @@ impl<'a> Simple<'a> {
             a,
             b,
             pts,
+            w,
             knots: k,
             range,
             extreme_at,
@@ -402,9 +437,18 @@ fn tight_sides(
     cache: &mut Option<SpanCache>,
 ) -> Option<()> {
     let exits = [cheap_exit(s, j, 1.0), cheap_exit(s, j, -1.0)];
+    if let (Some(w), true, false) = (s.w, s.n == s.p, exits[0].is_some() && exits[1].is_some()) {
+        return conic_segment(s, w, j, exits, cb);
+    }
     // (both exits: a monotone coordinate, or a line; a polyline or a spline side by side)
     // (a single segment above degree 3 goes the spline's way too: its one span)
-    if (exits[0].is_some() && exits[1].is_some()) || s.n > s.p || s.p == 1 || s.p > 3 {
+    // (a rational conic too: its proof is `bezier::conic`'s on the homogeneous coefficients)
+    if (exits[0].is_some() && exits[1].is_some())
+        || s.n > s.p
+        || s.p == 1
+        || s.p > 3
+        || s.w.is_some()
+    {
         for (ex, sign) in exits.into_iter().zip([1.0, -1.0]) {
             match ex {
                 Some(ex) => put_exit(cb, sign, ex),
@@ -457,6 +501,56 @@ fn tight_sides(
                 if args.is_empty() {
                     args.push(unresolved(s));
                 }
+            }
+        }
+    }
+    Some(())
+}
+
+/// The tight sides of coordinate j of a single rational conic (one clamped rational quadratic
+/// segment, n = p = 2), written to the blank box `cb`, or `None` (fall back): the sides
+/// without a cheap exit (`exits`) by the proof of `bezier::conic` on the exact data (the
+/// homogeneous coefficients w_i x_i as exact double-word products, the weights, the end
+/// values x_0 and x_2, which a clamped segment attains), both sides at once; each within the
+/// stopping rule's gap ([`max_gap`]), or the lane gives up.
+fn conic_segment(
+    s: &Simple,
+    w: &[f64],
+    j: usize,
+    exits: [Option<(f64, f64)>; 2],
+    cb: &mut CoordBox,
+) -> Option<()> {
+    let x = |i: usize| s.pts[i * s.d + j];
+    let seg = ConicSeg {
+        x: std::array::from_fn(|i| Ddi::exact(w[i]) * Ddi::exact(x(i))),
+        w: std::array::from_fn(|i| Ddi::exact(w[i])),
+        ends: [Ddi::exact(x(0)), Ddi::exact(x(2))],
+        a: s.a,
+        b: s.b,
+        end_kinds: [CandidateKind::EndPoint; 2],
+    };
+    let sides = conic_sides(&seg, [exits[0].is_none(), exits[1].is_none()])?;
+    let gap = max_gap(s, j);
+    for ((ex, sign), r) in exits.into_iter().zip([1.0, -1.0]).zip(&sides) {
+        match ex {
+            Some(ex) => put_exit(cb, sign, ex),
+            None => {
+                if !r.tight(gap) {
+                    return None;
+                }
+                let counts = [
+                    0,
+                    1,
+                    r.derivative_evaluations as u32,
+                    r.point_evaluations as u32,
+                ];
+                put(
+                    cb,
+                    sign,
+                    (r.upper.max(r.attained), r.attained, r.witness),
+                    counts,
+                );
+                reaching(s, r.attained, r.cands[..r.n].iter(), args_of(cb, sign));
             }
         }
     }
@@ -528,6 +622,11 @@ fn spline_side(
     };
     // step 2 for span k: the f64 coefficients and their a-priori bound (upper bound, attained)
     let filter = |cache: &mut SpanCache, k: usize| -> Option<(f64, f64)> {
+        if let Some(w) = s.w {
+            // a rational conic: its Cartesian coefficients with their bound ([`conic_filter`])
+            let rows = cache.conic(s, w, k);
+            return conic_filter(s, w, rows, j, k, sign);
+        }
         let q = if p > 3 {
             let rows = cache.get(s, k);
             std::array::from_fn(|i| if i <= p { rows[i * d + j] } else { 0.0 })
@@ -629,7 +728,14 @@ fn spline_side(
             continue;
         }
         // step 3: double-double coefficients and the root-isolating proof
-        let qd = if p > 3 {
+        // (a rational conic: its homogeneous rows X (sign-adjusted) and W, and its Cartesian
+        // coefficients as the span's coefficients)
+        let conic = s.w.map(|w| cache.conic_ddi(s, w, k).coordinate(s, k, j));
+        let qd = if let Some((_, _, q)) = conic {
+            let mut r = [Ddi::exact(0.0); LANE_MAX_DEGREE + 1];
+            r[..3].copy_from_slice(&q);
+            r
+        } else if p > 3 {
             let rows = cache.get_ddi(s, k);
             std::array::from_fn(|i| {
                 if i <= p {
@@ -686,19 +792,41 @@ fn spline_side(
             counts[3] += sd.stats.point_evaluations as u32;
             continue;
         }
-        let seg = Segment {
-            c: &qd[..=p],
-            a: kn[k],
-            b: kn[k + 1],
-            end_kinds: [end_kind(s.curve, kn[k]), end_kind(s.curve, kn[k + 1])],
-            right_attained: true,
-        };
         let side = if sign > 0.0 { 0 } else { 1 };
-        let mut need = [false; 2];
-        need[side] = true;
-        let mut raw = [RawSide::new(), RawSide::new()];
-        raw_sides_into(&seg, need, &mut raw)?;
-        let r = &raw[side];
+        let r = if let Some((xs, ws, q)) = conic {
+            // (a rational conic: the proof of `bezier::conic` on the homogeneous coefficients,
+            // both sides at once, kept for the coordinate's other side)
+            let span = cache.conic_ddi(s, s.w?, k);
+            match span.proofs[j] {
+                Some(sides) => sides[side],
+                None => {
+                    let seg = ConicSeg {
+                        x: xs,
+                        w: ws,
+                        ends: [q[0], q[2]],
+                        a: kn[k],
+                        b: kn[k + 1],
+                        end_kinds: [end_kind(s.curve, kn[k]), end_kind(s.curve, kn[k + 1])],
+                    };
+                    let sides = conic_sides(&seg, [true, true])?;
+                    span.proofs[j] = Some(sides);
+                    sides[side]
+                }
+            }
+        } else {
+            let seg = Segment {
+                c: &qd[..=p],
+                a: kn[k],
+                b: kn[k + 1],
+                end_kinds: [end_kind(s.curve, kn[k]), end_kind(s.curve, kn[k + 1])],
+                right_attained: true,
+            };
+            let mut need = [false; 2];
+            need[side] = true;
+            let mut raw = [RawSide::new(), RawSide::new()];
+            raw_sides_into(&seg, need, &mut raw)?;
+            raw[side]
+        };
         if !r.tight(gap) {
             return None;
         }
@@ -773,16 +901,12 @@ fn span_coefficients<S: Scalar>(s: &Simple, j: usize, k: usize) -> [S; LANE_MAX_
         }
         return q;
     }
-    let d = |i: usize| S::from_f64(kn[i + 1]) - S::from_f64(kn[i]);
-    let cut = |r: S, lo: &S, hi: &S| S::lerp(&r, lo, hi);
     if s.p == 2 {
-        let (d1, d2, d3) = (d(k - 1), d(k), d(k + 1));
-        let (p0, p1, p2) = (pt(k - 2), pt(k - 1), pt(k));
-        q[0] = cut(d1.clone() / (d1 + d2.clone()), &p0, &p1);
-        q[2] = cut(d2.clone() / (d2 + d3), &p1, &p2);
-        q[1] = p1;
+        q[..3].clone_from_slice(&quadratic_span(kn, k, pt));
         return q;
     }
+    let d = |i: usize| S::from_f64(kn[i + 1]) - S::from_f64(kn[i]);
+    let cut = |r: S, lo: &S, hi: &S| S::lerp(&r, lo, hi);
     let (d0, d1, d2, d3, d4) = (d(k - 2), d(k - 1), d(k), d(k + 1), d(k + 2));
     let (p0, p1, p2, p3) = (pt(k - 3), pt(k - 2), pt(k - 1), pt(k));
     let mid = d1.clone() + d2.clone() + d3.clone();
@@ -796,6 +920,166 @@ fn span_coefficients<S: Scalar>(s: &Simple, j: usize, k: usize) -> [S; LANE_MAX_
     q[1] = b1;
     q[2] = b2;
     q
+}
+
+/// The closed form of [`span_coefficients`] at degree 2 for one row of values `pt(i)` at the
+/// control points (a coordinate, or a rational conic's homogeneous rows w_i x_i and w_i):
+/// b_1 = P_{k-1}, b_0 divides the leg P_{k-2} P_{k-1} in the ratio d_{k-1} : d_k, b_2 the leg
+/// P_{k-1} P_k in the ratio d_k : d_{k+1}.
+fn quadratic_span<S: Scalar>(kn: &[f64], k: usize, pt: impl Fn(usize) -> S) -> [S; 3] {
+    let d = |i: usize| S::from_f64(kn[i + 1]) - S::from_f64(kn[i]);
+    let cut = |r: S, lo: &S, hi: &S| S::lerp(&r, lo, hi);
+    let (d1, d2, d3) = (d(k - 1), d(k), d(k + 1));
+    let (p0, p1, p2) = (pt(k - 2), pt(k - 1), pt(k));
+    let b0 = cut(d1.clone() / (d1 + d2.clone()), &p0, &p1);
+    let b2 = cut(d2.clone() / (d2 + d3), &p1, &p2);
+    [b0, p1, b2]
+}
+
+/// Room for a rational conic's span rows: the homogeneous rows X (w_i x_i) of every coordinate,
+/// then the weights' row W, three coefficients each.
+const CONIC_ROWS: usize = 3 * (MAX_DIM + 1);
+
+/// A rational conic's homogeneous Bézier coefficients on span k, in `S`: for coordinate j the
+/// row X at 3 j (of the products w_i x_i), the row W at 3 d (of the weights), each by the
+/// closed form of [`quadratic_span`] (Boehm's insertion of the homogeneous spline, NURBS Book
+/// A5.6 on P^w). For `Ddi` the products are exact double-words and every operation encloses
+/// its exact result.
+fn conic_rows<S: Scalar>(s: &Simple, w: &[f64], k: usize) -> [S; CONIC_ROWS] {
+    let mut q: [S; CONIC_ROWS] = std::array::from_fn(|_| S::zero());
+    let d = s.d;
+    for j in 0..d {
+        let row = quadratic_span(s.knots, k, |i| {
+            S::from_f64(w[i]) * S::from_f64(s.pts[i * d + j])
+        });
+        q[3 * j..3 * j + 3].clone_from_slice(&row);
+    }
+    let row = quadratic_span(s.knots, k, |i| S::from_f64(w[i]));
+    q[3 * d..3 * d + 3].clone_from_slice(&row);
+    q
+}
+
+/// The f64 filter (step 2 of [`spline_side`]) of a rational conic's span k, coordinate j,
+/// side `sign`, from the f64 rows of [`conic_rows`]: an upper bound of the span and an
+/// attained value (a lower bound of C_j(u_k) or C_j(u_{k+1}), sign-adjusted), or `None` (a
+/// non-finite value, a weight coefficient not positive).
+///
+/// Error bound. Let X_i, W_i be the exact homogeneous coefficients and X̃_i, W̃_i the f64 ones;
+/// Mx = max |fl(w_l x_l)| and Mw = max w_l over the span's local control points l = k - 2 ..= k,
+/// M = max |x_l|, u = 2^-53. A computed product is within u |w_l x_l| (+ 2^-1075 where it
+/// underflows) of the exact one; a corner cut errs by at most 17.1 u times the largest
+/// magnitude of its computed ends against the exact cut of those ends (the bound of
+/// [`span_coefficients`]; at degree 2 one cut per end coefficient, b_1 = P_{k-1} uncut), and
+/// the exact cut (a convex combination) does not amplify its ends' errors. So
+/// |X̃_i - X_i| <= EX = 19 u Mx + 2^-1022 and |W̃_i - W_i| <= EW = 18 u Mw + 2^-1022. The exact
+/// Cartesian coefficient b_i = X_i / W_i is a convex combination of the local x_l (W_i > 0
+/// a convex combination of positive weights, NURBS Book eq. 4.11), so |b_i| <= M, and
+///
+///   X̃_i / W̃_i - X_i / W_i = ((X̃_i - X_i) - b_i (W̃_i - W_i)) / W̃_i,
+///
+/// at most (EX + M EW) / W̃_i in magnitude for W̃_i > 0; the division fl(X̃_i / W̃_i) adds
+/// u |b̃_i| (+ 2^-1075). Each bound is formed with every step rounded upward (`ddi::up` of one
+/// rounded operation on nonnegative operands bounds its exact result). The span lies in the
+/// convex hull of its Cartesian Bézier points, b_0 = C(u_k) and b_2 = C(u_{k+1}) are curve
+/// values (tested against exact insertion and de Boor's evaluation:
+/// `conic_span_coefficients_are_within_their_bound`).
+fn conic_filter(
+    s: &Simple,
+    w: &[f64],
+    rows: &[f64; CONIC_ROWS],
+    j: usize,
+    k: usize,
+    sign: f64,
+) -> Option<(f64, f64)> {
+    let (mut ub, mut at) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for (i, (b, err)) in conic_coefficients_f64(s, w, rows, j, k)?
+        .into_iter()
+        .enumerate()
+    {
+        let b = sign * b;
+        ub = ub.max((b + err).next_up());
+        if i != 1 {
+            at = at.max((b - err).next_down());
+        }
+    }
+    (ub.is_finite() && at.is_finite()).then_some((ub, at))
+}
+
+/// The Cartesian coefficients b̃_i = fl(X̃_i / W̃_i) of coordinate j on a rational conic's span
+/// k with their error bounds err_i (|b̃_i - b_i| <= err_i, see [`conic_filter`]), or `None` (a
+/// non-finite value, a weight coefficient not positive).
+fn conic_coefficients_f64(
+    s: &Simple,
+    w: &[f64],
+    rows: &[f64; CONIC_ROWS],
+    j: usize,
+    k: usize,
+) -> Option<[(f64, f64); 3]> {
+    use crate::num::ddi::up;
+    const U: f64 = f64::EPSILON / 2.0;
+    let (mut mx, mut mw, mut m) = (0.0f64, 0.0f64, 0.0f64);
+    for (l, &wl) in w.iter().enumerate().take(k + 1).skip(k - 2) {
+        let x = s.pts[l * s.d + j];
+        mx = mx.max((wl * x).abs());
+        mw = mw.max(wl);
+        m = m.max(x.abs());
+    }
+    let ex = up(19.0 * U * mx) + f64::MIN_POSITIVE;
+    let ew = up(18.0 * U * mw) + f64::MIN_POSITIVE;
+    let e = up(ex + up(m * ew));
+    let mut out = [(0.0, 0.0); 3];
+    for (i, o) in out.iter_mut().enumerate() {
+        let (xi, wi) = (rows[3 * j + i], rows[3 * s.d + i]);
+        // (a NaN fails the test)
+        if !(wi > 0.0 && xi.is_finite()) {
+            return None;
+        }
+        let b = xi / wi;
+        *o = (b, up(up(e / wi) + up(U * b.abs())) + f64::MIN_POSITIVE);
+    }
+    Some(out)
+}
+
+/// A rational conic's span k in `Ddi` for step 3 of [`spline_side`]: the rows of
+/// [`conic_rows`], and per coordinate (made on first use) the Cartesian coefficients
+/// X_i / W_i, whose ends b_0 = C(u_k), b_2 = C(u_{k+1}) are exact where the knot is double (or
+/// the clamped end): there the cut's ratio is exactly 0 or 1 and the end is the control point
+/// P_{k-2} (P_k) itself, whose coordinate is taken exactly instead of the quotient's
+/// enclosure (the extrema of a NURBS circle lie there), and the proof of both sides
+/// (`bezier::conic`, shared by the coordinate's two sides).
+struct ConicSpan {
+    rows: [Ddi; CONIC_ROWS],
+    cart: [Option<[Ddi; 3]>; MAX_DIM],
+    proofs: [Option<[RawSide; 2]>; MAX_DIM],
+}
+
+impl ConicSpan {
+    fn new(s: &Simple, w: &[f64], k: usize) -> ConicSpan {
+        ConicSpan {
+            rows: conic_rows::<Ddi>(s, w, k),
+            cart: [None; MAX_DIM],
+            proofs: [None; MAX_DIM],
+        }
+    }
+
+    /// Coordinate j's homogeneous row X, the row W, and the Cartesian coefficients.
+    fn coordinate(&mut self, s: &Simple, k: usize, j: usize) -> ([Ddi; 3], [Ddi; 3], [Ddi; 3]) {
+        let d = s.d;
+        let row = |r: usize| -> [Ddi; 3] { std::array::from_fn(|i| self.rows[r + i]) };
+        let (x, w) = (row(3 * j), row(3 * d));
+        let cart = *self.cart[j].get_or_insert_with(|| {
+            let mut q: [Ddi; 3] = std::array::from_fn(|i| x[i] / w[i]);
+            let kn = s.knots;
+            if kn[k - 1] == kn[k] {
+                q[0] = Ddi::exact(s.pts[(k - 2) * d + j]);
+            }
+            if kn[k + 1] == kn[k + 2] {
+                q[2] = Ddi::exact(s.pts[k * d + j]);
+            }
+            q
+        });
+        (x, w, cart)
+    }
 }
 
 /// Every coordinate's Bézier coefficients on span k of a spline above degree 3 (point i's
@@ -828,6 +1112,9 @@ struct SpanCache {
     /// the proofs of step 3 by span and coordinate (a single segment's two sides prove the
     /// same span)
     proofs: SmallVec<[ProofSlot; 2]>,
+    /// a rational conic's rows in f64 (step 2) and in `Ddi` (step 3)
+    conic: SmallVec<[(usize, [f64; CONIC_ROWS]); 4]>,
+    conic_ddi: SmallVec<[(usize, ConicSpan); 2]>,
 }
 
 /// A proof slot of [`SpanCache`]: (span, coordinate), and the proof once made.
@@ -854,6 +1141,16 @@ impl SpanCache {
     /// Span k's f64 coefficients ([`span_coefficients_rows`]).
     fn get(&mut self, s: &Simple, k: usize) -> &[f64; SPAN_ROWS] {
         cached(&mut self.rows, k, || span_coefficients_rows(s, k))
+    }
+
+    /// A rational conic's span k: its f64 rows ([`conic_rows`]).
+    fn conic(&mut self, s: &Simple, w: &[f64], k: usize) -> &[f64; CONIC_ROWS] {
+        cached(&mut self.conic, k, || conic_rows(s, w, k))
+    }
+
+    /// A rational conic's span k in `Ddi` ([`ConicSpan`]).
+    fn conic_ddi(&mut self, s: &Simple, w: &[f64], k: usize) -> &mut ConicSpan {
+        cached(&mut self.conic_ddi, k, || ConicSpan::new(s, w, k))
     }
 
     /// The slot of the proof on span k for coordinate j (empty until the first side asks).
@@ -1314,6 +1611,126 @@ mod tests {
     /// Quartic and quintic splines with clustered knots (down to a few ulps apart), knots of
     /// multiplicity up to p, uneven intervals, domains moved and scaled across the knot window
     /// and magnitudes across the coordinate window.
+    /// Knots and control points of a random clamped spline of degree p for the coefficient
+    /// tests: interior knots clustered down to a few ulps or to 1e-9, or spread, a third of them
+    /// repeated up to multiplicity p; the domain moved and scaled within the lane's knot window
+    /// half the time ([off, off + 2^w], knots rounded there, so their differences are not the
+    /// unit ones); 1-3 coordinates of magnitude 2^-70..2^70.
+    fn random_spline(r: &mut impl rand::Rng, p: usize) -> (Vec<f64>, Vec<Vec<f64>>) {
+        let mut inner: Vec<f64> = Vec::new();
+        let base = r.random_range(0.1..0.9);
+        for _ in 0..r.random_range(1..8) {
+            let u = match r.random_range(0..4) {
+                0 => base + r.random_range(-4.0..4.0) * f64::EPSILON,
+                1 => base + r.random_range(-1.0..1.0) * 1e-9,
+                _ => r.random_range(0.0..1.0),
+            };
+            let m = if r.random_range(0..3) == 0 {
+                r.random_range(1..=p)
+            } else {
+                1
+            };
+            inner.extend(std::iter::repeat_n(u, m));
+        }
+        inner.retain(|&u| u > 0.0 && u < 1.0);
+        inner.sort_by(f64::total_cmp);
+        // (no interior multiplicity above p)
+        let mut knots = vec![0.0; p + 1];
+        for &u in &inner {
+            if knots.iter().filter(|&&v| v == u).count() < p {
+                knots.push(u);
+            }
+        }
+        knots.extend(vec![1.0; p + 1]);
+        if r.random_range(0..2) == 0 {
+            let w = 2f64.powi(r.random_range(-25..=25));
+            let off = [0.0, -w * 0.3, w * 1e6, -w * 3e3][r.random_range(0..4usize)];
+            knots.iter_mut().for_each(|u| *u = off + *u * w);
+        }
+        let n = knots.len() - p - 2;
+        let d = r.random_range(1..=3usize);
+        let mag = 2f64.powi(r.random_range(-70..70));
+        let pts = (0..=n)
+            .map(|_| (0..d).map(|_| r.random_range(-1.0..1.0) * mag).collect())
+            .collect();
+        (knots, pts)
+    }
+
+    /// A rational conic's span coefficients ([`conic_rows`], [`conic_coefficients_f64`],
+    /// [`ConicSpan`]) on 300 random rational quadratic splines (clustered knots down to a few
+    /// ulps, double knots, domains moved and scaled across the knot window, coordinates
+    /// 2^-70..2^70, weights spread over up to 2^12 at scales 2^-90..2^90, 1-3 coordinates):
+    /// the exact homogeneous coefficients (the closed form in exact arithmetic) give de Boor's
+    /// exact value of the curve (`CurveEval`, independent code, with the quotient rule) at the
+    /// span's ends and inside; the f64 Cartesian coefficients lie within their bounds of the
+    /// exact ones; the `Ddi` rows and Cartesian coefficients (ends snapped at double knots)
+    /// enclose them; and the bound is not vacuous (errors above a hundredth of it occur).
+    /// Fails with the weights' error term dropped, and with the end snapped at a simple knot.
+    #[test]
+    fn conic_span_coefficients_are_within_their_bound() {
+        use rand::Rng;
+        let mut r = gen::rng(43);
+        let (mut spans, mut worst) = (0, 0.0f64);
+        for _ in 0..300 {
+            let p = 2;
+            let (knots, pts) = random_spline(&mut r, p);
+            let (n, d) = (pts.len() - 1, pts[0].len());
+            let ws = 2f64.powi(r.random_range(-90..=90));
+            let weights: Vec<f64> = (0..=n)
+                .map(|_| ws * 2f64.powf(r.random_range(-6.0..6.0)))
+                .collect();
+            let Ok(c) = NurbsCurve::new(p, knots, pts, Some(weights.clone())) else {
+                continue;
+            };
+            let Some(s) = Simple::of(&c) else { continue };
+            let w = &weights[..];
+            let eval = crate::spline::eval::CurveEval::<Exact>::new(&c, 0);
+            for k in p..=n {
+                if s.knots[k] >= s.knots[k + 1] {
+                    continue;
+                }
+                spans += 1;
+                let exact = conic_rows::<Exact>(&s, w, k);
+                let rows = conic_rows::<f64>(&s, w, k);
+                let mut dspan = ConicSpan::new(&s, w, k);
+                let (a, b) = (s.knots[k], s.knots[k + 1]);
+                for j in 0..d {
+                    let xr = &exact[3 * j..3 * j + 3];
+                    let wr = &exact[3 * d..3 * d + 3];
+                    for u in [a, b, a + 0.375 * (b - a)] {
+                        let want = eval.coord_derivs_in_span(k, &Exact::of(u), 0, j)[0].clone();
+                        let t = (Exact::of(u) - Exact::of(a)) / (Exact::of(b) - Exact::of(a));
+                        let got = crate::spline::bezier::de_casteljau_eval(xr, &t)
+                            / crate::spline::bezier::de_casteljau_eval(wr, &t);
+                        assert!(got == want, "span {k} coordinate {j} at {u}");
+                    }
+                    let f = conic_coefficients_f64(&s, w, &rows, j, k).expect("finite");
+                    let (dx, dw, dq) = dspan.coordinate(&s, k, j);
+                    for i in 0..3 {
+                        let bi = xr[i].clone() / wr[i].clone();
+                        let (bf, e) = f[i];
+                        let err = bi.clone() - Exact::of(bf);
+                        assert!(
+                            err.cmp_f64(e) != Some(Ordering::Greater)
+                                && err.cmp_f64(-e) != Some(Ordering::Less),
+                            "span {k} b_{i}: f64 error above the bound {e:e}"
+                        );
+                        if e > 0.0 {
+                            worst = worst.max((bi.to_f64() - bf).abs() / e);
+                        }
+                        for (v, x) in [(dx[i], &xr[i]), (dw[i], &wr[i]), (dq[i], &bi)] {
+                            let iv = v.to_interval();
+                            assert_eq!(x.cmp_f64(iv.sup()).map(|o| o.is_le()), Some(true));
+                            assert_eq!(x.cmp_f64(iv.inf()).map(|o| o.is_ge()), Some(true));
+                        }
+                    }
+                }
+            }
+        }
+        assert!(spans > 500, "only {spans} spans checked");
+        assert!(worst > 0.01, "largest error {worst} of the bound");
+    }
+
     #[test]
     fn inserted_span_coefficients_are_within_their_bound() {
         use rand::Rng;
@@ -1321,44 +1738,8 @@ mod tests {
         let (mut spans, mut worst) = (0, 0.0f64);
         for _ in 0..200 {
             let p = r.random_range(4..=LANE_MAX_DEGREE);
-            let mut inner: Vec<f64> = Vec::new();
-            let base = r.random_range(0.1..0.9);
-            for _ in 0..r.random_range(1..8) {
-                let u = match r.random_range(0..4) {
-                    0 => base + r.random_range(-4.0..4.0) * f64::EPSILON,
-                    1 => base + r.random_range(-1.0..1.0) * 1e-9,
-                    _ => r.random_range(0.0..1.0),
-                };
-                let m = if r.random_range(0..3) == 0 {
-                    r.random_range(1..=p)
-                } else {
-                    1
-                };
-                inner.extend(std::iter::repeat_n(u, m));
-            }
-            inner.retain(|&u| u > 0.0 && u < 1.0);
-            inner.sort_by(f64::total_cmp);
-            // (no interior multiplicity above p)
-            let mut knots = vec![0.0; p + 1];
-            for &u in &inner {
-                if knots.iter().filter(|&&v| v == u).count() < p {
-                    knots.push(u);
-                }
-            }
-            knots.extend(vec![1.0; p + 1]);
-            // (the domain moved and scaled within the lane's knot window: [off, off + 2^w],
-            // knots rounded there, so their differences are not the unit ones)
-            if r.random_range(0..2) == 0 {
-                let w = 2f64.powi(r.random_range(-25..=25));
-                let off = [0.0, -w * 0.3, w * 1e6, -w * 3e3][r.random_range(0..4usize)];
-                knots.iter_mut().for_each(|u| *u = off + *u * w);
-            }
-            let n = knots.len() - p - 2;
-            let d = r.random_range(1..=3usize);
-            let mag = 2f64.powi(r.random_range(-70..70));
-            let pts: Vec<Vec<f64>> = (0..=n)
-                .map(|_| (0..d).map(|_| r.random_range(-1.0..1.0) * mag).collect())
-                .collect();
+            let (knots, pts) = random_spline(&mut r, p);
+            let (n, d) = (pts.len() - 1, pts[0].len());
             let Ok(c) = NurbsCurve::new(p, knots, pts, None) else {
                 continue;
             };

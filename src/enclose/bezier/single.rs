@@ -90,7 +90,7 @@ const FAR_TIES: usize = 8;
 /// The proven sign of an enclosure: `Some(true)` if every value is > 0, `Some(false)` if every
 /// value is < 0, `None` if it may contain 0.
 #[inline]
-fn sign(x: Ddi) -> Option<bool> {
+pub(super) fn sign(x: Ddi) -> Option<bool> {
     // abs_lower is Some only if |hi| exceeds |lo| + rad (rounded up), so all values share the
     // sign of hi.
     Ddi::abs_lower(x).map(|_| x.hi() > 0.0)
@@ -167,7 +167,7 @@ impl Poly {
 /// A separate f64 copy of Horner's rule on purpose: an f64 filter with the error bounds below
 /// (which assume exactly this FMA evaluation order); the generic kernel is
 /// [`crate::num::horner`], used for the `Ddi` fallback [`Poly::dx`].
-struct Deriv {
+pub(super) struct Deriv {
     b: [f64; 3],
     err: f64,
 }
@@ -251,9 +251,34 @@ impl Deriv {
         }
     }
 
+    /// From f64 power coefficients b_0, b_1, b_2 of a quadratic q with |β_k - b_k| <= `coeff_err`
+    /// for its exact coefficients β_k (s = 1, q in place of x': the conic path's derivative
+    /// numerator, [`super::conic`]).
+    ///
+    /// Error bound. |q(t) - sum_k b_k t^k| <= 3 `coeff_err` for t in [0, 1], and Horner with FMA
+    /// on the b_k errs by at most (2u + u^2)(|b_0| + |b_1| + |b_2|) + 3 η (as in
+    /// [`Deriv::new`]), so
+    ///
+    ///   |q(t) - y| <= T = 3 coeff_err + 4u (|b_0| + |b_1| + |b_2|) + 2^-1073,
+    ///
+    /// a formula of Lemma B of [`crate::num::ddi`]: `err = up(fl(T)) >= T`. A non-finite value
+    /// makes every test fail.
+    pub(super) fn from_coefficients(b: [f64; 3], coeff_err: f64) -> Deriv {
+        let t = 3.0 * coeff_err
+            + 4.0 * f64::EPSILON / 2.0 * (b[0].abs() + b[1].abs() + b[2].abs())
+            + f64::from_bits(2);
+        Deriv { b, err: up(t) }
+    }
+
+    /// The error bound of [`Deriv::approx`].
+    #[inline]
+    pub(super) fn err(&self) -> f64 {
+        self.err
+    }
+
     /// The f64 value y with |s x'(t) - y| <= err (t in [0, 1]).
     #[inline]
-    fn approx(&self, t: f64) -> f64 {
+    pub(super) fn approx(&self, t: f64) -> f64 {
         self.b[2].mul_add(t, self.b[1]).mul_add(t, self.b[0])
     }
 }
@@ -489,19 +514,19 @@ impl RawSide {
             point_evaluations: 0,
         }
     }
-    fn attain(&mut self, v: f64) {
+    pub(super) fn attain(&mut self, v: f64) {
         if v > self.attained {
             self.attained = v;
         }
     }
     /// A double-double enclosure of an attained value: its lower end is attained, the largest
     /// f64 strictly below it a witness.
-    fn attain_ddi(&mut self, v: Ddi) {
+    pub(super) fn attain_ddi(&mut self, v: Ddi) {
         // (a NaN lower end, after an overflow, is ignored by `attain`)
         self.attain(v.lower_end());
         self.witness = self.witness.max(v.strictly_below());
     }
-    fn bound(&mut self, ub: f64, e: Extremum) {
+    pub(super) fn bound(&mut self, ub: f64, e: Extremum) {
         if ub > self.upper {
             self.upper = ub;
         }
@@ -667,7 +692,7 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
 /// The test points of step 3 (module docs): 0, the pairs r ± h around the f64 root estimates
 /// of the filter's polynomial inside (0, 1), ascending, and 1; and how many there are.
 #[inline]
-fn test_points(deriv: &Deriv) -> ([f64; 6], usize) {
+pub(super) fn test_points(deriv: &Deriv) -> ([f64; 6], usize) {
     let mut z = [0.0f64; 6];
     let mut k = 1;
     let (mut r, nr) = root_estimates(deriv.b[0], deriv.b[1], deriv.b[2]);
