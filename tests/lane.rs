@@ -404,7 +404,8 @@ unsafe impl std::alloc::GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-/// A single 2-D cubic or quadratic Bézier segment allocates nothing in the lane: never for
+/// A single 2-D cubic or quadratic Bézier segment, or a conic arc (one rational quadratic
+/// segment), allocates nothing in the lane: never for
 /// `hull`, and for `bezier` / `newton` only where a side needs more (ties of several candidates,
 /// a side left to the full certification): in under 2% of random segments. (The minimum over
 /// five calls: the first call of a thread may set up lazily initialised state.)
@@ -416,7 +417,8 @@ fn single_segments_allocate_nothing_in_the_lane() {
     drop(std::hint::black_box(vec![1u8; 16]));
     assert!(allocs() > before);
     let mut r = gen::rng(5);
-    let curves: Vec<NurbsCurve> = (0..300)
+    // quadratics, cubics and conic arcs (rational quadratics)
+    let curves: Vec<NurbsCurve> = (0..450)
         .map(|i| {
             let p = 2 + i % 2;
             let pts = (0..=p)
@@ -424,7 +426,8 @@ fn single_segments_allocate_nothing_in_the_lane() {
                 .collect();
             let mut k = vec![0.0; p + 1];
             k.extend(vec![1.0; p + 1]);
-            NurbsCurve::new(p, k, pts, None).unwrap()
+            let w = (i % 3 == 2 && p == 2).then(|| vec![1.0, r.random_range(0.2..3.0), 1.0]);
+            NurbsCurve::new(p, k, pts, w).unwrap()
         })
         .collect();
     for name in ["hull", "bezier", "newton"] {

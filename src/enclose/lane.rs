@@ -1,11 +1,13 @@
 //! The driver's lane for the commonest input: one clamped polynomial Bézier segment of degree
 //! 1 to 5 (a line, a font's quadratic, a cubic Bézier) with moderate magnitudes, a clamped
-//! polynomial spline of degree 2 to 5 with moderate knots, and any polyline (degree 1,
-//! rational or not, clamped or not, jumps at double knots, any magnitude) ([`Simple::of`]).
+//! polynomial spline of degree 2 to 5 with moderate knots, a clamped rational conic (degree 2,
+//! one segment or a spline: arcs, a NURBS circle) with moderate weights, and any polyline
+//! (degree 1, rational or not, clamped or not, jumps at double knots, any magnitude)
+//! ([`Simple::of`]).
 //! Such a curve needs none of the general machinery (rescaling, the curve-wide Bézier sweep,
 //! the per-curve search state), so the driver answers it here directly, with the same
-//! guarantees and the same reasoning as the general path, and up to degree 3 without any heap
-//! allocation:
+//! guarantees and the same reasoning as the general path, and up to degree 3 (a single conic
+//! arc included) without any heap allocation:
 //!
 //! * **`hull`** ([`Lane::Hull`]): the box of the control points (convex hull property, thesis
 //!   prop. 2.1; exact), the end control points as attained values (a clamped end is a control
@@ -18,8 +20,10 @@
 //!   of C_j', proven derivative signs at test points by an f64 filter with an a-priori error
 //!   bound, root counting, a double-double Taylor enclosure over each tiny bracket; degree 4
 //!   and 5: its general fast path, `bezier::coefficient_side`, the zeros of C_j' located by
-//!   Bernstein subdivision with proven sign counts), on splines only for the spans that f64
-//!   Bézier coefficients with an a-priori bound leave open (`spline_side`). Where that proof
+//!   Bernstein subdivision with proven sign counts; a rational conic: `bezier::conic`, the
+//!   same root isolation on the quadratic numerator of C_j' = N / W^2 and a mean value bound
+//!   over each bracket), on splines only for the spans that f64 Bézier coefficients with an
+//!   a-priori bound leave open (`spline_side`). Where that proof
 //!   does not give a bound within two ulps of the coordinate scale, the lane returns `None` and
 //!   the general path runs (`Stats::fast_fallbacks` counts it there).
 //!
@@ -61,7 +65,8 @@ const KNOT_EXP: i32 = 1000;
 pub const LANE_MAX_DEGREE: usize = 5;
 
 /// A curve the lane takes: one clamped polynomial Bézier segment of degree 1..=5 over [a, b],
-/// or a clamped polynomial spline of degree 2..=5, every coordinate moderate.
+/// a clamped polynomial spline of degree 2..=5, or a clamped rational conic (degree 2, one
+/// segment or a spline, moderate weights), every coordinate moderate; or a polyline.
 #[derive(Debug, Clone, Copy)]
 pub struct Simple<'a> {
     curve: &'a NurbsCurve,
@@ -110,8 +115,9 @@ const WEIGHT_EXP: i32 = 100;
 const WEIGHT_SPREAD: i32 = 12;
 
 impl<'a> Simple<'a> {
-    /// The curve as a [`Simple`] one, or `None`: rational (above degree 1), degree above
-    /// [`LANE_MAX_DEGREE`], dimension above [`MAX_DIM`], extreme magnitudes; and a curve of
+    /// The curve as a [`Simple`] one, or `None`: rational above degree 2, or rational of
+    /// degree 2 with a weight outside [2^-100, 2^100) or weights spread over more than 2^12,
+    /// degree above [`LANE_MAX_DEGREE`], dimension above [`MAX_DIM`], extreme magnitudes; and a curve of
     /// several spans unless it is a clamped, continuous (interior knot multiplicities at most
     /// p) spline of degree 2 to [`LANE_MAX_DEGREE`] with moderate knots.
     #[inline]
@@ -557,7 +563,8 @@ fn conic_segment(
     Some(())
 }
 
-/// The side `sign` of coordinate j of a spline (degree 2 or 3, several spans), best first
+/// The side `sign` of coordinate j of a spline (degree 2 to 5, several spans, or a single
+/// segment above degree 3; a rational conic, one segment or several, as below), best first
 /// over the spans, as the `bezier` strategy's branch and bound does with its shortcuts, on
 /// stack buffers:
 ///
@@ -589,6 +596,14 @@ fn conic_segment(
 /// 3. Otherwise the span's Bézier coefficients are enclosed in double-double (the same
 ///    closed form in `Ddi`) and the root-isolating proof (`bezier::single`) bounds it, within two
 ///    ulps of the scale, or the lane gives up.
+///
+/// A rational conic: step 1 as above (with positive weights the piece on a span is a convex
+/// combination of its local control points, NURBS Book eq. 4.11, and the skip argument holds
+/// for the homogeneous Bézier points, whose Cartesian quotients are convex combinations of
+/// the same local control values); step 2 from the f64 homogeneous coefficients with the
+/// written bound of the quotients ([`conic_filter`]); step 3 from the `Ddi` rows
+/// ([`ConicSpan`]: the end-coefficient rule on the Cartesian quotients, else the proof of
+/// `bezier::conic` for this side).
 /// 4. When no span's bound exceeds the attained value, the side's bound is the largest bound
 ///    of the spans proved in step 3 and the attained value (spans left over or done in step 2
 ///    are below the attained value, which is below the exact maximum).
@@ -730,7 +745,7 @@ fn spline_side(
         // step 3: double-double coefficients and the root-isolating proof
         // (a rational conic: its homogeneous rows X (sign-adjusted) and W, and its Cartesian
         // coefficients as the span's coefficients)
-        let conic = s.w.map(|w| cache.conic_ddi(s, w, k).coordinate(s, k, j));
+        let conic = s.w.map(|w| cache.conic_ddi(s, w, k).coordinate(s, w, k, j));
         let qd = if let Some((_, _, q)) = conic {
             let mut r = [Ddi::exact(0.0); LANE_MAX_DEGREE + 1];
             r[..3].copy_from_slice(&q);
@@ -795,24 +810,18 @@ fn spline_side(
         let side = if sign > 0.0 { 0 } else { 1 };
         let r = if let Some((xs, ws, q)) = conic {
             // (a rational conic: the proof of `bezier::conic` on the homogeneous coefficients,
-            // both sides at once, kept for the coordinate's other side)
-            let span = cache.conic_ddi(s, s.w?, k);
-            match span.proofs[j] {
-                Some(sides) => sides[side],
-                None => {
-                    let seg = ConicSeg {
-                        x: xs,
-                        w: ws,
-                        ends: [q[0], q[2]],
-                        a: kn[k],
-                        b: kn[k + 1],
-                        end_kinds: [end_kind(s.curve, kn[k]), end_kind(s.curve, kn[k + 1])],
-                    };
-                    let sides = conic_sides(&seg, [true, true])?;
-                    span.proofs[j] = Some(sides);
-                    sides[side]
-                }
-            }
+            // for this side: the other side's extremum lies in another span as a rule)
+            let seg = ConicSeg {
+                x: xs,
+                w: ws,
+                ends: [q[0], q[2]],
+                a: kn[k],
+                b: kn[k + 1],
+                end_kinds: [end_kind(s.curve, kn[k]), end_kind(s.curve, kn[k + 1])],
+            };
+            let mut need = [false; 2];
+            need[side] = true;
+            conic_sides(&seg, need)?[side]
         } else {
             let seg = Segment {
                 c: &qd[..=p],
@@ -927,13 +936,34 @@ fn span_coefficients<S: Scalar>(s: &Simple, j: usize, k: usize) -> [S; LANE_MAX_
 /// b_1 = P_{k-1}, b_0 divides the leg P_{k-2} P_{k-1} in the ratio d_{k-1} : d_k, b_2 the leg
 /// P_{k-1} P_k in the ratio d_k : d_{k+1}.
 fn quadratic_span<S: Scalar>(kn: &[f64], k: usize, pt: impl Fn(usize) -> S) -> [S; 3] {
+    quadratic_cuts(&quadratic_ratios(kn, k), [pt(k - 2), pt(k - 1), pt(k)])
+}
+
+/// The knot ratios of [`quadratic_span`] on span k: d_{k-1} / (d_{k-1} + d_k) and
+/// d_k / (d_k + d_{k+1}) (shared by every row of the span).
+fn quadratic_ratios<S: Scalar>(kn: &[f64], k: usize) -> [S; 2] {
     let d = |i: usize| S::from_f64(kn[i + 1]) - S::from_f64(kn[i]);
-    let cut = |r: S, lo: &S, hi: &S| S::lerp(&r, lo, hi);
     let (d1, d2, d3) = (d(k - 1), d(k), d(k + 1));
-    let (p0, p1, p2) = (pt(k - 2), pt(k - 1), pt(k));
-    let b0 = cut(d1.clone() / (d1 + d2.clone()), &p0, &p1);
-    let b2 = cut(d2.clone() / (d2 + d3), &p1, &p2);
+    [d1.clone() / (d1 + d2.clone()), d2.clone() / (d2 + d3)]
+}
+
+/// The cuts of [`quadratic_span`] with the ratios `r` on the local values P_{k-2}, P_{k-1}, P_k.
+fn quadratic_cuts<S: Scalar>(r: &[S; 2], [p0, p1, p2]: [S; 3]) -> [S; 3] {
+    let b0 = S::lerp(&r[0], &p0, &p1);
+    let b2 = S::lerp(&r[1], &p1, &p2);
     [b0, p1, b2]
+}
+
+/// A rational conic's local values on span k for the cuts: the products w_i x_i of coordinate
+/// j (`Some(j)`, exact double-words for `Ddi`) or the weights (`None`).
+fn conic_values<S: Scalar>(s: &Simple, w: &[f64], k: usize, j: Option<usize>) -> [S; 3] {
+    std::array::from_fn(|l| {
+        let i = k - 2 + l;
+        match j {
+            Some(j) => S::from_f64(w[i]) * S::from_f64(s.pts[i * s.d + j]),
+            None => S::from_f64(w[i]),
+        }
+    })
 }
 
 /// Room for a rational conic's span rows: the homogeneous rows X (w_i x_i) of every coordinate,
@@ -948,13 +978,12 @@ const CONIC_ROWS: usize = 3 * (MAX_DIM + 1);
 fn conic_rows<S: Scalar>(s: &Simple, w: &[f64], k: usize) -> [S; CONIC_ROWS] {
     let mut q: [S; CONIC_ROWS] = std::array::from_fn(|_| S::zero());
     let d = s.d;
+    let r = quadratic_ratios::<S>(s.knots, k);
     for j in 0..d {
-        let row = quadratic_span(s.knots, k, |i| {
-            S::from_f64(w[i]) * S::from_f64(s.pts[i * d + j])
-        });
+        let row = quadratic_cuts(&r, conic_values(s, w, k, Some(j)));
         q[3 * j..3 * j + 3].clone_from_slice(&row);
     }
-    let row = quadratic_span(s.knots, k, |i| S::from_f64(w[i]));
+    let row = quadratic_cuts(&r, conic_values(s, w, k, None));
     q[3 * d..3 * d + 3].clone_from_slice(&row);
     q
 }
@@ -1045,40 +1074,47 @@ fn conic_coefficients_f64(
 /// X_i / W_i, whose ends b_0 = C(u_k), b_2 = C(u_{k+1}) are exact where the knot is double (or
 /// the clamped end): there the cut's ratio is exactly 0 or 1 and the end is the control point
 /// P_{k-2} (P_k) itself, whose coordinate is taken exactly instead of the quotient's
-/// enclosure (the extrema of a NURBS circle lie there), and the proof of both sides
-/// (`bezier::conic`, shared by the coordinate's two sides).
+/// enclosure (the extrema of a NURBS circle lie there).
 struct ConicSpan {
-    rows: [Ddi; CONIC_ROWS],
-    cart: [Option<[Ddi; 3]>; MAX_DIM],
-    proofs: [Option<[RawSide; 2]>; MAX_DIM],
+    ratios: [Ddi; 2],
+    w: [Ddi; 3],
+    /// per coordinate the row X and the Cartesian coefficients, made on first use
+    coords: [Option<([Ddi; 3], [Ddi; 3])>; MAX_DIM],
 }
 
 impl ConicSpan {
     fn new(s: &Simple, w: &[f64], k: usize) -> ConicSpan {
+        let ratios = quadratic_ratios::<Ddi>(s.knots, k);
         ConicSpan {
-            rows: conic_rows::<Ddi>(s, w, k),
-            cart: [None; MAX_DIM],
-            proofs: [None; MAX_DIM],
+            ratios,
+            w: quadratic_cuts(&ratios, conic_values(s, w, k, None)),
+            coords: [None; MAX_DIM],
         }
     }
 
-    /// Coordinate j's homogeneous row X, the row W, and the Cartesian coefficients.
-    fn coordinate(&mut self, s: &Simple, k: usize, j: usize) -> ([Ddi; 3], [Ddi; 3], [Ddi; 3]) {
-        let d = s.d;
-        let row = |r: usize| -> [Ddi; 3] { std::array::from_fn(|i| self.rows[r + i]) };
-        let (x, w) = (row(3 * j), row(3 * d));
-        let cart = *self.cart[j].get_or_insert_with(|| {
-            let mut q: [Ddi; 3] = std::array::from_fn(|i| x[i] / w[i]);
-            let kn = s.knots;
+    /// Coordinate j's homogeneous row X, the row W, and the Cartesian coefficients (the rows
+    /// of [`conic_rows`], the coordinate's made here on first use).
+    fn coordinate(
+        &mut self,
+        s: &Simple,
+        w: &[f64],
+        k: usize,
+        j: usize,
+    ) -> ([Ddi; 3], [Ddi; 3], [Ddi; 3]) {
+        let (r, wr) = (self.ratios, self.w);
+        let (x, cart) = *self.coords[j].get_or_insert_with(|| {
+            let x = quadratic_cuts(&r, conic_values(s, w, k, Some(j)));
+            let mut q: [Ddi; 3] = std::array::from_fn(|i| x[i] / wr[i]);
+            let (kn, d) = (s.knots, s.d);
             if kn[k - 1] == kn[k] {
                 q[0] = Ddi::exact(s.pts[(k - 2) * d + j]);
             }
             if kn[k + 1] == kn[k + 2] {
                 q[2] = Ddi::exact(s.pts[k * d + j]);
             }
-            q
+            (x, q)
         });
-        (x, w, cart)
+        (x, wr, cart)
     }
 }
 
@@ -1705,7 +1741,7 @@ mod tests {
                         assert!(got == want, "span {k} coordinate {j} at {u}");
                     }
                     let f = conic_coefficients_f64(&s, w, &rows, j, k).expect("finite");
-                    let (dx, dw, dq) = dspan.coordinate(&s, k, j);
+                    let (dx, dw, dq) = dspan.coordinate(&s, w, k, j);
                     for i in 0..3 {
                         let bi = xr[i].clone() / wr[i].clone();
                         let (bf, e) = f[i];
