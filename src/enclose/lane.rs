@@ -743,8 +743,8 @@ fn spline_side(
             continue;
         }
         // step 3: double-double coefficients and the root-isolating proof
-        // (a rational conic: its homogeneous rows X (sign-adjusted) and W, and its Cartesian
-        // coefficients as the span's coefficients)
+        // (a rational conic: its homogeneous rows X and W, and its Cartesian coefficients as
+        // the span's coefficients)
         let conic = s.w.map(|w| cache.conic_ddi(s, w, k).coordinate(s, w, k, j));
         let qd = if let Some((_, _, q)) = conic {
             let mut r = [Ddi::exact(0.0); LANE_MAX_DEGREE + 1];

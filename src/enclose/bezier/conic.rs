@@ -32,8 +32,8 @@
 //!    such a bracket B with midpoint m and radius r, the mean value theorem gives
 //!    |x(t) - x(m)| <= r max_B |x'| <= 2 r (|q(m)| + r max |q'|) / W_min^2, with |q(m)| <=
 //!    |y(m)| + err (the filter), max |q'| over [0, 1] <= |β_1| + 2 |β_2|, and W >= W_min =
-//!    min_i W_i on [0, 1] (a convex combination of the W_i). x(m) = X(m) / W(m) by de Casteljau
-//!    in `Ddi` is a value the curve attains (inner bound). With r = 2^-40 the correction is
+//!    min_i W_i on [0, 1] (a convex combination of the W_i). x(m) = X(m) / W(m) enclosed in
+//!    `Ddi` ([`value_at`]) is a value the curve attains (inner bound). With r = 2^-40 the correction is
 //!    ~2^-80 of the scale times (max W / min W)^2: about one ulp unless the weights differ by
 //!    many orders of magnitude, where the caller's gap test sends the curve to the general
 //!    path.
@@ -65,8 +65,8 @@ pub(crate) struct ConicSeg {
 
 /// x = X / W at the double t, enclosed: X(t) and W(t) by Horner's rule with `Ddi`'s fused
 /// step on the power forms (a_0 + a_1 t + a_2 t^2 with a_1 = 2 (c_1 - c_0) and
-/// a_2 = c_2 - 2 c_1 + c_0: Farin, *Curves and Surfaces for CAGD*, monomial form of a Bézier curve), every
-/// operation enclosing its exact result.
+/// a_2 = c_2 - 2 c_1 + c_0: Farin, *Curves and Surfaces for CAGD*, monomial form of a Bézier
+/// curve), every operation enclosing its exact result.
 fn value_at(x: &[Ddi; 3], w: &[Ddi; 3], t: f64) -> Ddi {
     let power = |c: &[Ddi; 3]| {
         let d0 = c[1] - c[0];
@@ -227,8 +227,10 @@ mod tests {
     /// drawn inside the enclosures, radii 0, up to 2^-90 or up to 2^-40 relative; magnitudes
     /// 2^-80 .. 2^100; near-cancelling coefficients, X_1 W_0 close to X_0 W_1) every f64
     /// coefficient b_k lies within E_b of the exact β_k, and the bound is not vacuous (errors
-    /// of more than E_b / 64 occur). Fails with E_b = E_e (the cancellation in β_2 exceeds
-    /// it) and without the input radii's term δ.
+    /// of more than E_b / 64 occur); the f64 filter on them (`Deriv::from_coefficients`)
+    /// errs by at most its bound at t = 0, 1/2, 1 and a random t. Fails with E_b = E_e (the
+    /// cancellation in β_2 exceeds it), without the input radii's term δ, and with the filter's
+    /// coefficient term dropped.
     #[test]
     fn numerator_bound_holds() {
         use rand::{Rng, SeedableRng};
@@ -284,6 +286,20 @@ mod tests {
                     "case {case}: coefficient {bb:e} off by more than {eb:e}"
                 );
                 worst = worst.max(d.to_f64().abs() / eb);
+            }
+            // the filter built on them: |q(t) - y(t)| <= err at t in [0, 1]
+            let deriv = Deriv::from_coefficients(b, eb);
+            for t in [0.0, 1.0, rng.random_range(0.0..1.0), 0.5] {
+                let q = beta[0].clone()
+                    + beta[1].clone() * ex(t)
+                    + beta[2].clone() * ex(t) * ex(t);
+                let d = q - ex(deriv.approx(t));
+                assert!(
+                    d.cmp_f64(deriv.err()) != Some(std::cmp::Ordering::Greater)
+                        && d.cmp_f64(-deriv.err()) != Some(std::cmp::Ordering::Less),
+                    "case {case}: the filter errs by more than {:e} at {t}",
+                    deriv.err()
+                );
             }
         }
         assert!(worst > 1.0 / 64.0, "the bound is loose beyond use: {worst}");
