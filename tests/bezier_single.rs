@@ -1,9 +1,10 @@
 //! The float-first fast path for single polynomial Bézier segments of degree 2 and 3
 //! (src/enclose/bezier/single.rs, shared by `bezier` and `newton` through `fast_sides`, with the
-//! cheap exits): soundness and tightness against the 256-bit reference on random, structured
-//! and near-degenerate quadratics and cubics (double roots of C', extrema at the ends, flat
-//! coordinates), each strategy compared with its general search (`fast_path: false`: the
-//! branch and bound, the interval Newton search).
+//! cheap exits), and its conic counterpart in the driver's lane (src/enclose/bezier/conic.rs:
+//! conic arcs and rational quadratic splines): soundness and tightness against the 256-bit
+//! reference on random, structured and near-degenerate quadratics, cubics and conics (double
+//! roots of C', extrema at the ends, flat coordinates), each strategy compared with its
+//! general search (`fast_path: false`: the branch and bound, the interval Newton search).
 
 use nurbs_box::enclose::Newton;
 use nurbs_box::{BoxEncloser, Enclosure, NurbsCurve};
@@ -288,8 +289,78 @@ mod mpfr {
         Ok(d)
     }
 
+    /// A random conic arc (one rational quadratic segment, the driver's conic lane): weights
+    /// 0.2..5 (a NURBS circle's pattern now and then), one coordinate kind per coordinate as
+    /// in [`random_single`] (small integers with exact ties, an extremum at an end, flat,
+    /// generic), magnitudes 2^-20..2^20 or 100.
+    fn random_conic(rng: &mut impl Rng) -> NurbsCurve {
+        let dim = rng.random_range(1..=3usize);
+        let mag = if rng.random_bool(0.3) {
+            2f64.powi(rng.random_range(-20..=20))
+        } else {
+            100.0
+        };
+        let cols: Vec<Vec<f64>> = (0..dim)
+            .map(|_| {
+                let mut c: Vec<f64> = match rng.random_range(0..5u32) {
+                    0 => (0..3)
+                        .map(|_| rng.random_range(-4.0..4.0f64).round())
+                        .collect(),
+                    1 => {
+                        let x = rng.random_range(-1.0..1.0);
+                        vec![x, x, rng.random_range(-1.0..1.0)]
+                    }
+                    2 => vec![0.5; 3],
+                    _ => (0..3).map(|_| rng.random_range(-1.0..1.0)).collect(),
+                };
+                c.iter_mut().for_each(|x| *x *= mag);
+                c
+            })
+            .collect();
+        let pts = (0..3)
+            .map(|i| cols.iter().map(|c| c[i]).collect())
+            .collect();
+        let w = if rng.random_bool(0.2) {
+            vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0]
+        } else {
+            (0..3).map(|_| rng.random_range(0.2..5.0)).collect()
+        };
+        let (a, b) = if rng.random_bool(0.5) {
+            (0.0, 1.0)
+        } else {
+            let a = rng.random_range(-10.0..10.0);
+            (a, a + 10f64.powf(rng.random_range(-6.0..3.0)))
+        };
+        let mut k = vec![a; 3];
+        k.extend(vec![b; 3]);
+        NurbsCurve::new(2, k, pts, Some(w)).unwrap()
+    }
+
     // (default proptest config: 256 cases, or PROPTEST_CASES)
     proptest! {
+        /// Conic arcs (see [`random_conic`]) in the lane, against the reference.
+        #[test]
+        fn conic_arcs_against_the_reference(seed in any::<u64>()) {
+            let c = random_conic(&mut gen::rng(seed));
+            if let Err(m) = check(&c) {
+                prop_assert!(false, "{m}");
+            }
+        }
+
+        /// Rational quadratic splines of the test families (weights 10^-1 .. 10^1 as the
+        /// families draw them: most in the conic lane, wider spreads on the general path).
+        #[test]
+        fn conic_splines_against_the_reference(seed in any::<u64>()) {
+            let mut r = gen::rng(seed);
+            let fam = [Family::ClampedUniform, Family::MultipleKnots, Family::ClusteredKnots,
+                Family::ExtremaAtKnots, Family::FlatCoordinates][r.random_range(0..5usize)];
+            let params = GenParams { degree: 2..=2, rational: 1.0, ..fam.params() };
+            let c = gen::random_curve(&mut r, &params);
+            if let Err(m) = check(&c) {
+                prop_assert!(false, "{m}");
+            }
+        }
+
         /// Random and structured quadratics / cubics (see [`random_single`]).
         #[test]
         fn single_segments_against_the_reference(seed in any::<u64>()) {
