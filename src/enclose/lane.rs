@@ -443,9 +443,6 @@ fn tight_sides(
     cache: &mut Option<SpanCache>,
 ) -> Option<()> {
     let exits = [cheap_exit(s, j, 1.0), cheap_exit(s, j, -1.0)];
-    if let (Some(w), true, false) = (s.w, s.n == s.p, exits[0].is_some() && exits[1].is_some()) {
-        return conic_segment(s, w, j, exits, cb);
-    }
     // (both exits: a monotone coordinate, or a line; a polyline or a spline side by side)
     // (a single segment above degree 3 goes the spline's way too: its one span)
     // (a rational conic too: its proof is `bezier::conic`'s on the homogeneous coefficients)
@@ -518,14 +515,10 @@ fn tight_sides(
 /// without a cheap exit (`exits`) by the proof of `bezier::conic` on the exact data (the
 /// homogeneous coefficients w_i x_i as exact double-word products, the weights, the end
 /// values x_0 and x_2, which a clamped segment attains), both sides at once; each within the
-/// stopping rule's gap ([`max_gap`]), or the lane gives up.
-fn conic_segment(
-    s: &Simple,
-    w: &[f64],
-    j: usize,
-    exits: [Option<(f64, f64)>; 2],
-    cb: &mut CoordBox,
-) -> Option<()> {
+/// stopping rule's gap ([`max_gap`]), or the lane gives up. A side whose extreme control
+/// value is an end value exits cheaply, as in [`tight_sides`].
+fn conic_segment(s: &Simple, w: &[f64], j: usize, cb: &mut CoordBox) -> Option<()> {
+    let exits = [cheap_exit(s, j, 1.0), cheap_exit(s, j, -1.0)];
     let x = |i: usize| s.pts[i * s.d + j];
     let seg = ConicSeg {
         x: std::array::from_fn(|i| Ddi::exact(w[i]) * Ddi::exact(x(i))),
@@ -535,8 +528,19 @@ fn conic_segment(
         b: s.b,
         end_kinds: [CandidateKind::EndPoint; 2],
     };
-    let sides = conic_sides(&seg, [exits[0].is_none(), exits[1].is_none()])?;
+    let need = [exits[0].is_none(), exits[1].is_none()];
+    if !(need[0] | need[1]) {
+        // (both sides exit: a monotone coordinate)
+        exits
+            .into_iter()
+            .zip([1.0, -1.0])
+            .for_each(|(ex, sign)| ex.into_iter().for_each(|ex| put_exit(cb, sign, ex)));
+        return Some(());
+    }
+    let sides = conic_sides(&seg, need)?;
     let gap = max_gap(s, j);
+    // (the shared sign tests are counted once, on the first side proved)
+    let mut de = sides[0].derivative_evaluations as u32;
     for ((ex, sign), r) in exits.into_iter().zip([1.0, -1.0]).zip(&sides) {
         match ex {
             Some(ex) => put_exit(cb, sign, ex),
@@ -544,12 +548,7 @@ fn conic_segment(
                 if !r.tight(gap) {
                     return None;
                 }
-                let counts = [
-                    0,
-                    1,
-                    r.derivative_evaluations as u32,
-                    r.point_evaluations as u32,
-                ];
+                let counts = [0, 1, std::mem::take(&mut de), r.point_evaluations as u32];
                 put(
                     cb,
                     sign,
@@ -1342,11 +1341,18 @@ pub fn enclose_into(
         return true;
     }
     let mut cache = None;
+    // (a single conic arc by its own path: a branch here rather than in `tight_sides`, whose
+    // code for the cubic it made longer, +90 instructions per 2-D cubic)
+    let arc = s.w.filter(|_| s.n == s.p);
     for j in 0..s.d {
         let clock = Clock::start();
         // (written in place into the blank box, whose termination is `Converged`)
         let cb = blank_slot(e);
-        if tight_sides(s, j, cb, &mut cache).is_none() {
+        let done = match arc {
+            Some(w) => conic_segment(s, w, j, cb),
+            None => tight_sides(s, j, cb, &mut cache),
+        };
+        if done.is_none() {
             return false;
         }
         cb.stats.time_total = clock.elapsed();
