@@ -972,8 +972,8 @@ const CONIC_ROWS: usize = 3 * (MAX_DIM + 1);
 /// A rational conic's homogeneous Bézier coefficients on span k, in `S`: for coordinate j the
 /// row X at 3 j (of the products w_i x_i), the row W at 3 d (of the weights), each by the
 /// closed form of [`quadratic_span`] (Boehm's insertion of the homogeneous spline, NURBS Book
-/// A5.6 on P^w). For `Ddi` the products are exact double-words and every operation encloses
-/// its exact result.
+/// A5.6 on P^w). In f64 for the filter, in exact arithmetic in the tests; [`ConicSpan`] forms
+/// the same rows in `Ddi` (one coordinate's on first use).
 fn conic_rows<S: Scalar>(s: &Simple, w: &[f64], k: usize) -> [S; CONIC_ROWS] {
     let mut q: [S; CONIC_ROWS] = std::array::from_fn(|_| S::zero());
     let d = s.d;

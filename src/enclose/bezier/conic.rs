@@ -49,7 +49,6 @@ use crate::num::ddi::{dist_up, up, Ddi, U1};
 use crate::num::horner;
 
 /// One coordinate of a rational quadratic Bézier segment over the parameter interval [a, b].
-#[derive(Clone, Copy)]
 pub(crate) struct ConicSeg {
     /// the homogeneous coefficients X_0, X_1, X_2 (w_i x_i), enclosed
     pub x: [Ddi; 3],

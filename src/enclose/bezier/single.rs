@@ -196,10 +196,15 @@ impl Deriv {
         let a = &poly.x;
         let b = [a[1].hi(), 2.0 * a[2].hi(), 3.0 * a[3].hi()];
         let e = |k: f64, x: &Ddi| k * (x.lo().abs() + x.rad());
-        let t = e(1.0, &a[1])
-            + e(2.0, &a[2])
-            + e(3.0, &a[3])
-            + 4.0 * f64::EPSILON / 2.0 * (b[0].abs() + b[1].abs() + b[2].abs())
+        Deriv::with_error(b, e(1.0, &a[1]) + e(2.0, &a[2]) + e(3.0, &a[3]))
+    }
+
+    /// The filter on f64 coefficients `b` whose exact polynomial q differs from
+    /// sum_k b_k t^k by at most `e` on [0, 1] (`e` an f64 sum of the form of Lemma B): with
+    /// Horner's FMA error, err = up(fl(e + 4u (|b_0| + |b_1| + |b_2|) + 2^-1073)) (the bound
+    /// of [`Deriv::new`] and [`Deriv::from_coefficients`]).
+    fn with_error(b: [f64; 3], e: f64) -> Deriv {
+        let t = e + 4.0 * f64::EPSILON / 2.0 * (b[0].abs() + b[1].abs() + b[2].abs())
             + f64::from_bits(2);
         Deriv { b, err: up(t) }
     }
@@ -264,10 +269,7 @@ impl Deriv {
     /// a formula of Lemma B of [`crate::num::ddi`]: `err = up(fl(T)) >= T`. A non-finite value
     /// makes every test fail.
     pub(super) fn from_coefficients(b: [f64; 3], coeff_err: f64) -> Deriv {
-        let t = 3.0 * coeff_err
-            + 4.0 * f64::EPSILON / 2.0 * (b[0].abs() + b[1].abs() + b[2].abs())
-            + f64::from_bits(2);
-        Deriv { b, err: up(t) }
+        Deriv::with_error(b, 3.0 * coeff_err)
     }
 
     /// The error bound of [`Deriv::approx`].
