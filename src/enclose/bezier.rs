@@ -644,28 +644,37 @@ impl Critical {
         Some(side)
     }
 }
-/// One side (sign * C_j, sign = +-1) of span k of a non-rational curve `c` by the general
-/// fast path ([`Critical`]) from the span's double-double Bézier coefficients of coordinate j
-/// alone, `q` (enclosures of the exact ones; the driver's lane computes them per span without
-/// the curve-wide sweep of [`TightEval`]): its end coefficients are the piece's values at the
-/// span's ends (C(u_k), and at u_{k+1} the curve's value: the lane's splines are continuous),
-/// and the boxes' mean value forms from the same points bound the rest. `None` where the
-/// proof fails or leaves a gap above `max_gap` (without the Taylor form in u that the `bezier`
-/// strategy adds for wide boxes).
+/// One side (sign * C_j, sign = +-1) of span k of a curve `c` by the general fast path
+/// ([`Critical`]) from the span's double-double Bézier coefficients of coordinate j alone
+/// (enclosures of the exact ones; the driver's lane computes them per span without the
+/// curve-wide sweep of [`TightEval`]): `q` the Cartesian coefficients, and for a rational
+/// curve `hom` its homogeneous rows (w x_j, w) (then q_i encloses their quotient). The end
+/// coefficients q_0 and q_p are the piece's values at the span's ends (C(u_k), and at u_{k+1}
+/// the curve's value: the lane's splines are continuous), and the boxes' mean value forms from
+/// the same points bound the rest. `None` where the proof fails or leaves a gap above
+/// `max_gap` (without the Taylor form in u that the `bezier` strategy adds for wide boxes).
 ///
 /// The proof itself ([`CoefficientProof`]) does not depend on the side: `proof` keeps it for
 /// the other side of the same span and coordinate (`None` inside: it proved nothing).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn coefficient_side(
     c: &NurbsCurve,
     j: usize,
     k: usize,
     q: &[Ddi],
+    hom: Option<(&[Ddi], &[Ddi])>,
     sign: f64,
     max_gap: f64,
     proof: &mut Option<CoefficientProof>,
 ) -> Option<Side> {
     let pr = proof.get_or_insert_with(|| {
-        let sp = SpanPoly::from_coefficients(c, j, k, q);
+        let sp = match hom {
+            Some((x, w)) => {
+                let pair = crate::enclose::newton::bernstein::pair_coefficients(c.degree());
+                SpanPoly::from_homogeneous(c, j, k, &pair, x, w)
+            }
+            None => SpanPoly::from_coefficients(c, j, k, q),
+        };
         let p = q.len() - 1;
         CoefficientProof(Critical::prove(sp, c, k, || [q[0], q[p]], |_| None))
     });

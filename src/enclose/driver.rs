@@ -512,8 +512,8 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
         coords: Default::default(),
     };
     // The lane for a clamped polynomial segment or spline of degree <= 5, or a clamped
-    // rational conic, with moderate magnitudes (`lane`: the same facts and certificates,
-    // computed directly).
+    // rational curve of degree 2 to 5, with moderate magnitudes (`lane`: the same facts and
+    // certificates, computed directly).
     let laned = s.lane().is_some_and(|l| {
         super::lane::Simple::of(c).is_some_and(|simple| {
             super::lane::enclose_into(&mut e, l, s.name(), c, &simple, certify)

@@ -1,13 +1,14 @@
 //! The driver's lane for the commonest input: one clamped polynomial Bézier segment of degree
 //! 1 to 5 (a line, a font's quadratic, a cubic Bézier) with moderate magnitudes, a clamped
-//! polynomial spline of degree 2 to 5 with moderate knots, a clamped rational conic (degree 2,
-//! one segment or a spline: arcs, a NURBS circle) with moderate weights, and any polyline
+//! polynomial spline of degree 2 to 5 with moderate knots, a clamped rational curve of degree
+//! 2 to 5 (one segment or a spline: conic arcs, a NURBS circle, rational cubics) with moderate
+//! weights, and any polyline
 //! (degree 1, rational or not, clamped or not, jumps at double knots, any magnitude)
 //! ([`Simple::of`]).
 //! Such a curve needs none of the general machinery (rescaling, the curve-wide Bézier sweep,
 //! the per-curve search state), so the driver answers it here directly, with the same
-//! guarantees and the same reasoning as the general path, and up to degree 3 (a single conic
-//! arc included) without any heap allocation:
+//! guarantees and the same reasoning as the general path, and for a polynomial segment up to
+//! degree 3 or a single conic arc without any heap allocation:
 //!
 //! * **`hull`** ([`Lane::Hull`]): the box of the control points (convex hull property, thesis
 //!   prop. 2.1; exact), the end control points as attained values (a clamped end is a control
@@ -22,8 +23,9 @@
 //!   and 5: its general fast path, `bezier::coefficient_side`, the zeros of C_j' located by
 //!   Bernstein subdivision with proven sign counts; a rational conic: `bezier::conic`, the
 //!   same root isolation on the quadratic numerator of C_j' = N / W^2 and a mean value bound
-//!   over each bracket), on splines only for the spans that f64 Bézier coefficients with an
-//!   a-priori bound leave open (`spline_side`). Where that proof
+//!   over each bracket; a rational curve of degree 3 to 5: the general fast path on the
+//!   homogeneous rows, its numerator N of degree 2p - 2), on splines only for the spans that
+//!   f64 Bézier coefficients with an a-priori bound leave open (`spline_side`). Where that proof
 //!   does not give a bound within two ulps of the coordinate scale, the lane returns `None` and
 //!   the general path runs (`Stats::fast_fallbacks` counts it there).
 //!
@@ -65,8 +67,8 @@ const KNOT_EXP: i32 = 1000;
 pub const LANE_MAX_DEGREE: usize = 5;
 
 /// A curve the lane takes: one clamped polynomial Bézier segment of degree 1..=5 over [a, b],
-/// a clamped polynomial spline of degree 2..=5, or a clamped rational conic (degree 2, one
-/// segment or a spline, moderate weights), every coordinate moderate; or a polyline.
+/// a clamped polynomial spline of degree 2..=5, or a clamped rational curve of degree 2..=5
+/// (one segment or a spline, moderate weights), every coordinate moderate; or a polyline.
 #[derive(Debug, Clone, Copy)]
 pub struct Simple<'a> {
     curve: &'a NurbsCurve,
@@ -77,14 +79,23 @@ pub struct Simple<'a> {
     a: f64,
     b: f64,
     pts: &'a [f64],
-    /// the weights of a rational conic (degree 2), `None` otherwise (a rational polyline's
-    /// weights are not needed: its bounds are control values)
+    /// the weights of a rational curve of degree 2 to 5, `None` otherwise (a rational
+    /// polyline's weights are not needed: its bounds are control values)
     w: Option<&'a [f64]>,
     knots: &'a [f64],
     /// per coordinate the exact control-point range (min, max)
     range: [(f64, f64); MAX_DIM],
     /// per coordinate the first indices of the smallest and of the largest control value
     extreme_at: [(usize, usize); MAX_DIM],
+}
+
+impl Simple<'_> {
+    /// The rows per point of [`span_coefficients_rows`]: the coordinates, and a rational
+    /// spline's weights.
+    #[inline]
+    fn stride(&self) -> usize {
+        self.d + self.w.is_some() as usize
+    }
 }
 
 /// `exponent(x) > KNOT_EXP` (`driver::exponent`: |x| in [2^(e-1), 2^e)) as one comparison with
@@ -107,16 +118,16 @@ fn beyond_coord_window(m: f64) -> bool {
 /// The lane takes curves of dimension up to this (the result's inline storage holds three).
 const MAX_DIM: usize = 4;
 
-/// A rational conic's weights must lie in [2^-WEIGHT_EXP, 2^WEIGHT_EXP) ([`Simple::of`]).
+/// A rational curve's weights must lie in [2^-WEIGHT_EXP, 2^WEIGHT_EXP) ([`Simple::of`]).
 const WEIGHT_EXP: i32 = 100;
 
-/// A rational conic's largest weight is at most 2^WEIGHT_SPREAD times its smallest
+/// A rational curve's largest weight is at most 2^WEIGHT_SPREAD times its smallest
 /// ([`Simple::of`]).
 const WEIGHT_SPREAD: i32 = 12;
 
 impl<'a> Simple<'a> {
-    /// The curve as a [`Simple`] one, or `None`: rational above degree 2, or rational of
-    /// degree 2 with a weight outside [2^-100, 2^100) or weights spread over more than 2^12,
+    /// The curve as a [`Simple`] one, or `None`: rational (degree 2 to 5) with a weight
+    /// outside [2^-100, 2^100) or weights spread over more than 2^12,
     /// degree above [`LANE_MAX_DEGREE`], dimension above [`MAX_DIM`], extreme magnitudes; and a curve of
     /// several spans unless it is a clamped, continuous (interior knot multiplicities at most
     /// p) spline of degree 2 to [`LANE_MAX_DEGREE`] with moderate knots.
@@ -125,18 +136,18 @@ impl<'a> Simple<'a> {
         let p = c.degree();
         let k = c.knots();
         let n = c.num_points() - 1;
-        if !(1..=LANE_MAX_DEGREE).contains(&p) || n < p || (c.is_rational() && p > 2) {
+        if !(1..=LANE_MAX_DEGREE).contains(&p) || n < p {
             return None;
         }
-        // A rational conic (degree 2, one segment or a spline): every weight within
+        // A rational curve (degree 2 to 5, one segment or a spline): every weight within
         // [2^-WEIGHT_EXP, 2^WEIGHT_EXP) (exact comparisons with powers of two; a NaN fails),
-        // so that the homogeneous coefficients and their products of `bezier::conic` stay far
-        // from overflow and underflow with the coordinates' window; and the largest weight at
-        // most 2^WEIGHT_SPREAD times the smallest (the conic proof's correction grows with
-        // the square of that ratio: beyond it the general path, whose enclosures do not,
-        // answers).
+        // so that the homogeneous coefficients and their products stay far from overflow and
+        // underflow with the coordinates' window; and the largest weight at most
+        // 2^WEIGHT_SPREAD times the smallest (the conic proof's correction grows with the
+        // square of that ratio, the f64 filter's quotient bound with the ratio: beyond it the
+        // general path, whose enclosures do not, answers).
         let w = match c.weights() {
-            Some(w) if p == 2 => {
+            Some(w) if p >= 2 => {
                 const LO: f64 = pow2(-WEIGHT_EXP);
                 const HI: f64 = pow2(WEIGHT_EXP);
                 const SPREAD: f64 = pow2(WEIGHT_SPREAD);
@@ -445,7 +456,7 @@ fn tight_sides(
     let exits = [cheap_exit(s, j, 1.0), cheap_exit(s, j, -1.0)];
     // (both exits: a monotone coordinate, or a line; a polyline or a spline side by side)
     // (a single segment above degree 3 goes the spline's way too: its one span)
-    // (a rational conic too: its proof is `bezier::conic`'s on the homogeneous coefficients)
+    // (a rational curve too: its proof runs on the homogeneous coefficients)
     if (exits[0].is_some() && exits[1].is_some())
         || s.n > s.p
         || s.p == 1
@@ -596,13 +607,16 @@ fn conic_segment(s: &Simple, w: &[f64], j: usize, cb: &mut CoordBox) -> Option<(
 ///    closed form in `Ddi`) and the root-isolating proof (`bezier::single`) bounds it, within two
 ///    ulps of the scale, or the lane gives up.
 ///
-/// A rational conic: step 1 as above (with positive weights the piece on a span is a convex
+/// A rational curve: step 1 as above (with positive weights the piece on a span is a convex
 /// combination of its local control points, NURBS Book eq. 4.11, and the skip argument holds
 /// for the homogeneous Bézier points, whose Cartesian quotients are convex combinations of
 /// the same local control values); step 2 from the f64 homogeneous coefficients with the
-/// written bound of the quotients ([`conic_filter`]); step 3 from the `Ddi` rows
-/// ([`ConicSpan`]: the end-coefficient rule on the Cartesian quotients, else the proof of
-/// `bezier::conic` for this side).
+/// written bound of the quotients ([`quotient_filter`]: a conic's rows by the closed form,
+/// [`conic_rows`], above degree 2 by the insertion, [`span_coefficients_rows`]); step 3 from
+/// the `Ddi` rows (a conic's [`ConicSpan`], else [`rational_span`]: the end-coefficient rule
+/// on the Cartesian quotients, else the proof of `bezier::conic` for this side, above degree 2
+/// the general fast path's on the homogeneous rows). A rational side above degree 2 that the
+/// certificate's first rule would leave open goes to the general path.
 /// 4. When no span's bound exceeds the attained value, the side's bound is the largest bound
 ///    of the spans proved in step 3 and the attained value (spans left over or done in step 2
 ///    are below the attained value, which is below the exact maximum).
@@ -637,9 +651,15 @@ fn spline_side(
     // step 2 for span k: the f64 coefficients and their a-priori bound (upper bound, attained)
     let filter = |cache: &mut SpanCache, k: usize| -> Option<(f64, f64)> {
         if let Some(w) = s.w {
-            // a rational conic: its Cartesian coefficients with their bound ([`conic_filter`])
-            let rows = cache.conic(s, w, k);
-            return conic_filter(s, w, rows, j, k, sign);
+            // a rational curve: its Cartesian coefficients with their bound (a conic's by the
+            // closed form, [`conic_coefficients_f64`]; above degree 2 by the insertion of the
+            // homogeneous rows, [`rational_coefficients_f64`])
+            let q = if p == 2 {
+                conic_coefficients_f64(s, w, cache.conic(s, w, k), j, k)
+            } else {
+                rational_coefficients_f64(s, w, cache.get(s, k), j, k)
+            };
+            return quotient_filter(p, &q?, sign);
         }
         let q = if p > 3 {
             let rows = cache.get(s, k);
@@ -744,11 +764,20 @@ fn spline_side(
         // step 3: double-double coefficients and the root-isolating proof
         // (a rational conic: its homogeneous rows X and W, and its Cartesian coefficients as
         // the span's coefficients)
-        let conic = s.w.map(|w| cache.conic_ddi(s, w, k).coordinate(s, w, k, j));
+        // (a rational curve above degree 2: its homogeneous rows X and W, and their quotients
+        // as the span's coefficients, `rational_span`)
+        let conic =
+            s.w.filter(|_| p == 2)
+                .map(|w| cache.conic_ddi(s, w, k).coordinate(s, w, k, j));
+        let mut hom = None;
         let qd = if let Some((_, _, q)) = conic {
             let mut r = [Ddi::exact(0.0); LANE_MAX_DEGREE + 1];
             r[..3].copy_from_slice(&q);
             r
+        } else if s.w.is_some() {
+            let (x, w, q) = rational_span(s, cache.get_ddi(s, k), j, k);
+            hom = Some((x, w));
+            q
         } else if p > 3 {
             let rows = cache.get_ddi(s, k);
             std::array::from_fn(|i| {
@@ -793,11 +822,14 @@ fn spline_side(
                 continue;
             }
         }
-        if p > 3 {
-            // (above degree 3: the general fast path's proof on the span's coefficients, the
-            // zeros of C_j' located by Bernstein subdivision with proven sign counts)
+        if p > 3 || hom.is_some() {
+            // (above degree 3, and a rational curve above degree 2: the general fast path's
+            // proof on the span's coefficients, the zeros of C_j' located by Bernstein
+            // subdivision with proven sign counts)
             let proof = cache.proof(k, j);
-            let sd = super::bezier::coefficient_side(s.curve, j, k, &qd[..=p], sign, gap, proof)?;
+            let hom = hom.as_ref().map(|(x, w)| (&x[..=p], &w[..=p]));
+            let sd =
+                super::bezier::coefficient_side(s.curve, j, k, &qd[..=p], hom, sign, gap, proof)?;
             attained = attained.max(sd.attained);
             upper = upper.max(sd.upper);
             witness = witness.max(sd.witness);
@@ -846,6 +878,18 @@ fn spline_side(
         counts[3] += r.point_evaluations as u32;
     }
     let upper = upper.max(attained);
+    if s.w.is_some() && p > 2 {
+        // A rational side that the certificate's first round would leave open (bound and
+        // values within the gap, yet no attained value or witness at the bound's next double
+        // down) goes to the general path: where the mean value form over a box is wider than
+        // an ulp (weights spread, clustered knots), its second-order Taylor form from the
+        // curve-wide sweep usually closes it, at a fraction of the full certification's cost.
+        let (lo, hi) = s.range[j];
+        let scale = lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE);
+        if certify::quick_flags(upper, attained, witness, f64::NEG_INFINITY, scale).1 {
+            return None;
+        }
+    }
     put(cb, sign, (upper, attained, witness), counts);
     reaching(s, attained, cands.iter(), args_of(cb, sign));
     Some(())
@@ -898,6 +942,7 @@ fn spline_side(
 /// f64::MIN_POSITIVE). Tested against exact insertion
 /// (`inserted_span_coefficients_are_within_their_bound`).
 fn span_coefficients<S: Scalar>(s: &Simple, j: usize, k: usize) -> [S; LANE_MAX_DEGREE + 1] {
+    debug_assert!(s.w.is_none(), "a polynomial spline's coefficients");
     let kn = s.knots;
     let pt = |i: usize| S::from_f64(s.pts[i * s.d + j]);
     let mut q: [S; LANE_MAX_DEGREE + 1] = std::array::from_fn(|_| S::zero());
@@ -987,19 +1032,20 @@ fn conic_rows<S: Scalar>(s: &Simple, w: &[f64], k: usize) -> [S; CONIC_ROWS] {
     q
 }
 
-/// The f64 filter (step 2 of [`spline_side`]) of a rational conic's span k, coordinate j,
-/// side `sign`, from the f64 rows of [`conic_rows`]: an upper bound of the span and an
-/// attained value (a lower bound of C_j(u_k) or C_j(u_{k+1}), sign-adjusted), or `None` (a
-/// non-finite value, a weight coefficient not positive).
+/// The f64 filter (step 2 of [`spline_side`]) of a rational span k of degree p, side `sign`,
+/// from coordinate j's Cartesian coefficients with their bounds `q` ([`conic_coefficients_f64`],
+/// [`rational_coefficients_f64`]): an upper bound of the span and an attained value (a lower
+/// bound of C_j(u_k) or C_j(u_{k+1}), sign-adjusted), or `None` (a non-finite value).
 ///
 /// Error bound. Let X_i, W_i be the exact homogeneous coefficients and X̃_i, W̃_i the f64 ones;
-/// Mx = max |fl(w_l x_l)| and Mw = max w_l over the span's local control points l = k - 2 ..= k,
+/// Mx = max |fl(w_l x_l)| and Mw = max w_l over the span's local control points l = k - p ..= k,
 /// M = max |x_l|, u = 2^-53. A computed product is within u |w_l x_l| (+ 2^-1075 where it
-/// underflows) of the exact one; a corner cut errs by at most 17.1 u times the largest
-/// magnitude of its computed ends against the exact cut of those ends (the bound of
+/// underflows) of the exact one; for a conic a corner cut errs by at most 17.1 u times the
+/// largest magnitude of its computed ends against the exact cut of those ends (the bound of
 /// [`span_coefficients`]; at degree 2 one cut per end coefficient, b_1 = P_{k-1} uncut), and
 /// the exact cut (a convex combination) does not amplify its ends' errors. So
-/// |X̃_i - X_i| <= EX = 19 u Mx + 2^-1022 and |W̃_i - W_i| <= EW = 18 u Mw + 2^-1022. The exact
+/// |X̃_i - X_i| <= EX = 19 u Mx + 2^-1022 and |W̃_i - W_i| <= EW = 18 u Mw + 2^-1022 (above
+/// degree 2 the insertion's constants, [`rational_coefficients_f64`]). The exact
 /// Cartesian coefficient b_i = X_i / W_i is a convex combination of the local x_l (W_i > 0
 /// a convex combination of positive weights, NURBS Book eq. 4.11), so |b_i| <= M, and
 ///
@@ -1008,25 +1054,19 @@ fn conic_rows<S: Scalar>(s: &Simple, w: &[f64], k: usize) -> [S; CONIC_ROWS] {
 /// at most (EX + M EW) / W̃_i in magnitude for W̃_i > 0; the division fl(X̃_i / W̃_i) adds
 /// u |b̃_i| (+ 2^-1075). Each bound is formed with every step rounded upward (`ddi::up` of one
 /// rounded operation on nonnegative operands bounds its exact result). The span lies in the
-/// convex hull of its Cartesian Bézier points, b_0 = C(u_k) and b_2 = C(u_{k+1}) are curve
+/// convex hull of its Cartesian Bézier points, b_0 = C(u_k) and b_p = C(u_{k+1}) are curve
 /// values (tested against exact insertion and de Boor's evaluation:
-/// `conic_span_coefficients_are_within_their_bound`).
-fn conic_filter(
-    s: &Simple,
-    w: &[f64],
-    rows: &[f64; CONIC_ROWS],
-    j: usize,
-    k: usize,
+/// `conic_span_coefficients_are_within_their_bound`, `rational_span_coefficients_are_within_their_bound`).
+fn quotient_filter(
+    p: usize,
+    q: &[(f64, f64); LANE_MAX_DEGREE + 1],
     sign: f64,
 ) -> Option<(f64, f64)> {
     let (mut ub, mut at) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
-    for (i, (b, err)) in conic_coefficients_f64(s, w, rows, j, k)?
-        .into_iter()
-        .enumerate()
-    {
+    for (i, &(b, err)) in q.iter().enumerate().take(p + 1) {
         let b = sign * b;
         ub = ub.max((b + err).next_up());
-        if i != 1 {
+        if i == 0 || i == p {
             at = at.max((b - err).next_down());
         }
     }
@@ -1034,30 +1074,75 @@ fn conic_filter(
 }
 
 /// The Cartesian coefficients b̃_i = fl(X̃_i / W̃_i) of coordinate j on a rational conic's span
-/// k with their error bounds err_i (|b̃_i - b_i| <= err_i, see [`conic_filter`]), or `None` (a
-/// non-finite value, a weight coefficient not positive).
+/// k with their error bounds err_i (|b̃_i - b_i| <= err_i, see [`quotient_filter`]: at degree 2
+/// one cut per end coefficient, so EX = 19 u Mx, EW = 18 u Mw), or `None` (a non-finite value,
+/// a weight coefficient not positive).
 fn conic_coefficients_f64(
     s: &Simple,
     w: &[f64],
     rows: &[f64; CONIC_ROWS],
     j: usize,
     k: usize,
-) -> Option<[(f64, f64); 3]> {
+) -> Option<[(f64, f64); LANE_MAX_DEGREE + 1]> {
+    let d = s.d;
+    quotient_coefficients_f64(s, w, j, k, (19.0, 18.0), |i| {
+        (rows[3 * j + i], rows[3 * d + i])
+    })
+}
+
+/// The Cartesian coefficients b̃_i = fl(X̃_i / W̃_i) of coordinate j on span k of a rational
+/// spline of degree 3 to 5 from the f64 homogeneous rows of [`span_coefficients_rows`], with
+/// their error bounds err_i (see [`quotient_filter`]), or `None`. The rows are Boehm's
+/// insertion of the homogeneous control points (w_l x_l, w_l), with the bound of
+/// [`span_coefficients`]: every coefficient within 2 (p - 1) 11.1 u M of the exact insertion
+/// of its computed inputs (M the row's largest |input|); the products fl(w_l x_l) are within
+/// u |w_l x_l| (+ 2^-1075 where they underflow) of the exact ones, and the exact insertion, a
+/// convex combination, does not amplify that. So EX = (22.2 (p - 1) + 2) u Mx (one u for the
+/// products, one for |w_l x_l| <= (1 + u) Mx), EW = 22.2 (p - 1) u Mw.
+fn rational_coefficients_f64(
+    s: &Simple,
+    w: &[f64],
+    rows: &[f64; SPAN_ROWS],
+    j: usize,
+    k: usize,
+) -> Option<[(f64, f64); LANE_MAX_DEGREE + 1]> {
+    let (h, d) = (s.stride(), s.d);
+    let cuts = 22.2 * (s.p - 1) as f64;
+    quotient_coefficients_f64(s, w, j, k, (cuts + 2.0, cuts), |i| {
+        (rows[i * h + j], rows[i * h + d])
+    })
+}
+
+/// The Cartesian coefficients b̃_i = fl(X̃_i / W̃_i), i = 0 ..= p, of coordinate j on span k of
+/// a rational spline (degree p = 2 ..= 5) from its f64 homogeneous coefficients
+/// `row(i)` = (X̃_i, W̃_i), with their error bounds err_i (|b̃_i - b_i| <= err_i, see
+/// [`quotient_filter`]), where |X̃_i - X_i| <= cx u Mx and |W̃_i - W_i| <= cw u Mw (plus
+/// 2^-1022 each for underflow), or `None` (a non-finite value, a weight coefficient not
+/// positive).
+fn quotient_coefficients_f64(
+    s: &Simple,
+    w: &[f64],
+    j: usize,
+    k: usize,
+    (cx, cw): (f64, f64),
+    row: impl Fn(usize) -> (f64, f64),
+) -> Option<[(f64, f64); LANE_MAX_DEGREE + 1]> {
     use crate::num::ddi::up;
     const U: f64 = f64::EPSILON / 2.0;
+    let p = s.p;
     let (mut mx, mut mw, mut m) = (0.0f64, 0.0f64, 0.0f64);
-    for (l, &wl) in w.iter().enumerate().take(k + 1).skip(k - 2) {
+    for (l, &wl) in w.iter().enumerate().take(k + 1).skip(k - p) {
         let x = s.pts[l * s.d + j];
         mx = mx.max((wl * x).abs());
         mw = mw.max(wl);
         m = m.max(x.abs());
     }
-    let ex = up(19.0 * U * mx) + f64::MIN_POSITIVE;
-    let ew = up(18.0 * U * mw) + f64::MIN_POSITIVE;
+    let ex = up(up(cx * U) * mx) + f64::MIN_POSITIVE;
+    let ew = up(up(cw * U) * mw) + f64::MIN_POSITIVE;
     let e = up(ex + up(m * ew));
-    let mut out = [(0.0, 0.0); 3];
-    for (i, o) in out.iter_mut().enumerate() {
-        let (xi, wi) = (rows[3 * j + i], rows[3 * s.d + i]);
+    let mut out = [(0.0, 0.0); LANE_MAX_DEGREE + 1];
+    for (i, o) in out.iter_mut().enumerate().take(p + 1) {
+        let (xi, wi) = row(i);
         // (a NaN fails the test)
         if !(wi > 0.0 && xi.is_finite()) {
             return None;
@@ -1066,6 +1151,41 @@ fn conic_coefficients_f64(
         *o = (b, up(up(e / wi) + up(U * b.abs())) + f64::MIN_POSITIVE);
     }
     Some(out)
+}
+
+/// Coordinate j's homogeneous rows X (w x_j) and W on span k of a rational spline of degree 3
+/// to 5 from the span's `Ddi` rows of [`span_coefficients_rows`] (enclosures of the exact
+/// ones), and the Cartesian coefficients X_i / W_i, whose ends b_0 = C(u_k), b_p = C(u_{k+1})
+/// are the control points P_{k-p} and P_k themselves where the knot has multiplicity >= p
+/// (NURBS Book eq. 2.5 and A5.1 on P^w: the homogeneous end point is the control point
+/// P^w_{k-p}, resp. P^w_k), taken exactly there instead of the quotient's enclosure.
+#[allow(clippy::type_complexity)]
+fn rational_span(
+    s: &Simple,
+    rows: &[Ddi; SPAN_ROWS],
+    j: usize,
+    k: usize,
+) -> (
+    [Ddi; LANE_MAX_DEGREE + 1],
+    [Ddi; LANE_MAX_DEGREE + 1],
+    [Ddi; LANE_MAX_DEGREE + 1],
+) {
+    let (p, h, d, kn) = (s.p, s.stride(), s.d, s.knots);
+    let zero = Ddi::exact(0.0);
+    let one = Ddi::exact(1.0);
+    let x: [Ddi; LANE_MAX_DEGREE + 1] =
+        std::array::from_fn(|i| if i <= p { rows[i * h + j] } else { zero });
+    let w: [Ddi; LANE_MAX_DEGREE + 1] =
+        std::array::from_fn(|i| if i <= p { rows[i * h + d] } else { one });
+    let mut q: [Ddi; LANE_MAX_DEGREE + 1] =
+        std::array::from_fn(|i| if i <= p { x[i] / w[i] } else { zero });
+    if kn[k + 1 - p] == kn[k] {
+        q[0] = Ddi::exact(s.pts[(k - p) * d + j]);
+    }
+    if kn[k + p] == kn[k + 1] {
+        q[p] = Ddi::exact(s.pts[k * d + j]);
+    }
+    (x, w, q)
 }
 
 /// A rational conic's span k in `Ddi` for step 3 of [`spline_side`]: the rows of
@@ -1121,21 +1241,41 @@ impl ConicSpan {
 /// coordinate j at i d + j), by the insertion and with the bound of [`span_coefficients`]
 /// (per row the operations of a one-row insertion; the knot ratios, the costly part, formed
 /// once instead of once per coordinate and side).
+///
+/// A rational spline (degree 3 to 5): the rows of the homogeneous control points
+/// P^w_i = (w_i x_i, w_i) (NURBS Book A5.6 on P^w), point i's row w x_j at i (d + 1) + j and its
+/// weight at i (d + 1) + d ([`Simple::stride`]); the products w_i x_i in `S` (exact
+/// double-words in `Ddi`, rounded in f64: see [`rational_coefficients_f64`]).
 fn span_coefficients_rows<S: Scalar>(s: &Simple, k: usize) -> [S; SPAN_ROWS] {
-    let (p, d) = (s.p, s.d);
+    let (p, d, h) = (s.p, s.d, s.stride());
     let mut t = [0.0f64; 2 * LANE_MAX_DEGREE + 2];
     t[..2 * p + 2].copy_from_slice(&s.knots[k - p..=k + p + 1]);
     let mut q: [S; SPAN_ROWS] = std::array::from_fn(|_| S::zero());
-    let len = (p + 1) * d;
-    for (v, &x) in q.iter_mut().zip(&s.pts[(k - p) * d..(k + 1) * d]) {
-        *v = S::from_f64(x);
+    let len = (p + 1) * h;
+    match s.w {
+        Some(w) => {
+            for (i, row) in q[..len].chunks_exact_mut(h).enumerate() {
+                let l = k - p + i;
+                let wl = S::from_f64(w[l]);
+                for (v, &x) in row.iter_mut().zip(&s.pts[l * d..(l + 1) * d]) {
+                    *v = wl.clone() * S::from_f64(x);
+                }
+                row[d] = wl;
+            }
+        }
+        None => {
+            for (v, &x) in q.iter_mut().zip(&s.pts[(k - p) * d..(k + 1) * d]) {
+                *v = S::from_f64(x);
+            }
+        }
     }
-    clamp_span(p, d, &mut t[..2 * p + 2], &mut q[..len]);
+    clamp_span(p, h, &mut t[..2 * p + 2], &mut q[..len]);
     q
 }
 
-/// Room for one span's coefficients of every coordinate ([`span_coefficients_rows`]).
-const SPAN_ROWS: usize = (LANE_MAX_DEGREE + 1) * MAX_DIM;
+/// Room for one span's coefficients of every row ([`span_coefficients_rows`]: the
+/// coordinates, and a rational spline's weights).
+const SPAN_ROWS: usize = (LANE_MAX_DEGREE + 1) * (MAX_DIM + 1);
 
 /// The spans whose coefficients a spline above degree 3 has needed so far, shared by its
 /// coordinates and both sides (a few spans per side: short lists searched in order): in f64
@@ -1343,7 +1483,7 @@ pub fn enclose_into(
     let mut cache = None;
     // (a single conic arc by its own path: a branch here rather than in `tight_sides`, whose
     // code for the cubic it made longer, +90 instructions per 2-D cubic)
-    let arc = s.w.filter(|_| s.n == s.p);
+    let arc = s.w.filter(|_| s.n == s.p && s.p == 2);
     for j in 0..s.d {
         let clock = Clock::start();
         // (written in place into the blank box, whose termination is `Converged`)
@@ -1611,8 +1751,9 @@ mod tests {
             for _ in 0..60 {
                 let c = fam.curve(&mut r);
                 let Some(s) = Simple::of(&c) else { continue };
-                // (single segments and polylines have no closed-form spans)
-                if s.n == s.p || s.p == 1 {
+                // (single segments and polylines have no closed-form spans; rational splines
+                // have homogeneous rows: `rational_span_coefficients_are_within_their_bound`)
+                if s.n == s.p || s.p == 1 || s.w.is_some() {
                     continue;
                 }
                 for j in 0..s.d {
@@ -1698,6 +1839,66 @@ mod tests {
         (knots, pts)
     }
 
+    /// A rational spline of degree p on [`random_spline`]'s knots and points, weights spread
+    /// over up to 2^12 at scales 2^-90..2^90, and its weights (`None`: not a valid curve).
+    fn random_rational_spline(r: &mut impl rand::Rng, p: usize) -> Option<(NurbsCurve, Vec<f64>)> {
+        let (knots, pts) = random_spline(r, p);
+        let ws = 2f64.powi(r.random_range(-90..=90));
+        let weights: Vec<f64> = (0..pts.len())
+            .map(|_| ws * 2f64.powf(r.random_range(-6.0..6.0)))
+            .collect();
+        let c = NurbsCurve::new(p, knots, pts, Some(weights.clone())).ok()?;
+        Some((c, weights))
+    }
+
+    /// The exact homogeneous rows `xr`, `wr` of coordinate j on span k = [a, b] give de Boor's
+    /// exact value of the curve (`eval`, independent code, with the quotient rule) at the
+    /// span's ends and inside.
+    fn check_exact_rows(
+        eval: &crate::spline::eval::CurveEval<Exact>,
+        (k, j): (usize, usize),
+        (a, b): (f64, f64),
+        xr: &[Exact],
+        wr: &[Exact],
+    ) {
+        for u in [a, b, a + 0.375 * (b - a)] {
+            let want = eval.coord_derivs_in_span(k, &Exact::of(u), 0, j)[0].clone();
+            let t = (Exact::of(u) - Exact::of(a)) / (Exact::of(b) - Exact::of(a));
+            let got = crate::spline::bezier::de_casteljau_eval(xr, &t)
+                / crate::spline::bezier::de_casteljau_eval(wr, &t);
+            assert!(got == want, "span {k} coordinate {j} at {u}");
+        }
+    }
+
+    /// The f64 Cartesian coefficients `f` (with their bounds) within their bounds of the exact
+    /// quotients of the rows `xr`, `wr`, and the `Ddi` rows and quotients `d` enclosing the
+    /// exact ones; `worst` the largest error as a share of its bound.
+    fn check_quotients(
+        (xr, wr): (&[Exact], &[Exact]),
+        f: &[(f64, f64)],
+        d: (&[Ddi], &[Ddi], &[Ddi]),
+        worst: &mut f64,
+    ) {
+        for i in 0..xr.len() {
+            let bi = xr[i].clone() / wr[i].clone();
+            let (bf, e) = f[i];
+            let err = bi.clone() - Exact::of(bf);
+            assert!(
+                err.cmp_f64(e) != Some(Ordering::Greater)
+                    && err.cmp_f64(-e) != Some(Ordering::Less),
+                "b_{i}: f64 error above the bound {e:e}"
+            );
+            if e > 0.0 {
+                *worst = worst.max((bi.to_f64() - bf).abs() / e);
+            }
+            for (v, x) in [(d.0[i], &xr[i]), (d.1[i], &wr[i]), (d.2[i], &bi)] {
+                let iv = v.to_interval();
+                assert_eq!(x.cmp_f64(iv.sup()).map(|o| o.is_le()), Some(true));
+                assert_eq!(x.cmp_f64(iv.inf()).map(|o| o.is_ge()), Some(true));
+            }
+        }
+    }
+
     /// A rational conic's span coefficients ([`conic_rows`], [`conic_coefficients_f64`],
     /// [`ConicSpan`]) on 300 random rational quadratic splines (clustered knots down to a few
     /// ulps, double knots, domains moved and scaled across the knot window, coordinates
@@ -1710,20 +1911,14 @@ mod tests {
     /// Fails with the weights' error term dropped, and with the end snapped at a simple knot.
     #[test]
     fn conic_span_coefficients_are_within_their_bound() {
-        use rand::Rng;
         let mut r = gen::rng(43);
         let (mut spans, mut worst) = (0, 0.0f64);
         for _ in 0..300 {
             let p = 2;
-            let (knots, pts) = random_spline(&mut r, p);
-            let (n, d) = (pts.len() - 1, pts[0].len());
-            let ws = 2f64.powi(r.random_range(-90..=90));
-            let weights: Vec<f64> = (0..=n)
-                .map(|_| ws * 2f64.powf(r.random_range(-6.0..6.0)))
-                .collect();
-            let Ok(c) = NurbsCurve::new(p, knots, pts, Some(weights.clone())) else {
+            let Some((c, weights)) = random_rational_spline(&mut r, p) else {
                 continue;
             };
+            let (n, d) = (c.num_points() - 1, c.dim());
             let Some(s) = Simple::of(&c) else { continue };
             let w = &weights[..];
             let eval = crate::spline::eval::CurveEval::<Exact>::new(&c, 0);
@@ -1739,38 +1934,89 @@ mod tests {
                 for j in 0..d {
                     let xr = &exact[3 * j..3 * j + 3];
                     let wr = &exact[3 * d..3 * d + 3];
-                    for u in [a, b, a + 0.375 * (b - a)] {
-                        let want = eval.coord_derivs_in_span(k, &Exact::of(u), 0, j)[0].clone();
-                        let t = (Exact::of(u) - Exact::of(a)) / (Exact::of(b) - Exact::of(a));
-                        let got = crate::spline::bezier::de_casteljau_eval(xr, &t)
-                            / crate::spline::bezier::de_casteljau_eval(wr, &t);
-                        assert!(got == want, "span {k} coordinate {j} at {u}");
-                    }
+                    check_exact_rows(&eval, (k, j), (a, b), xr, wr);
                     let f = conic_coefficients_f64(&s, w, &rows, j, k).expect("finite");
                     let (dx, dw, dq) = dspan.coordinate(&s, w, k, j);
-                    for i in 0..3 {
-                        let bi = xr[i].clone() / wr[i].clone();
-                        let (bf, e) = f[i];
-                        let err = bi.clone() - Exact::of(bf);
-                        assert!(
-                            err.cmp_f64(e) != Some(Ordering::Greater)
-                                && err.cmp_f64(-e) != Some(Ordering::Less),
-                            "span {k} b_{i}: f64 error above the bound {e:e}"
-                        );
-                        if e > 0.0 {
-                            worst = worst.max((bi.to_f64() - bf).abs() / e);
-                        }
-                        for (v, x) in [(dx[i], &xr[i]), (dw[i], &wr[i]), (dq[i], &bi)] {
-                            let iv = v.to_interval();
-                            assert_eq!(x.cmp_f64(iv.sup()).map(|o| o.is_le()), Some(true));
-                            assert_eq!(x.cmp_f64(iv.inf()).map(|o| o.is_ge()), Some(true));
-                        }
-                    }
+                    check_quotients((xr, wr), &f, (&dx, &dw, &dq), &mut worst);
                 }
             }
         }
         assert!(spans > 500, "only {spans} spans checked");
         assert!(worst > 0.01, "largest error {worst} of the bound");
+    }
+
+    /// A rational spline's span coefficients above degree 2 ([`span_coefficients_rows`] on the
+    /// homogeneous rows, [`rational_coefficients_f64`], [`rational_span`]) on 200 random
+    /// rational splines of degree 3 to 5 (clustered knots down to a few ulps, knots of
+    /// multiplicity up to p, domains moved and scaled across the knot window, coordinates
+    /// 2^-70..2^70, weights spread over up to 2^12 at scales 2^-90..2^90, 1-3 coordinates): the
+    /// exact homogeneous coefficients give de Boor's exact value of the curve (`CurveEval`,
+    /// independent code, with the quotient rule) at the span's ends and inside; the f64
+    /// Cartesian coefficients lie within their bounds of the exact ones; the `Ddi` rows and
+    /// Cartesian coefficients (ends snapped at knots of multiplicity p) enclose them; and the
+    /// bound is not vacuous (errors above a hundredth of it occur).
+    #[test]
+    fn rational_span_coefficients_are_within_their_bound() {
+        use rand::Rng;
+        let mut r = gen::rng(47);
+        let (mut spans, mut worst, mut worst_cut) = (0, 0.0f64, 0.0f64);
+        for _ in 0..200 {
+            let p = r.random_range(3..=LANE_MAX_DEGREE);
+            let Some((c, weights)) = random_rational_spline(&mut r, p) else {
+                continue;
+            };
+            let (n, d) = (c.num_points() - 1, c.dim());
+            let Some(s) = Simple::of(&c) else { continue };
+            let w = &weights[..];
+            let h = d + 1;
+            let eval = crate::spline::eval::CurveEval::<Exact>::new(&c, 0);
+            for k in p..=n {
+                if s.knots[k] >= s.knots[k + 1] {
+                    continue;
+                }
+                spans += 1;
+                let exact = span_coefficients_rows::<Exact>(&s, k);
+                let rows = span_coefficients_rows::<f64>(&s, k);
+                let drows = *SpanCache::default().get_ddi(&s, k);
+                let (a, b) = (s.knots[k], s.knots[k + 1]);
+                for j in 0..d {
+                    let xr: Vec<Exact> = (0..=p).map(|i| exact[i * h + j].clone()).collect();
+                    let wr: Vec<Exact> = (0..=p).map(|i| exact[i * h + d].clone()).collect();
+                    check_exact_rows(&eval, (k, j), (a, b), &xr, &wr);
+                    let f = rational_coefficients_f64(&s, w, &rows, j, k).expect("finite");
+                    let (dx, dw, dq) = rational_span(&s, &drows, j, k);
+                    // (the rows themselves within the insertion's bound per cut, 2 (p - 1)
+                    // cuts of 11.1 u M each, M the row's largest |input|; the products' own
+                    // rounding, one u M more, on X)
+                    let (mut mx, mut mw) = (0.0f64, 0.0f64);
+                    for (l, &wl) in w.iter().enumerate().take(k + 1).skip(k - p) {
+                        mx = mx.max((wl * s.pts[l * d + j]).abs());
+                        mw = mw.max(wl);
+                    }
+                    let cut = 2.0 * (p - 1) as f64 * (f64::EPSILON / 2.0);
+                    for i in 0..=p {
+                        for (row, x, m, extra) in [(j, &xr[i], mx, 1.0), (d, &wr[i], mw, 0.0)] {
+                            let e = (11.1 * cut + extra * f64::EPSILON / 2.0) * m;
+                            let err = x.clone() - Exact::of(rows[i * h + row]);
+                            assert!(
+                                err.cmp_f64(e + f64::MIN_POSITIVE) != Some(Ordering::Greater)
+                                    && err.cmp_f64(-e - f64::MIN_POSITIVE) != Some(Ordering::Less),
+                                "p {p} span {k} row {row} coefficient {i}: above the bound"
+                            );
+                            if m > 0.0 {
+                                worst_cut = worst_cut
+                                    .max((x.to_f64() - rows[i * h + row]).abs() / (cut * m));
+                            }
+                        }
+                    }
+                    check_quotients((&xr, &wr), &f, (&dx, &dw, &dq), &mut worst);
+                }
+            }
+        }
+        assert!(spans > 400, "only {spans} spans checked");
+        assert!(worst > 0.01, "largest error {worst} of the bound");
+        // (the rows' bound is not vacuous: errors of a few u M per cut do occur)
+        assert!(worst_cut > 0.1, "largest error per cut {worst_cut} u M");
     }
 
     #[test]

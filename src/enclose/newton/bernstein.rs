@@ -118,6 +118,23 @@ impl SpanPoly {
         Self::from_rows(c, j, k, &[], |i| (q[i], Ddi::exact(1.0)))
     }
 
+    /// The form of coordinate j of a rational `c` on span k from that coordinate's
+    /// double-double homogeneous Bézier points alone: `x` (the row w x_j) and `w` (the
+    /// weights' row), p + 1 enclosures of the exact ones each (the driver's lane computes them
+    /// per span, without the curve-wide sweep), with the degree's `pair` coefficients
+    /// ([`pair_coefficients`]).
+    pub(crate) fn from_homogeneous(
+        c: &NurbsCurve,
+        j: usize,
+        k: usize,
+        pair: &[Mr],
+        x: &[Ddi],
+        w: &[Ddi],
+    ) -> Self {
+        debug_assert!(c.is_rational() && x.len() == c.degree() + 1 && w.len() == x.len());
+        Self::from_rows(c, j, k, pair, |i| (x[i], w[i]))
+    }
+
     /// [`SpanPoly::new`] with point i's coordinate j and weight given by `row(i)` (the weight
     /// is read for a rational curve only).
     fn from_rows(
