@@ -792,11 +792,23 @@ fn spline_side(
         };
         // (the end-coefficient rule of the `bezier` strategy first: if an end coefficient has
         // the largest upper end, the span's maximum is at most that, and the end coefficient is
-        // a value of the curve, C(u_k) or C(u_{k+1}); its enclosure is about an ulp wide)
+        // a value of the curve, C(u_k) or C(u_{k+1}); its enclosure is about an ulp wide. The
+        // end is the candidate where the maximum is attained only if it is exact (the maximum
+        // is then its value) or every other coefficient lies strictly below it (every inner
+        // value of the piece, a convex combination with a positive share of those, is then
+        // below the end's value); otherwise the maximiser may lie inside the span, next to the
+        // end (a symmetric extremum at a knot, moved by a few ulps), and the proof below
+        // brackets it.)
         let signed = qd.map(|v| if sign > 0.0 { v } else { -v });
+        let sups: [f64; LANE_MAX_DEGREE + 1] = std::array::from_fn(|i| {
+            if i <= p {
+                signed[i].to_interval().sup()
+            } else {
+                f64::NEG_INFINITY
+            }
+        });
         let (mut top, mut at) = (f64::NEG_INFINITY, 0);
-        for (i, v) in signed.iter().enumerate().take(p + 1) {
-            let sup = v.to_interval().sup();
+        for (i, &sup) in sups.iter().enumerate().take(p + 1) {
             // (a NaN upper end fails every comparison and ends in the proof below)
             if sup > top || (i == p && sup == top) {
                 (top, at) = (sup, i);
@@ -805,7 +817,10 @@ fn spline_side(
         if at == 0 || at == p {
             let v = signed[at];
             let inf = v.to_interval().inf();
-            if top - inf <= gap {
+            let others = (0..=p)
+                .filter(|&i| i != at)
+                .fold(f64::NEG_INFINITY, |m, i| m.max(sups[i]));
+            if top - inf <= gap && (inf == top || others < inf) {
                 let u = kn[if at == 0 { k } else { k + 1 }];
                 attained = attained.max(inf);
                 upper = upper.max(top);
