@@ -762,10 +762,10 @@ fn spline_side(
             continue;
         }
         // step 3: double-double coefficients and the root-isolating proof
-        // (a rational conic: its homogeneous rows X and W, and its Cartesian coefficients as
-        // the span's coefficients)
-        // (a rational curve above degree 2: its homogeneous rows X and W, and their quotients
-        // as the span's coefficients, `rational_span`)
+        // (a rational curve: its homogeneous rows X and W, and their quotients as the span's
+        // coefficients; a conic's from `ConicSpan`, made once per span and coordinate, above
+        // degree 2 from `rational_span`, per side: a cache of those per span and coordinate,
+        // tried, cost more in the larger `SpanCache` than the p + 1 divisions it saved)
         let conic =
             s.w.filter(|_| p == 2)
                 .map(|w| cache.conic_ddi(s, w, k).coordinate(s, w, k, j));
@@ -1170,22 +1170,10 @@ fn quotient_coefficients_f64(
 
 /// Coordinate j's homogeneous rows X (w x_j) and W on span k of a rational spline of degree 3
 /// to 5 from the span's `Ddi` rows of [`span_coefficients_rows`] (enclosures of the exact
-/// ones), and the Cartesian coefficients X_i / W_i, whose ends b_0 = C(u_k), b_p = C(u_{k+1})
-/// are the control points P_{k-p} and P_k themselves where the knot has multiplicity >= p
-/// (NURBS Book eq. 2.5 and A5.1 on P^w: the homogeneous end point is the control point
-/// P^w_{k-p}, resp. P^w_k), taken exactly there instead of the quotient's enclosure.
-#[allow(clippy::type_complexity)]
-fn rational_span(
-    s: &Simple,
-    rows: &[Ddi; SPAN_ROWS],
-    j: usize,
-    k: usize,
-) -> (
-    [Ddi; LANE_MAX_DEGREE + 1],
-    [Ddi; LANE_MAX_DEGREE + 1],
-    [Ddi; LANE_MAX_DEGREE + 1],
-) {
-    let (p, h, d, kn) = (s.p, s.stride(), s.d, s.knots);
+/// ones), and the Cartesian coefficients X_i / W_i, their ends taken exactly at knots of
+/// multiplicity >= p ([`snap_control_ends`]).
+fn rational_span(s: &Simple, rows: &[Ddi; SPAN_ROWS], j: usize, k: usize) -> RationalRows {
+    let (p, h, d) = (s.p, s.stride(), s.d);
     let zero = Ddi::exact(0.0);
     let one = Ddi::exact(1.0);
     let x: [Ddi; LANE_MAX_DEGREE + 1] =
@@ -1194,13 +1182,24 @@ fn rational_span(
         std::array::from_fn(|i| if i <= p { rows[i * h + d] } else { one });
     let mut q: [Ddi; LANE_MAX_DEGREE + 1] =
         std::array::from_fn(|i| if i <= p { x[i] / w[i] } else { zero });
+    snap_control_ends(s, k, j, &mut q[..=p]);
+    (x, w, q)
+}
+
+/// The Cartesian coefficients `q` (p + 1 of them) of coordinate j on span k of a rational
+/// spline of degree p with their ends b_0 = C(u_k), b_p = C(u_{k+1}) replaced by the control
+/// points P_{k-p} and P_k themselves where the knot has multiplicity >= p (NURBS Book eq. 2.5
+/// and A5.1 on P^w: the homogeneous end point is the control point P^w_{k-p}, resp. P^w_k, so
+/// its quotient is the control point's coordinate exactly, which the quotient's enclosure only
+/// straddles).
+fn snap_control_ends(s: &Simple, k: usize, j: usize, q: &mut [Ddi]) {
+    let (p, d, kn) = (q.len() - 1, s.d, s.knots);
     if kn[k + 1 - p] == kn[k] {
         q[0] = Ddi::exact(s.pts[(k - p) * d + j]);
     }
     if kn[k + p] == kn[k + 1] {
         q[p] = Ddi::exact(s.pts[k * d + j]);
     }
-    (x, w, q)
 }
 
 /// A rational conic's span k in `Ddi` for step 3 of [`spline_side`]: the rows of
@@ -1239,13 +1238,7 @@ impl ConicSpan {
         let (x, cart) = *self.coords[j].get_or_insert_with(|| {
             let x = quadratic_cuts(&r, conic_values(s, w, k, Some(j)));
             let mut q: [Ddi; 3] = std::array::from_fn(|i| x[i] / wr[i]);
-            let (kn, d) = (s.knots, s.d);
-            if kn[k - 1] == kn[k] {
-                q[0] = Ddi::exact(s.pts[(k - 2) * d + j]);
-            }
-            if kn[k + 1] == kn[k + 2] {
-                q[2] = Ddi::exact(s.pts[k * d + j]);
-            }
+            snap_control_ends(s, k, j, &mut q);
             (x, q)
         });
         (x, wr, cart)
@@ -1306,6 +1299,14 @@ struct SpanCache {
     conic: SmallVec<[(usize, [f64; CONIC_ROWS]); 4]>,
     conic_ddi: SmallVec<[(usize, ConicSpan); 2]>,
 }
+
+/// A coordinate's homogeneous rows X, W and Cartesian coefficients on one span of a rational
+/// spline ([`rational_span`]).
+type RationalRows = (
+    [Ddi; LANE_MAX_DEGREE + 1],
+    [Ddi; LANE_MAX_DEGREE + 1],
+    [Ddi; LANE_MAX_DEGREE + 1],
+);
 
 /// A proof slot of [`SpanCache`]: (span, coordinate), and the proof once made.
 type ProofSlot = ((usize, usize), Option<CoefficientProof>);
