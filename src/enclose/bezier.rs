@@ -56,7 +56,7 @@ use crate::num::Scalar;
 use crate::spline::bezier::{bernstein_value as bern, cartesian, hodograph};
 use crate::spline::bspline::BezierSeg;
 use crate::spline::curve::NurbsCurve;
-use crate::enclose::newton::bernstein::SpanPoly;
+use crate::enclose::newton::bernstein::{SpanPoly, SpanProof};
 use crate::spline::tight::TightEval;
 use inari::Interval;
 
@@ -510,30 +510,82 @@ struct CriticalBox {
 const GENERAL_H: f64 = 1.0 / 1_099_511_627_776.0; // 2^-40
 
 impl Critical {
-    /// The proof on span k for coordinate j, or `None` where some step is not proven.
+    /// The proof on span k for coordinate j, or `None` where some step is not proven: the
+    /// lean form first ([`Critical::lean`]), the full one where that leaves it open.
     fn of(vals: &Values, pair: &[Mr], j: usize, k: usize) -> Option<Critical> {
         let c = vals.curve;
-        let sp = SpanPoly::new(c, j, k, pair, vals.tight.bezier_points(k));
+        let pts = vals.tight.bezier_points(k);
         // (the end values after the boxes: a span without a proof needs none)
         let ends = || [vals.tight.end_value(j, k, false), vals.tight.end_value(j, k, true)];
-        Self::prove(sp, c, k, ends, |at| Some(vals.tight.coord_over(j, at.u_lo, at.u_hi)))
+        let h = c.dim() + c.is_rational() as usize;
+        let located = match SpanProof::new(c, j, k, pair, |i| (pts[i * h + j], pts[i * h + h - 1])) {
+            Some(sp) => match Self::lean(&sp, c, k, ends, false) {
+                Ok(found) => return Some(found),
+                Err(located) => located,
+            },
+            None => true,
+        };
+        let sp = SpanPoly::new(c, j, k, pair, pts);
+        Self::prove(sp, c, k, ends, |at| Some(vals.tight.coord_over(j, at.u_lo, at.u_hi)), located)
+    }
+
+    /// The proof from the lean form `sp` of span k of `c` (F and the tight enclosures alone,
+    /// [`SpanProof`]: the same boxes and the same tight enclosures as [`Critical::prove`],
+    /// which also makes the cheap enclosures of the boxes that cannot hold an extreme; here
+    /// every box gets its tight one, a value the piece attains in it included), with the
+    /// piece's enclosed end values `ends`. `Err(located)` where it leaves the proof to the
+    /// full form: `located` false where F's boxes were not located (the full form then tries
+    /// F from the double-double points at once, [`SpanPoly::refined`]), true where a box's
+    /// enclosure is wider than an ulp and `wide` does not accept that (the full form's Taylor
+    /// enclosure may be narrower).
+    fn lean(
+        sp: &SpanProof,
+        c: &NurbsCurve,
+        k: usize,
+        ends: impl FnOnce() -> [Ddi; 2],
+        wide: bool,
+    ) -> Result<Critical, bool> {
+        let num = sp.numerator();
+        let found = match (!num.swamped()).then(|| num.critical_boxes(GENERAL_H)).flatten() {
+            Some(found) => found,
+            None => return Err(false),
+        };
+        let kn = c.knots();
+        let mut boxes: SmallVec<[CriticalBox; 4]> = SmallVec::new();
+        for &(x0, x1) in &found {
+            let (enc, v) = sp.box_tight(x0, x1).ok_or(true)?;
+            if !wide && enc.sup() > enc.inf().next_up() {
+                return Err(true);
+            }
+            boxes.push(CriticalBox {
+                x0,
+                x1,
+                at: single::extremum(kn[k], kn[k + 1], x0, x1, false, CandidateKind::Critical),
+                enc,
+                v: Some(v),
+            });
+        }
+        Ok(Critical { ends: ends(), boxes })
     }
 
     /// The proof on the span of `sp` (span k of `c`) with the piece's enclosed end values
     /// (`ends`: C_j at u_k, the limit at u_{k+1}), and `taylor`, a second enclosure of the
     /// piece's values over a box in u (or `None`), for boxes whose mean value form is wider
-    /// than an ulp.
+    /// than an ulp. `located`: false where the lean form found F's boxes not located (the same
+    /// F as this form's, so the same answer): then F from the double-double points at once.
     fn prove(
         mut sp: SpanPoly,
         c: &NurbsCurve,
         k: usize,
         ends: impl FnOnce() -> [Ddi; 2],
         taylor: impl Fn(&Extremum) -> Option<Interval>,
+        located: bool,
     ) -> Option<Critical> {
         // (where F's `Mr` coefficients are too wide for the proof, it is tried once more with
         // F from the double-double points, `SpanPoly::refined`: cheaper by far than the
         // subdivision that runs otherwise)
-        let found = match (!sp.f_swamped()).then(|| sp.critical_boxes(GENERAL_H)).flatten() {
+        let first = located && !sp.f_swamped();
+        let found = match first.then(|| sp.critical_boxes(GENERAL_H)).flatten() {
             Some(found) => found,
             None => {
                 sp = sp.refined()?;
@@ -668,15 +720,29 @@ pub(crate) fn coefficient_side(
     proof: &mut Option<CoefficientProof>,
 ) -> Option<Side> {
     let pr = proof.get_or_insert_with(|| {
+        let p = q.len() - 1;
+        let ends = || [q[0], q[p]];
+        let pair = match hom {
+            Some(_) => crate::enclose::newton::bernstein::pair_coefficients(c.degree()),
+            None => std::rc::Rc::from([]),
+        };
+        let row = |i: usize| match hom {
+            Some((x, w)) => (x[i], w[i]),
+            None => (q[i], Ddi::exact(1.0)),
+        };
+        // (the lean form first; without a Taylor form here, a wide box is taken as it is)
+        let located = match SpanProof::new(c, j, k, &pair, row) {
+            Some(sp) => match Critical::lean(&sp, c, k, ends, true) {
+                Ok(found) => return CoefficientProof(Some(found)),
+                Err(located) => located,
+            },
+            None => true,
+        };
         let sp = match hom {
-            Some((x, w)) => {
-                let pair = crate::enclose::newton::bernstein::pair_coefficients(c.degree());
-                SpanPoly::from_homogeneous(c, j, k, &pair, x, w)
-            }
+            Some((x, w)) => SpanPoly::from_homogeneous(c, j, k, &pair, x, w),
             None => SpanPoly::from_coefficients(c, j, k, q),
         };
-        let p = q.len() - 1;
-        CoefficientProof(Critical::prove(sp, c, k, || [q[0], q[p]], |_| None))
+        CoefficientProof(Critical::prove(sp, c, k, ends, |_| None, located))
     });
     pr.0.as_ref()?.side(c, k, sign, true, max_gap)
 }

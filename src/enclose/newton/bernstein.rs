@@ -72,7 +72,7 @@ impl Drop for SpanPoly {
 }
 
 /// Push the parts of the closed interval [lo, hi] that the closed intervals `free`
-/// (increasing; F proven zero-free there: [`SpanPoly::zero_estimates`]) do not cover, each as a
+/// (increasing; F proven zero-free there: [`Numerator::zero_estimates`]) do not cover, each as a
 /// closed interval with depth 0, to `gaps`: the parts still to be excluded. (A part's ends may
 /// lie in `free`, which only makes it larger than needed.)
 fn push_unproven(gaps: &mut Vec<(f64, f64, u32)>, lo: f64, hi: f64, free: &[(f64, f64)]) {
@@ -224,16 +224,8 @@ impl SpanPoly {
             pts,
         };
         let d2 = second_hull(&dco);
-        let (fmax, dfmax) = (mag_bound(&fco), mag_bound(&dco));
-        let wmin = if rational {
-            seg.pts
-                .iter()
-                .skip(1)
-                .step_by(2)
-                .fold(f64::INFINITY, |m, w| m.min(w.bounds().0))
-        } else {
-            1.0
-        };
+        let (fmax, dfmax) = (mag_bound(fco.iter().copied()), mag_bound(dco.iter().copied()));
+        let wmin = if rational { weight_floor(&seg.pts) } else { 1.0 };
         SpanPoly {
             k,
             c: shift,
@@ -258,25 +250,14 @@ impl SpanPoly {
         s.sub_points(t1s.as_ref(), t0s.as_ref())
     }
 
-    /// F over the box t = [t0, t1] (at t0 for a point): de Casteljau value, or the
-    /// coefficient hull (restricted in f64 with an a-priori bound, [`restrict_hull_f64`], else
-    /// in `Mr`).
+    /// F over the box t = [t0, t1] (at t0 for a point): [`Numerator::over`].
     pub(super) fn f(&self, t: T) -> Interval {
-        let (t0, t1) = (t.lo, t.hi);
-        if t0 == t1 {
-            // (O(n) instead of de Casteljau's O(n^2): F has degree 2p - 2)
-            return bernstein_value_s(&self.f.pts, t0).to_interval();
-        }
-        // (the f64 restriction's error bound is relative to the largest coefficient: where it
-        // cannot exclude 0, e.g. coefficients of very different magnitudes from extreme
-        // weights, the `Mr` restriction, which tracks each coefficient's own error, decides)
-        // (and where the f64 coefficients straddle 0 by more than their bound, the `Mr` ones
-        // would too: the f64 hull is then as good an answer, since only whether 0 can be
-        // excluded matters for a box)
-        match restrict_hull_f64(&self.f.pts, t0, t1) {
-            Some((v, _, straddles)) if !v.contains(0.0) || straddles => v,
-            _ => hull(&Self::restrict(&self.f, t0, t1)),
-        }
+        self.numerator().over(t)
+    }
+
+    /// F alone, for the steps that read nothing else ([`Numerator`]).
+    pub(crate) fn numerator(&self) -> Numerator<'_> {
+        Numerator { f: &self.f }
     }
 
     /// F at the f64 point t in plain f64 with an a-priori error bound ([`value_f64`]):
@@ -432,78 +413,23 @@ impl SpanPoly {
     ///
     /// `None` where a weight bound is not positive or something overflowed.
     pub(super) fn tight_over(&self, t: T) -> Option<(Interval, Ddi, Ddi)> {
-        let seg = &self.dseg;
-        let p = seg.degree;
-        let (t0, t1) = (t.lo, t.hi);
-        if !(0.0 <= t0 && t0 < t1 && t1 <= 1.0) {
-            return None;
-        }
-        // (a box of two neighbouring doubles, as the search leaves at machine precision, has no
-        // double strictly inside: then its lower end)
-        let mid = midpoint(t0, t1);
-        let tm = if t0 < mid && mid < t1 { mid } else { t0 };
-        let r = dist_up(tm, t0).max(dist_up(t1, tm));
-        let h = if seg.rational { 2 } else { 1 };
-        let row = |i: usize| -> SmallVec<[Ddi; 32]> {
-            seg.pts.iter().skip(i).step_by(h).copied().collect()
-        };
+        let (enc, v) = self.box_form().tight_over(t, || weight_slope(&self.seg.pts))?;
+        // (v0: the first Bézier point, the piece at t = 0)
         let shift = Ddi::exact(self.c);
-        // |F| over the box: |F(t_m)| + r max |F'| (mean value theorem; F(t_m) by the f64 value
-        // with its a-priori bound, |F'| <= `dfmax` on the span by the convex hull property), in
-        // O(n); where that is not finite, the f64 restriction's hull with its a-priori bound (a
-        // magnitude is all that is needed here, so no sharper form where that hull holds 0),
-        // else `Mr`'s
-        let by_value = value_f64(&self.f.pts, tm)
-            .map(|(v, _)| iv::add_up(v.mag(), iv::mul_up(r, self.dfmax)))
-            .filter(|m| m.is_finite());
-        let fm = match by_value {
-            Some(m) => m,
-            None => match restrict_hull_f64(&self.f.pts, t0, t1) {
-                Some((v, _, _)) => v.mag(),
-                None => hull(&Self::restrict(&self.f, t0, t1)).mag(),
-            },
-        };
-        // (the rows' values at t_m: in double words with one a-priori bound up to degree
-        // VS_DW_MAX, else by the scheme in `Ddi`)
-        let (v, v0, e) = if seg.rational {
-            let wmin = self.wmin;
-            if wmin.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-                return None;
-            }
-            let [x, w] = value_vs_dw::<2>(&seg.pts, h, tm).unwrap_or_else(|| {
-                [bernstein_value_s(&row(0), tm), bernstein_value_s(&row(1), tm)]
-            });
-            let v = x / w + shift;
-            let v0 = seg.pts[0] / seg.pts[1] + shift;
-            let rf = iv::mul_up(r, fm);
-            let e = iv::div_up(iv::div_up(rf, wmin), wmin);
-            // (where that is not far below an ulp of the value: W over the box is at least
-            // W(t_m) - r max |W'| by the mean value theorem, often far above the span's smallest
-            // weight wmin when the weights vary over the span (|W'| bounded by
-            // [`weight_slope`], computed only here); either bound holds, the larger is taken; a
-            // NaN or infinite term fails the comparison and leaves wmin)
-            let e = if e <= 0.125 * crate::num::ulp(v.hi()) {
-                e
-            } else {
-                let local = (w.lower_end() - iv::mul_up(r, weight_slope(&self.seg.pts))).next_down();
-                let wb = if local > wmin { local } else { wmin };
-                iv::div_up(iv::div_up(rf, wb), wb)
-            };
-            (v, v0, e)
-        } else {
-            let [x] = value_vs_dw::<1>(&seg.pts, h, tm)
-                .unwrap_or_else(|| [bernstein_value_s(&row(0), tm)]);
-            let v = x + shift;
-            let e = iv::mul_up(iv::mul_up(r, fm), p as f64);
-            (v, seg.pts[0] + shift, e)
-        };
-        if v.is_entire() || !e.is_finite() {
-            return None;
-        }
-        // (widened in double-double, then rounded outward once: a tiny e does not cost the
-        // extra ulp on each side that adding it in f64 intervals would)
-        let enc = v.widen(e).to_interval();
+        let pts = &self.dseg.pts;
+        let v0 = if self.dseg.rational { pts[0] / pts[1] } else { pts[0] } + shift;
         Some((enc, v, v0))
+    }
+
+    /// What [`SpanPoly::tight_over`] reads of the form.
+    fn box_form(&self) -> BoxForm<'_> {
+        BoxForm {
+            dseg: &self.dseg,
+            shift: self.c,
+            f: &self.f,
+            dfmax: self.dfmax,
+            wmin: self.wmin,
+        }
     }
 
     /// The box of the curve parameter u that contains u(t) for every t in the box t = [t0, t1]
@@ -514,12 +440,102 @@ impl SpanPoly {
         U::new(lo, hi)
     }
 
+    /// [`Numerator::swamped`].
+    pub(crate) fn f_swamped(&self) -> bool {
+        self.numerator().swamped()
+    }
+
+    /// [`Numerator::zero_estimates`].
+    #[cfg(test)]
+    pub(super) fn zero_estimates(&self, out: &mut Vec<Estimate>, max: usize, h: f64, free: &mut Vec<(f64, f64)>) -> bool {
+        self.numerator().zero_estimates(out, max, h, free)
+    }
+
+    /// [`Numerator::zero_boxes`].
+    pub(super) fn zero_boxes(
+        &self,
+        h: f64,
+        max: usize,
+        scratch: (&mut Vec<Estimate>, &mut Vec<(f64, f64)>),
+        boxes: &mut Vec<(f64, f64)>,
+        gaps: &mut Vec<(f64, f64, u32)>,
+    ) -> bool {
+        self.numerator().zero_boxes(h, max, scratch, boxes, gaps)
+    }
+
+    /// [`Numerator::critical_boxes`].
+    pub(crate) fn critical_boxes(&self, h: f64) -> Option<Vec<(f64, f64)>> {
+        self.numerator().critical_boxes(h)
+    }
+
+    /// [`Numerator::exclude_gaps`].
+    pub(crate) fn exclude_gaps(&self, gaps: &mut Vec<(f64, f64, u32)>, evals: &mut u64) -> bool {
+        self.numerator().exclude_gaps(gaps, evals)
+    }
+
+    /// The values of the piece over the box [x0, x1] of the local parameter (x0 < x1), cheap
+    /// ([`SpanPoly::values`]).
+    pub(crate) fn box_values(&self, x0: f64, x1: f64) -> Interval {
+        self.values(T::new(x0, x1))
+    }
+
+    /// The values of the piece over the box [x0, x1] of the local parameter, about one ulp
+    /// wide near a critical point, and the value at a parameter inside the box, in `Ddi`
+    /// ([`SpanPoly::tight_over`]).
+    pub(crate) fn box_tight(&self, x0: f64, x1: f64) -> Option<(Interval, Ddi)> {
+        self.box_form().tight_over(T::new(x0, x1), || weight_slope(&self.seg.pts))
+    }
+
+    /// Whether F >= 0 / F <= 0 on the whole span (all coefficients of one sign), i.e. C_j
+    /// non-decreasing / non-increasing on the closed span.
+    pub(super) fn f_signs(&self) -> (bool, bool) {
+        // (the ends of the coefficients' enclosures, `Mr::bounds`: the hull's, without an
+        // inari call per coefficient)
+        let (lo, hi) = self.f.pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            let (l, h) = x.bounds();
+            (lo.min(l), hi.max(h))
+        });
+        (lo >= 0.0, hi <= 0.0)
+    }
+}
+
+/// The derivative numerator F of one span and coordinate alone (its Bernstein coefficients,
+/// enclosed in [`Mr`]; see [`SpanPoly`]): the root isolation of the float-first proof reads
+/// nothing else, so it runs on the F of a [`SpanPoly`] or on one computed without the rest of
+/// the form (the lean proof of `bezier::Critical`).
+#[derive(Clone, Copy)]
+pub(crate) struct Numerator<'a> {
+    pub(crate) f: &'a BezierSeg<Mr>,
+}
+
+impl Numerator<'_> {
+    /// F over the box t = [t0, t1] (at t0 for a point): de Casteljau value, or the
+    /// coefficient hull (restricted in f64 with an a-priori bound, [`restrict_hull_f64`], else
+    /// in `Mr`).
+    pub(super) fn over(&self, t: T) -> Interval {
+        let (t0, t1) = (t.lo, t.hi);
+        if t0 == t1 {
+            // (O(n) instead of de Casteljau's O(n^2): F has degree 2p - 2)
+            return bernstein_value_s(&self.f.pts, t0).to_interval();
+        }
+        // (the f64 restriction's error bound is relative to the largest coefficient: where it
+        // cannot exclude 0, e.g. coefficients of very different magnitudes from extreme
+        // weights, the `Mr` restriction, which tracks each coefficient's own error, decides)
+        // (and where the f64 coefficients straddle 0 by more than their bound, the `Mr` ones
+        // would too: the f64 hull is then as good an answer, since only whether 0 can be
+        // excluded matters for a box)
+        match restrict_hull_f64(&self.f.pts, t0, t1) {
+            Some((v, _, straddles)) if !v.contains(0.0) || straddles => v,
+            _ => hull(&SpanPoly::restrict(self.f, t0, t1)),
+        }
+    }
+
     /// Whether every coefficient enclosure of F contains 0 or lies within four of its radii of
     /// it (and F is not exactly 0): the rounding of the Bernstein form swamps F, so no box of the
     /// span can be excluded with it
     /// (e.g. a span of 1e-14 where the Bézier points agree to a few ulps and F, their
     /// differences, is below their rounding errors).
-    pub(crate) fn f_swamped(&self) -> bool {
+    pub(crate) fn swamped(&self) -> bool {
         let zero = self.f.pts.iter().all(|x| x.mid() == 0.0 && x.rad() == 0.0);
         // (within a few radii of 0 rather than containing it: a coefficient whose enclosure
         // just misses 0 is as much noise, and then the subdivision cannot exclude boxes either;
@@ -559,7 +575,7 @@ impl SpanPoly {
     ///   in (x0, x1) (intermediate values: the signs at x0 and x1 differ), and F(t0), F(t1)
     ///   (the end coefficients) are not 0: [t0, x0] and [x1, t1] hold none.
     ///
-    /// * **free but for a box at an end of the piece** ([`SpanPoly::end_rule`]), for a piece
+    /// * **free but for a box at an end of the piece** ([`Numerator::end_rule`]), for a piece
     ///   whose coefficient there is rounding noise (a zero of F at a knot, t = 0 or 1, or at
     ///   the halving point t = 1/2 of a symmetric span); that end is then added to the
     ///   estimates, its box reaching into the neighbouring piece.
@@ -612,19 +628,30 @@ impl SpanPoly {
         // the piece popped is always the one stored last, so its storage is freed by
         // truncating (no allocation per piece for the usual degrees). The left half is popped
         // first, so the pieces come in increasing order of t.
+        // (the whole span, the first piece, from `c` itself: most spans need no halving, and
+        // then no arena)
         let mut stack: SmallVec<[(f64, f64, usize, u32); 16]> = SmallVec::new();
         let mut arena: SmallVec<[f64; 512]> = SmallVec::new();
-        arena.extend_from_slice(&c);
-        stack.push((0.0, 1.0, 0, 0));
         let mut v: SmallVec<[f64; 64]> = SmallVec::new();
+        v.extend_from_slice(&c);
+        let mut first = Some((0.0, 1.0, 0));
         // (at most 8 (max + 1) pieces examined: noise-level coefficients of a nearly flat F
         // would otherwise split without end; then no estimates, the search runs as before)
         let mut pieces = 0;
-        while let Some((t0, t1, start, depth)) = stack.pop() {
-            debug_assert_eq!(start + len, arena.len());
-            v.clear();
-            v.extend_from_slice(&arena[start..]);
-            arena.truncate(start);
+        loop {
+            let (t0, t1, depth) = match first.take() {
+                Some(piece) => piece,
+                None => match stack.pop() {
+                    Some((t0, t1, start, depth)) => {
+                        debug_assert_eq!(start + len, arena.len());
+                        v.clear();
+                        v.extend_from_slice(&arena[start..]);
+                        arena.truncate(start);
+                        (t0, t1, depth)
+                    }
+                    None => break,
+                },
+            };
             pieces += 1;
             if pieces > 8 * (max + 1) {
                 return false;
@@ -654,8 +681,8 @@ impl SpanPoly {
                     let (x0, x1) = (r - hr, r + hr);
                     t0 < x0
                         && x1 < t1
-                        && self.f_has_sign(x0, v[0] > 0.0)
-                        && self.f_has_sign(x1, v[len - 1] > 0.0)
+                        && self.has_sign(x0, v[0] > 0.0)
+                        && self.has_sign(x1, v[len - 1] > 0.0)
                 };
                 // (where F's values at r -+ h are below their error bound, a small slope next
                 // to wide coefficients (tiny spans), the box widened once to FLOAT_FIRST_H:
@@ -702,7 +729,7 @@ impl SpanPoly {
     }
 
     /// The boxes of the float-first search and what is left to exclude between them: the
-    /// estimates of [`SpanPoly::zero_estimates`] (at most `max`; `est` and `free` are its
+    /// estimates of [`Numerator::zero_estimates`] (at most `max`; `est` and `free` are its
     /// scratch) as boxes [r - h, r + h] (each with its own half-width, `h` or the wider one of
     /// the estimation) clamped to [0, 1] and merged where they overlap
     /// (`boxes`, increasing), and the parts of [0, 1] outside the boxes that its zero-free
@@ -743,7 +770,7 @@ impl SpanPoly {
     /// The critical points of the piece, proven located (the `bezier` strategy's fast path
     /// on spans of any degree): the boxes of [`SpanPoly::zero_boxes`] (half-width `h`), whose
     /// union holds every zero of F in [0, 1]; `None` unless the estimation's zero-free
-    /// intervals and [`SpanPoly::exclude_gaps`] cover everything outside the boxes. Sound: a
+    /// intervals and [`Numerator::exclude_gaps`] cover everything outside the boxes. Sound: a
     /// zero of F outside every box would lie in a proven zero-free interval or an excluded
     /// gap. Since F has the sign and the zeros of C_j' on the closed span, every interior
     /// extremum of the piece lies in a box.
@@ -769,7 +796,7 @@ impl SpanPoly {
     pub(crate) fn exclude_gaps(&self, gaps: &mut Vec<(f64, f64, u32)>, evals: &mut u64) -> bool {
         while let Some((g0, g1, depth)) = gaps.pop() {
             *evals += 1;
-            let fg = self.f(T::new(g0, g1));
+            let fg = self.over(T::new(g0, g1));
             if !fg.is_empty() && !fg.contains(0.0) {
                 continue; // no zero of F in [g0, g1]
             }
@@ -784,20 +811,7 @@ impl SpanPoly {
         true
     }
 
-    /// The values of the piece over the box [x0, x1] of the local parameter (x0 < x1), cheap
-    /// ([`SpanPoly::values`]).
-    pub(crate) fn box_values(&self, x0: f64, x1: f64) -> Interval {
-        self.values(T::new(x0, x1))
-    }
-
-    /// The values of the piece over the box [x0, x1] of the local parameter, about one ulp
-    /// wide near a critical point, and the value at a parameter inside the box, in `Ddi`
-    /// ([`SpanPoly::tight_over`]).
-    pub(crate) fn box_tight(&self, x0: f64, x1: f64) -> Option<(Interval, Ddi)> {
-        self.tight_over(T::new(x0, x1)).map(|(enc, v, _)| (enc, v))
-    }
-
-    /// The end rule of [`SpanPoly::zero_estimates`], for a zero of F at (or next to) an end of
+    /// The end rule of [`Numerator::zero_estimates`], for a zero of F at (or next to) an end of
     /// a piece, where the piece's end coefficient there is rounding noise: at an end of the
     /// span (a symmetric curve's extremum at a knot), or at the midpoint where the pieces were
     /// halved (a symmetric span's zero of F at t = 1/2). For a piece [t0, t1] whose f64
@@ -815,7 +829,7 @@ impl SpanPoly {
     /// Where F(t1 - h) lies below its error bound (F's slope at the end small against its
     /// largest coefficients, which set the bound of [`value_f64`]: a symmetric curve's
     /// extremum at a knot, the span steep at its far end) the box is widened once to
-    /// [`FLOAT_FIRST_H`], as for the estimates of [`SpanPoly::zero_estimates`] (the same proof
+    /// [`FLOAT_FIRST_H`], as for the estimates of [`Numerator::zero_estimates`] (the same proof
     /// with h' in place of h). Returned: the end, the zero-free interval and the box's
     /// half-width.
     fn end_rule(
@@ -835,7 +849,7 @@ impl SpanPoly {
         if proven_changes(&v[..len - 1], e) == Some(0) {
             for &hr in widths {
                 let x0 = t1 - hr;
-                if t0 < x0 && self.f_has_sign(x0, v[0] > 0.0) {
+                if t0 < x0 && self.has_sign(x0, v[0] > 0.0) {
                     return Some((t1, t0, x0, hr));
                 }
             }
@@ -843,7 +857,7 @@ impl SpanPoly {
         if proven_changes(&v[1..], e) == Some(0) {
             for &hr in widths {
                 let x1 = t0 + hr;
-                if x1 < t1 && self.f_has_sign(x1, v[len - 1] > 0.0) {
+                if x1 < t1 && self.has_sign(x1, v[len - 1] > 0.0) {
                     return Some((t0, x1, t1, hr));
                 }
             }
@@ -854,7 +868,7 @@ impl SpanPoly {
     /// Whether F(t) provably is > 0 (`positive`) or < 0 at the point t in [0, 1]: the f64 value
     /// with its a-priori bound ([`value_f64`], else [`value_vs_f64_weighted`]) excludes 0 on
     /// that side.
-    fn f_has_sign(&self, t: f64, positive: bool) -> bool {
+    fn has_sign(&self, t: f64, positive: bool) -> bool {
         let proves = |v: Option<(Interval, f64)>| match v {
             Some((v, _)) if positive => v.inf() > 0.0,
             Some((v, _)) => v.sup() < 0.0,
@@ -863,18 +877,6 @@ impl SpanPoly {
         // (the plain bound first; where it swamps the value, the one weighted by the basis at
         // t, which sees only the coefficients near t)
         proves(value_f64(&self.f.pts, t)) || proves(value_vs_f64_weighted(&self.f.pts, t))
-    }
-
-    /// Whether F >= 0 / F <= 0 on the whole span (all coefficients of one sign), i.e. C_j
-    /// non-decreasing / non-increasing on the closed span.
-    pub(super) fn f_signs(&self) -> (bool, bool) {
-        // (the ends of the coefficients' enclosures, `Mr::bounds`: the hull's, without an
-        // inari call per coefficient)
-        let (lo, hi) = self.f.pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-            let (l, h) = x.bounds();
-            (lo.min(l), hi.max(h))
-        });
-        (lo >= 0.0, hi <= 0.0)
     }
 }
 
@@ -914,6 +916,204 @@ fn second_hull(dco: &[Mr]) -> Interval {
     Interval::try_from(((lo - e).next_down(), (hi + e).next_up())).unwrap_or(Interval::ENTIRE)
 }
 
+/// The lean form of one span and coordinate for `bezier`'s proof (`bezier::Critical`): of
+/// [`SpanPoly`] only what that proof reads (the shifted double-double segment, F, and the
+/// bounds of its tight box enclosures), built by the same operations (the same shift, the
+/// same F, the same `dfmax` and `wmin`: the same boxes and enclosures), without the form's
+/// `Mr` segment, F' and the hull of F'', which the Newton search and the cheap box values
+/// need.
+pub(crate) struct SpanProof {
+    dseg: BezierSeg<Ddi>,
+    shift: f64,
+    f: BezierSeg<Mr>,
+    dfmax: f64,
+    wmin: f64,
+}
+
+impl Drop for SpanProof {
+    fn drop(&mut self) {
+        pool::give(std::mem::take(&mut self.dseg.pts));
+        pool::give(std::mem::take(&mut self.f.pts));
+    }
+}
+
+impl SpanProof {
+    /// The form of coordinate j of `c` on span k with point i's coordinate j and weight given
+    /// by `row(i)` (as [`SpanPoly::new`], [`SpanPoly::from_coefficients`] and
+    /// [`SpanPoly::from_homogeneous`]; `pair` from [`pair_coefficients`] for a rational curve);
+    /// `None` where F would be unknown (a rational curve without `pair`).
+    pub(crate) fn new(
+        c: &NurbsCurve,
+        j: usize,
+        k: usize,
+        pair: &[Mr],
+        row: impl Fn(usize) -> (Ddi, Ddi),
+    ) -> Option<SpanProof> {
+        let p = c.degree();
+        let rational = c.is_rational();
+        if rational && pair.is_empty() {
+            return None;
+        }
+        // (the local control values and the `Mr` rounding of the points, as the form's `seg`,
+        // in arrays on the stack up to degree 11, filled by plain loops)
+        let (mut xs, mut xh) = ([0.0f64; 12], Vec::new());
+        let xs = filled(&mut xs, &mut xh, p + 1, |i| c.control_point(k - p + i)[j]);
+        let shift = span_shift(xs);
+        let dseg = shifted_from_points(c, k, shift, row);
+        let (mut qs, mut qh) = ([Mr::ENTIRE; 24], Vec::new());
+        let q = filled(&mut qs, &mut qh, dseg.pts.len(), |i| Mr::from_ddi(dseg.pts[i]));
+        let mut fco: Vec<Mr> = pool::take(2 * p);
+        if rational {
+            pair_sum_f64(q, pair, p, &mut fco);
+        } else {
+            fco.extend(q.windows(2).map(|w| w[1] - w[0]));
+        }
+        let (dfmax, wmin) = derivative_bounds(&fco, rational.then_some(q));
+        let f = BezierSeg {
+            a: dseg.a,
+            b: dseg.b,
+            degree: fco.len() - 1,
+            dim: 1,
+            rational: false,
+            pts: fco,
+        };
+        Some(SpanProof { dseg, shift, f, dfmax, wmin })
+    }
+
+    /// F alone ([`Numerator`]).
+    pub(crate) fn numerator(&self) -> Numerator<'_> {
+        Numerator { f: &self.f }
+    }
+
+    /// [`SpanPoly::box_tight`] on this form.
+    pub(crate) fn box_tight(&self, x0: f64, x1: f64) -> Option<(Interval, Ddi)> {
+        let form = BoxForm {
+            dseg: &self.dseg,
+            shift: self.shift,
+            f: &self.f,
+            dfmax: self.dfmax,
+            wmin: self.wmin,
+        };
+        // (|W'| from the `Mr` rounding of the weights, as the form's)
+        let slope = || {
+            let (mut qs, mut qh) = ([Mr::ENTIRE; 24], Vec::new());
+            weight_slope(filled(&mut qs, &mut qh, self.dseg.pts.len(), |i| Mr::from_ddi(self.dseg.pts[i])))
+        };
+        form.tight_over(T::new(x0, x1), slope)
+    }
+}
+
+/// The bounds `dfmax` >= |F'| and `wmin` <= W on the span of [`SpanPoly`] from F's
+/// coefficients `fco` and, for a rational piece, its `Mr` points `q` (rows ((x - c) w, w)):
+/// the hull bound of F' = n sum (F_{i+1} - F_i) B_i^{n-1} and the smallest lower end of the
+/// weights' Bézier points (convex hull property; 1 for a polynomial piece).
+fn derivative_bounds(fco: &[Mr], q: Option<&[Mr]>) -> (f64, f64) {
+    let n = fco.len() - 1;
+    let dfmax = if n == 0 {
+        0.0
+    } else {
+        let nm = Mr::from_usize(n);
+        mag_bound(fco.windows(2).map(|w| nm * (w[1] - w[0])))
+    };
+    (dfmax, q.map_or(1.0, weight_floor))
+}
+
+/// The smallest lower end of the weights' Bézier points among the rows ((x - c) w, w) `q`: a
+/// lower bound of W on the span (convex hull property).
+fn weight_floor(q: &[Mr]) -> f64 {
+    q.iter().skip(1).step_by(2).fold(f64::INFINITY, |m, w| m.min(w.bounds().0))
+}
+
+/// What the tight enclosure over a box of [`SpanPoly::tight_over`] reads: the span's shifted
+/// double-double segment and its shift, F and the bounds |F'| <= `dfmax`, W >= `wmin` on the
+/// span. Shared by [`SpanPoly`] and the lean [`SpanProof`].
+struct BoxForm<'a> {
+    dseg: &'a BezierSeg<Ddi>,
+    shift: f64,
+    f: &'a BezierSeg<Mr>,
+    dfmax: f64,
+    wmin: f64,
+}
+
+impl BoxForm<'_> {
+    /// [`SpanPoly::tight_over`] without v0, with `slope` the bound of |W'| on the span
+    /// ([`weight_slope`], computed only where the weights' lower bound is needed over the box
+    /// alone).
+    fn tight_over(&self, t: T, slope: impl FnOnce() -> f64) -> Option<(Interval, Ddi)> {
+        let seg = self.dseg;
+        let p = seg.degree;
+        let (t0, t1) = (t.lo, t.hi);
+        if !(0.0 <= t0 && t0 < t1 && t1 <= 1.0) {
+            return None;
+        }
+        // (a box of two neighbouring doubles, as the search leaves at machine precision, has no
+        // double strictly inside: then its lower end)
+        let mid = midpoint(t0, t1);
+        let tm = if t0 < mid && mid < t1 { mid } else { t0 };
+        let r = dist_up(tm, t0).max(dist_up(t1, tm));
+        let h = if seg.rational { 2 } else { 1 };
+        let row = |i: usize| -> SmallVec<[Ddi; 32]> {
+            seg.pts.iter().skip(i).step_by(h).copied().collect()
+        };
+        let shift = Ddi::exact(self.shift);
+        // |F| over the box: |F(t_m)| + r max |F'| (mean value theorem; F(t_m) by the f64 value
+        // with its a-priori bound, |F'| <= `dfmax` on the span by the convex hull property), in
+        // O(n); where that is not finite, the f64 restriction's hull with its a-priori bound (a
+        // magnitude is all that is needed here, so no sharper form where that hull holds 0),
+        // else `Mr`'s
+        let by_value = value_f64(&self.f.pts, tm)
+            .map(|(v, _)| iv::add_up(v.mag(), iv::mul_up(r, self.dfmax)))
+            .filter(|m| m.is_finite());
+        let fm = match by_value {
+            Some(m) => m,
+            None => match restrict_hull_f64(&self.f.pts, t0, t1) {
+                Some((v, _, _)) => v.mag(),
+                None => hull(&SpanPoly::restrict(self.f, t0, t1)).mag(),
+            },
+        };
+        // (the rows' values at t_m: in double words with one a-priori bound up to degree
+        // VS_DW_MAX, else by the scheme in `Ddi`)
+        let (v, e) = if seg.rational {
+            let wmin = self.wmin;
+            if wmin.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                return None;
+            }
+            let [x, w] = value_vs_dw::<2>(&seg.pts, h, tm).unwrap_or_else(|| {
+                [bernstein_value_s(&row(0), tm), bernstein_value_s(&row(1), tm)]
+            });
+            let v = x / w + shift;
+            let rf = iv::mul_up(r, fm);
+            let e = iv::div_up(iv::div_up(rf, wmin), wmin);
+            // (where that is not far below an ulp of the value: W over the box is at least
+            // W(t_m) - r max |W'| by the mean value theorem, often far above the span's smallest
+            // weight wmin when the weights vary over the span (|W'| bounded by
+            // [`weight_slope`], computed only here); either bound holds, the larger is taken; a
+            // NaN or infinite term fails the comparison and leaves wmin)
+            let e = if e <= 0.125 * crate::num::ulp(v.hi()) {
+                e
+            } else {
+                let local = (w.lower_end() - iv::mul_up(r, slope())).next_down();
+                let wb = if local > wmin { local } else { wmin };
+                iv::div_up(iv::div_up(rf, wb), wb)
+            };
+            (v, e)
+        } else {
+            let [x] = value_vs_dw::<1>(&seg.pts, h, tm)
+                .unwrap_or_else(|| [bernstein_value_s(&row(0), tm)]);
+            let v = x + shift;
+            let e = iv::mul_up(iv::mul_up(r, fm), p as f64);
+            (v, e)
+        };
+        if v.is_entire() || !e.is_finite() {
+            return None;
+        }
+        // (widened in double-double, then rounded outward once: a tiny e does not cost the
+        // extra ulp on each side that adding it in f64 intervals would)
+        let enc = v.widen(e).to_interval();
+        Some((enc, v))
+    }
+}
+
 /// An upper bound of |W'(t)| for t in [0, 1], W the weight of a rational Bézier segment whose
 /// homogeneous points `pts` are (x w, w) pairs of degree p (`Mr` enclosures): W' = p sum_i
 /// (w_{i+1} - w_i) B_i^{p-1} (the hodograph, NURBS Book eq. 1.10) with nonnegative Bernstein
@@ -942,7 +1142,7 @@ fn weight_slope(pts: &[Mr]) -> f64 {
 /// round to nearest is odd and monotone, and |c| for r = 0; next_up is monotone, so the
 /// largest of those is next_up of the largest |c| + r, with the exact ones beside: the same
 /// value, without two steps per coefficient.
-fn mag_bound(v: &[Mr]) -> f64 {
+fn mag_bound(v: impl IntoIterator<Item = Mr>) -> f64 {
     let (mut exact, mut wide) = (0.0f64, f64::NEG_INFINITY);
     for x in v {
         if x.rad() == 0.0 {
@@ -957,7 +1157,7 @@ fn mag_bound(v: &[Mr]) -> f64 {
 /// de Casteljau's split at 1/2 (NURBS Book A1.5) of the f64 Bernstein coefficients `b`
 /// (overwritten) into `left` (over [0, 1/2]) and `right` (over [1/2, 1]): the shared kernel's
 /// levels written to caller buffers (`bezier::de_casteljau_split` without its allocations), for
-/// the estimates of [`SpanPoly::zero_estimates`].
+/// the estimates of [`Numerator::zero_estimates`].
 /// (Generic so that the test of [`halving_bound`] runs the same splits in exact arithmetic.)
 fn halve<S: Scalar>(b: &mut [S], left: &mut [S], right: &mut [S]) {
     let n = b.len() - 1;
@@ -970,7 +1170,7 @@ fn halve<S: Scalar>(b: &mut [S], left: &mut [S], right: &mut [S]) {
 }
 
 /// A bound E_d of the distance of every f64 coefficient of a piece of depth d of
-/// [`SpanPoly::zero_estimates`] (d halvings by [`halve`] of the midpoints of degree-n
+/// [`Numerator::zero_estimates`] (d halvings by [`halve`] of the midpoints of degree-n
 /// coefficients, largest |midpoint| `m`, largest radius `rad`) from the exact coefficient of
 /// F over the piece (whose ends are dyadic, so exact): each halving is n de Casteljau levels at
 /// t = 1/2 in the f64 kernel, every level an error of at most 5.01 u M̄ + 1.01 η against the
@@ -1024,12 +1224,12 @@ fn push_free(free: &mut Vec<(f64, f64)>, lo: f64, hi: f64) {
     }
 }
 
-/// A zero estimate of [`SpanPoly::zero_estimates`] and the half-width of its box.
+/// A zero estimate of [`Numerator::zero_estimates`] and the half-width of its box.
 pub(super) type Estimate = (f64, f64);
 
 /// The half-width 2^-30 of `newton`'s float-first boxes in the local parameter
 /// (`Engine::seed_float_first`), and of an estimate's box where the caller's own is too
-/// narrow for the signs of F at its ends to be proven ([`SpanPoly::zero_estimates`]).
+/// narrow for the signs of F at its ends to be proven ([`Numerator::zero_estimates`]).
 pub(super) const FLOAT_FIRST_H: f64 = 1.0 / 1_073_741_824.0;
 
 /// How close (in t in [0, 1]) an estimate of [`locate`] needs to be: far below the half-width
@@ -1064,7 +1264,7 @@ fn polygon_crossing(v: &[f64], t0: f64, t1: f64) -> f64 {
 /// where the sign changes once: Newton's method from `start` (the midpoint if `start` is not
 /// inside), a bisection step whenever
 /// it leaves the bracket, until a step or the bracket is below [`LOCATE_TOL`] (an estimate
-/// only; see [`SpanPoly::zero_estimates`]).
+/// only; see [`Numerator::zero_estimates`]).
 fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64, start: f64) -> f64 {
     let f0 = crate::spline::bezier::bernstein_value(c, t0);
     let mut t = if start > t0 && start < t1 {
@@ -1195,6 +1395,17 @@ pub(crate) fn segment_values_f64(seg: &BezierSeg<Mr>, t0: f64, t1: f64) -> Optio
 /// weight near 1e-214). A non-finite centre or bound gives ENTIRE. Tested against exact rational
 /// sums over the corners of the input enclosures (`pair_sum_bound_holds_exactly`).
 fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize, out: &mut Vec<Mr>) {
+    // (the scratch rows on the stack, zeroed by a few wide stores: sized for degree 7 where
+    // that is enough, the usual degrees, else for degree 31; the heap above)
+    if p <= 7 {
+        pair_sum_f64_in::<48, 65>(q, pair, p, out)
+    } else {
+        pair_sum_f64_in::<192, 160>(q, pair, p, out)
+    }
+}
+
+/// [`pair_sum_f64`] with scratch arrays of `R` and `A` values on the stack.
+fn pair_sum_f64_in<const R: usize, const A: usize>(q: &[Mr], pair: &[Mr], p: usize, out: &mut Vec<Mr>) {
     const C: f64 = f64::EPSILON / 2.0; // u
     let n = 2 * p - 1;
     let m1 = p + 1;
@@ -1206,8 +1417,7 @@ fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize, out: &mut Vec<Mr>) {
     // (exactly zero: centre and radius; a test on the computed ρ would let a radius product
     // that underflowed to 0 pass)
     let nil = |x: Mr| x.mid() == 0.0 && x.rad() == 0.0;
-    // (on the stack up to degree 31, zeroed by a few wide stores)
-    let (mut rows_s, mut rows_h) = ([0.0f64; 192], Vec::new());
+    let (mut rows_s, mut rows_h) = ([0.0f64; R], Vec::new());
     let rows = zeroed(&mut rows_s, &mut rows_h, 6 * m1);
     for (i, x) in q.chunks_exact(2).take(m1).enumerate() {
         rows[i] = x[0].mid();
@@ -1228,7 +1438,7 @@ fn pair_sum_f64(q: &[Mr], pair: &[Mr], p: usize, out: &mut Vec<Mr>) {
         wn: row(5),
     };
     // per k: the centre d, the radius terms, sum |P| S, the η count, the number of terms m
-    let (mut acc_s, mut acc_h) = ([0.0f64; 160], Vec::new());
+    let (mut acc_s, mut acc_h) = ([0.0f64; A], Vec::new());
     let acc = zeroed(&mut acc_s, &mut acc_h, 5 * n);
     for i in 0..p {
         let len = p - i;
@@ -1268,6 +1478,24 @@ fn zeroed<'a, const N: usize>(stack: &'a mut [f64; N], heap: &'a mut Vec<f64>, l
         &mut stack[..len]
     } else {
         heap.resize(len, 0.0);
+        heap
+    }
+}
+
+/// `len` values `f(0), f(1), ..`: the front of `stack` where it is long enough, else `heap`.
+fn filled<'a, T: Copy, const N: usize>(
+    stack: &'a mut [T; N],
+    heap: &'a mut Vec<T>,
+    len: usize,
+    f: impl Fn(usize) -> T,
+) -> &'a mut [T] {
+    if len <= N {
+        for (i, x) in stack[..len].iter_mut().enumerate() {
+            *x = f(i);
+        }
+        &mut stack[..len]
+    } else {
+        heap.extend((0..len).map(f));
         heap
     }
 }
@@ -1664,6 +1892,7 @@ pub(crate) const VS_DW_MAX: usize = 56;
 /// result is the `Ddi` with the computed centre and radius E. (|partial sums| <= 2^n M: no
 /// overflow below 2^1000 M.) Tested against exact rational evaluation
 /// (`vs_dw_value_bound_holds_exactly`).
+#[inline(always)]
 pub(crate) fn value_vs_dw<const R: usize>(co: &[Ddi], h: usize, t: f64) -> Option<[Ddi; R]> {
     use crate::num::dw::Dw;
     let n = (co.len() / h).checked_sub(1)?;
@@ -2002,6 +2231,29 @@ mod tests {
         (pair, spans)
     }
 
+    /// A random curve of degree 1..=10 and dimension 1..=3 ([`random_curve`]) with flat runs
+    /// (some control values repeated), and its dimension.
+    ///
+    /// [`random_curve`]: crate::spline::tight::tests::random_curve
+    fn curve_with_flat_runs(rng: &mut rand_chacha::ChaCha8Rng) -> (NurbsCurve, usize) {
+        use rand::Rng;
+        let dim = rng.random_range(1..=3usize);
+        let c0 = crate::spline::tight::tests::random_curve(rng, dim);
+        let mut pts: Vec<Vec<f64>> = (0..c0.num_points())
+            .map(|i| c0.control_point(i).to_vec())
+            .collect();
+        for i in 1..pts.len() {
+            if rng.random_bool(0.3) {
+                let j = rng.random_range(0..dim);
+                pts[i][j] = pts[i - 1][j];
+            }
+        }
+        let w = c0
+            .is_rational()
+            .then(|| (0..c0.num_points()).map(|i| c0.weight(i)).collect());
+        (NurbsCurve::new(c0.degree(), c0.knots().to_vec(), pts, w).unwrap(), dim)
+    }
+
     /// The form's Bézier points from the span's shared double-double points enclose the same
     /// exact points as the shifted rows' own knot insertion (`shifted_segment`, in `Mr` and in
     /// `Ddi`): each of its `Mr` and `Ddi` points intersects the reference's, on random curves of
@@ -2010,27 +2262,12 @@ mod tests {
     /// (Fails if a row, the weight index or the shift's sign is wrong.)
     #[test]
     fn shared_points_give_the_same_forms() {
-        use rand::{Rng, SeedableRng};
+        use rand::SeedableRng;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(21);
         let meet = |a: Interval, b: Interval| !a.intersection(b).is_empty();
         let mut checked = 0;
         for _ in 0..150 {
-            let dim = rng.random_range(1..=3usize);
-            let c0 = crate::spline::tight::tests::random_curve(&mut rng, dim);
-            // flat runs: some control values repeated
-            let mut pts: Vec<Vec<f64>> = (0..c0.num_points())
-                .map(|i| c0.control_point(i).to_vec())
-                .collect();
-            for i in 1..pts.len() {
-                if rng.random_bool(0.3) {
-                    let j = rng.random_range(0..dim);
-                    pts[i][j] = pts[i - 1][j];
-                }
-            }
-            let w = c0
-                .is_rational()
-                .then(|| (0..c0.num_points()).map(|i| c0.weight(i)).collect());
-            let c = NurbsCurve::new(c0.degree(), c0.knots().to_vec(), pts, w).unwrap();
+            let (c, dim) = curve_with_flat_runs(&mut rng);
             let (pair, spans) = pair_and_spans(&c);
             let tight = crate::spline::tight::TightEval::new(&c);
             for k in spans {
@@ -2051,6 +2288,50 @@ mod tests {
             }
         }
         assert!(checked > 300, "{checked}");
+    }
+
+    /// The lean form ([`SpanProof`], `bezier`'s proof) is the full form's ([`SpanPoly`]) as far
+    /// as that proof reads it: the same F bit for bit, the same bounds `dfmax` and `wmin`, the
+    /// same critical boxes and the same tight enclosures and values over them, on random curves
+    /// of degree 1..=10 with flat runs (both forms built from the span's shared double-double
+    /// points). (Fails where the lean form computes F, a bound, or the shift otherwise.)
+    #[test]
+    fn lean_form_proves_as_the_full_form() {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(23);
+        let (mut checked, mut boxes) = (0, 0);
+        for _ in 0..200 {
+            let (c, dim) = curve_with_flat_runs(&mut rng);
+            let (pair, spans) = pair_and_spans(&c);
+            let tight = crate::spline::tight::TightEval::new(&c);
+            let h = dim + c.is_rational() as usize;
+            for k in spans {
+                let q = tight.bezier_points(k);
+                for j in 0..dim {
+                    let full = SpanPoly::new(&c, j, k, &pair, q);
+                    let lean = SpanProof::new(&c, j, k, &pair, |i| (q[i * h + j], q[i * h + h - 1]))
+                        .expect("F is known");
+                    let at = format!("{c:?} k={k} j={j}");
+                    assert_eq!(full.f.pts, lean.f.pts, "{at}");
+                    assert_eq!(full.c.to_bits(), lean.shift.to_bits(), "{at}");
+                    assert_eq!(full.dfmax.to_bits(), lean.dfmax.to_bits(), "{at}");
+                    assert_eq!(full.wmin.to_bits(), lean.wmin.to_bits(), "{at}");
+                    let found = full.critical_boxes(1.0 / 1_099_511_627_776.0);
+                    assert_eq!(found, lean.numerator().critical_boxes(1.0 / 1_099_511_627_776.0), "{at}");
+                    for &(x0, x1) in found.iter().flatten() {
+                        let (a, b) = (full.box_tight(x0, x1), lean.box_tight(x0, x1));
+                        assert_eq!(a.is_some(), b.is_some(), "{at}");
+                        if let (Some((ea, va)), Some((eb, vb))) = (a, b) {
+                            assert_eq!((ea.inf(), ea.sup()), (eb.inf(), eb.sup()), "{at}");
+                            assert_eq!(va.parts(), vb.parts(), "{at}");
+                            boxes += 1;
+                        }
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 300 && boxes > 100, "{checked} {boxes}");
     }
 
     /// `SpanPoly::tight_over` encloses the piece on its box (degrees 1..=10 and 30..=40): at
@@ -2461,7 +2742,7 @@ mod tests {
                 })
                 .collect();
             let want = co.iter().fold(0.0f64, |a, x| a.max(x.mag()));
-            assert_eq!(mag_bound(&co).to_bits(), want.to_bits(), "{co:?}");
+            assert_eq!(mag_bound(co.iter().copied()).to_bits(), want.to_bits(), "{co:?}");
             let h = second_hull(&co);
             if m < 2 {
                 assert_eq!((h.inf(), h.sup()), (0.0, 0.0));
@@ -3159,7 +3440,7 @@ mod tests {
         }
     }
 
-    /// Every zero of F lies outside the intervals that [`SpanPoly::zero_estimates`] proves
+    /// Every zero of F lies outside the intervals that [`Numerator::zero_estimates`] proves
     /// zero-free: F = prod (t - r_i) (times a constant) in Bernstein form, exact, then rounded
     /// to enclosures; roots random, in pairs 1e-6 .. 1e-15 apart (a near-double zero), at the
     /// dyadic piece ends 1/2 and 1/4, at the span's ends and 1e-8 .. 1e-15 inside or outside
