@@ -722,16 +722,15 @@ pub(crate) fn coefficient_side(
     let pr = proof.get_or_insert_with(|| {
         let p = q.len() - 1;
         let ends = || [q[0], q[p]];
-        let pair = match hom {
-            Some(_) => crate::enclose::newton::bernstein::pair_coefficients(c.degree()),
-            None => std::rc::Rc::from([]),
-        };
+        // (the pair coefficients of a rational span; none, and no allocation, otherwise)
+        let pair = hom.map(|_| crate::enclose::newton::bernstein::pair_coefficients(c.degree()));
+        let pair: &[Mr] = pair.as_deref().unwrap_or(&[]);
         let row = |i: usize| match hom {
             Some((x, w)) => (x[i], w[i]),
             None => (q[i], Ddi::exact(1.0)),
         };
         // (the lean form first; without a Taylor form here, a wide box is taken as it is)
-        let located = match SpanProof::new(c, j, k, &pair, row) {
+        let located = match SpanProof::new(c, j, k, pair, row) {
             Some(sp) => match Critical::lean(&sp, c, k, ends, true) {
                 Ok(found) => return CoefficientProof(Some(found)),
                 Err(located) => located,
@@ -739,7 +738,7 @@ pub(crate) fn coefficient_side(
             None => true,
         };
         let sp = match hom {
-            Some((x, w)) => SpanPoly::from_homogeneous(c, j, k, &pair, x, w),
+            Some((x, w)) => SpanPoly::from_homogeneous(c, j, k, pair, x, w),
             None => SpanPoly::from_coefficients(c, j, k, q),
         };
         CoefficientProof(Critical::prove(sp, c, k, ends, |_| None, located))

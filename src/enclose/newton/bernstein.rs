@@ -505,7 +505,7 @@ impl SpanPoly {
 /// the form (the lean proof of `bezier::Critical`).
 #[derive(Clone, Copy)]
 pub(crate) struct Numerator<'a> {
-    pub(crate) f: &'a BezierSeg<Mr>,
+    f: &'a BezierSeg<Mr>,
 }
 
 impl Numerator<'_> {
