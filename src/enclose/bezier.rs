@@ -552,10 +552,15 @@ impl Critical {
         };
         let kn = c.knots();
         let mut boxes: SmallVec<[CriticalBox; 4]> = SmallVec::new();
+        let mut open = None;
         for &(x0, x1) in &found {
-            let (enc, v) = sp.box_tight(x0, x1).ok_or(true)?;
+            let Some((enc, v)) = sp.box_tight(x0, x1) else {
+                open = Some(true);
+                break;
+            };
             if !wide && enc.sup() > enc.inf().next_up() {
-                return Err(true);
+                open = Some(true);
+                break;
             }
             boxes.push(CriticalBox {
                 x0,
@@ -565,7 +570,12 @@ impl Critical {
                 v: Some(v),
             });
         }
-        Ok(Critical { ends: ends(), boxes })
+        // (the boxes' vector back to this thread's pool)
+        crate::num::pool::give(found);
+        match open {
+            Some(located) => Err(located),
+            None => Ok(Critical { ends: ends(), boxes }),
+        }
     }
 
     /// The proof on the span of `sp` (span k of `c`) with the piece's enclosed end values
@@ -611,6 +621,7 @@ impl Critical {
                 v: None,
             })
             .collect();
+        crate::num::pool::give(found);
         let l = left.to_interval();
         let (att_hi, att_lo) = boxes.iter().fold((l.inf(), l.sup()), |(h, lo), b| {
             (h.max(b.enc.inf()), lo.min(b.enc.sup()))

@@ -775,9 +775,10 @@ impl Numerator<'_> {
     /// gap. Since F has the sign and the zeros of C_j' on the closed span, every interior
     /// extremum of the piece lies in a box.
     pub(crate) fn critical_boxes(&self, h: f64) -> Option<Vec<(f64, f64)>> {
-        // (the scratch vectors from this thread's pool, `num::pool`, and handed back)
+        // (the scratch vectors from this thread's pool, `num::pool`, and handed back; the
+        // boxes' vector too, which a caller may give back to the pool when done)
         let (mut est, mut free, mut gaps) = (pool::take(0), pool::take(0), pool::take(0));
-        let mut boxes = Vec::new();
+        let mut boxes = pool::take(0);
         let max = self.f.pts.len() + 1;
         let found = self.zero_boxes(h, max, (&mut est, &mut free), &mut boxes, &mut gaps)
             && self.exclude_gaps(&mut gaps, &mut 0);
