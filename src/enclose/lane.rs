@@ -136,8 +136,8 @@ const WEIGHT_SPREAD: i32 = 12;
 
 impl<'a> Simple<'a> {
     /// The curve as a [`Simple`] one, or `None`: rational (degree 2 to 5) with a weight
-    /// outside [2^-100, 2^100) or weights spread over more than 2^12,
-    /// degree above [`LANE_MAX_DEGREE`], dimension above [`MAX_DIM`], extreme magnitudes; and a curve of
+    /// outside [2^-100, 2^100) or weights spread over more than 2^12, rational above degree
+    /// [`RATIONAL_MAX_DEGREE`], degree above [`LANE_MAX_DEGREE`], dimension above [`MAX_DIM`], extreme magnitudes; and a curve of
     /// several spans unless it is a clamped, continuous (interior knot multiplicities at most
     /// p) spline of degree 2 to [`LANE_MAX_DEGREE`] with moderate knots.
     #[inline]

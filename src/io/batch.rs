@@ -184,7 +184,7 @@ pub fn group_for(strategies: &[Box<dyn BoxEncloser>]) -> bool {
 
 /// The room reserved for one record's output lines: a 2-D or 3-D curve's enclosure record is
 /// 400-550 bytes, so the buffer is allocated once instead of growing from empty in six steps
-/// (8, 16, .., 512 bytes: five reallocations per record, ~4% of `hull`'s instructions on a
+/// (8, 16, .., 512 bytes: five reallocations per record, ~6% of `hull`'s instructions on a
 /// spline suite).
 const RECORD_BYTES: usize = 640;
 
