@@ -511,7 +511,7 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
         verified: true,
         coords: Default::default(),
     };
-    // The lane for a clamped polynomial segment or spline of degree <= 7, or a clamped
+    // The lane for a clamped polynomial segment or spline of degree <= 5, or a clamped
     // rational curve of degree 2 to 5, with moderate magnitudes (`lane`: the same facts and
     // certificates, computed directly).
     let laned = s.lane().is_some_and(|l| {

@@ -1,6 +1,6 @@
 //! The driver's lane for the commonest input: one clamped polynomial Bézier segment of degree
-//! 1 to 7 (a line, a font's quadratic, a cubic Bézier) with moderate magnitudes, a clamped
-//! polynomial spline of degree 2 to 7 with moderate knots, a clamped rational curve of degree
+//! 1 to 5 (a line, a font's quadratic, a cubic Bézier) with moderate magnitudes, a clamped
+//! polynomial spline of degree 2 to 5 with moderate knots, a clamped rational curve of degree
 //! 2 to 5 (one segment or a spline: conic arcs, a NURBS circle, rational cubics) with moderate
 //! weights, and any polyline
 //! (degree 1, rational or not, clamped or not, jumps at double knots, any magnitude)
@@ -20,7 +20,7 @@
 //!   of the `bezier` strategy's fast path (`bezier::single`, degree 2 and 3: f64 root estimates
 //!   of C_j', proven derivative signs at test points by an f64 filter with an a-priori error
 //!   bound, root counting, a double-double Taylor enclosure over each tiny bracket; degree 4
-//!   to 7: its general fast path, `bezier::coefficient_side`, the zeros of C_j' located by
+//!   and 5: its general fast path, `bezier::coefficient_side`, the zeros of C_j' located by
 //!   Bernstein subdivision with proven sign counts; a rational conic: `bezier::conic`, the
 //!   same root isolation on the quadratic numerator of C_j' = N / W^2 and a mean value bound
 //!   over each bracket; a rational curve of degree 3 to 5: the general fast path on the
@@ -63,20 +63,11 @@ pub enum Lane {
 const KNOT_EXP: i32 = 1000;
 
 /// The highest degree the lane takes (polynomial segments and splines; above degree 3 every
-/// span goes through the general fast path's proof, `bezier::coefficient_side`; rational
-/// curves up to [`RATIONAL_MAX_DEGREE`]). Degree 6 and 7 since polynomial curves of those
-/// degrees cost less here than on the general path (callgrind on the spline suite's 24: 5.90M
-/// -> 5.30M instructions, outputs the same bounds, certificates and inner bounds).
-pub const LANE_MAX_DEGREE: usize = 7;
+/// span goes through the general fast path's proof, `bezier::coefficient_side`).
+pub const LANE_MAX_DEGREE: usize = 5;
 
-/// The highest degree of a rational curve the lane takes (above it the general path, whose
-/// proofs cost the same and whose span filter is tighter than the lane's quotient bounds:
-/// callgrind on the spline suite's rational curves of degree 6 and 7, 6.14M instructions on
-/// the general path, 6.19M with the lane).
-const RATIONAL_MAX_DEGREE: usize = 5;
-
-/// A curve the lane takes: one clamped polynomial Bézier segment of degree 1..=7 over [a, b],
-/// a clamped polynomial spline of degree 2..=7, or a clamped rational curve of degree 2..=5
+/// A curve the lane takes: one clamped polynomial Bézier segment of degree 1..=5 over [a, b],
+/// a clamped polynomial spline of degree 2..=5, or a clamped rational curve of degree 2..=5
 /// (one segment or a spline, moderate weights), every coordinate moderate; or a polyline.
 #[derive(Debug, Clone, Copy)]
 pub struct Simple<'a> {
@@ -136,8 +127,8 @@ const WEIGHT_SPREAD: i32 = 12;
 
 impl<'a> Simple<'a> {
     /// The curve as a [`Simple`] one, or `None`: rational (degree 2 to 5) with a weight
-    /// outside [2^-100, 2^100) or weights spread over more than 2^12, rational above degree
-    /// [`RATIONAL_MAX_DEGREE`], degree above [`LANE_MAX_DEGREE`], dimension above [`MAX_DIM`], extreme magnitudes; and a curve of
+    /// outside [2^-100, 2^100) or weights spread over more than 2^12,
+    /// degree above [`LANE_MAX_DEGREE`], dimension above [`MAX_DIM`], extreme magnitudes; and a curve of
     /// several spans unless it is a clamped, continuous (interior knot multiplicities at most
     /// p) spline of degree 2 to [`LANE_MAX_DEGREE`] with moderate knots.
     #[inline]
@@ -156,7 +147,6 @@ impl<'a> Simple<'a> {
         // square of that ratio, the f64 filter's quotient bound with the ratio: beyond it the
         // general path, whose enclosures do not, answers).
         let w = match c.weights() {
-            Some(_) if p > RATIONAL_MAX_DEGREE => return None,
             Some(w) if p >= 2 => {
                 const LO: f64 = pow2(-WEIGHT_EXP);
                 const HI: f64 = pow2(WEIGHT_EXP);
@@ -583,7 +573,7 @@ fn conic_segment(s: &Simple, w: &[f64], j: usize, cb: &mut CoordBox) -> Option<(
     Some(())
 }
 
-/// The side `sign` of coordinate j of a spline (degree 2 to 7, several spans, or a single
+/// The side `sign` of coordinate j of a spline (degree 2 to 5, several spans, or a single
 /// segment above degree 3; a rational conic, one segment or several, as below), best first
 /// over the spans, as the `bezier` strategy's branch and bound does with its shortcuts, on
 /// stack buffers:
@@ -952,7 +942,7 @@ fn spline_side(
 /// underflowing products). Tested against exact rational insertion
 /// (`closed_form_span_coefficients_match_exact_insertion`).
 ///
-/// Degree 4 to 7: Boehm's insertion itself (`bspline::clamp_span`, NURBS Book A5.1 at both
+/// Degree 4 and 5: Boehm's insertion itself (`bspline::clamp_span`, NURBS Book A5.1 at both
 /// ends of the span), on the stack, of every coordinate at once ([`span_coefficients_rows`]:
 /// the same operations on each row, with the knot ratios shared). Every step is a corner cut fl(lo + fl(α fl(hi - lo))) with
 /// α = fl(fl(u - t_a) / fl(t_b - t_a)) in [0, 1] (a ratio of knot differences: within
@@ -1987,7 +1977,7 @@ mod tests {
         let mut r = gen::rng(47);
         let (mut spans, mut worst, mut worst_cut) = (0, 0.0f64, 0.0f64);
         for _ in 0..200 {
-            let p = r.random_range(3..=RATIONAL_MAX_DEGREE);
+            let p = r.random_range(3..=LANE_MAX_DEGREE);
             let Some((c, weights)) = random_rational_spline(&mut r, p) else {
                 continue;
             };
