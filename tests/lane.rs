@@ -202,6 +202,34 @@ fn lane_answer(c: &NurbsCurve) -> Option<Enclosure> {
     enclose_into(&mut e, Lane::Tight, "newton", c, &s, true).then_some(e)
 }
 
+/// Symmetric polynomial splines of degree 2 and 3 whose extremum lies exactly at a knot (a
+/// double zero of C_j' there, where the root-isolating proof of the quadratic or cubic fails):
+/// the lane answers every one itself (the general fast path's proof on the span after that
+/// one), within two ulps, every bound certified optimal, and agrees with the general path.
+#[test]
+fn the_lane_keeps_extrema_at_knots() {
+    let mut r = gen::rng(41);
+    let (mut eligible, mut taken, mut uncertified, mut worst) = (0, 0, 0, 0.0f64);
+    while eligible < 200 {
+        let c = Family::ExtremaAtKnots.curve(&mut r);
+        if c.degree() > 3 || c.is_rational() || Simple::of(&c).is_none() {
+            continue;
+        }
+        eligible += 1;
+        check(&c).unwrap();
+        if let Some(e) = lane_answer(&c) {
+            taken += 1;
+            for (j, cb) in e.coords.iter().enumerate() {
+                worst = worst.max(cb.gap() / nurbs_box::num::ulp(c.coord_scale(j)));
+                uncertified += !(cb.optimal_lo && cb.optimal_hi) as usize;
+            }
+        }
+    }
+    assert_eq!(taken, eligible, "lane taken {taken} of {eligible}");
+    assert_eq!(uncertified, 0, "uncertified coordinates");
+    assert!(worst <= 2.0, "gap {worst} ulps");
+}
+
 /// Conic arcs and rational cubic segments (single rational segments of degree 2 and 3,
 /// weights 0.2..5) are taken by the lane (no fallback) nearly always, within two ulps, and
 /// agree with the general paths.
