@@ -48,6 +48,7 @@
 use super::{
     BoxEncloser, CandidateKind, CoordBox, Enclosure, Extremum, Guarantee, Stats, Termination,
 };
+use crate::num::pool;
 use crate::num::ddi::Ddi;
 use smallvec::SmallVec;
 use crate::num::iv;
@@ -454,6 +455,34 @@ struct Ctx<'a> {
     pair: Option<std::rc::Rc<[Mr]>>,
 }
 
+/// `len` times `None` in a vector from the thread's pool.
+fn blank<T>(len: usize) -> Vec<Option<T>>
+where
+    Option<T>: pool::Pooled,
+{
+    let mut v = pool::take(len);
+    v.resize_with(len, || None);
+    v
+}
+
+impl Drop for Ctx<'_> {
+    fn drop(&mut self) {
+        pool::give(std::mem::take(&mut self.spans));
+        pool::give(std::mem::take(&mut self.segs));
+        pool::give(std::mem::take(&mut self.crit));
+        pool::give(std::mem::take(&mut self.hulls));
+    }
+}
+
+// (per-thread pools of the branch and bound's per-curve vectors and work items: a batch
+// took six heap blocks per curve of the general path, some of several KB)
+pool::pooled!(
+    Option<BezierSeg<Mr>> => SEG_POOL,
+    Option<(usize, Option<Critical>)> => CRIT_POOL,
+    Option<(usize, SpanPoints)> => HULL_POOL,
+    Item => ITEM_POOL
+);
+
 /// The degree up to which the general fast path runs (its derivative numerator, of degree at
 /// most 2p - 2, is then evaluated by the O(n) scheme of `newton`'s Bernstein form).
 const GENERAL_MAX_DEGREE: usize = 64;
@@ -464,14 +493,18 @@ impl<'a> Ctx<'a> {
         let (p, n) = (c.degree(), c.num_points() - 1);
         let kn = c.knots();
         let single = fast && !c.is_rational() && (2..=3).contains(&p);
+        // (indexed by k - p, spans p ..= n: a high-degree curve has few spans and many
+        // control points; the vectors come from and go back to the thread's pools, `Drop`)
+        let mut spans = pool::take(n + 1 - p);
+        spans.extend((p..=n).filter(|&k| kn[k] < kn[k + 1]));
         Ctx {
             vals: Values::new(c),
             single,
             general: fast && !single && (2..=GENERAL_MAX_DEGREE).contains(&p),
-            spans: (p..=n).filter(|&k| kn[k] < kn[k + 1]).collect(),
-            segs: vec![None; n + 1],
-            crit: (0..=n).map(|_| None).collect(),
-            hulls: vec![None; n + 1],
+            spans,
+            segs: blank(n + 1 - p),
+            crit: blank(n + 1 - p),
+            hulls: blank(n + 1 - p),
             pair: None,
         }
     }
@@ -810,7 +843,7 @@ impl BezierSubdivision {
         // bounds it. (Taken from the heap instead, it came after the spans next to it whose
         // bound it often equals, and each of those was then searched up to the knot where it
         // meets the constant with a zero of C_j'.)
-        let mut items: Vec<Item> = Vec::with_capacity(spans.len());
+        let mut items: Vec<Item> = pool::take(spans.len());
         for &k in spans.iter() {
             let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
             for i in k - p..=k {
@@ -842,7 +875,8 @@ impl BezierSubdivision {
         let mut heap = std::collections::BinaryHeap::from(items);
         let ub = |c: &[Interval]| c.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.sup()));
         let mut pieces = 0usize;
-        let mut csegs: Vec<Option<BezierSeg<Mr>>> = vec![None; segs.len()];
+        // (built on the first piece: most sides end before any subdivision)
+        let mut csegs: Vec<Option<BezierSeg<Mr>>> = Vec::new();
         let cost = ((p + 1) as u64).pow(2);
         // a piece costs about four de Casteljau passes of (p + 1)^2 / 2 steps plus evaluations
         // (plus an allowance per span that also shrinks with the cost, as newton's: a fixed
@@ -864,12 +898,12 @@ impl BezierSubdivision {
                 // and its pieces.
                 if !item.filtered {
                     let last = k == spans[spans.len() - 1];
-                    let hull = match hulls[k] {
+                    let hull = match hulls[k - p] {
                         Some((jj, h)) if jj == j => h,
                         _ => {
                             let pts = vals.tight.bezier_points(k);
                             let h = span_points(pts, p, j, c.is_rational());
-                            hulls[k] = Some((j, h));
+                            hulls[k - p] = Some((j, h));
                             h
                         }
                     };
@@ -892,7 +926,7 @@ impl BezierSubdivision {
                 // b_0 = C(u_k) is attained, b_p only where u_{k+1} is no jump; `None` beyond
                 // the gap tolerance (a peak at an unattained left limit), and the search below
                 // runs. No Bernstein form and no critical boxes.
-                if let Some((jj, h)) = hulls[k] {
+                if let Some((jj, h)) = hulls[k - p] {
                     if jj == j && h.end_peaked(sign) {
                         let cr = Critical {
                             ends: [false, true].map(|right| vals.tight.end_value(j, k, right)),
@@ -939,7 +973,7 @@ impl BezierSubdivision {
                 // nothing (then the `Mr` segment and its subdivision follow). Its proof is
                 // shared by both sides of the coordinate.
                 if *general {
-                    if !matches!(crit[k], Some((jj, _)) if jj == j) {
+                    if !matches!(crit[k - p], Some((jj, _)) if jj == j) {
                         let pr = pair.get_or_insert_with(|| {
                             if c.is_rational() {
                                 super::newton::bernstein::pair_coefficients(p)
@@ -947,9 +981,9 @@ impl BezierSubdivision {
                                 std::rc::Rc::from([])
                             }
                         });
-                        crit[k] = Some((j, Critical::of(vals, pr, j, k)));
+                        crit[k - p] = Some((j, Critical::of(vals, pr, j, k)));
                     }
-                    if let Some((_, Some(cr))) = &crit[k] {
+                    if let Some((_, Some(cr))) = &crit[k - p] {
                         let last = spans[spans.len() - 1];
                         let ra = right_end_attained(c.knots(), p, k, last);
                         if let Some(s) = cr.side(c, k, sign, ra, self.max_gap(c, j)) {
@@ -960,8 +994,11 @@ impl BezierSubdivision {
                 }
             }
             // (coordinate j's rows of the span's segment, kept for the pieces that follow)
-            let seg = &*csegs[k].get_or_insert_with(|| {
-                segs[k]
+            if csegs.is_empty() {
+                csegs.resize(segs.len(), None);
+            }
+            let seg = &*csegs[k - p].get_or_insert_with(|| {
+                segs[k - p]
                     .get_or_insert_with(|| {
                         let seg = vals.segment(k);
                         BezierSeg {
@@ -1201,6 +1238,7 @@ impl BezierSubdivision {
                 push(m, s1, &mut heap);
             }
         }
+        pool::give(heap.into_vec());
         // Every piece was either bounded (<= upper) or pruned (<= attained <= max C), so
         // max C <= max(upper, attained).
         side.upper = side.upper.max(side.attained);

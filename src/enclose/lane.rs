@@ -374,7 +374,9 @@ fn reaching<'e>(
     args: &mut Extrema,
 ) {
     for (x, e) in cands {
-        if *x >= attained {
+        // (a knot that ends one proved span and starts the next is the same candidate twice:
+        // kept once, so that the usual single candidate stays in the box's inline room)
+        if *x >= attained && !args.contains(e) {
             args.push(*e);
         }
     }
@@ -694,7 +696,7 @@ fn spline_side(
         (1..=n).fold(0, |b, i| if x(i) > x(b) { i } else { b })
     );
     let first = spans_of(i_max);
-    let mut filtered: SmallVec<[(f64, usize); 4]> = SmallVec::new();
+    let mut filtered: SmallVec<[(f64, usize); LANE_MAX_DEGREE + 1]> = SmallVec::new();
     if x(i_max) > attained {
         for k in first.clone().filter(|&k| nonempty(k)) {
             let (ub, at) = filter(cache, k)?;
@@ -1302,16 +1304,18 @@ const SPAN_ROWS: usize = (LANE_MAX_DEGREE + 1) * (MAX_DIM + 1);
 /// The spans whose coefficients a spline above degree 3 has needed so far, shared by its
 /// coordinates and both sides (a few spans per side: short lists searched in order): in f64
 /// for the filter (step 2 of [`spline_side`]), in `Ddi` for the proof (step 3).
+/// (Inline room for eight spans, or span and coordinate pairs: uninitialised stack space,
+/// where a list that outgrew two took a heap block of 3 KB, and then more, per curve.)
 #[derive(Default)]
 struct SpanCache {
-    rows: SmallVec<[(usize, [f64; SPAN_ROWS]); 4]>,
-    ddi: SmallVec<[(usize, [Ddi; SPAN_ROWS]); 2]>,
+    rows: SmallVec<[(usize, [f64; SPAN_ROWS]); 8]>,
+    ddi: SmallVec<[(usize, [Ddi; SPAN_ROWS]); 8]>,
     /// the proofs of step 3 by span and coordinate (a single segment's two sides prove the
     /// same span)
-    proofs: SmallVec<[ProofSlot; 2]>,
+    proofs: SmallVec<[ProofSlot; 8]>,
     /// a rational conic's rows in f64 (step 2) and in `Ddi` (step 3)
-    conic: SmallVec<[(usize, [f64; CONIC_ROWS]); 4]>,
-    conic_ddi: SmallVec<[(usize, ConicSpan); 2]>,
+    conic: SmallVec<[(usize, [f64; CONIC_ROWS]); 8]>,
+    conic_ddi: SmallVec<[(usize, ConicSpan); 8]>,
 }
 
 /// A coordinate's homogeneous rows X, W and Cartesian coefficients on one span of a rational

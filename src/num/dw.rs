@@ -478,7 +478,8 @@ pub(crate) fn sweep_dw(
     // (the block's spans converted into one buffer, emitted once all are known finite)
     let len = (p + 1) * h;
     let mut ks: smallvec::SmallVec<[usize; 8]> = smallvec::SmallVec::new();
-    let mut conv: Vec<Ddi> = Vec::with_capacity(done * len);
+    // (from and back to the thread's pool: a block of spans took a heap block of ~1 KB)
+    let mut conv: Vec<Ddi> = crate::num::pool::take(done * len);
     let mut finite = true;
     sweep_spans(p, h, &knots[off..], &buf, p, done, &mut |k, q| {
         finite &= all_finite(q);
@@ -487,13 +488,13 @@ pub(crate) fn sweep_dw(
             conv.extend(q.iter().map(to_ddi));
         }
     });
-    if !finite {
-        return false;
+    if finite {
+        for (k, q) in ks.iter().zip(conv.chunks_exact(len)) {
+            emit(*k, q);
+        }
     }
-    for (k, q) in ks.iter().zip(conv.chunks_exact(len)) {
-        emit(*k, q);
-    }
-    true
+    crate::num::pool::give(conv);
+    finite
 }
 
 #[cfg(test)]
