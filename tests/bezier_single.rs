@@ -361,6 +361,26 @@ mod mpfr {
             }
         }
 
+        /// Unclamped splines of degree 2 to 5, polynomial and rational (the lane takes them
+        /// with their end values from the end spans' coefficients): sound, tight, and every
+        /// optimality certificate true, with the lane's answer and the general path's bounds
+        /// and certificates the same.
+        #[test]
+        fn unclamped_splines_against_the_reference(seed in any::<u64>()) {
+            let mut r = gen::rng(seed);
+            let params = GenParams { degree: 2..=5, ..Family::Unclamped.params() };
+            let c = gen::random_curve(&mut r, &params);
+            if let Err(m) = check(&c) {
+                prop_assert!(false, "{m}");
+            }
+            let rb = reference_box(&c);
+            for s in strategies() {
+                if let Err(m) = nurbs_box::testkit::reference::check_certificates(&c, &rb, &s.enclose(&c)) {
+                    prop_assert!(false, "{m}\n{}", nurbs_box::curve_to_json(&c));
+                }
+            }
+        }
+
         /// Random and structured quadratics / cubics (see [`random_single`]).
         #[test]
         fn single_segments_against_the_reference(seed in any::<u64>()) {

@@ -264,7 +264,8 @@ fn the_lane_takes_rational_segments() {
 }
 
 /// What the lane refuses goes to the general path unchanged: rational with extreme weights,
-/// unclamped, jumps, degree above 5, extreme magnitudes, dimension above 4.
+/// unclamped single segments (and unclamped splines for `hull`), jumps, degree above 5,
+/// extreme magnitudes, dimension above 4.
 #[test]
 fn the_lane_refuses_what_it_does_not_cover() {
     let bez = |p: usize, pts: Vec<Vec<f64>>, w: Option<Vec<f64>>| {
@@ -318,7 +319,42 @@ fn the_lane_refuses_what_it_does_not_cover() {
         None,
     )
     .unwrap();
-    assert!(Simple::of(&unclamped).is_none());
+    // an unclamped spline is taken by the tight lane alone: its end control points are no
+    // curve values, so `hull`'s lane (whose attained values they are) leaves it to the general
+    // path; C(u_k) = (P_{k-2} + P_{k-1}) / 2 at the knots of the domain [2, 5], increasing from
+    // 0.5 to 12.5, both attained and certified
+    let s = Simple::of(&unclamped).expect("an unclamped spline");
+    let mut e = Enclosure {
+        strategy: "hull",
+        verified: true,
+        coords: Default::default(),
+    };
+    assert!(!enclose_into(
+        &mut e,
+        Lane::Hull,
+        "hull",
+        &unclamped,
+        &s,
+        true
+    ));
+    let e = lane_answer(&unclamped).expect("the tight lane answers it");
+    let cb = &e.coords[0];
+    assert_eq!(
+        (cb.lo, cb.hi, cb.inner_lo, cb.inner_hi),
+        (0.5, 12.5, 0.5, 12.5)
+    );
+    assert!(cb.optimal_lo && cb.optimal_hi);
+    let hull = drive(&nurbs_box::enclose::ControlHull, &unclamped);
+    assert_eq!((hull.coords[0].lo, hull.coords[0].hi), (0.0, 16.0));
+    // an unclamped single segment is not
+    let segment = NurbsCurve::new(
+        2,
+        (0..6).map(|i| i as f64).collect(),
+        (0..3).map(|i| vec![i as f64]).collect(),
+        None,
+    )
+    .unwrap();
+    assert!(Simple::of(&segment).is_none());
     // a kink (multiplicity p) is taken
     let kink = NurbsCurve::new(
         2,
@@ -332,6 +368,38 @@ fn the_lane_refuses_what_it_does_not_cover() {
     // C(0.5) = P_2 = 3 exactly: the maximum, attained at the kink and certified optimal
     assert_eq!((e.coords[0].hi, e.coords[0].inner_hi), (3.0, 3.0));
     assert!(e.coords[0].optimal_hi && e.coords[0].optimal_lo);
+}
+
+/// A span whose local control values are all equal is that constant (a convex combination):
+/// the lane takes its value as bound and attained value at once, as the general path's
+/// search does, instead of a proof that fails on a derivative vanishing over the span (which
+/// gave the curve up to the general path): an unclamped quartic with equal control values
+/// (no cheap exit: its end control points are no curve values), and a clamped cubic spline
+/// whose maximum is a flat run between two humps below it.
+#[test]
+fn flat_spans_stay_in_the_lane() {
+    let v = 0.17778592688686823;
+    let flat = NurbsCurve::new(
+        4,
+        (0..12).map(|i| i as f64 * 0.75).collect(),
+        vec![vec![v]; 7],
+        None,
+    )
+    .unwrap();
+    let e = lane_answer(&flat).expect("the lane answers a constant unclamped spline");
+    let cb = &e.coords[0];
+    assert_eq!((cb.lo, cb.hi, cb.inner_lo, cb.inner_hi), (v, v, v, v));
+    assert!(cb.optimal_lo && cb.optimal_hi);
+    let pts = [0.0, 0.9, -0.5, 1.0, 1.0, 1.0, 1.0, -0.5, 0.9, 0.0];
+    let mut k = vec![0.0; 4];
+    k.extend((1..7).map(|i| i as f64 / 7.0));
+    k.extend(vec![1.0; 4]);
+    let run = NurbsCurve::new(3, k, pts.iter().map(|&x| vec![x]).collect(), None).unwrap();
+    let e = lane_answer(&run).expect("the lane answers a spline with a flat maximum");
+    check(&run).unwrap();
+    let cb = &e.coords[0];
+    assert_eq!((cb.hi, cb.inner_hi), (1.0, 1.0));
+    assert!(cb.optimal_hi);
 }
 
 /// The NURBS circle (NURBS Book ex. 7.1: nine control points on the unit square, weights 1 and

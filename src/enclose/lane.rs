@@ -1,8 +1,9 @@
 //! The driver's lane for the commonest input: one clamped polynomial Bézier segment of degree
-//! 1 to 5 (a line, a font's quadratic, a cubic Bézier) with moderate magnitudes, a clamped
-//! polynomial spline of degree 2 to 5 with moderate knots, a clamped rational curve of degree
-//! 2 to 5 (one segment or a spline: conic arcs, a NURBS circle, rational cubics) with moderate
-//! weights, and any polyline
+//! 1 to 5 (a line, a font's quadratic, a cubic Bézier) with moderate magnitudes, a polynomial
+//! spline of degree 2 to 5 with moderate knots, a rational curve of degree 2 to 5 (one clamped
+//! segment or a spline: conic arcs, a NURBS circle, rational cubics) with moderate weights
+//! (splines clamped or not: an unclamped spline's end values are those of its end spans, for
+//! `bezier` and `newton`; `hull`'s lane takes clamped curves), and any polyline
 //! (degree 1, rational or not, clamped or not, jumps at double knots, any magnitude)
 //! ([`Simple::of`]).
 //! Such a curve needs none of the general machinery (rescaling, the curve-wide Bézier sweep,
@@ -67,8 +68,9 @@ const KNOT_EXP: i32 = 1000;
 pub const LANE_MAX_DEGREE: usize = 5;
 
 /// A curve the lane takes: one clamped polynomial Bézier segment of degree 1..=5 over [a, b],
-/// a clamped polynomial spline of degree 2..=5, or a clamped rational curve of degree 2..=5
-/// (one segment or a spline, moderate weights), every coordinate moderate; or a polyline.
+/// a polynomial spline of degree 2..=5 (clamped or not), or a rational curve of degree 2..=5
+/// (one clamped segment or a spline, moderate weights), every coordinate moderate; or a
+/// polyline.
 #[derive(Debug, Clone, Copy)]
 pub struct Simple<'a> {
     curve: &'a NurbsCurve,
@@ -78,6 +80,10 @@ pub struct Simple<'a> {
     d: usize,
     a: f64,
     b: f64,
+    /// whether the end control points are the curve's end values (a clamped curve, or a
+    /// polyline with non-empty end spans); an unclamped spline's ends are values of its end
+    /// spans, which only the tight lane reads (`hull`'s lane takes clamped curves alone)
+    clamped: bool,
     pts: &'a [f64],
     /// the weights of a rational curve of degree 2 to 5, `None` otherwise (a rational
     /// polyline's weights are not needed: its bounds are control values)
@@ -129,8 +135,9 @@ impl<'a> Simple<'a> {
     /// The curve as a [`Simple`] one, or `None`: rational (degree 2 to 5) with a weight
     /// outside [2^-100, 2^100) or weights spread over more than 2^12,
     /// degree above [`LANE_MAX_DEGREE`], dimension above [`MAX_DIM`], extreme magnitudes; and a curve of
-    /// several spans unless it is a clamped, continuous (interior knot multiplicities at most
-    /// p) spline of degree 2 to [`LANE_MAX_DEGREE`] with moderate knots.
+    /// several spans unless it is a continuous (interior knot multiplicities at most p) spline
+    /// of degree 2 to [`LANE_MAX_DEGREE`] with moderate knots (clamped or not; a single segment
+    /// must be clamped).
     #[inline]
     pub fn of(c: &'a NurbsCurve) -> Option<Simple<'a>> {
         let p = c.degree();
@@ -162,7 +169,7 @@ impl<'a> Simple<'a> {
             }
             _ => None,
         };
-        let (a, b) = if p == 1 {
+        let ((a, b), clamped) = if p == 1 {
             // A polyline (degree 1, weights or not, clamped or not): on span [u_i, u_{i+1}]
             // the curve is (w_{i-1} P_{i-1} N_{i-1,1} + w_i P_i N_{i,1}) / (w_{i-1} N_{i-1,1} +
             // w_i N_{i,1}) with N_{i-1,1} = (u_{i+1} - u) / (u_{i+1} - u_i), N_{i,1} = 1 - that,
@@ -185,15 +192,23 @@ impl<'a> Simple<'a> {
             {
                 return None;
             }
-            (a, b)
+            ((a, b), true)
         } else {
-            // clamped: knots a^(p+1) ... b^(p+1), a < b (validation guarantees a non-empty
-            // domain; checked again, as every other assumption here)
-            let (a, b) = (k[0], k[k.len() - 1]);
-            if k[p] != a || k[n + 1] != b || a >= b || a.is_nan() {
+            // the domain [u_p, u_{n+1}], a < b (validation guarantees a non-empty domain;
+            // checked again, as every other assumption here); clamped: knots a^(p+1) ...
+            // b^(p+1). An unclamped curve only as a spline (n > p), whose spans p ..= n read the
+            // knots u_0 .. u_{n+p+1} and the control points as a clamped spline's do (Boehm's
+            // insertion and the closed forms are the same), its end values b_0 of span p and
+            // b_p of span n, not control points.
+            let (a, b) = (k[p], k[n + 1]);
+            if a >= b || a.is_nan() {
                 return None;
             }
-            (a, b)
+            let clamped = k[0] == a && k[k.len() - 1] == b;
+            if !clamped && n == p {
+                return None;
+            }
+            ((a, b), clamped)
         };
         if p == 1 {
             // (the polyline above: nothing more to check)
@@ -248,6 +263,7 @@ impl<'a> Simple<'a> {
             d,
             a,
             b,
+            clamped,
             pts,
             w,
             knots: k,
@@ -356,7 +372,8 @@ fn cheap_exit(s: &Simple, j: usize, sign: f64) -> Option<(f64, f64)> {
     // control value is a coin toss on random curves)
     let (first, last) = (sign * s.pts[j] == m, sign * s.pts[s.n * s.d + j] == m);
     let u = if first { s.a } else { s.b };
-    (first | last).then_some((m, u))
+    // (an unclamped spline's end control points are no curve values)
+    ((first | last) & s.clamped).then_some((m, u))
 }
 
 /// The side `sign` of `cb` from its cheap exit (m, u) ([`cheap_exit`]): `fast_exits`.
@@ -633,14 +650,23 @@ fn spline_side(
 ) -> Option<()> {
     let (p, d, n, kn) = (s.p, s.d, s.n, s.knots);
     let x = |i: usize| sign * s.pts[i * d + j];
-    let mut attained = x(0).max(x(n));
+    // (the end values of a clamped spline, its end control points, are attained; an
+    // unclamped spline's come in with its end spans' coefficients, b_0 of span p and b_p of
+    // span n, in steps 2 and 3)
+    let mut attained = if s.clamped {
+        x(0).max(x(n))
+    } else {
+        f64::NEG_INFINITY
+    };
     let mut upper = f64::NEG_INFINITY;
     let mut witness = f64::NEG_INFINITY;
     // (the two ends, then up to three per proved span and one per end-coefficient span: 16
     // inline keep a spline of the thesis's size off the heap)
     let mut cands: SmallVec<[(f64, Extremum); 16]> = SmallVec::new();
-    for (u, v) in [(s.a, x(0)), (s.b, x(n))] {
-        cands.push((v, end(u)));
+    if s.clamped {
+        for (u, v) in [(s.a, x(0)), (s.b, x(n))] {
+            cands.push((v, end(u)));
+        }
     }
     let mut counts = [0u32, 1, 0, 0];
     // keys: the bounds' total order as integers (for the heap below)
@@ -753,6 +779,25 @@ fn spline_side(
         if bk <= key(attained) {
             break;
         }
+        // (a span whose local control values are all equal: the coordinate is that constant
+        // there, a convex combination with positive weights, every value attained and
+        // bounding it, as in the `bezier` strategy's search; its derivative vanishes on the
+        // whole span, where the proofs below would fail)
+        let v = x(k);
+        if (k - p..k).all(|i| x(i) == v) {
+            attained = attained.max(v);
+            upper = upper.max(v);
+            cands.push((
+                v,
+                Extremum {
+                    u_lo: kn[k],
+                    u_hi: kn[k + 1],
+                    unique: false,
+                    kind: CandidateKind::Critical,
+                },
+            ));
+            continue;
+        }
         // step 2: f64 coefficients and their a-priori bound; the span goes back with that
         // bound, so that the double-double stage runs only on the span whose f64 bound is the
         // largest left (usually the one with the maximum)
@@ -782,7 +827,9 @@ fn spline_side(
             let (x, w, q) = rational_span(s, cache.get_ddi(s, k), j, k);
             hom = Some((x, w));
             q
-        } else if p > 3 {
+        } else if p > 3 || (!s.clamped && (kn[k] == s.a || kn[k + 1] == s.b)) {
+            // (and an unclamped spline's end spans: their end values at the domain ends, no
+            // control points, are made exact where they are doubles, `SpanCache::get_ddi`)
             cache.coordinate_ddi(s, k, j)
         } else {
             span_coefficients::<Ddi>(s, j, k)
@@ -1524,6 +1571,11 @@ pub fn enclose_into(
         e.coords.clear();
     }
     if lane == Lane::Hull {
+        // (the control-point box's attained values are the end control points: a clamped
+        // curve's alone)
+        if !s.clamped {
+            return false;
+        }
         hull_into(e, c, s, certify);
         return true;
     }
@@ -1547,7 +1599,7 @@ pub fn enclose_into(
     let mut open = false;
     for (j, cb) in e.coords.iter_mut().enumerate() {
         let (plo, phi) = s.range[j];
-        let ends = [s.pts[j], s.pts[s.n * s.d + j]].map(Some);
+        let ends = [s.pts[j], s.pts[s.n * s.d + j]].map(|x| s.clamped.then_some(x));
         apply_facts(cb, (plo, phi), ends, true);
         if certify {
             open |= first_rounds(cb, (plo, phi), (f64::INFINITY, f64::NEG_INFINITY));
