@@ -402,6 +402,66 @@ fn flat_spans_stay_in_the_lane() {
     assert!(cb.optimal_hi);
 }
 
+/// A spline whose coordinates lie beyond the lane's magnitude window is scaled into it by
+/// powers of two (exactly) and answered by the lane, the result mapped back: the same bounds,
+/// attained values, certificates and counters as the lane's answer for the moderate curve,
+/// scaled, at 2^±100 .. 2^±900 (before, the general path answered, with other counters).
+#[test]
+fn extreme_magnitudes_are_scaled_into_the_lane() {
+    use nurbs_box::enclose::strategy_by_name;
+    let mut r = gen::rng(29);
+    let mut taken = 0;
+    for i in 0..200 {
+        let p = 2 + i % 4;
+        let spans = 1 + i % 5;
+        let n = p + spans - 1;
+        let d = 1 + i % 3;
+        let pts: Vec<Vec<f64>> = (0..=n)
+            .map(|_| (0..d).map(|_| r.random_range(-100.0..100.0)).collect())
+            .collect();
+        let w = (i % 2 == 1).then(|| {
+            (0..=n)
+                .map(|_| r.random_range(0.5..2.0))
+                .collect::<Vec<f64>>()
+        });
+        let mut k = vec![0.0; p + 1];
+        k.extend((1..spans).map(|s| s as f64 / spans as f64));
+        k.extend(vec![1.0; p + 1]);
+        let moderate = NurbsCurve::new(p, k.clone(), pts.clone(), w.clone()).unwrap();
+        let e = r.random_range(100..900) * if i % 3 == 0 { -1 } else { 1 };
+        let scale = 2f64.powi(e);
+        let big = NurbsCurve::new(
+            p,
+            k,
+            pts.iter()
+                .map(|q| q.iter().map(|x| x * scale).collect())
+                .collect(),
+            w,
+        )
+        .unwrap();
+        assert!(Simple::of(&moderate).is_some() && Simple::of(&big).is_none());
+        for name in ["bezier", "newton"] {
+            let s = strategy_by_name(name, None).unwrap();
+            let (a, b) = (drive(s.as_ref(), &moderate), drive(s.as_ref(), &big));
+            for (ca, cb) in a.coords.iter().zip(&b.coords) {
+                let scaled = [ca.lo, ca.hi, ca.inner_lo, ca.inner_hi].map(|x| x * scale);
+                assert_eq!(
+                    scaled,
+                    [cb.lo, cb.hi, cb.inner_lo, cb.inner_hi],
+                    "{name} {i}"
+                );
+                assert_eq!(
+                    (ca.optimal_lo, ca.optimal_hi),
+                    (cb.optimal_lo, cb.optimal_hi)
+                );
+            }
+            assert_eq!(a.stats(), b.stats(), "{name} {i}: not the lane's counters");
+            taken += 1;
+        }
+    }
+    assert_eq!(taken, 400);
+}
+
 /// The NURBS circle (NURBS Book ex. 7.1: nine control points on the unit square, weights 1 and
 /// sqrt(2)/2, double knots) and a quarter circle, answered by the lane itself: the box is
 /// [-1, 1]^2 (the quarter [0, 1]^2), every bound attained at a control point the curve passes

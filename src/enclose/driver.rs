@@ -525,9 +525,74 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
     e
 }
 
+/// The tight lane on a curve whose coordinates alone lie beyond the lane's magnitude window
+/// (`lane::Simple::of`), scaled into it exactly: `r` scales coordinate j by 2^-coord_exp[j]
+/// with no value rounded, knots and weights unscaled, so the scaled curve is the curve with
+/// coordinate j multiplied by 2^-coord_exp[j] exactly, and its enclosure, mapped back by
+/// [`Rescaling::restore`] (outward where a value is not exact), encloses the curve. An
+/// optimality certificate of the scaled curve, bound b' = RU(max C'_j) (RD(min)), carries
+/// over where b = b' 2^k is exact and normal and so is the next double beyond it, scaled:
+/// scaling by 2^k maps the doubles of that range one to one and in order, so b is the
+/// smallest double above max C_j = 2^k max C'_j. Otherwise (a bound at zero, subnormal or
+/// overflowing when mapped back) the scaled lane's answer is dropped and the general path
+/// runs. `false` (`e` then unspecified): not taken. For the tight lane alone (`hull`'s
+/// general path is the control-point box, cheaper than building the scaled curve).
+fn scaled_lane<S: BoxEncloser + ?Sized>(
+    s: &S,
+    c: &NurbsCurve,
+    r: &Rescaling,
+    certify: bool,
+    e: &mut Enclosure,
+) -> bool {
+    let Some(lane) = s.lane().filter(|&l| l == super::lane::Lane::Tight) else {
+        return false;
+    };
+    if r.knot_exp != 0 || r.weight_exp != 0 || !r.knots_moderate || r.coord_rounded.contains(&true)
+    {
+        return false;
+    }
+    let rc = r.apply(c);
+    let Some(simple) = super::lane::Simple::of(&rc) else {
+        return false;
+    };
+    if !super::lane::enclose_into(e, lane, s.name(), &rc, &simple, certify) {
+        return false;
+    }
+    // (a certified bound, and the next double beyond it, exactly representable once scaled
+    // back: a normal double of the scaled range maps to a normal double)
+    let carries = |b: f64, k: i32, up: bool| {
+        let next = if up { b.next_up() } else { b.next_down() };
+        [b, next].iter().all(|&x| {
+            let y = ldexp(x, k);
+            y.is_finite() && y.abs() >= f64::MIN_POSITIVE && ldexp(y, -k) == x
+        })
+    };
+    for (cb, &k) in e.coords.iter().zip(&r.coord_exp) {
+        if (cb.optimal_lo && !carries(cb.lo, k, false)) || (cb.optimal_hi && !carries(cb.hi, k, true))
+        {
+            return false;
+        }
+    }
+    let scaled = std::mem::replace(
+        e,
+        Enclosure {
+            strategy: s.name(),
+            verified: true,
+            coords: Default::default(),
+        },
+    );
+    *e = r.restore(scaled);
+    true
+}
+
 /// The general path of [`drive_with`] (everything but the lane), written to `e`.
 fn general<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool, e: &mut Enclosure) {
     let rescaling = Rescaling::of(c);
+    if let Some(r) = &rescaling {
+        if scaled_lane(s, c, r, certify, e) {
+            return;
+        }
+    }
     *e = if c.degree() > MAX_SEARCH_DEGREE {
         degree_fallback(s, c)
     } else {
