@@ -568,7 +568,8 @@ fn scaled_lane<S: BoxEncloser + ?Sized>(
         })
     };
     for (cb, &k) in e.coords.iter().zip(&r.coord_exp) {
-        if (cb.optimal_lo && !carries(cb.lo, k, false)) || (cb.optimal_hi && !carries(cb.hi, k, true))
+        if (cb.optimal_lo && !carries(cb.lo, k, false))
+            || (cb.optimal_hi && !carries(cb.hi, k, true))
         {
             return false;
         }
