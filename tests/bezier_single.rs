@@ -232,6 +232,17 @@ mod mpfr {
     /// bound are only checked for soundness here.
     const FAST_MAX_ULPS: f64 = 2.0;
 
+    /// [`check`], and no false optimality certificate of any variant against the reference.
+    fn check_with_certificates(c: &NurbsCurve) -> Result<Vec<f64>, String> {
+        let d = check(c)?;
+        let rb = reference_box(c);
+        for s in strategies() {
+            nurbs_box::testkit::reference::check_certificates(c, &rb, &s.enclose(c))
+                .map_err(|m| format!("{m}\n{}", nurbs_box::curve_to_json(c)))?;
+        }
+        Ok(d)
+    }
+
     /// Soundness (outer bounds contain the exact box, inner bounds are reached) for both
     /// variants, and tightness of the default one: within [`FAST_MAX_ULPS`], or no looser than
     /// the general branch and bound (to which the fast path hands the curves it cannot prove
@@ -370,14 +381,8 @@ mod mpfr {
             let mut r = gen::rng(seed);
             let params = GenParams { degree: 2..=5, ..Family::Unclamped.params() };
             let c = gen::random_curve(&mut r, &params);
-            if let Err(m) = check(&c) {
+            if let Err(m) = check_with_certificates(&c) {
                 prop_assert!(false, "{m}");
-            }
-            let rb = reference_box(&c);
-            for s in strategies() {
-                if let Err(m) = nurbs_box::testkit::reference::check_certificates(&c, &rb, &s.enclose(&c)) {
-                    prop_assert!(false, "{m}\n{}", nurbs_box::curve_to_json(&c));
-                }
             }
         }
 
@@ -410,14 +415,8 @@ mod mpfr {
             if exact {
                 let w = c.weights().map(|w| w.to_vec());
                 let sc = NurbsCurve::new(c.degree(), c.knots().to_vec(), pts, w).unwrap();
-                if let Err(m) = check(&sc) {
+                if let Err(m) = check_with_certificates(&sc) {
                     prop_assert!(false, "{m}");
-                }
-                let rb = reference_box(&sc);
-                for s in strategies() {
-                    if let Err(m) = nurbs_box::testkit::reference::check_certificates(&sc, &rb, &s.enclose(&sc)) {
-                        prop_assert!(false, "{m}\n{}", nurbs_box::curve_to_json(&sc));
-                    }
                 }
             }
         }

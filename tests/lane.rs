@@ -605,6 +605,27 @@ unsafe impl std::alloc::GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
+/// The fewest heap allocations of `runs` enclosures of `c` by `s` under the driver (the first
+/// call of a thread may set up lazily initialised state), each result checked by `check`.
+fn fewest_allocs(
+    s: &dyn nurbs_box::BoxEncloser,
+    c: &NurbsCurve,
+    runs: usize,
+    check: impl Fn(&Enclosure),
+) -> usize {
+    (0..runs)
+        .map(|_| {
+            let before = allocs();
+            let e = drive(s, c);
+            let n = allocs() - before;
+            check(&e);
+            drop(e);
+            n
+        })
+        .min()
+        .unwrap()
+}
+
 /// A single 2-D cubic or quadratic Bézier segment, or a conic arc (one rational quadratic
 /// segment), allocates nothing in the lane: never for
 /// `hull`, and for `bezier` / `newton` only where a side needs more (ties of several candidates,
@@ -635,16 +656,7 @@ fn single_segments_allocate_nothing_in_the_lane() {
         let s = strategy_by_name(name, None).unwrap();
         let mut allocating = 0;
         for c in &curves {
-            let count = (0..5)
-                .map(|_| {
-                    let before = allocs();
-                    let e = drive(s.as_ref(), c);
-                    let n = allocs() - before;
-                    drop(e);
-                    n
-                })
-                .min()
-                .unwrap();
+            let count = fewest_allocs(s.as_ref(), c, 5, |_| ());
             allocating += (count > 0) as usize;
         }
         let limit = if name == "hull" { 0 } else { curves.len() / 50 };
@@ -685,17 +697,9 @@ fn quartic_and_quintic_splines_allocate_nothing_in_the_lane() {
         let s = strategy_by_name(name, None).unwrap();
         let mut allocating = 0;
         for c in &curves {
-            let count = (0..3)
-                .map(|_| {
-                    let before = allocs();
-                    let e = drive(s.as_ref(), c);
-                    let n = allocs() - before;
-                    assert_eq!(e.stats().fast_fallbacks, 0, "{name}: left the lane");
-                    drop(e);
-                    n
-                })
-                .min()
-                .unwrap();
+            let count = fewest_allocs(s.as_ref(), c, 3, |e| {
+                assert_eq!(e.stats().fast_fallbacks, 0, "{name}: left the lane")
+            });
             allocating += (count > 0) as usize;
         }
         assert!(

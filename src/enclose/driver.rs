@@ -547,7 +547,14 @@ fn scaled_lane<S: BoxEncloser + ?Sized>(
     let Some(lane) = s.lane().filter(|&l| l == super::lane::Lane::Tight) else {
         return false;
     };
-    if r.knot_exp != 0 || r.weight_exp != 0 || !r.knots_moderate || r.coord_rounded.contains(&true)
+    // (and the lane's degree and dimension, before the scaled curve is built: a curve the
+    // lane refuses for those would build it a second time on the general path)
+    if r.knot_exp != 0
+        || r.weight_exp != 0
+        || !r.knots_moderate
+        || r.coord_rounded.contains(&true)
+        || c.degree() > super::lane::LANE_MAX_DEGREE
+        || c.dim() > super::lane::MAX_DIM
     {
         return false;
     }

@@ -31,7 +31,8 @@
 //!   the general path runs (`Stats::fast_fallbacks` counts it there).
 //!
 //! The driver's facts are applied as in [`super::drive_with`]: outer bounds clamped to the
-//! control-point box, the end values attained, inner bounds consistent with outer ones. The
+//! control-point box, a clamped curve's end values attained, inner bounds consistent with
+//! outer ones. The
 //! optimality certificate's first rule (an attained value equal to the bound, or a strict
 //! witness above the next double down) and its cheap refusal (the strategy's own attained
 //! value more than a few ulps of the scale below its bound: `certify::quick`) are decided
@@ -122,7 +123,7 @@ fn beyond_coord_window(m: f64) -> bool {
 }
 
 /// The lane takes curves of dimension up to this (the result's inline storage holds three).
-const MAX_DIM: usize = 4;
+pub(crate) const MAX_DIM: usize = 4;
 
 /// A rational curve's weights must lie in [2^-WEIGHT_EXP, 2^WEIGHT_EXP) ([`Simple::of`]).
 const WEIGHT_EXP: i32 = 100;

@@ -52,8 +52,9 @@ pub trait BoxEncloser: Send + Sync {
     /// work limit is reached the strategy falls back to a coarser sound bound and says so in
     /// `termination`. Implement this one; call [`BoxEncloser::enclose`].
     fn enclose_prepared(&self, curve: &NurbsCurve) -> Enclosure;
-    /// How the strategy answers a clamped polynomial Bézier segment or spline of degree <= 5,
-    /// or a clamped rational curve of degree 2 to 5, with moderate magnitudes ([`lane::Simple`]), which the
+    /// How the strategy answers a clamped polynomial Bézier segment or a spline of degree <= 5,
+    /// or a rational curve of degree 2 to 5 (splines clamped or not; unclamped ones and curves
+    /// scaled into the magnitude window only for the tight lane), with moderate magnitudes ([`lane::Simple`]), which the
     /// driver then encloses directly in its lane ([`lane`]) instead of calling
     /// [`BoxEncloser::enclose_prepared`]; `None` (the default): always the general path. A strategy returns a lane only if the lane's answer
     /// is its own (the control-point box, or the tight box its fast path proves).
