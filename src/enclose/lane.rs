@@ -41,7 +41,7 @@
 
 use super::bezier::conic::{conic_sides, ConicSeg};
 use super::bezier::single::{extremum, f64_sides, raw_sides_into, RawSide, Segment};
-use super::bezier::{end_kind, span_bounds, CoefficientProof};
+use super::bezier::{span_bounds, CoefficientProof};
 use super::driver::apply_facts;
 use super::driver::{pow2, COORD_WINDOW};
 use super::Termination;
@@ -103,6 +103,21 @@ impl Simple<'_> {
     fn stride(&self) -> usize {
         self.d + self.w.is_some() as usize
     }
+}
+
+/// Whether an interior knot of the spline's domain [u_p, u_{n+1}] has multiplicity above p (a
+/// run of p + 1 equal knots in u_p ..= u_{n+1} that ends before u_{n+1}): the knots do not
+/// decrease, so u_i = u_{i+p} says that u_i ..= u_{i+p} are equal. One comparison per knot
+/// without a branch (i = p ..= n + 1 - p; none where n + 1 < 2p), where counting the runs
+/// took a dependent jump per knot (`jump_knot_matches_the_run_count`).
+#[inline]
+fn jump_knot(k: &[f64], p: usize, n: usize) -> bool {
+    let b = k[n + 1];
+    let m = (n + 2).saturating_sub(2 * p);
+    let (lo, hi) = (&k[p..p + m], &k[2 * p..2 * p + m]);
+    lo.iter()
+        .zip(hi)
+        .fold(false, |any, (&x, &y)| any | ((x == y) & (y < b)))
 }
 
 /// `exponent(x) > KNOT_EXP` (`driver::exponent`: |x| in [2^(e-1), 2^e)) as one comparison with
@@ -225,12 +240,8 @@ impl<'a> Simple<'a> {
             if super::driver::knot_scaling(c) != (0, true) {
                 return None;
             }
-            let mut run = 1;
-            for w in k[p..=n + 1].windows(2) {
-                run = if w[1] == w[0] { run + 1 } else { 1 };
-                if run > p && w[1] < b {
-                    return None;
-                }
+            if jump_knot(k, p, n) {
+                return None;
             }
         }
         let d = c.dim();
@@ -456,6 +467,52 @@ fn polyline_side(s: &Simple, j: usize, sign: f64, cb: &mut CoordBox) {
         f64::NEG_INFINITY
     };
     put(cb, sign, (m, attained, witness), [1, 0, 0, 0]);
+}
+
+/// Calls `f` with each index i in 0 ..= n, ascending, whose control value sign * P_ij exceeds
+/// `t`: blocks of eight values tested at once without a jump per value, then the values of a
+/// block that has one (most control values lie below the attained value that `t` is).
+#[inline]
+fn each_above(s: &Simple, j: usize, sign: f64, t: f64, mut f: impl FnMut(usize)) {
+    const BLOCK: usize = 8;
+    let d = s.d;
+    let pts = &s.pts[..(s.n + 1) * d];
+    for (b, block) in pts.chunks(BLOCK * d).enumerate() {
+        let any = block
+            .chunks_exact(d)
+            .fold(false, |any, q| any | (sign * q[j] > t));
+        if any {
+            for (o, q) in block.chunks_exact(d).enumerate() {
+                if sign * q[j] > t {
+                    f(b * BLOCK + o);
+                }
+            }
+        }
+    }
+}
+
+/// What the ends u_k and u_{k+1} of the non-empty span k of a spline in the lane are
+/// (`bezier::end_kind`: a domain end, a knot of multiplicity >= p, or neither), from the
+/// knots next to them: the run of u_k ends at index k and that of u_{k+1} starts at k + 1
+/// (u_k < u_{k+1}), so u_k has multiplicity >= p iff u_{k+1-p} = u_k, and u_{k+1} iff
+/// u_{k+p} = u_{k+1} (the knots do not decrease), without a search of the knot vector
+/// (`span_end_kinds_match_end_kind`).
+#[inline]
+fn span_end_kinds(s: &Simple, k: usize) -> [CandidateKind; 2] {
+    let (p, kn) = (s.p, s.knots);
+    let kind = |u: f64, multiple: bool| {
+        if u == s.a || u == s.b {
+            CandidateKind::EndPoint
+        } else if multiple {
+            CandidateKind::Knot
+        } else {
+            CandidateKind::Critical
+        }
+    };
+    [
+        kind(kn[k], kn[k + 1 - p] == kn[k]),
+        kind(kn[k + 1], kn[k + p] == kn[k + 1]),
+    ]
 }
 
 /// The `newton` and `bezier` stopping rule: a gap of at most two ulps of the coordinate scale.
@@ -737,10 +794,7 @@ fn spline_side(
         .map(|&(ub, k)| (key(ub), k, true))
         .collect();
     let mut next = p; // the first span not yet looked at (the passes go left to right)
-    for i in 0..=n {
-        if x(i) <= attained {
-            continue;
-        }
+    each_above(s, j, sign, attained, |i| {
         for k in spans_of(i) {
             if k < next || first.contains(&k) || !nonempty(k) {
                 continue;
@@ -770,7 +824,7 @@ fn spline_side(
             spans.push((key(b), k, false));
         }
         next = next.max(i + p + 1);
-    }
+    });
     // best first: the spans sorted by key, the largest taken from the end (the order of a
     // max-heap on the same tuples, kept on the stack: a filtered span goes back at its sorted
     // place)
@@ -867,6 +921,7 @@ fn spline_side(
                 .fold(f64::NEG_INFINITY, |m, i| m.max(sups[i]));
             if top - inf <= gap && (inf == top || others < inf) {
                 let u = kn[if at == 0 { k } else { k + 1 }];
+                let kind = span_end_kinds(s, k)[if at == 0 { 0 } else { 1 }];
                 attained = attained.max(inf);
                 upper = upper.max(top);
                 witness = witness.max(v.strictly_below());
@@ -876,7 +931,7 @@ fn spline_side(
                         u_lo: u,
                         u_hi: u,
                         unique: false,
-                        kind: end_kind(s.curve, u),
+                        kind,
                     },
                 ));
                 continue;
@@ -895,7 +950,7 @@ fn spline_side(
                 ends: [q[0], q[2]],
                 a: kn[k],
                 b: kn[k + 1],
-                end_kinds: [end_kind(s.curve, kn[k]), end_kind(s.curve, kn[k + 1])],
+                end_kinds: span_end_kinds(s, k),
             };
             let mut need = [false; 2];
             need[side] = true;
@@ -905,7 +960,7 @@ fn spline_side(
                 c: &qd[..=p],
                 a: kn[k],
                 b: kn[k + 1],
-                end_kinds: [end_kind(s.curve, kn[k]), end_kind(s.curve, kn[k + 1])],
+                end_kinds: span_end_kinds(s, k),
                 right_attained: true,
             };
             let mut need = [false; 2];
@@ -1642,6 +1697,97 @@ mod tests {
                 assert_eq!(beyond_knot_window(y), exponent(y) > KNOT_EXP, "{y:e}");
             }
         }
+    }
+
+    /// [`span_end_kinds`] against `bezier::end_kind` on every non-empty span of random
+    /// splines of the lane (clamped or not, knots of every multiplicity up to p).
+    #[test]
+    fn span_end_kinds_match_end_kind() {
+        use rand::Rng;
+        let mut r = gen::rng(47);
+        let mut kinds = [0usize; 3];
+        for _ in 0..3000 {
+            let p = r.random_range(2..=5);
+            let n = r.random_range(p + 1..=p + 10);
+            let mut k: Vec<f64> = Vec::with_capacity(n + p + 2);
+            let clamped = r.random_bool(0.5);
+            if clamped {
+                k.extend(std::iter::repeat_n(0.0, p + 1));
+            }
+            let mut u = 1.0;
+            while k.len() < n + 1 + (!clamped as usize) * (p + 1) {
+                let m = r
+                    .random_range(1..=p)
+                    .min(n + 1 + (!clamped as usize) * (p + 1) - k.len());
+                k.extend(std::iter::repeat_n(u, m));
+                u += 1.0;
+            }
+            k.truncate(n + 1 + (!clamped as usize) * (p + 1));
+            let last = u;
+            while k.len() < n + p + 2 {
+                k.push(if clamped { last } else { u });
+                if !clamped {
+                    u += 1.0;
+                }
+            }
+            let pts: Vec<Vec<f64>> = (0..=n).map(|i| vec![i as f64, (i * i) as f64]).collect();
+            let Ok(c) = NurbsCurve::new(p, k.clone(), pts, None) else {
+                continue;
+            };
+            let Some(s) = Simple::of(&c) else {
+                continue;
+            };
+            for sp in p..=n {
+                if k[sp] < k[sp + 1] {
+                    let want = [sp, sp + 1].map(|i| crate::enclose::bezier::end_kind(&c, k[i]));
+                    assert_eq!(span_end_kinds(&s, sp), want, "span {sp} of {k:?}");
+                    for kd in want {
+                        kinds[match kd {
+                            CandidateKind::EndPoint => 0,
+                            CandidateKind::Knot => 1,
+                            _ => 2,
+                        }] += 1;
+                    }
+                }
+            }
+        }
+        assert!(kinds.iter().all(|&m| m > 100), "{kinds:?}");
+    }
+
+    /// [`jump_knot`] against the run count it replaced: random non-decreasing knot vectors
+    /// with runs of every length up to p + 2 (inside the domain, at its ends and beyond them),
+    /// p = 2 ..= 5.
+    #[test]
+    fn jump_knot_matches_the_run_count() {
+        use rand::Rng;
+        fn reference(k: &[f64], p: usize, n: usize) -> bool {
+            let b = k[n + 1];
+            let mut run = 1;
+            for w in k[p..=n + 1].windows(2) {
+                run = if w[1] == w[0] { run + 1 } else { 1 };
+                if run > p && w[1] < b {
+                    return true;
+                }
+            }
+            false
+        }
+        let mut r = gen::rng(43);
+        let mut seen = [0usize; 2];
+        for _ in 0..20_000 {
+            let p = r.random_range(2..=5);
+            let n = r.random_range(p + 1..=p + 12);
+            let mut k = Vec::with_capacity(n + p + 2);
+            let mut u = 0.0;
+            while k.len() < n + p + 2 {
+                let m = r.random_range(1..=p + 2).min(n + p + 2 - k.len());
+                k.extend(std::iter::repeat_n(u, m));
+                u += 1.0;
+            }
+            let want = reference(&k, p, n);
+            assert_eq!(jump_knot(&k, p, n), want, "p = {p}, n = {n}, {k:?}");
+            seen[want as usize] += 1;
+        }
+        assert!(seen[0] > 1000 && seen[1] > 1000, "{seen:?}");
     }
 
     /// The branch-free `scan` against the compare-and-jump scan it replaced, bit for bit:
