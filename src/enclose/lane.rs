@@ -887,7 +887,7 @@ fn spline_side(
             // control points, are made exact where they are doubles, `SpanCache::get_ddi`)
             cache.coordinate_ddi(s, k, j)
         } else {
-            span_coefficients::<Ddi>(s, j, k)
+            step3_coefficients(s, j, k)
         };
         // (the end-coefficient rule of the `bezier` strategy first: if an end coefficient has
         // the largest upper end, the span's maximum is at most that, and the end coefficient is
@@ -1078,46 +1078,127 @@ fn spline_side(
 fn span_coefficients<S: Scalar>(s: &Simple, j: usize, k: usize) -> [S; LANE_MAX_DEGREE + 1] {
     debug_assert!(s.w.is_none(), "a polynomial spline's coefficients");
     let kn = s.knots;
-    let pt = |i: usize| S::from_f64(s.pts[i * s.d + j]);
-    let mut q: [S; LANE_MAX_DEGREE + 1] = std::array::from_fn(|_| S::zero());
     if s.p > 3 {
         // (row j of the insertion of every row, `span_coefficients_rows`, which the lane uses)
+        let mut q: [S; LANE_MAX_DEGREE + 1] = std::array::from_fn(|_| S::zero());
         let rows = span_coefficients_rows::<S>(s, k);
         for (i, v) in q.iter_mut().enumerate().take(s.p + 1) {
             *v = rows[i * s.d + j].clone();
         }
         return q;
     }
+    closed_form(s, j, k, |(u, a, b), lo, hi| {
+        S::lerp(&sum_ratio::<S>(kn, u, a, b), lo, hi)
+    })
+}
+
+/// The knot ratio (u_u - u_a) / (u_b - u_a) (a <= u < b) of the closed forms as a quotient of
+/// sums of the knot intervals d_i = u_{i+1} - u_i, added from the left: the numerator
+/// d_a + .. + d_{u-1} (or d_a alone), the denominator the numerator plus d_u + .. + d_{b-1}
+/// (the form of [`span_coefficients`]' error bound; exact differences and sums in `Ddi`).
+#[inline]
+fn sum_ratio<S: Scalar>(kn: &[f64], u: usize, a: usize, b: usize) -> S {
+    let d = |i: usize| S::from_f64(kn[i + 1]) - S::from_f64(kn[i]);
+    let mut num = d(a);
+    for i in a + 1..u {
+        num = num + d(i);
+    }
+    let mut den = num.clone();
+    for i in u..b {
+        den = den + d(i);
+    }
+    num / den
+}
+
+/// The closed form of [`span_coefficients`] for degree 2 and 3, with the corner cuts
+/// lo + r (hi - lo) by the knot ratio r = (u_u - u_a) / (u_b - u_a) given by
+/// `cut((u, a, b), lo, hi)`: every coefficient is a cut of local control values (or of two
+/// cuts) by such a ratio in [0, 1] (u_a <= u_u < u_b: the span k is not empty).
+#[inline]
+fn closed_form<S: Scalar>(
+    s: &Simple,
+    j: usize,
+    k: usize,
+    mut cut: impl FnMut((usize, usize, usize), &S, &S) -> S,
+) -> [S; LANE_MAX_DEGREE + 1] {
+    let pt = |i: usize| S::from_f64(s.pts[i * s.d + j]);
+    let mut q: [S; LANE_MAX_DEGREE + 1] = std::array::from_fn(|_| S::zero());
     if s.p == 2 {
-        q[..3].clone_from_slice(&quadratic_span(kn, k, pt));
+        // b_1 = P_{k-1}; b_0 divides the leg P_{k-2} P_{k-1} in the ratio d_{k-1} : d_k, b_2
+        // the leg P_{k-1} P_k in the ratio d_k : d_{k+1}
+        let (p0, p1, p2) = (pt(k - 2), pt(k - 1), pt(k));
+        q[0] = cut((k, k - 1, k + 1), &p0, &p1);
+        q[2] = cut((k + 1, k, k + 2), &p1, &p2);
+        q[1] = p1;
         return q;
     }
-    let d = |i: usize| S::from_f64(kn[i + 1]) - S::from_f64(kn[i]);
-    let cut = |r: S, lo: &S, hi: &S| S::lerp(&r, lo, hi);
-    let (d0, d1, d2, d3, d4) = (d(k - 2), d(k - 1), d(k), d(k + 1), d(k + 2));
     let (p0, p1, p2, p3) = (pt(k - 3), pt(k - 2), pt(k - 1), pt(k));
-    let mid = d1.clone() + d2.clone() + d3.clone();
-    let b1 = cut(d1.clone() / mid.clone(), &p1, &p2);
-    let b2 = cut((d1.clone() + d2.clone()) / mid, &p1, &p2);
-    let left = d0.clone() + d1.clone();
-    let l = cut(left.clone() / (left + d2.clone()), &p0, &p1);
-    let r = cut(d2.clone() / (d2.clone() + d3.clone() + d4), &p2, &p3);
-    q[0] = cut(d1.clone() / (d1 + d2.clone()), &l, &b1);
-    q[3] = cut(d2.clone() / (d2 + d3), &b2, &r);
+    let b1 = cut((k, k - 1, k + 2), &p1, &p2);
+    let b2 = cut((k + 1, k - 1, k + 2), &p1, &p2);
+    let l = cut((k, k - 2, k + 1), &p0, &p1);
+    let r = cut((k + 1, k, k + 3), &p2, &p3);
+    q[0] = cut((k, k - 1, k + 1), &l, &b1);
+    q[3] = cut((k + 1, k, k + 2), &b2, &r);
     q[1] = b1;
     q[2] = b2;
     q
 }
 
-/// The closed form of [`span_coefficients`] at degree 2 for one row of values `pt(i)` at the
-/// control points (a coordinate, or a rational conic's homogeneous rows w_i x_i and w_i):
-/// b_1 = P_{k-1}, b_0 divides the leg P_{k-2} P_{k-1} in the ratio d_{k-1} : d_k, b_2 the leg
-/// P_{k-1} P_k in the ratio d_k : d_{k+1}.
-fn quadratic_span<S: Scalar>(kn: &[f64], k: usize, pt: impl Fn(usize) -> S) -> [S; 3] {
-    quadratic_cuts(&quadratic_ratios(kn, k), [pt(k - 2), pt(k - 1), pt(k)])
+/// Span k's `Ddi` coefficients of coordinate j for step 3 of [`spline_side`] (a polynomial
+/// spline of degree 2 or 3): the closed form ([`closed_form`]) in double words with the
+/// a-priori running bound of `num::dw`, whose proof covers it: every step is a corner cut of
+/// the extraction there, z = lo + α (hi - lo) with α = (u_u - u_a) / (u_b - u_a) a ratio of
+/// exact knot differences in [0, 1] computed by `Dw::knot_ratio_f64` (within 12 u^2), of
+/// exact inputs (radius 0) or of earlier cuts; the result is the `Ddi` centre hi + lo with
+/// radius e. About a third of the `Ddi` arithmetic's cost. A ratio that is exactly 0 or 1
+/// (u_u = u_a or u_u = u_b at a repeated knot) takes its end as it is, the exact cut.
+///
+/// The `Ddi` closed form itself ([`span_coefficients`]) where the guard of `num::dw` fails
+/// (knots, values), a result is not finite, or a cut of two exact values may be exact (equal
+/// values, or a ratio that may be a double: `Dw::knot_ratio_may_be_exact`): the `Ddi` closed
+/// form keeps such a cut exact, and the proof reads exact coefficients as such (all of them
+/// doubles: the exact proof of `bezier::single`; an end value: attained at its bound), where
+/// the double words carry a bound > 0. Elsewhere the `Ddi` coefficients are not exact either
+/// (an exact `Ddi` value is a dyadic rational, and a ratio of two doubles that is dyadic is a
+/// double), so the two routes differ only in the last bits of the centres and in the radii.
+/// (`dw_closed_form_encloses_the_exact_coefficients`)
+fn step3_coefficients(s: &Simple, j: usize, k: usize) -> [Ddi; LANE_MAX_DEGREE + 1] {
+    use crate::num::dw::{knots_ok, Dw};
+    let (p, kn) = (s.p, s.knots);
+    let fast = || -> Option<[Ddi; LANE_MAX_DEGREE + 1]> {
+        // (the knots the ratios read, u_{k+1-p} ..= u_{k+p}, and the local control values)
+        if !knots_ok(&kn[k + 1 - p..=k + p])
+            || !(k - p..=k).all(|i| Dw::guarded(s.pts[i * s.d + j]))
+        {
+            return None;
+        }
+        let mut exact_cut = false;
+        let q = closed_form(s, j, k, |(u, a, b), lo: &Dw, hi: &Dw| {
+            let (tu, ta, tb) = (kn[u], kn[a], kn[b]);
+            if tu == ta {
+                *lo
+            } else if tu == tb {
+                *hi
+            } else {
+                exact_cut |= lo.is_exact()
+                    && hi.is_exact()
+                    && (lo == hi || Dw::knot_ratio_may_be_exact(tu, ta, tb));
+                Dw::lerp(&Dw::knot_ratio_f64(tu, ta, tb), lo, hi)
+            }
+        });
+        if exact_cut {
+            return None;
+        }
+        let mut out = [Ddi::exact(0.0); LANE_MAX_DEGREE + 1];
+        for (o, x) in out.iter_mut().zip(&q[..=p]) {
+            *o = x.to_ddi_checked()?;
+        }
+        Some(out)
+    };
+    fast().unwrap_or_else(|| span_coefficients::<Ddi>(s, j, k))
 }
 
-/// The knot ratios of [`quadratic_span`] on span k: d_{k-1} / (d_{k-1} + d_k) and
+/// The knot ratios of a quadratic span k (as in [`closed_form`]): d_{k-1} / (d_{k-1} + d_k) and
 /// d_k / (d_k + d_{k+1}) (shared by every row of the span).
 fn quadratic_ratios<S: Scalar>(kn: &[f64], k: usize) -> [S; 2] {
     let d = |i: usize| S::from_f64(kn[i + 1]) - S::from_f64(kn[i]);
@@ -1125,7 +1206,8 @@ fn quadratic_ratios<S: Scalar>(kn: &[f64], k: usize) -> [S; 2] {
     [d1.clone() / (d1 + d2.clone()), d2.clone() / (d2 + d3)]
 }
 
-/// The cuts of [`quadratic_span`] with the ratios `r` on the local values P_{k-2}, P_{k-1}, P_k.
+/// The cuts of a quadratic span (as in [`closed_form`]) with the ratios `r` on the local values
+/// P_{k-2}, P_{k-1}, P_k.
 fn quadratic_cuts<S: Scalar>(r: &[S; 2], [p0, p1, p2]: [S; 3]) -> [S; 3] {
     let b0 = S::lerp(&r[0], &p0, &p1);
     let b2 = S::lerp(&r[1], &p1, &p2);
@@ -1150,7 +1232,7 @@ const CONIC_ROWS: usize = 3 * (MAX_DIM + 1);
 
 /// A rational conic's homogeneous Bézier coefficients on span k, in `S`: for coordinate j the
 /// row X at 3 j (of the products w_i x_i), the row W at 3 d (of the weights), each by the
-/// closed form of [`quadratic_span`] (Boehm's insertion of the homogeneous spline, NURBS Book
+/// closed form of a quadratic span ([`closed_form`]) (Boehm's insertion of the homogeneous spline, NURBS Book
 /// A5.6 on P^w). In f64 for the filter, in exact arithmetic in the tests; [`ConicSpan`] forms
 /// the same rows in `Ddi` (one coordinate's on first use).
 fn conic_rows<S: Scalar>(s: &Simple, w: &[f64], k: usize) -> [S; CONIC_ROWS] {
@@ -1978,6 +2060,37 @@ mod tests {
         );
     }
 
+    /// The families of the closed-form tests: uniform, clustered and multiple knots, flat runs,
+    /// extrema at knots, everything at once.
+    const SPLINE_FAMILIES: [Family; 6] = [
+        Family::ClampedUniform,
+        Family::ClusteredKnots,
+        Family::MultipleKnots,
+        Family::FlatCoordinates,
+        Family::ExtremaAtKnots,
+        Family::Mixed,
+    ];
+
+    /// Calls `f(s, j, k)` for every coordinate j and non-empty span k of the polynomial splines
+    /// (n > p >= 2) among `curves` that the lane takes.
+    fn each_spline_span(curves: &[NurbsCurve], mut f: impl FnMut(&Simple, usize, usize)) {
+        for c in curves {
+            let Some(s) = Simple::of(c) else { continue };
+            // (single segments and polylines have no closed-form spans; rational splines
+            // have homogeneous rows: `rational_span_coefficients_are_within_their_bound`)
+            if s.n == s.p || s.p == 1 || s.w.is_some() {
+                continue;
+            }
+            for j in 0..s.d {
+                for k in s.p..=s.n {
+                    if s.knots[k] < s.knots[k + 1] {
+                        f(&s, j, k);
+                    }
+                }
+            }
+        }
+    }
+
     /// The closed form equals the exact insertion in rational arithmetic (so the formula is
     /// right), its f64 values are within the a-priori bound of `bezier::span_bounds` of the
     /// exact ones, and its `Ddi` values enclose them: quadratic and cubic splines with
@@ -1986,51 +2099,104 @@ mod tests {
     fn closed_form_span_coefficients_match_exact_insertion() {
         let mut r = gen::rng(17);
         let mut spans = 0;
-        for fam in [
-            Family::ClampedUniform,
-            Family::ClusteredKnots,
-            Family::MultipleKnots,
-            Family::FlatCoordinates,
-            Family::ExtremaAtKnots,
-            Family::Mixed,
-        ] {
-            for _ in 0..60 {
-                let c = fam.curve(&mut r);
-                let Some(s) = Simple::of(&c) else { continue };
-                // (single segments and polylines have no closed-form spans; rational splines
-                // have homogeneous rows: `rational_span_coefficients_are_within_their_bound`)
-                if s.n == s.p || s.p == 1 || s.w.is_some() {
-                    continue;
+        for fam in SPLINE_FAMILIES {
+            let curves: Vec<NurbsCurve> = (0..60).map(|_| fam.curve(&mut r)).collect();
+            each_spline_span(&curves, |s, j, k| {
+                spans += 1;
+                let ex = span_coefficients::<Exact>(s, j, k);
+                let ins = span_coefficients_by_insertion::<Exact>(s, j, k);
+                let f = span_coefficients::<f64>(s, j, k);
+                let dd = span_coefficients::<Ddi>(s, j, k);
+                let m = (k - s.p..=k).fold(0.0f64, |m, i| m.max(s.pts[i * s.d + j].abs()));
+                let e = (2 * s.p) as f64 * (8.0 * f64::EPSILON) * m + f64::MIN_POSITIVE;
+                for i in 0..=s.p {
+                    assert!(ex[i] == ins[i], "{fam:?} span {k} coefficient {i}");
+                    let err = ex[i].clone() - Exact::of(f[i]);
+                    assert!(
+                        err.cmp_f64(e) != Some(Ordering::Greater)
+                            && err.cmp_f64(-e) != Some(Ordering::Less),
+                        "{fam:?} span {k} b_{i}: f64 error above the bound"
+                    );
+                    let iv = dd[i].to_interval();
+                    assert_eq!(ex[i].cmp_f64(iv.sup()).map(|o| o.is_le()), Some(true));
+                    assert_eq!(ex[i].cmp_f64(iv.inf()).map(|o| o.is_ge()), Some(true));
                 }
-                for j in 0..s.d {
-                    for k in s.p..=s.n {
-                        if s.knots[k] >= s.knots[k + 1] {
-                            continue;
-                        }
-                        spans += 1;
-                        let ex = span_coefficients::<Exact>(&s, j, k);
-                        let ins = span_coefficients_by_insertion::<Exact>(&s, j, k);
-                        let f = span_coefficients::<f64>(&s, j, k);
-                        let dd = span_coefficients::<Ddi>(&s, j, k);
-                        let m = (k - s.p..=k).fold(0.0f64, |m, i| m.max(s.pts[i * s.d + j].abs()));
-                        let e = (2 * s.p) as f64 * (8.0 * f64::EPSILON) * m + f64::MIN_POSITIVE;
-                        for i in 0..=s.p {
-                            assert!(ex[i] == ins[i], "{fam:?} span {k} coefficient {i}");
-                            let err = ex[i].clone() - Exact::of(f[i]);
-                            assert!(
-                                err.cmp_f64(e) != Some(Ordering::Greater)
-                                    && err.cmp_f64(-e) != Some(Ordering::Less),
-                                "{fam:?} span {k} b_{i}: f64 error above the bound"
-                            );
-                            let iv = dd[i].to_interval();
-                            assert_eq!(ex[i].cmp_f64(iv.sup()).map(|o| o.is_le()), Some(true));
-                            assert_eq!(ex[i].cmp_f64(iv.inf()).map(|o| o.is_ge()), Some(true));
-                        }
-                    }
-                }
-            }
+            });
         }
         assert!(spans > 500, "only {spans} spans checked");
+    }
+
+    /// The step-3 coefficients in double words ([`step3_coefficients`]) enclose the exact ones
+    /// within their radius (hi + lo ± rad, compared in rational arithmetic, not rounded to f64),
+    /// and are exact exactly where the `Ddi` closed form's are, with the same values: the
+    /// families of the test above, and splines with small integer knots (repeated) and
+    /// control values on a grid of 1/8 or of 2^-52 (cuts by ratios 1/2, 1/3, .. of values
+    /// that are often exact), degree 2 and 3.
+    #[test]
+    fn dw_closed_form_encloses_the_exact_coefficients() {
+        use rand::Rng;
+        let mut r = gen::rng(53);
+        let mut curves: Vec<NurbsCurve> = Vec::new();
+        for fam in SPLINE_FAMILIES {
+            curves.extend((0..60).map(|_| fam.curve(&mut r)));
+        }
+        for it in 0..400 {
+            let p = r.random_range(2..=3);
+            let n = r.random_range(p + 1..=p + 8);
+            let mut k = vec![0.0; p + 1];
+            let mut u = 0.0;
+            while k.len() < n + 1 {
+                u += r.random_range(1..=3) as f64;
+                let m = r.random_range(1..=p).min(n + 1 - k.len());
+                k.extend(std::iter::repeat_n(u, m));
+            }
+            k.extend(std::iter::repeat_n(u + 1.0, p + 1));
+            let grid = if it % 2 == 0 {
+                0.125
+            } else {
+                f64::EPSILON / 2.0
+            };
+            let pts: Vec<Vec<f64>> = (0..=n)
+                .map(|_| vec![r.random_range(-64i64..64) as f64 * grid * 7.0])
+                .collect();
+            curves.extend(NurbsCurve::new(p, k, pts, None));
+        }
+        let (mut spans, mut exact, mut fast) = (0, 0, 0);
+        each_spline_span(&curves, |s, j, k| {
+            if s.p > 3 {
+                return;
+            }
+            spans += 1;
+            let ex = span_coefficients::<Exact>(s, j, k);
+            let dw = step3_coefficients(s, j, k);
+            let dd = span_coefficients::<Ddi>(s, j, k);
+            fast += (0..=s.p).any(|i| dw[i] != dd[i]) as usize;
+            for i in 0..=s.p {
+                let (h, l, rad) = dw[i].parts();
+                let err = ex[i].clone() - Exact::of(h) - Exact::of(l);
+                assert!(
+                    err.cmp_f64(rad) != Some(Ordering::Greater)
+                        && err.cmp_f64(-rad) != Some(Ordering::Less),
+                    "span {k} b_{i}: {:?} misses the exact value",
+                    dw[i]
+                );
+                assert_eq!(
+                    rad == 0.0,
+                    dd[i].rad() == 0.0,
+                    "span {k} b_{i}: {:?} against {:?}",
+                    dw[i],
+                    dd[i]
+                );
+                if rad == 0.0 {
+                    assert_eq!(dw[i], dd[i]);
+                    exact += 1;
+                }
+            }
+        });
+        assert!(
+            spans > 1500 && exact > 1000 && fast > 400,
+            "{spans} spans, {exact} exact, {fast} by double words"
+        );
     }
 
     /// Above degree 3 the coefficients come from the insertion itself: exactly (in rational

@@ -388,6 +388,42 @@ where
     true
 }
 
+/// The guard of the module docs on the knots a closed form built from corner cuts reads, for
+/// callers outside this module (their values: [`Dw::guarded`]).
+pub(crate) fn knots_ok(t: &[f64]) -> bool {
+    knots_guarded(t)
+}
+
+impl Dw {
+    /// Whether `x` is an input the module docs' bound covers (finite, below 2^1000).
+    #[inline]
+    pub(crate) fn guarded(x: f64) -> bool {
+        x.abs() < BIG
+    }
+    /// The value with its bound as a `Ddi` (centre hi + lo, radius e), or `None` where a part
+    /// is not finite (the bound then covers nothing).
+    #[inline]
+    pub(crate) fn to_ddi_checked(self) -> Option<Ddi> {
+        (self.hi.is_finite() && self.lo.is_finite() && self.e.is_finite()).then(|| to_ddi(&self))
+    }
+    /// An exact value: bound 0 (an input, [`Scalar::from_f64`]).
+    #[inline]
+    pub(crate) fn is_exact(&self) -> bool {
+        self.e == 0.0
+    }
+    /// Whether the knot ratio (u - a) / (b - a) of f64 knots (a < u < b) may be exactly a
+    /// double: `false` only where u - a and b - a are doubles (TwoSum without error) and the
+    /// remainder u - a - q (b - a) of the rounded quotient q is not zero (a ratio of two
+    /// doubles that is a dyadic rational is a double, the rounded quotient itself).
+    #[inline]
+    pub(crate) fn knot_ratio_may_be_exact(u: f64, a: f64, b: f64) -> bool {
+        let (nh, nl) = two_sum(u, -a);
+        let (dh, dl) = two_sum(b, -a);
+        let q = nh / dh;
+        nl != 0.0 || dl != 0.0 || (-q).mul_add(dh, nh) == 0.0
+    }
+}
+
 /// Whether every part of every result is finite (else the caller runs the `Ddi` route).
 fn all_finite(d: &[Dw]) -> bool {
     d.iter()
