@@ -477,6 +477,28 @@ fn each_above(s: &Simple, j: usize, sign: f64, t: f64, mut f: impl FnMut(usize))
     const BLOCK: usize = 8;
     let d = s.d;
     let pts = &s.pts[..(s.n + 1) * d];
+    if d == 1 {
+        // (one coordinate: a block is eight consecutive values, tested by vector compares)
+        let blocks = pts.chunks_exact(BLOCK);
+        let rest = blocks.remainder();
+        for (b, block) in blocks.enumerate() {
+            let block: &[f64; BLOCK] = block.try_into().expect("a block of eight");
+            if block.iter().fold(false, |any, &v| any | (sign * v > t)) {
+                for (o, &v) in block.iter().enumerate() {
+                    if sign * v > t {
+                        f(b * BLOCK + o);
+                    }
+                }
+            }
+        }
+        let base = pts.len() - rest.len();
+        for (o, &v) in rest.iter().enumerate() {
+            if sign * v > t {
+                f(base + o);
+            }
+        }
+        return;
+    }
     for (b, block) in pts.chunks(BLOCK * d).enumerate() {
         let any = block
             .chunks_exact(d)
@@ -801,7 +823,15 @@ fn spline_side(
             }
             // A span whose only control values above the attained value are at its end
             // positions is covered by its neighbours (see step 1 in the docs above): skipped.
-            let inner = (k - p + 1..k).fold(f64::NEG_INFINITY, |b, l| b.max(x(l)));
+            // (the control values are finite: a comparison, not `f64::max` and its NaN rule)
+            let inner = (k - p + 1..k).fold(f64::NEG_INFINITY, |b, l| {
+                let v = x(l);
+                if v > b {
+                    v
+                } else {
+                    b
+                }
+            });
             if inner <= attained
                 && (x(k - p) <= attained || (k > p && nonempty(k - 1)))
                 && (x(k) <= attained || (k < n && nonempty(k + 1)))
