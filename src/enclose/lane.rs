@@ -929,9 +929,10 @@ fn spline_side(
         // end (a symmetric extremum at a knot, moved by a few ulps), and the proof below
         // brackets it.)
         let signed = qd.map(|v| if sign > 0.0 { v } else { -v });
+        // (the ends of `to_interval`, each computed alone: `upper_end`, `lower_end`)
         let sups: [f64; LANE_MAX_DEGREE + 1] = std::array::from_fn(|i| {
             if i <= p {
-                signed[i].to_interval().sup()
+                signed[i].upper_end()
             } else {
                 f64::NEG_INFINITY
             }
@@ -945,7 +946,7 @@ fn spline_side(
         }
         if at == 0 || at == p {
             let v = signed[at];
-            let inf = v.to_interval().inf();
+            let inf = v.lower_end();
             let others = (0..=p)
                 .filter(|&i| i != at)
                 .fold(f64::NEG_INFINITY, |m, i| m.max(sups[i]));
