@@ -1867,6 +1867,34 @@ mod tests {
         assert!(kinds.iter().all(|&m| m > 100), "{kinds:?}");
     }
 
+    /// [`each_above`] calls back exactly the indices whose sign-adjusted control value exceeds
+    /// the threshold, ascending: random splines of 1 to 4 coordinates and 4 to 40 control
+    /// points (blocks of eight and the remainder), both signs, thresholds at and between the
+    /// values.
+    #[test]
+    fn each_above_finds_the_values_above() {
+        use rand::Rng;
+        let mut r = gen::rng(59);
+        for _ in 0..3000 {
+            let (d, npts) = (r.random_range(1..=4), r.random_range(4..=40));
+            let pts: Vec<Vec<f64>> = (0..npts)
+                .map(|_| (0..d).map(|_| r.random_range(-8i32..8) as f64).collect())
+                .collect();
+            let mut k = vec![0.0; 4];
+            k.extend((1..npts - 3).map(|i| i as f64));
+            k.extend([(npts - 3) as f64; 4]);
+            let c = NurbsCurve::new(3, k, pts.clone(), None).expect("a clamped cubic spline");
+            let s = Simple::of(&c).expect("in the lane");
+            let j = r.random_range(0..d);
+            let sign = if r.random_bool(0.5) { 1.0 } else { -1.0 };
+            let t = r.random_range(-9i32..9) as f64 + if r.random_bool(0.5) { 0.5 } else { 0.0 };
+            let want: Vec<usize> = (0..npts).filter(|&i| sign * pts[i][j] > t).collect();
+            let mut got = Vec::new();
+            each_above(&s, j, sign, t, |i| got.push(i));
+            assert_eq!(got, want, "d = {d}, j = {j}, sign {sign}, t = {t}");
+        }
+    }
+
     /// [`jump_knot`] against the run count it replaced: random non-decreasing knot vectors
     /// with runs of every length up to p + 2 (inside the domain, at its ends and beyond them),
     /// p = 2 ..= 5.
