@@ -1123,10 +1123,10 @@ fn span_coefficients<S: Scalar>(s: &Simple, j: usize, k: usize) -> [S; LANE_MAX_
     })
 }
 
-/// The knot ratio (u_u - u_a) / (u_b - u_a) (a <= u < b) of the closed forms as a quotient of
-/// sums of the knot intervals d_i = u_{i+1} - u_i, added from the left: the numerator
-/// d_a + .. + d_{u-1} (or d_a alone), the denominator the numerator plus d_u + .. + d_{b-1}
-/// (the form of [`span_coefficients`]' error bound; exact differences and sums in `Ddi`).
+/// The knot ratio (u_u - u_a) / (u_b - u_a) (indices a < u < b) of the closed forms as a
+/// quotient of sums of the knot intervals d_i = u_{i+1} - u_i, added from the left: the
+/// numerator d_a + .. + d_{u-1}, the denominator the numerator plus d_u + .. + d_{b-1} (the
+/// form of [`span_coefficients`]' error bound; exact differences and sums in `Ddi`).
 #[inline]
 fn sum_ratio<S: Scalar>(kn: &[f64], u: usize, a: usize, b: usize) -> S {
     let d = |i: usize| S::from_f64(kn[i + 1]) - S::from_f64(kn[i]);
