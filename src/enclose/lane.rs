@@ -1194,11 +1194,11 @@ fn closed_form<S: Scalar>(
 /// double), so the two routes differ only in the last bits of the centres and in the radii.
 /// (`dw_closed_form_encloses_the_exact_coefficients`)
 fn step3_coefficients(s: &Simple, j: usize, k: usize) -> [Ddi; LANE_MAX_DEGREE + 1] {
-    use crate::num::dw::{knots_ok, Dw};
+    use crate::num::dw::{knots_guarded, Dw};
     let (p, kn) = (s.p, s.knots);
     let fast = || -> Option<[Ddi; LANE_MAX_DEGREE + 1]> {
         // (the knots the ratios read, u_{k+1-p} ..= u_{k+p}, and the local control values)
-        if !knots_ok(&kn[k + 1 - p..=k + p])
+        if !knots_guarded(&kn[k + 1 - p..=k + p])
             || !(k - p..=k).all(|i| Dw::guarded(s.pts[i * s.d + j]))
         {
             return None;
@@ -1214,7 +1214,12 @@ fn step3_coefficients(s: &Simple, j: usize, k: usize) -> [Ddi; LANE_MAX_DEGREE +
                 exact_cut |= lo.is_exact()
                     && hi.is_exact()
                     && (lo == hi || Dw::knot_ratio_may_be_exact(tu, ta, tb));
-                Dw::lerp(&Dw::knot_ratio_f64(tu, ta, tb), lo, hi)
+                // (once a cut may be exact the `Ddi` closed form runs: no more cuts here)
+                if exact_cut {
+                    *lo
+                } else {
+                    Dw::lerp(&Dw::knot_ratio_f64(tu, ta, tb), lo, hi)
+                }
             }
         });
         if exact_cut {
@@ -1232,9 +1237,10 @@ fn step3_coefficients(s: &Simple, j: usize, k: usize) -> [Ddi; LANE_MAX_DEGREE +
 /// The knot ratios of a quadratic span k (as in [`closed_form`]): d_{k-1} / (d_{k-1} + d_k) and
 /// d_k / (d_k + d_{k+1}) (shared by every row of the span).
 fn quadratic_ratios<S: Scalar>(kn: &[f64], k: usize) -> [S; 2] {
-    let d = |i: usize| S::from_f64(kn[i + 1]) - S::from_f64(kn[i]);
-    let (d1, d2, d3) = (d(k - 1), d(k), d(k + 1));
-    [d1.clone() / (d1 + d2.clone()), d2.clone() / (d2 + d3)]
+    [
+        sum_ratio(kn, k, k - 1, k + 1),
+        sum_ratio(kn, k + 1, k, k + 2),
+    ]
 }
 
 /// The cuts of a quadratic span (as in [`closed_form`]) with the ratios `r` on the local values

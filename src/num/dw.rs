@@ -363,7 +363,7 @@ const C29: f64 = 29.0 * f64::from_bits((1023 - 106) << 52);
 
 /// The guard of the module docs on the knots: every one finite and below 2^1000, distinct
 /// ones at least 2^-900 apart (sorted, so the consecutive gaps are the smallest differences).
-fn knots_guarded(t: &[f64]) -> bool {
+pub(crate) fn knots_guarded(t: &[f64]) -> bool {
     t.iter().all(|x| x.abs() < BIG) && !t.windows(2).any(|w| w[1] != w[0] && w[1] - w[0] < TINY_GAP)
 }
 
@@ -386,12 +386,6 @@ where
         buf.push(Dw { hi, lo, e: rad });
     }
     true
-}
-
-/// The guard of the module docs on the knots a closed form built from corner cuts reads, for
-/// callers outside this module (their values: [`Dw::guarded`]).
-pub(crate) fn knots_ok(t: &[f64]) -> bool {
-    knots_guarded(t)
 }
 
 impl Dw {
