@@ -21,7 +21,9 @@
 //!   of the `bezier` strategy's fast path (`bezier::single`, degree 2 and 3: f64 root estimates
 //!   of C_j', proven derivative signs at test points by an f64 filter with an a-priori error
 //!   bound, root counting, a double-double Taylor enclosure over each tiny bracket; degree 4
-//!   and 5: its general fast path, `bezier::coefficient_side`, the zeros of C_j' located by
+//!   and 5: the same proof with the zeros of C_j' counted by the sign changes of its Bernstein
+//!   coefficients, `bezier::single`'s quartic and quintic route, and where that fails its
+//!   general fast path, `bezier::coefficient_side`, the zeros of C_j' located by
 //!   Bernstein subdivision with proven sign counts; a rational conic: `bezier::conic`, the
 //!   same root isolation on the quadratic numerator of C_j' = N / W^2 and a mean value bound
 //!   over each bracket; a rational curve of degree 3 to 5: the general fast path on the
@@ -703,10 +705,12 @@ fn conic_segment(s: &Simple, w: &[f64], j: usize, cb: &mut CoordBox) -> Option<(
 ///    knot has multiplicity above p). A span whose bound is at most the attained value is
 ///    done.
 /// 3. Otherwise the span's Bézier coefficients are enclosed in double-double (the same
-///    closed form in `Ddi`) and the root-isolating proof (`bezier::single`) bounds it, within two
-///    ulps of the scale; where that fails (a double zero of C_j' at or next to a knot), the
-///    general fast path's proof (`bezier::coefficient_side`) on the coefficients by the
-///    insertion in `Ddi` ([`SpanCache::get_ddi`]), as above degree 3; or the lane gives up.
+///    closed form in `Ddi`; above degree 3 by the insertion, [`SpanCache::get_ddi`]) and the
+///    root-isolating proof (`bezier::single`, degree 2 to 5) bounds it, within two ulps of the
+///    scale; where that fails (a double zero of C_j' at or next to a knot; above degree 3 also
+///    more sign changes of C_j''s Bernstein coefficients than zeros found), the general fast
+///    path's proof (`bezier::coefficient_side`) on the coefficients by the insertion in `Ddi`;
+///    or the lane gives up.
 ///
 /// A rational curve: step 1 as above (with positive weights the piece on a span is a convex
 /// combination of its local control points, NURBS Book eq. 4.11, and the skip argument holds
@@ -968,8 +972,8 @@ fn spline_side(
                 continue;
             }
         }
-        // The proof of this side: on a conic `bezier::conic`'s, on a polynomial quadratic or
-        // cubic the root-isolating proof of `bezier::single` (`None` here where it fails), on
+        // The proof of this side: on a conic `bezier::conic`'s, on a polynomial span (degree 2
+        // to 5) the root-isolating proof of `bezier::single` (`None` here where it fails), on
         // the rest the general fast path's below.
         let side = if sign > 0.0 { 0 } else { 1 };
         let r = if let Some((xs, ws, q)) = conic {
@@ -986,7 +990,7 @@ fn spline_side(
             let mut need = [false; 2];
             need[side] = true;
             Some(conic_sides(&seg, need)?[side])
-        } else if p <= 3 && hom.is_none() {
+        } else if hom.is_none() {
             let seg = Segment {
                 c: &qd[..=p],
                 a: kn[k],
@@ -1005,10 +1009,10 @@ fn spline_side(
         };
         let Some(r) = r else {
             // The general fast path's proof on the span's coefficients (the zeros of C_j'
-            // located by Bernstein subdivision with proven sign counts): above degree 3, on a
-            // rational curve above degree 2, and where the proof of a quadratic or cubic
-            // fails (a double zero of C_j' at or next to a knot: a symmetric extremum at a
-            // knot, a near-degenerate cubic), as the general path's search tries it after
+            // located by Bernstein subdivision with proven sign counts): on a rational curve
+            // above degree 2, and where the proof of a polynomial span fails (a double zero of
+            // C_j' at or next to a knot: a symmetric extremum at a knot, a near-degenerate
+            // cubic; above degree 3 also a loose count of zeros), as the general path's search tries it after
             // `single` (before, the lane gave such a curve up to the general path, which
             // repeated the work done so far). A quadratic or cubic then takes its coefficients
             // by the insertion, whose end values that are exactly doubles are made exact

@@ -1,7 +1,9 @@
 //! Root-isolating fast path of the `bezier` strategy for one polynomial Bézier segment of
 //! degree 2 or 3: a single clamped segment without weights (the common 2-D cubic Bézier), and
 //! the spans of non-rational quadratic / cubic splines (segments from double-double knot
-//! insertion, `HSpline::<Ddi>::bezier_segment`).
+//! insertion, `HSpline::<Ddi>::bezier_segment`); and, for the driver's lane, the spans of
+//! quartic and quintic splines, with the zeros of x' counted by the sign changes of its
+//! Bernstein coefficients ([`quartic_quintic_sides_into`]).
 //!
 //! For one coordinate x(t) = sum_i c_i B_i^p(t), t in [0, 1] (the curve's image does not
 //! depend on the parametrisation, so the local parameter is used throughout), with control
@@ -149,9 +151,6 @@ impl Poly {
         x[1..=p].copy_from_slice(&d[..p]);
         power_from_differences_in_place(&mut x[1..=p]);
         Poly { p, x }
-    }
-    fn x(&self, t: Ddi) -> Ddi {
-        horner(&self.x[..=self.p], &t)
     }
     /// x'(t) enclosed (the slow, sharp sign test behind [`Deriv::sign`]).
     fn dx(&self, t: Ddi) -> Ddi {
@@ -582,6 +581,9 @@ pub(crate) fn raw_sides(seg: &Segment, need: [bool; 2]) -> Option<[RawSide; 2]> 
 pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide; 2]) -> Option<()> {
     let Segment { c, a, b, .. } = *seg;
     let p = c.len().checked_sub(1)?;
+    if (4..=5).contains(&p) {
+        return quartic_quintic_sides_into(seg, need, out);
+    }
     if !(2..=3).contains(&p) {
         return None;
     }
@@ -615,10 +617,9 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
     let mut s = [false; 6];
     s[0] = s0;
     s[k - 1] = s1;
-    for i in 1..k - 1 {
-        derivative_evaluations += 1;
-        s[i] = co.sign(&deriv, z[i])?;
-    }
+    derivative_evaluations += proven_signs(&z[..k], &mut s, |t| (deriv.approx(t), deriv.err), |t| {
+        sign(co.poly().dx(Ddi::exact(t)))
+    })?;
     let changes = (1..k).filter(|&i| s[i] != s[i - 1]).count();
     // Upper bound R of the number of real roots (module docs, step 4): p - 1, or 0 for a
     // cubic whose discriminant is proven negative (only needed when there are few changes).
@@ -626,6 +627,21 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
         return None;
     }
     // Candidates: the end values and the enclosures over the sign-change intervals.
+    end_candidates(seg, out);
+    // (the Taylor forms from the enclosed power form; the filter approximates x' itself)
+    let pw = co.poly().x;
+    let slope = |m: f64| deriv.approx(m).abs() + deriv.err;
+    derivative_evaluations += bracket_candidates(seg, &z[..k], &s[..k], need, &slope, &pw[..=p], out)?;
+    out[0].derivative_evaluations = derivative_evaluations;
+    Some(())
+}
+
+/// The end candidates of an enclosed segment (module docs, step 5) on both sides of `out`
+/// (`[max, min]`): c_0 at t = 0 (attained), c_p at t = 1 (attained if `right_attained`, else a
+/// left limit at a jump), each bounding its side.
+fn end_candidates(seg: &Segment, out: &mut [RawSide; 2]) {
+    let Segment { c, a, b, .. } = *seg;
+    let p = c.len() - 1;
     let [hi, lo] = out;
     for (t, v, kind, attained) in [
         (0.0, c[0], seg.end_kinds[0], true),
@@ -654,27 +670,48 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
         hi.bound(vu, e);
         lo.bound(-vl, e);
     }
-    // max |x''(ξ) / 2| over [0, 1] <= m2: from the power form, |α_2| + 3 |α_3| (Lemma B: a
-    // term and a product).
-    let m2 = {
-        let x = &co.poly().x;
-        up(x[2].abs_upper() + 3.0 * x[3].abs_upper())
-    };
-    for i in 1..k {
+}
+
+/// The bracket candidates of an enclosed segment (module docs, step 5) on the sides of `out`
+/// that `need` asks for: over each sign-change interval of the proven signs `s` at the test
+/// points `z`, the Taylor form about its midpoint m ([`taylor_radius`] with `slope(m)`, an
+/// upper bound of |x'(m)|) around the `Ddi` Horner value x(m) on the enclosed power form `pw`
+/// (a_0 .. a_p), with max |x''(ξ) / 2| over [0, 1] <= m2 = sum_{k>=2} C(k, 2) |α_k|
+/// (t^(k-2) <= 1; Lemma B: at most four products). At most one bracket per side (two,
+/// possible above degree 3, give up: a side's candidate list has room for one). Returns the
+/// number of derivative evaluations, or `None`.
+fn bracket_candidates(
+    seg: &Segment,
+    z: &[f64],
+    s: &[bool],
+    need: [bool; 2],
+    slope: &impl Fn(f64) -> f64,
+    pw: &[Ddi],
+    out: &mut [RawSide; 2],
+) -> Option<u64> {
+    let m2 = up((2..pw.len()).fold(0.0, |m, k| m + (k * (k - 1) / 2) as f64 * pw[k].abs_upper()));
+    let [hi, lo] = out;
+    let mut evaluations = 0;
+    let mut brackets = [0usize; 2];
+    for i in 1..z.len() {
         // A sign change from + to - brackets a strict local maximum, which is not a global
         // minimum (x is not constant), so it matters for the max side only; - to + likewise
         // for the min side (module docs, step 5).
         let is_max = s[i - 1] && !s[i];
-        if s[i] == s[i - 1] || !need[if is_max { 0 } else { 1 }] {
+        let which = if is_max { 0 } else { 1 };
+        if s[i] == s[i - 1] || !need[which] {
             continue;
         }
+        brackets[which] += 1;
+        if brackets[which] > 1 {
+            return None;
+        }
         let (t0, t1) = (z[i - 1], z[i]);
-        // Taylor form around the midpoint m (see `taylor_radius`), x(m) by Horner on the
-        // enclosed power form
-        let (m, corr) = taylor_radius(&deriv, 1.0, m2, t0, t1);
-        derivative_evaluations += 1;
-        let xm = co.poly().x(Ddi::exact(m));
-        let e = extremum(a, b, t0, t1, true, CandidateKind::Critical);
+        // Taylor form around the midpoint m
+        let (m, corr) = taylor_radius(slope, 1.0, m2, t0, t1);
+        evaluations += 1;
+        let xm = horner(pw, &Ddi::exact(m));
+        let e = extremum(seg.a, seg.b, t0, t1, true, CandidateKind::Critical);
         // the side's upper end of x(m) ± corr (of -x for the min side), rounded outward; a NaN
         // end (an overflow) bounds nothing, so it becomes +inf
         let (side, v) = if is_max {
@@ -687,8 +724,231 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
         side.attain_ddi(v);
         side.bound(if ub.is_nan() { f64::INFINITY } else { ub }, e);
     }
-    hi.derivative_evaluations = derivative_evaluations;
+    Some(evaluations)
+}
+
+/// The f64 filter of degree 4 and 5 ([`quartic_quintic_sides_into`]): the polynomial y(t) with
+/// coefficients b_0 .. b_{m} (m = p - 1 <= 4, `n` = p of them) and |x'(t) - y(t)| <= `err`
+/// for every t in [0, 1].
+struct DerivN {
+    b: [f64; 5],
+    n: usize,
+    err: f64,
+}
+
+impl DerivN {
+    /// From the enclosed power coefficients a_0 .. a_p of x (p = 4 or 5).
+    ///
+    /// Error bound (the argument of [`Deriv::new`] at degree m = p - 1 <= 4). With α_k the
+    /// exact power coefficients (|α_k - (hi_k + lo_k)| <= rad_k) and b̂_{k-1} = fl(k hi_k)
+    /// (exact for k = 1, 2, 4; for k = 3, 5 within U1 |b̂| + η): |k α_k - b̂_{k-1}| <=
+    /// k (|lo_k| + rad_k) + U1 |b̂_{k-1}| + η. Horner with FMA, s_m = b̂_m, s_j =
+    /// fl(s_{j+1} t + b̂_j) = (s_{j+1} t + b̂_j)(1 + δ_j) + η_j (one rounding per step,
+    /// |δ_j| <= u, |η_j| <= η): the computed y is the sum of b̂_k t^k times at most m factors
+    /// (1 + δ), plus the sum of η_j t^j times at most m such factors, so for t in [0, 1] it
+    /// differs from the sum of b̂_k t^k by at most γ_m (|b̂_0| + .. + |b̂_m|) plus m η (1 + γ_m),
+    /// with γ_4 = 4u / (1 - 4u) < 4.001 u (Higham, *Accuracy and Stability of Numerical
+    /// Algorithms*, sec. 5.1). Altogether, with U1 + γ_4 < 6u and 2η + 4.01η < 8η = 2^-1072,
+    ///
+    ///   |x'(t) - y| <= T = sum_k k (|lo_k| + rad_k) + 6u (|b̂_0| + .. + |b̂_m|) + 2^-1072,
+    ///
+    /// at most seven terms of Lemma B of [`crate::num::ddi`] (products of an f64 with a sum of
+    /// nonnegative f64, and a constant): `err = up(fl(T)) >= T`. A non-finite value anywhere
+    /// fails every test (comparisons with NaN or inf are false), never passes.
+    fn new(a: &[Ddi]) -> DerivN {
+        let p = a.len() - 1;
+        let mut b = [0.0f64; 5];
+        let mut e = 0.0;
+        let mut sum = 0.0;
+        for k in 1..=p {
+            let kf = k as f64;
+            b[k - 1] = kf * a[k].hi();
+            e += kf * (a[k].lo().abs() + a[k].rad());
+            sum += b[k - 1].abs();
+        }
+        // 6u = 6 * 2^-53 (exact) and 2^-1072 (the bits of 4 * 2^-1074)
+        let t = e + 6.0 * (f64::EPSILON / 2.0) * sum + f64::from_bits(4);
+        DerivN { b, n: p, err: up(t) }
+    }
+
+    /// The f64 value y(t) (Horner with FMA, the order the bound assumes).
+    #[inline]
+    fn approx(&self, t: f64) -> f64 {
+        self.b[..self.n]
+            .iter()
+            .rev()
+            .fold(0.0, |acc: f64, &bk| acc.mul_add(t, bk))
+    }
+
+    /// y'(t) in f64 (no bound: only for the root estimates).
+    fn slope(&self, t: f64) -> f64 {
+        (1..self.n)
+            .rev()
+            .fold(0.0, |acc: f64, k| acc.mul_add(t, k as f64 * self.b[k]))
+    }
+
+    /// f64 estimates of the zeros of y in [0, 1], ascending, at most four (`None` if there seem
+    /// to be more): sign changes of y at t = i / 16, each located by Newton's method safeguarded
+    /// by bisection, and the samples where y is exactly 0. Nothing about soundness depends on
+    /// them (they only choose test points); zeros they miss (two within a sixteenth) leave the
+    /// root count of the proof short, which then gives up.
+    fn zero_estimates(&self) -> Option<([f64; 4], usize)> {
+        let mut r = [0.0f64; 4];
+        let mut nr = 0;
+        let mut push = |x: f64| -> Option<()> {
+            if nr == 4 {
+                return None;
+            }
+            r[nr] = x;
+            nr += 1;
+            Some(())
+        };
+        let (mut t0, mut y0) = (0.0, self.approx(0.0));
+        for i in 1..=16 {
+            let t1 = i as f64 / 16.0;
+            let y1 = self.approx(t1);
+            if y1 == 0.0 && t1 < 1.0 {
+                push(t1)?;
+            } else if y0 != 0.0 && y1 != 0.0 && (y0 > 0.0) != (y1 > 0.0) {
+                push(self.locate(t0, t1, y0))?;
+            }
+            (t0, y0) = (t1, y1);
+        }
+        Some((r, nr))
+    }
+
+    /// A zero of y in (lo, hi), where y(lo) = `ylo` and y(hi) have opposite signs: Newton's
+    /// method from the secant point, a bisection step wherever Newton leaves the bracket.
+    fn locate(&self, mut lo: f64, mut hi: f64, ylo: f64) -> f64 {
+        let neg_lo = ylo < 0.0;
+        let mut r = 0.5 * (lo + hi);
+        for _ in 0..60 {
+            let v = self.approx(r);
+            if v == 0.0 {
+                break;
+            }
+            if (v < 0.0) == neg_lo {
+                lo = r;
+            } else {
+                hi = r;
+            }
+            let mut next = r - v / self.slope(r);
+            if !(next > lo && next < hi) {
+                next = 0.5 * (lo + hi);
+            }
+            // (a step below 2^-46 leaves the estimate far inside its bracket r -+ h, h = 2^-40)
+            let done = (next - r).abs() <= 1.0 / 70_368_744_177_664.0 || hi - lo <= f64::EPSILON;
+            r = next;
+            if done {
+                break;
+            }
+        }
+        r
+    }
+}
+
+/// [`raw_sides_into`] on a polynomial segment of degree 4 or 5 with enclosed coefficients (the
+/// spans of the lane's quartic and quintic splines, and its single segments of those degrees):
+/// the proof of the module docs with these changes.
+///
+/// * Step 1: the power form a_0 .. a_p in `Ddi` (forward differences, as for p <= 3).
+/// * Step 2: f64 estimates of the zeros of the filter's polynomial y ≈ x' (degree p - 1 = 3
+///   or 4): sign changes at sixteen sample points, located by safeguarded Newton
+///   ([`DerivN::zero_estimates`]).
+/// * Step 3: test points 0, r ± h, 1 with proven signs of x' (the filter [`DerivN`] with its
+///   written bound, else a `Ddi` Horner enclosure of x' excluding 0); x'(0) = p Δc_0 and
+///   x'(1) = p Δc_{p-1} by the proven signs of those differences.
+/// * Step 4: the bound R on the zeros of x' in (0, 1) is the number V of sign changes of the
+///   Bernstein coefficients Δc_0 .. Δc_{p-1} of x' / p (each enclosure proven non-zero, or
+///   exactly zero and skipped; the end ones proven non-zero, so x' has no zero at 0 or 1):
+///   Descartes' rule of signs for the Bernstein basis (the zeros in (0, 1), counted with
+///   multiplicity, number at most V; Farin, *Curves and Surfaces for CAGD*, the variation
+///   diminishing property). With c sign-change intervals among the test points and c >= V - 1,
+///   each of them holds exactly one zero and every other interval none, as in step 4 of the
+///   module docs. Otherwise (or with an enclosure that may be zero) the proof gives up.
+/// * Step 5: as there, with |x''(ξ) / 2| <= sum_{k>=2} C(k, 2) |α_k| from the power form and
+///   x(m) by Horner in `Ddi`; at most one bracket per side (a second one, two local maxima in
+///   one span, gives up: the side's candidate list has room for one).
+///
+/// No tie rule (step 5b): a tie is left to the certificate, as on every enclosed segment.
+// (not inlined: inlined, it changed the register allocation of the cubic's `f64_sides`, +85
+// instructions per 2-D cubic)
+#[inline(never)]
+fn quartic_quintic_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide; 2]) -> Option<()> {
+    let c = seg.c;
+    let p = c.len() - 1;
+    // Δc_i, and their sign changes V (an exact zero skipped, an enclosure that may hold 0 gives
+    // up; the end ones must have a proven sign)
+    let mut d = [Ddi::exact(0.0); 5];
+    for (i, di) in d.iter_mut().enumerate().take(p) {
+        *di = if is_f64(&c[i]) && is_f64(&c[i + 1]) {
+            Ddi::diff(c[i + 1].hi(), c[i].hi())
+        } else {
+            c[i + 1] - c[i]
+        };
+    }
+    let (s0, s1) = (sign(d[0])?, sign(d[p - 1])?);
+    let mut v = 0;
+    let mut last = s0;
+    for di in &d[1..p] {
+        if di.hi() == 0.0 && di.lo() == 0.0 && di.rad() == 0.0 {
+            continue;
+        }
+        let si = sign(*di)?;
+        v += (si != last) as usize;
+        last = si;
+    }
+    // the power form a_0 .. a_p (a_k = C(p, k) Δ^k c_0)
+    let mut pw = [Ddi::exact(0.0); 6];
+    pw[0] = c[0];
+    pw[1..=p].copy_from_slice(&d[..p]);
+    power_from_differences_in_place(&mut pw[1..=p]);
+    let pw = &pw[..=p];
+    let deriv = DerivN::new(pw);
+    let (r, nr) = if v == 0 { ([0.0; 4], 0) } else { deriv.zero_estimates()? };
+    // test points 0 < r_1 - h < r_1 + h < ... < 1 (estimates outside (0, 1), or closer than
+    // 2h to the last point, add nothing)
+    let mut z = [0.0f64; 10];
+    let k = points_around(&r[..nr], &mut z);
+    // proven signs of x' at the test points
+    let dpw: [Ddi; 5] =
+        std::array::from_fn(|i| if i < p { Ddi::exact((i + 1) as f64) * pw[i + 1] } else { Ddi::exact(0.0) });
+    let mut s = [false; 10];
+    s[0] = s0;
+    s[k - 1] = s1;
+    let mut derivative_evaluations = proven_signs(&z[..k], &mut s, |t| (deriv.approx(t), deriv.err), |t| {
+        sign(horner(&dpw[..p], &Ddi::exact(t)))
+    })?;
+    let changes = (1..k).filter(|&i| s[i] != s[i - 1]).count();
+    if changes + 1 < v || changes > v {
+        return None;
+    }
+    // Candidates: the end values and the enclosures over the sign-change intervals.
+    end_candidates(seg, out);
+    // (the filter approximates x' itself: scale 1)
+    let slope = |m: f64| deriv.approx(m).abs() + deriv.err;
+    derivative_evaluations += bracket_candidates(seg, &z[..k], &s[..k], need, &slope, pw, out)?;
+    out[0].derivative_evaluations = derivative_evaluations;
     Some(())
+}
+
+/// The proven signs of x' at the inner test points z[1] .. z[k-2] into `s` (the ends are the
+/// caller's): the filter's value y with its bound e (`filter(t)` = (y, e), |x' / scale - y| <=
+/// e for a positive scale) where |y| > e, else the sign from `exact(t)`; `None` where neither
+/// proves one. Returns the number of points tested.
+#[inline]
+fn proven_signs(
+    z: &[f64],
+    s: &mut [bool],
+    filter: impl Fn(f64) -> (f64, f64),
+    mut exact: impl FnMut(f64) -> Option<bool>,
+) -> Option<u64> {
+    let k = z.len();
+    for i in 1..k - 1 {
+        let (y, e) = filter(z[i]);
+        s[i] = if y.abs() > e { y > 0.0 } else { exact(z[i])? };
+    }
+    Some(k.saturating_sub(2) as u64)
 }
 
 /// The test points of step 3 (module docs): 0, the pairs r ± h around the f64 root estimates
@@ -696,13 +956,22 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
 #[inline]
 pub(super) fn test_points(deriv: &Deriv) -> ([f64; 6], usize) {
     let mut z = [0.0f64; 6];
-    let mut k = 1;
     let (mut r, nr) = root_estimates(deriv.b[0], deriv.b[1], deriv.b[2]);
     // (ascending; at most two, both finite)
     if nr == 2 && r[1] < r[0] {
         r.swap(0, 1);
     }
-    for &ri in &r[..nr] {
+    let k = points_around(&r[..nr], &mut z);
+    (z, k)
+}
+
+/// Fills `z` (z[0] = 0) with the pairs r ± h around the ascending estimates `r` that lie
+/// inside (0, 1) in increasing order (an estimate closer than 2h to the last point adds what
+/// lies beyond it), then 1; returns how many points there are.
+#[inline]
+fn points_around(r: &[f64], z: &mut [f64]) -> usize {
+    let mut k = 1;
+    for &ri in r {
         for t in [ri - H, ri + H] {
             if t > z[k - 1] && t < 1.0 {
                 z[k] = t;
@@ -711,7 +980,7 @@ pub(super) fn test_points(deriv: &Deriv) -> ([f64; 6], usize) {
         }
     }
     z[k] = 1.0;
-    (z, k + 1)
+    k + 1
 }
 
 /// Whether the cubic's x' / 3 (Bernstein coefficients Δc_0, Δc_1, Δc_2) has a proven negative
@@ -728,15 +997,15 @@ fn no_real_roots(c: &[Ddi]) -> bool {
 /// |x(t) - x(m)| <= corr for every t in it (module docs, step 5): with |t - m| <= r,
 /// x(t) = x(m) + x'(m) (t - m) + x''(ξ) / 2 (t - m)^2 (Lagrange remainder), so
 /// |x(t) - x(m)| <= dscale (|y| + err) r + m2 r^2 <= corr (Lemma B of [`crate::num::ddi`],
-/// with r2 >= r^2; |x'(m)| <= dscale (|y| + err) by the filter's bound, `dscale` the filter's
-/// scale back to x': 1, or 4 >= p for the filter of x' / p, a power of two, so the scaling of
-/// the product term is exact).
+/// with r2 >= r^2; `slope(m)` = |y(m)| + err for a filter y with |x'(m) / dscale - y(m)| <= err,
+/// `dscale` the filter's scale back to x': 1, or 4 >= p for the filter of x' / p, a power of
+/// two, so the scaling of the product term is exact).
 #[inline]
-fn taylor_radius(deriv: &Deriv, dscale: f64, m2: f64, t0: f64, t1: f64) -> (f64, f64) {
+fn taylor_radius(slope: impl Fn(f64) -> f64, dscale: f64, m2: f64, t0: f64, t1: f64) -> (f64, f64) {
     let m = (t0 + 0.5 * (t1 - t0)).clamp(t0, t1);
     let r = dist_up(m, t0).max(dist_up(t1, m));
     let r2 = up(r * r);
-    let corr = up(dscale * ((deriv.approx(m).abs() + deriv.err) * r) + m2 * r2);
+    let corr = up(dscale * (slope(m) * r) + m2 * r2);
     (m, corr)
 }
 
@@ -810,16 +1079,10 @@ pub(crate) fn f64_sides(
     s[0] = s0;
     s[k - 1] = s1;
     let mut derivative_evaluations = 0;
-    for i in 1..k - 1 {
-        derivative_evaluations += 1;
-        let y = deriv.approx(z[i]);
-        // |x'(t) / p - y| <= err < |y|: x'(t) has the sign of y; else a `Ddi` evaluation
-        s[i] = if y.abs() > deriv.err {
-            y > 0.0
-        } else {
-            exact_sign_of_slope(c, z[i])?
-        };
-    }
+    // |x'(t) / p - y| <= err < |y|: x'(t) has the sign of y; else a `Ddi` evaluation
+    derivative_evaluations += proven_signs(&z[..k], &mut s, |t| (deriv.approx(t), deriv.err), |t| {
+        exact_sign_of_slope(c, t)
+    })? as u32;
     let changes = (1..k).filter(|&i| s[i] != s[i - 1]).count();
     // Upper bound R of the number of real roots (module docs, step 4): p - 1 less the exact
     // zeros at the ends, or 0 for a cubic whose discriminant is proven negative.
@@ -862,7 +1125,7 @@ pub(crate) fn f64_sides(
             continue;
         }
         let (t0, t1) = (z[i - 1], z[i]);
-        let (m, corr) = taylor_radius(&deriv, 4.0, m2, t0, t1);
+        let (m, corr) = taylor_radius(|m| deriv.approx(m).abs() + deriv.err, 4.0, m2, t0, t1);
         derivative_evaluations += 1;
         // x(m) by the compensated de Casteljau algorithm (a priori bound, no power form)
         let xm = Ddi::de_casteljau_f64(c, m);
@@ -977,7 +1240,7 @@ mod tests {
                 + 3.0 * t * (1.0 - t).powi(2) * c[1]
                 + 3.0 * t * t * (1.0 - t) * c[2]
                 + t.powi(3) * c[3];
-            let v = poly.x(Ddi::exact(t)).to_interval();
+            let v = horner(&poly.x[..=poly.p], &Ddi::exact(t)).to_interval();
             assert!((v.mid() - bern).abs() < 1e-14, "{t}: {v:?} {bern}");
         }
     }
@@ -1045,6 +1308,194 @@ mod tests {
         }
         // the bound is an error bound, not a vacuous one: a few hundred u of the scale at most
         assert!(worst < 1e-12, "{worst}");
+    }
+
+    /// Random quartic and quintic coefficient sets for the tests of
+    /// [`quartic_quintic_sides_into`]: f64 values (random, clustered around a base, small
+    /// integers times a power of two, a symmetric peak, a near-double zero of x', monotone),
+    /// each either exact or enclosed with a double-word part and a radius as the lane's
+    /// extraction leaves them; and exact coefficients inside every enclosure (centre, or an
+    /// end of the radius).
+    fn quintic_cases(seed: u64, count: usize) -> Vec<(Vec<Ddi>, Vec<crate::num::Exact>)> {
+        use crate::num::Exact;
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        (0..count)
+            .map(|it| {
+                let p = 4 + it % 2;
+                let mag = 2f64.powi(r.random_range(-60..=60));
+                let base: f64 = r.random_range(-1.0..1.0) * mag;
+                let c: Vec<f64> = (0..=p)
+                    .map(|i| match it % 6 {
+                        0 => base + r.random_range(-1.0..1.0) * mag * 1e-9,
+                        1 => r.random_range(-8.0f64..8.0).round() * mag,
+                        // a symmetric peak (x' zero at 1/2)
+                        2 => {
+                            let m = p as f64 / 2.0;
+                            mag * (1.0 - ((i as f64 - m) / m).powi(2))
+                        }
+                        // a near-double zero of x': a flat top perturbed by a few ulps
+                        3 => {
+                            let v = [0.0, 1.0, 1.0, 1.0, 1.0, 0.0][i.min(5)];
+                            mag * v + r.random_range(-4.0..4.0) * mag * f64::EPSILON
+                        }
+                        // monotone
+                        4 => mag * i as f64 + r.random_range(0.0..0.5) * mag,
+                        _ => r.random_range(-1.0..1.0) * mag,
+                    })
+                    .collect();
+                let enclosed = it % 3 != 0;
+                let side: f64 = [-1.0, 0.0, 1.0][it % 3];
+                c.iter()
+                    .map(|&x| {
+                        if enclosed {
+                            let lo = x * r.random_range(-1.0..1.0) * f64::EPSILON * 0.25;
+                            let rad = x.abs() * 2f64.powi(-100);
+                            let d = Ddi::from_parts(x, lo, rad);
+                            let e = Exact::of(x) + Exact::of(lo) + Exact::of(side) * Exact::of(rad);
+                            (d, e)
+                        } else {
+                            (Ddi::exact(x), Exact::of(x))
+                        }
+                    })
+                    .unzip()
+            })
+            .collect()
+    }
+
+    /// The exact value at t of the Bernstein polynomial with exact coefficients `c`.
+    fn bernstein_exact(c: &[crate::num::Exact], t: f64) -> crate::num::Exact {
+        use crate::num::Exact;
+        let n = c.len() - 1;
+        let (te, se) = (Exact::of(t), Exact::of(1.0) - Exact::of(t));
+        let mut sum = Exact::of(0.0);
+        for (k, ck) in c.iter().enumerate() {
+            let mut term = ck.clone() * Exact::of(crate::num::binom(n, k));
+            for _ in 0..k {
+                term = term * te.clone();
+            }
+            for _ in k..n {
+                term = term * se.clone();
+            }
+            sum = sum + term;
+        }
+        sum
+    }
+
+    /// The filter of degree 3 and 4 ([`DerivN`]) against exact arithmetic: |x'(t) - y(t)| <=
+    /// err for the exact coefficients anywhere in the enclosures (centres and radius ends), at
+    /// t = 0, 1, tiny, near 1 and random; and the bound is an error bound, not a vacuous one.
+    #[test]
+    fn quintic_filter_bound_holds_exactly() {
+        use crate::num::Exact;
+        let mut worst: f64 = 0.0;
+        let ts = [0.0, 1.0, 1e-13, 1.0 - 1e-12, 0.5, 0.3, 0.9];
+        for (c, ce) in quintic_cases(17, 3000) {
+            let p = c.len() - 1;
+            let mut pw = [Ddi::exact(0.0); 6];
+            pw[0] = c[0];
+            for i in 0..p {
+                pw[i + 1] = c[i + 1] - c[i];
+            }
+            power_from_differences_in_place(&mut pw[1..=p]);
+            let dv = DerivN::new(&pw[..=p]);
+            let d: Vec<Exact> = (0..p).map(|i| ce[i + 1].clone() - ce[i].clone()).collect();
+            let scale = c.iter().fold(0.0f64, |m, x| m.max(x.hi().abs()));
+            for &t in &ts {
+                // x'(t) = p sum_i Δc_i B_i^{p-1}(t)
+                let q = Exact::of(p as f64) * bernstein_exact(&d, t);
+                let y = dv.approx(t);
+                let dev = q - Exact::of(y);
+                assert!(
+                    !dev.gt_f64(dv.err) && !(-dev).gt_f64(dv.err),
+                    "{c:?} at {t}: y = {y}, err = {}",
+                    dv.err
+                );
+            }
+            if scale > 0.0 {
+                worst = worst.max(dv.err / scale);
+            }
+        }
+        assert!(worst < 1e-11, "{worst}");
+    }
+
+    /// [`quartic_quintic_sides_into`] against exact arithmetic: on every side it proves, every
+    /// exact value of the polynomial (the exact coefficients inside the enclosures) at 257
+    /// points and at its zeros of x' (located by exact bisection to 2^-60) lies at or below the
+    /// bound, and the attained value at or below the exact maximum. Most cases are proved with
+    /// both gaps within a few ulps of the scale (the path is not vacuous); the near-double
+    /// zeros may give up.
+    #[test]
+    fn quartic_quintic_sides_bound_the_exact_extremes() {
+        use crate::num::Exact;
+        let mut proved = 0;
+        let cases = quintic_cases(23, 1200);
+        let n = cases.len();
+        // (per kind of case: proved within 8 ulps)
+        let mut kinds = [0usize; 6];
+        for (ci, (c, ce)) in cases.into_iter().enumerate() {
+            let p = c.len() - 1;
+            let seg = Segment {
+                c: &c,
+                a: 0.0,
+                b: 1.0,
+                end_kinds: [CandidateKind::EndPoint; 2],
+                right_attained: true,
+            };
+            let mut out = [RawSide::new(), RawSide::new()];
+            if quartic_quintic_sides_into(&seg, [true, true], &mut out).is_none() {
+                continue;
+            }
+            // the exact extremes: samples and the zeros of x' (exact bisection on sign changes
+            // of x' between samples)
+            let d: Vec<Exact> = (0..p).map(|i| ce[i + 1].clone() - ce[i].clone()).collect();
+            let ts: Vec<f64> = (0..=256).map(|i| i as f64 / 256.0).collect();
+            let mut pts = ts.clone();
+            for w in ts.windows(2) {
+                let sg = |t: f64| bernstein_exact(&d, t).signum();
+                let (mut a, mut b) = (w[0], w[1]);
+                let (sa, sb) = (sg(a), sg(b));
+                if sa == sb || sa == Some(Ordering::Equal) || sb == Some(Ordering::Equal) {
+                    continue;
+                }
+                for _ in 0..60 {
+                    let m = 0.5 * (a + b);
+                    if m <= a || m >= b {
+                        break;
+                    }
+                    if sg(m) == sa {
+                        a = m;
+                    } else {
+                        b = m;
+                    }
+                }
+                pts.extend([a, b]);
+            }
+            let scale = c.iter().fold(0.0f64, |m, x| m.max(x.hi().abs()));
+            let (mut max_seen, mut min_seen) = (f64::NEG_INFINITY, f64::INFINITY);
+            for &t in &pts {
+                let v = bernstein_exact(&ce, t);
+                assert!(!v.gt_f64(out[0].upper), "{c:?}: x({t}) above {}", out[0].upper);
+                assert!(!(-v.clone()).gt_f64(out[1].upper), "{c:?}: x({t}) below {}", -out[1].upper);
+                max_seen = max_seen.max(v.round_up());
+                min_seen = min_seen.min(-(-v).round_up());
+            }
+            // attained values are values the curve reaches (at most its exact extremes, which
+            // the refined zeros come within ~2^-60 of)
+            let slack = 16.0 * crate::num::ulp(scale);
+            assert!(out[0].attained <= max_seen + slack, "{c:?}: {} > {max_seen}", out[0].attained);
+            assert!(-out[1].attained >= min_seen - slack, "{c:?}: {} < {min_seen}", -out[1].attained);
+            // (a sign change over a wide interval, where an estimate is missing, is bounded
+            // soundly but loosely: the lane then gives the span to the general fast path)
+            let ok = out.iter().all(|sd| sd.upper - sd.attained <= 8.0 * crate::num::ulp(scale));
+            proved += ok as usize;
+            kinds[ci % 6] += ok as usize;
+        }
+        // every symmetric peak and every monotone case; random coefficients often have more
+        // sign changes in their Bernstein differences than zeros of x' in [0, 1] (Descartes'
+        // bound is loose there), and those give up to the general fast path
+        assert!(kinds[2] == n / 6 && kinds[4] == n / 6, "{kinds:?}");
+        assert!(proved * 2 >= n, "only {proved} of {n} proved within 8 ulps: {kinds:?}");
     }
 
     /// Exact ties at the critical point (step 5b): symmetric quadratics and cubics with few-bit
