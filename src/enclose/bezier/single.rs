@@ -72,6 +72,7 @@
 //!    rule, and never wrong: every step above is proven, rounding included.
 
 use super::{CandidateKind, Extremum, Side, Termination};
+use crate::enclose::newton::bernstein::locate_by;
 use crate::num::ddi::{dist_up, up, Ddi, U1};
 use crate::num::horner;
 use crate::num::Scalar;
@@ -810,40 +811,14 @@ impl DerivN {
             if y1 == 0.0 && t1 < 1.0 {
                 push(t1)?;
             } else if y0 != 0.0 && y1 != 0.0 && (y0 > 0.0) != (y1 > 0.0) {
-                push(self.locate(t0, t1, y0))?;
+                // (Newton safeguarded by bisection from the midpoint, the loop of the general
+                // fast path's estimates)
+                let yd = |t: f64| (self.approx(t), self.slope(t));
+                push(locate_by(yd, y0 > 0.0, t0, t1, 0.5 * (t0 + t1)))?;
             }
             (t0, y0) = (t1, y1);
         }
         Some((r, nr))
-    }
-
-    /// A zero of y in (lo, hi), where y(lo) = `ylo` and y(hi) have opposite signs: Newton's
-    /// method from the secant point, a bisection step wherever Newton leaves the bracket.
-    fn locate(&self, mut lo: f64, mut hi: f64, ylo: f64) -> f64 {
-        let neg_lo = ylo < 0.0;
-        let mut r = 0.5 * (lo + hi);
-        for _ in 0..60 {
-            let v = self.approx(r);
-            if v == 0.0 {
-                break;
-            }
-            if (v < 0.0) == neg_lo {
-                lo = r;
-            } else {
-                hi = r;
-            }
-            let mut next = r - v / self.slope(r);
-            if !(next > lo && next < hi) {
-                next = 0.5 * (lo + hi);
-            }
-            // (a step below 2^-46 leaves the estimate far inside its bracket r -+ h, h = 2^-40)
-            let done = (next - r).abs() <= 1.0 / 70_368_744_177_664.0 || hi - lo <= f64::EPSILON;
-            r = next;
-            if done {
-                break;
-            }
-        }
-        r
     }
 }
 

@@ -1262,24 +1262,43 @@ fn polygon_crossing(v: &[f64], t0: f64, t1: f64) -> f64 {
 }
 
 /// A zero of the f64 Bernstein polynomial `c` (derivative coefficients `dc`) in [t0, t1],
-/// where the sign changes once: Newton's method from `start` (the midpoint if `start` is not
-/// inside), a bisection step whenever
-/// it leaves the bracket, until a step or the bracket is below [`LOCATE_TOL`] (an estimate
-/// only; see [`Numerator::zero_estimates`]).
-fn locate(c: &[f64], dc: &[f64], mut t0: f64, mut t1: f64, start: f64) -> f64 {
+/// where the sign changes once: [`locate_by`] on its values (an estimate only; see
+/// [`Numerator::zero_estimates`]).
+fn locate(c: &[f64], dc: &[f64], t0: f64, t1: f64, start: f64) -> f64 {
     let f0 = crate::spline::bezier::bernstein_value(c, t0);
+    locate_by(
+        |t| crate::spline::bezier::bernstein_value_pair(c, dc, t),
+        f0 > 0.0,
+        t0,
+        t1,
+        start,
+    )
+}
+
+/// A zero of an f64 function in [t0, t1] where its sign changes once (`pos_t0`: its sign at
+/// t0), from `f(t)` = (value, derivative): Newton's method from `start` (the midpoint if
+/// `start` is not inside), a bisection step whenever it leaves the bracket, until a step or
+/// the bracket is below [`LOCATE_TOL`]. An estimate only: the callers choose test points or
+/// boxes from it and prove everything there.
+pub(crate) fn locate_by(
+    f: impl Fn(f64) -> (f64, f64),
+    pos_t0: bool,
+    mut t0: f64,
+    mut t1: f64,
+    start: f64,
+) -> f64 {
     let mut t = if start > t0 && start < t1 {
         start
     } else {
         0.5 * (t0 + t1)
     };
     for _ in 0..60 {
-        let (ft, d) = crate::spline::bezier::bernstein_value_pair(c, dc, t);
+        let (ft, d) = f(t);
         if ft == 0.0 {
             return t;
         }
         // keep the bracket: the zero is between the ends of opposite sign
-        if (ft > 0.0) == (f0 > 0.0) {
+        if (ft > 0.0) == pos_t0 {
             t0 = t;
         } else {
             t1 = t;
