@@ -62,6 +62,7 @@ use crate::spline::tight::TightEval;
 use inari::Interval;
 
 pub(crate) mod conic;
+pub(crate) mod rational;
 pub(crate) mod single;
 
 /// Settings of the Bézier-subdivision strategy.

@@ -42,6 +42,7 @@
 //! flags are those of the general path.
 
 use super::bezier::conic::{conic_sides, ConicSeg};
+use super::bezier::rational::{rational_sides_into, RationalSeg};
 use super::bezier::single::{extremum, f64_sides, raw_sides_into, RawSide, Segment};
 use super::bezier::{span_bounds, CoefficientProof};
 use super::driver::apply_facts;
@@ -720,8 +721,9 @@ fn conic_segment(s: &Simple, w: &[f64], j: usize, cb: &mut CoordBox) -> Option<(
 /// [`conic_rows`], above degree 2 by the insertion, [`span_coefficients_rows`]); step 3 from
 /// the `Ddi` rows (a conic's [`ConicSpan`], else [`rational_span`]: the end-coefficient rule
 /// on the Cartesian quotients, else the proof of `bezier::conic` for this side, above degree 2
-/// the general fast path's on the homogeneous rows). A rational side above degree 2 that the
-/// certificate's first rule would leave open goes to the general path.
+/// the root-isolating proof of `bezier::rational` on the homogeneous rows, where that fails
+/// the general fast path's on them). A rational side above degree 2 that the certificate's
+/// first rule would leave open goes to the general path.
 /// 4. When no span's bound exceeds the attained value, the side's bound is the largest bound
 ///    of the spans proved in step 3 and the attained value (spans left over or done in step 2
 ///    are below the attained value, which is below the exact maximum).
@@ -1002,6 +1004,23 @@ fn spline_side(
             need[side] = true;
             let mut raw = [RawSide::new(), RawSide::new()];
             raw_sides_into(&seg, need, &mut raw)
+                .filter(|()| raw[side].tight(gap))
+                .map(|()| raw[side])
+        } else if let Some((xh, wh)) = &hom {
+            // (a rational span of degree 3 to 5: the root-isolating proof of
+            // `bezier::rational` on the homogeneous rows, its ends the Cartesian end values)
+            let seg = RationalSeg {
+                x: &xh[..=p],
+                w: &wh[..=p],
+                ends: [qd[0], qd[p]],
+                a: kn[k],
+                b: kn[k + 1],
+                end_kinds: span_end_kinds(s, k),
+            };
+            let mut need = [false; 2];
+            need[side] = true;
+            let mut raw = [RawSide::new(), RawSide::new()];
+            rational_sides_into(&seg, need, &mut raw)
                 .filter(|()| raw[side].tight(gap))
                 .map(|()| raw[side])
         } else {

@@ -203,14 +203,12 @@ pub(crate) fn conic_sides(seg: &ConicSeg, need: [bool; 2]) -> Option<[RawSide; 2
         let qb = up(up(deriv.approx(m).abs() + deriv.err()) + up(m1 * r));
         let corr = up(up(2.0 * up(qb * r)) / w2min);
         let xm = value_at(&seg.x, &seg.w, m);
-        let (side, v) = if is_max { (&mut out[0], xm) } else { (&mut out[1], -xm) };
-        let ub = v.widen(corr).upper_end();
-        side.point_evaluations += 1;
-        side.attain_ddi(v);
-        side.bound(
-            if ub.is_nan() { f64::INFINITY } else { ub },
-            extremum(seg.a, seg.b, t0, t1, true, CandidateKind::Critical),
-        );
+        let e = extremum(seg.a, seg.b, t0, t1, true, CandidateKind::Critical);
+        if is_max {
+            out[0].bracket(xm, corr, e);
+        } else {
+            out[1].bracket(-xm, corr, e);
+        }
     }
     out[0].derivative_evaluations = derivative_evaluations;
     Some(out)

@@ -542,6 +542,16 @@ impl RawSide {
     pub fn tight(&self, max_gap: f64) -> bool {
         self.upper - self.attained <= max_gap
     }
+    /// A sign-change bracket's candidate: `v` encloses the side's (sign-adjusted) value at the
+    /// bracket's midpoint, which the curve attains, and every value over the bracket lies
+    /// within `corr` of it; the bound is the upper end of v ± corr, rounded outward (a NaN end,
+    /// after an overflow, bounds nothing: +inf).
+    pub(super) fn bracket(&mut self, v: Ddi, corr: f64, e: Extremum) {
+        let ub = v.widen(corr).upper_end();
+        self.point_evaluations += 1;
+        self.attain_ddi(v);
+        self.bound(if ub.is_nan() { f64::INFINITY } else { ub }, e);
+    }
 }
 
 /// Both sides of a coordinate on one polynomial Bézier segment: `[max side, min side]` as
@@ -693,39 +703,53 @@ fn bracket_candidates(
     let m2 = up((2..pw.len()).fold(0.0, |m, k| m + (k * (k - 1) / 2) as f64 * pw[k].abs_upper()));
     let [hi, lo] = out;
     let mut evaluations = 0;
-    let mut brackets = [0usize; 2];
-    for i in 1..z.len() {
-        // A sign change from + to - brackets a strict local maximum, which is not a global
-        // minimum (x is not constant), so it matters for the max side only; - to + likewise
-        // for the min side (module docs, step 5).
-        let is_max = s[i - 1] && !s[i];
-        let which = if is_max { 0 } else { 1 };
-        if s[i] == s[i - 1] || !need[which] {
-            continue;
-        }
-        brackets[which] += 1;
-        if brackets[which] > 1 {
-            return None;
-        }
-        let (t0, t1) = (z[i - 1], z[i]);
+    let (brackets, nb) = side_brackets(z, s, need)?;
+    for &(which, t0, t1) in &brackets[..nb] {
+        let is_max = which == 0;
         // Taylor form around the midpoint m
         let (m, corr) = taylor_radius(slope, 1.0, m2, t0, t1);
         evaluations += 1;
         let xm = horner(pw, &Ddi::exact(m));
         let e = extremum(seg.a, seg.b, t0, t1, true, CandidateKind::Critical);
-        // the side's upper end of x(m) ± corr (of -x for the min side), rounded outward; a NaN
-        // end (an overflow) bounds nothing, so it becomes +inf
-        let (side, v) = if is_max {
-            (&mut *hi, xm)
+        // the side's upper end of x(m) ± corr (of -x for the min side)
+        if is_max {
+            hi.bracket(xm, corr, e);
         } else {
-            (&mut *lo, -xm)
-        };
-        let ub = v.widen(corr).upper_end();
-        side.point_evaluations += 1;
-        side.attain_ddi(v);
-        side.bound(if ub.is_nan() { f64::INFINITY } else { ub }, e);
+            lo.bracket(-xm, corr, e);
+        }
     }
     Some(evaluations)
+}
+
+/// Up to two sign-change brackets (side, t0, t1): one per side.
+pub(super) type Brackets = [(usize, f64, f64); 2];
+
+/// The sign-change brackets (side, t0, t1) among the test points `z` with the proven signs
+/// `s` of x' there, for the sides that `need` asks for: a change from + to - brackets a strict
+/// local maximum, which is not a global minimum (x is not constant), so it matters for the
+/// max side (0) only; - to + likewise for the min side (1) (module docs, step 5). At most one
+/// per side: `None` for a second (two local maxima in one segment, possible above degree 3;
+/// a side's candidate list has room for one).
+pub(super) fn side_brackets(
+    z: &[f64],
+    s: &[bool],
+    need: [bool; 2],
+) -> Option<(Brackets, usize)> {
+    let mut out = [(0, 0.0, 0.0); 2];
+    let (mut n, mut seen) = (0, [false; 2]);
+    for i in 1..z.len() {
+        let which = if s[i - 1] { 0 } else { 1 };
+        if s[i] == s[i - 1] || !need[which] {
+            continue;
+        }
+        if seen[which] {
+            return None;
+        }
+        seen[which] = true;
+        out[n] = (which, z[i - 1], z[i]);
+        n += 1;
+    }
+    Some((out, n))
 }
 
 /// The f64 filter of degree 4 and 5 ([`quartic_quintic_sides_into`]): the polynomial y(t) with
@@ -944,7 +968,7 @@ pub(super) fn test_points(deriv: &Deriv) -> ([f64; 6], usize) {
 /// inside (0, 1) in increasing order (an estimate closer than 2h to the last point adds what
 /// lies beyond it), then 1; returns how many points there are.
 #[inline]
-fn points_around(r: &[f64], z: &mut [f64]) -> usize {
+pub(super) fn points_around(r: &[f64], z: &mut [f64]) -> usize {
     let mut k = 1;
     for &ri in r {
         for t in [ri - H, ri + H] {
@@ -1202,7 +1226,7 @@ fn exact_sign_of_slope(c: &[f64], t: f64) -> Option<bool> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     #[test]
@@ -1339,7 +1363,36 @@ mod tests {
     }
 
     /// The exact value at t of the Bernstein polynomial with exact coefficients `c`.
-    fn bernstein_exact(c: &[crate::num::Exact], t: f64) -> crate::num::Exact {
+    /// The points t = i / 256 and, on each sample interval where the exact sign `sg` of a
+    /// derivative changes, the ends of its bracket bisected to 2^-60 (the exact extremes of a
+    /// segment lie among the values there, up to ~2^-120 of the scale).
+    pub(crate) fn samples_and_zeros(sg: impl Fn(f64) -> Option<Ordering>) -> Vec<f64> {
+        let ts: Vec<f64> = (0..=256).map(|i| i as f64 / 256.0).collect();
+        let mut pts = ts.clone();
+        for w in ts.windows(2) {
+            let (mut a, mut b) = (w[0], w[1]);
+            let (sa, sb) = (sg(a), sg(b));
+            if sa == sb || sa == Some(Ordering::Equal) || sb == Some(Ordering::Equal) {
+                continue;
+            }
+            for _ in 0..60 {
+                let m = 0.5 * (a + b);
+                if m <= a || m >= b {
+                    break;
+                }
+                if sg(m) == sa {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            pts.extend([a, b]);
+        }
+        pts
+    }
+
+    /// Sum_k c_k B_k^n(t) in exact rationals.
+    pub(crate) fn bernstein_exact(c: &[crate::num::Exact], t: f64) -> crate::num::Exact {
         use crate::num::Exact;
         let n = c.len() - 1;
         let (te, se) = (Exact::of(t), Exact::of(1.0) - Exact::of(t));
@@ -1424,28 +1477,7 @@ mod tests {
             // the exact extremes: samples and the zeros of x' (exact bisection on sign changes
             // of x' between samples)
             let d: Vec<Exact> = (0..p).map(|i| ce[i + 1].clone() - ce[i].clone()).collect();
-            let ts: Vec<f64> = (0..=256).map(|i| i as f64 / 256.0).collect();
-            let mut pts = ts.clone();
-            for w in ts.windows(2) {
-                let sg = |t: f64| bernstein_exact(&d, t).signum();
-                let (mut a, mut b) = (w[0], w[1]);
-                let (sa, sb) = (sg(a), sg(b));
-                if sa == sb || sa == Some(Ordering::Equal) || sb == Some(Ordering::Equal) {
-                    continue;
-                }
-                for _ in 0..60 {
-                    let m = 0.5 * (a + b);
-                    if m <= a || m >= b {
-                        break;
-                    }
-                    if sg(m) == sa {
-                        a = m;
-                    } else {
-                        b = m;
-                    }
-                }
-                pts.extend([a, b]);
-            }
+            let pts = samples_and_zeros(|t| bernstein_exact(&d, t).signum());
             let scale = c.iter().fold(0.0f64, |m, x| m.max(x.hi().abs()));
             let (mut max_seen, mut min_seen) = (f64::NEG_INFINITY, f64::INFINITY);
             for &t in &pts {

@@ -1784,7 +1784,7 @@ static BINOMIALS: [[f64; VS_MAX + 1]; VS_MAX + 1] = {
 /// and n 2^-1070 are exact); for n = 0 the value is b_0 itself. (|acc_j| <= 2^n M: an
 /// overflow gives a non-finite value.) A non-finite value or bound gives ENTIRE. Tested against exact
 /// rational evaluation (`vs_value_bound_holds_exactly`).
-fn value_vs_f64(co: &[Mr], t: f64) -> Option<(Interval, f64)> {
+pub(crate) fn value_vs_f64(co: &[Mr], t: f64) -> Option<(Interval, f64)> {
     vs_row(co, 1, 0, t)
 }
 
