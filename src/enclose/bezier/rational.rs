@@ -29,21 +29,25 @@
 //!    Farin, the variation diminishing property), where each sign is proven (|ĝ_k| > E_g);
 //!    the proof gives up where one is not, and where an end coefficient's sign (g(0) = g_0,
 //!    g(1) = g_{2p-1}) is not proven.
-//! 3. Zero estimates of the f64 polynomial at sixteen samples, located by Newton's method
-//!    safeguarded by bisection (`newton::bernstein::locate_by`; no soundness rests on them);
-//!    test points 0, r ± h, 1 with h = 2^-40 and the sign of g proven at each by an
-//!    enclosure of g's value that excludes 0 (else the proof gives up).
+//! 3. Zero estimates of the f64 polynomial (no soundness rests on them): where V = 1 its one
+//!    zero, by Newton's method safeguarded by bisection on [0, 1] from the control polygon's
+//!    crossing (`newton::bernstein::locate_by`); else sign changes at sixteen samples of its
+//!    f64 power form, each located the same way. Test points 0, r ± h, 1 with h = 2^-40 and
+//!    the sign of g proven at each by an enclosure of g's value that excludes 0 (else the
+//!    proof gives up).
 //! 4. With c sign-change intervals among the test points and V - 1 <= c <= V, each of them
 //!    holds exactly one zero of g and every other interval none (the parity argument of
 //!    [`super::single`]'s step 4), so max x = max(x(0), x(1), max over the intervals where g
 //!    changes from + to -), the same for min.
 //! 5. Over such a bracket B with midpoint m and radius r the mean value theorem gives
 //!    |x(t) - x(m)| <= r max_B |x'| <= p r (|g(m)| + r max |g'|) / W_min^2, with |g(m)| at
-//!    most the larger end of its enclosure, max |g'| over [0, 1] <= (2p - 1) max |Δg_k| <= 2 (2p - 1) (max |ĝ_k| + E_g),
-//!    and W >= W_min = min_i W_i on [0, 1] (a convex combination of the W_i). x(m) =
-//!    X(m) / W(m) enclosed in `Ddi` ([`value_at`]) is a value the curve attains
-//!    (inner bound). With r = 2^-40 the correction is ~2^-78 of the scale times
-//!    (max W / min W)^2.
+//!    most the larger end of its enclosure, max |g'| over [0, 1] <= (2p - 1) max |Δg_k|
+//!    <= 2 (2p - 1) (max |ĝ_k| + E_g), and W >= W_min = min_i W_i on [0, 1] (a convex
+//!    combination of the W_i). x(m) = X(m) / W(m) enclosed in `Ddi` ([`value_at`]) is a value
+//!    the curve attains (inner bound). With r = 2^-40 (|g(m)| is then about r |g'| too) the
+//!    correction is at most a few hundred times 2^-80 of the coordinate's scale times
+//!    (max W / min W)^2: far below an ulp unless the weights are spread, where the caller's
+//!    gap test sends the span to the general fast path.
 //!
 //! No tie rule: a bound that the attained value leaves open goes to the certificate, as on
 //! the conic route. Every step is proven, rounding included; where one is not, `None`, and

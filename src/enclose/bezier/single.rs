@@ -1362,7 +1362,6 @@ pub(super) mod tests {
             .collect()
     }
 
-    /// The exact value at t of the Bernstein polynomial with exact coefficients `c`.
     /// The points t = i / 256 and, on each sample interval where the exact sign `sg` of a
     /// derivative changes, the ends of its bracket bisected to 2^-60 (the exact extremes of a
     /// segment lie among the values there, up to ~2^-120 of the scale).
@@ -1391,7 +1390,7 @@ pub(super) mod tests {
         pts
     }
 
-    /// Sum_k c_k B_k^n(t) in exact rationals.
+    /// The exact value at t of the Bernstein polynomial with exact coefficients `c`.
     pub(crate) fn bernstein_exact(c: &[crate::num::Exact], t: f64) -> crate::num::Exact {
         use crate::num::Exact;
         let n = c.len() - 1;
