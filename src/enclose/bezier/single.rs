@@ -546,6 +546,7 @@ impl RawSide {
     /// bracket's midpoint, which the curve attains, and every value over the bracket lies
     /// within `corr` of it; the bound is the upper end of v ± corr, rounded outward (a NaN end,
     /// after an overflow, bounds nothing: +inf).
+    #[inline(always)]
     pub(super) fn bracket(&mut self, v: Ddi, corr: f64, e: Extremum) {
         let ub = v.widen(corr).upper_end();
         self.point_evaluations += 1;
@@ -730,6 +731,7 @@ pub(super) type Brackets = [(usize, f64, f64); 2];
 /// max side (0) only; - to + likewise for the min side (1) (module docs, step 5). At most one
 /// per side: `None` for a second (two local maxima in one segment, possible above degree 3;
 /// a side's candidate list has room for one).
+#[inline(always)]
 pub(super) fn side_brackets(
     z: &[f64],
     s: &[bool],
