@@ -675,6 +675,23 @@ fn conic_segment(s: &Simple, w: &[f64], j: usize, cb: &mut CoordBox) -> Option<(
     Some(())
 }
 
+/// One side (`side`: 0 the max side, 1 the min side) of a root-isolating proof that fills
+/// both sides' slots (`prove(need, out)`, asked for this side only): the side if the proof
+/// succeeds within the gap `gap`, else `None` (the general fast path follows).
+#[inline(always)]
+fn one_side(
+    side: usize,
+    gap: f64,
+    prove: impl FnOnce([bool; 2], &mut [RawSide; 2]) -> Option<()>,
+) -> Option<RawSide> {
+    let mut need = [false; 2];
+    need[side] = true;
+    let mut raw = [RawSide::new(), RawSide::new()];
+    prove(need, &mut raw)
+        .filter(|()| raw[side].tight(gap))
+        .map(|()| raw[side])
+}
+
 /// The side `sign` of coordinate j of a spline (degree 2 to 5, several spans, or a single
 /// segment above degree 3; a rational conic, one segment or several, as below), best first
 /// over the spans, as the `bezier` strategy's branch and bound does with its shortcuts, on
@@ -1000,12 +1017,7 @@ fn spline_side(
                 end_kinds: span_end_kinds(s, k),
                 right_attained: true,
             };
-            let mut need = [false; 2];
-            need[side] = true;
-            let mut raw = [RawSide::new(), RawSide::new()];
-            raw_sides_into(&seg, need, &mut raw)
-                .filter(|()| raw[side].tight(gap))
-                .map(|()| raw[side])
+            one_side(side, gap, |need, raw| raw_sides_into(&seg, need, raw))
         } else if let Some((xh, wh)) = &hom {
             // (a rational span of degree 3 to 5: the root-isolating proof of
             // `bezier::rational` on the homogeneous rows, its ends the Cartesian end values)
@@ -1017,12 +1029,7 @@ fn spline_side(
                 b: kn[k + 1],
                 end_kinds: span_end_kinds(s, k),
             };
-            let mut need = [false; 2];
-            need[side] = true;
-            let mut raw = [RawSide::new(), RawSide::new()];
-            rational_sides_into(&seg, need, &mut raw)
-                .filter(|()| raw[side].tight(gap))
-                .map(|()| raw[side])
+            one_side(side, gap, |need, raw| rational_sides_into(&seg, need, raw))
         } else {
             None
         };

@@ -18,5 +18,6 @@ pub(crate) mod sturm;
 pub use ddi::Ddi;
 pub use exact::Exact;
 pub use mr::Mr;
+pub(crate) use poly::binom_small;
 pub use poly::{binom, binom_exact, binom_s, binomials, binomials_s, horner};
 pub use scalar::*;

@@ -13,6 +13,10 @@ pub fn binom_exact(n: usize, k: usize) -> Option<f64> {
     if k > n {
         return Some(0.0);
     }
+    if n < SMALL_N {
+        // (the kernels' usual degrees: a table, no division loop)
+        return Some(SMALL_BINOMS[n][k]);
+    }
     let k = k.min(n - k);
     if n < 2048 {
         // (the same in u64, much faster than u128 division: c <= 2^53 before each step and
@@ -35,6 +39,38 @@ pub fn binom_exact(n: usize, k: usize) -> Option<f64> {
     }
     Some(c as f64)
 }
+
+/// Rows n < SMALL_N of Pascal's triangle are tabulated ([`SMALL_BINOMS`]).
+const SMALL_N: usize = 24;
+
+/// C(n, k) for k <= n < 24 as an f64, in a `const` context (for tables of constants). Exact:
+/// c (n - i) <= C(23, 11) 23 < 2^53 is an exact integer and each quotient c (n - i) / (i + 1)
+/// is the integer C(n, i + 1).
+pub(crate) const fn binom_small(n: usize, k: usize) -> f64 {
+    assert!(k <= n && n < SMALL_N);
+    let mut c = 1.0;
+    let mut i = 0;
+    while i < k {
+        c = c * (n - i) as f64 / (i + 1) as f64;
+        i += 1;
+    }
+    c
+}
+
+/// C(n, k) for k <= n < [`SMALL_N`] ([`binom_small`]; 0 above the diagonal).
+const SMALL_BINOMS: [[f64; SMALL_N]; SMALL_N] = {
+    let mut b = [[0.0; SMALL_N]; SMALL_N];
+    let mut n = 0;
+    while n < SMALL_N {
+        let mut k = 0;
+        while k <= n {
+            b[n][k] = binom_small(n, k);
+            k += 1;
+        }
+        n += 1;
+    }
+    b
+};
 
 /// Binomial coefficient C(n, k) in f64: exact where f64 is ([`binom_exact`]), else the
 /// nearest-ish f64 of the multiplicative recurrence (only for estimates; the verified code
@@ -98,6 +134,24 @@ mod tests {
         assert_eq!(binom_exact(56, 28), Some(7648690600760440.0));
         assert_eq!(binom_exact(57, 28), None);
         assert_eq!(binom_exact(200, 2), Some(19900.0));
+        // the table rows against exact integers (Pascal's rule in u64)
+        let mut row = vec![1u64];
+        for n in 0..SMALL_N {
+            for (k, &c) in row.iter().enumerate() {
+                assert_eq!(binom_exact(n, k), Some(c as f64), "C({n}, {k})");
+                assert_eq!(binom_small(n, k), c as f64, "C({n}, {k})");
+            }
+            assert_eq!(binom_exact(n, n + 1), Some(0.0));
+            row = (0..=n + 1)
+                .map(|k| {
+                    if k == 0 || k == n + 1 {
+                        1
+                    } else {
+                        row[k - 1] + row[k]
+                    }
+                })
+                .collect();
+        }
         let b: inari::Interval = binom_s(60, 30);
         assert!(b.contains(118264581564861424.0));
     }

@@ -43,7 +43,7 @@
 //! the general path. Every step is proven, rounding included; where one is not, the caller
 //! falls back.
 
-use super::single::{extremum, sign, test_points, Deriv, RawSide};
+use super::single::{extremum, sign, square_below, test_points, Deriv, RawSide};
 use super::CandidateKind;
 use crate::num::ddi::{dist_up, up, Ddi, U1};
 use crate::num::horner;
@@ -173,20 +173,12 @@ pub(crate) fn conic_sides(seg: &ConicSeg, need: [bool; 2]) -> Option<[RawSide; 2
         }
     }
     let mut out = [RawSide::new(), RawSide::new()];
-    for (t, v, kind) in [(0.0, seg.ends[0], seg.end_kinds[0]), (1.0, seg.ends[1], seg.end_kinds[1])] {
-        // (both ends are values of the curve: the segment is a continuous piece)
-        let e = extremum(seg.a, seg.b, t, t, false, kind);
-        for (side, v) in out.iter_mut().zip([v, -v]) {
-            side.attain_ddi(v);
-            let ub = v.upper_end();
-            side.bound(if ub.is_nan() { f64::INFINITY } else { ub }, e);
-        }
-    }
+    // (both ends are values of the curve: the segment is a continuous piece)
+    RawSide::ends_into(&mut out, (seg.a, seg.b), seg.ends, seg.end_kinds);
     // max |q'| over [0, 1] <= |β_1| + 2 |β_2| <= |b_1| + 2 |b_2| + 3 E_b (Lemma B)
     let m1 = up(b[1].abs() + 2.0 * b[2].abs() + 3.0 * eb);
-    // W_min^2 from below: fl(W_min^2) is within half an ulp of it, or 2^-1075 where it
-    // underflows, and the next double down lies below both (0: the correction is infinite)
-    let w2min = (wmin * wmin).next_down().max(0.0);
+    // W_min^2 from below
+    let w2min = square_below(wmin);
     for i in 1..k {
         // + to -: a strict local maximum, which bounds the max side only; - to + a strict
         // local minimum, the min side's (module docs, step 4)

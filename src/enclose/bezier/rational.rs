@@ -53,12 +53,14 @@
 //! the conic route. Every step is proven, rounding included; where one is not, `None`, and
 //! the caller runs the general fast path.
 
-use super::single::{extremum, points_around, side_brackets, RawSide};
+use super::single::{extremum, points_around, side_brackets, square_below, RawSide};
 use super::CandidateKind;
 use crate::enclose::newton::bernstein::{locate_by, value_vs_dw, value_vs_f64};
 use crate::num::mr::Mr;
 use inari::Interval;
 use crate::num::ddi::{dist_up, up, Ddi, U1};
+use crate::num::binom_small;
+use crate::spline::bezier::power_from_differences_in_place;
 
 /// The largest degree of the route (the lane's).
 const MAX_P: usize = 5;
@@ -81,18 +83,6 @@ pub(crate) struct RationalSeg<'a> {
     pub end_kinds: [CandidateKind; 2],
 }
 
-/// C(n, k) as an f64 (exact for the small n here: each step's quotient is the integer
-/// C(n, i + 1)).
-const fn binom(n: usize, k: usize) -> f64 {
-    let mut c = 1.0;
-    let mut i = 0;
-    while i < k {
-        c = c * (n - i) as f64 / (i + 1) as f64;
-        i += 1;
-    }
-    c
-}
-
 /// λ̂_ij = fl(C(p - 1, i) C(p, j) / C(2p - 1, i + j)) for i < p, j <= p (module docs; the
 /// product of the binomials is an exact small integer, the quotient rounded once).
 const fn lambdas(p: usize) -> [[f64; MAX_P + 1]; MAX_P] {
@@ -101,28 +91,13 @@ const fn lambdas(p: usize) -> [[f64; MAX_P + 1]; MAX_P] {
     while i < p {
         let mut j = 0;
         while j <= p {
-            l[i][j] = binom(p - 1, i) * binom(p, j) / binom(2 * p - 1, i + j);
+            l[i][j] = binom_small(p - 1, i) * binom_small(p, j) / binom_small(2 * p - 1, i + j);
             j += 1;
         }
         i += 1;
     }
     l
 }
-
-/// C(n, k) for n, k < [`MAX_G`].
-const BINOMS: [[f64; MAX_G]; MAX_G] = {
-    let mut b = [[0.0; MAX_G]; MAX_G];
-    let mut n = 0;
-    while n < MAX_G {
-        let mut k = 0;
-        while k <= n {
-            b[n][k] = binom(n, k);
-            k += 1;
-        }
-        n += 1;
-    }
-    b
-};
 
 /// [`lambdas`] for p = 3, 4, 5.
 const LAMBDA: [[[f64; MAX_P + 1]; MAX_P]; 3] = [lambdas(3), lambdas(4), lambdas(5)];
@@ -243,7 +218,12 @@ impl Numerator {
     fn power_form(&self) -> PowerF64 {
         let n = self.n;
         let mut a = self.g;
-        power_from_differences_in_place_f64(&mut a[..=n]);
+        // (the first differences into a_1 .. a_n, a_0 = g_0 stays: the generic conversion's
+        // input, in f64)
+        for i in (1..=n).rev() {
+            a[i] -= a[i - 1];
+        }
+        power_from_differences_in_place(&mut a[1..=n]);
         PowerF64 { a, n }
     }
 
@@ -295,20 +275,6 @@ impl PowerF64 {
             v = v.mul_add(t, self.a[k]);
         }
         (v, d)
-    }
-}
-
-/// The power coefficients of the Bernstein coefficients `c` in place, in f64 (a_0 = c_0,
-/// a_k = C(n, k) Δ^k c_0), rounded: for estimates only.
-fn power_from_differences_in_place_f64(c: &mut [f64]) {
-    let n = c.len() - 1;
-    for r in 1..=n {
-        for i in (r..=n).rev() {
-            c[i] -= c[i - 1];
-        }
-    }
-    for (k, v) in c.iter_mut().enumerate() {
-        *v *= BINOMS[n][k];
     }
 }
 
@@ -391,19 +357,12 @@ pub(crate) fn rational_sides_into(
     if changes + 1 < v || changes > v {
         return None;
     }
-    for (t, e, kind) in [(0.0, seg.ends[0], seg.end_kinds[0]), (1.0, seg.ends[1], seg.end_kinds[1])] {
-        let ex = extremum(seg.a, seg.b, t, t, false, kind);
-        for (side, v) in out.iter_mut().zip([e, -e]) {
-            side.attain_ddi(v);
-            let ub = v.upper_end();
-            side.bound(if ub.is_nan() { f64::INFINITY } else { ub }, ex);
-        }
-    }
+    // (both ends are values of the curve: the segment is a continuous piece)
+    RawSide::ends_into(out, (seg.a, seg.b), seg.ends, seg.end_kinds);
     // step 5: max |g'| over [0, 1] <= 2n (max |ĝ_k| + E_g) (Lemma B)
     let m1 = up(2.0 * n as f64 * (num.gm + num.eg));
-    // W_min^2 from below: fl(W_min^2) is within half an ulp of it, or 2^-1075 where it
-    // underflows, and the next double down lies below both (0: the correction is infinite)
-    let w2min = (wmin * wmin).next_down().max(0.0);
+    // W_min^2 from below
+    let w2min = square_below(wmin);
     let mut derivative_evaluations = k.saturating_sub(2) as u64;
     // (+ to -: a strict local maximum, which bounds the max side only; - to + a strict local
     // minimum, the min side's; one per side)

@@ -553,6 +553,36 @@ impl RawSide {
         self.attain_ddi(v);
         self.bound(if ub.is_nan() { f64::INFINITY } else { ub }, e);
     }
+    /// The end values of a continuous rational segment over [a, b] as candidates of both
+    /// sides (`out`: [max side, min side], the min side's values negated, exactly): each end
+    /// value (enclosed: `ends`, at the local parameters 0 and 1, of the kinds `end_kinds`) is
+    /// attained and bounds its end (a NaN upper end, after an overflow, bounds nothing:
+    /// +inf). Shared by the conic and the rational proofs.
+    #[inline(always)]
+    pub(super) fn ends_into(
+        out: &mut [RawSide; 2],
+        (a, b): (f64, f64),
+        ends: [Ddi; 2],
+        end_kinds: [CandidateKind; 2],
+    ) {
+        for (t, v, kind) in [(0.0, ends[0], end_kinds[0]), (1.0, ends[1], end_kinds[1])] {
+            let e = extremum(a, b, t, t, false, kind);
+            for (side, v) in out.iter_mut().zip([v, -v]) {
+                side.attain_ddi(v);
+                let ub = v.upper_end();
+                side.bound(if ub.is_nan() { f64::INFINITY } else { ub }, e);
+            }
+        }
+    }
+}
+
+/// w^2 from below for w >= 0 (the squared lower bound of a rational segment's weight, the
+/// divisor of the conic and rational proofs' mean value bounds): fl(w^2) is within half an
+/// ulp of it, or 2^-1075 where it underflows, and the next double down lies below both (0:
+/// the correction divided by it is infinite).
+#[inline(always)]
+pub(super) fn square_below(w: f64) -> f64 {
+    (w * w).next_down().max(0.0)
 }
 
 /// Both sides of a coordinate on one polynomial Bézier segment: `[max side, min side]` as
