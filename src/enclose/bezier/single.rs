@@ -83,7 +83,7 @@ use std::cmp::Ordering;
 /// estimates. The Taylor correction over such a bracket is about |x''| h^2 / 2, far below an
 /// ulp; f64 root estimates of simple roots are far more accurate than h unless x' has a near
 /// double root (then the fast path gives up).
-const H: f64 = 1.0 / 1_099_511_627_776.0; // 2^-40
+pub(super) const H: f64 = 1.0 / 1_099_511_627_776.0; // 2^-40
 
 /// At most this many exact comparisons decide a far tie (step 5b): the first (at 0, or
 /// next_down(bound)) gives an estimate of M within a few ulps, the next ones the doubles
@@ -552,6 +552,22 @@ impl RawSide {
         self.point_evaluations += 1;
         self.attain_ddi(v);
         self.bound(if ub.is_nan() { f64::INFINITY } else { ub }, e);
+    }
+    /// Candidate `i`, an end value's (of [`RawSide::ends_into`]), widened to a bracket at
+    /// that end: `v` encloses the side's value at the bracket's midpoint, every value over the
+    /// bracket lies within `corr` of it (as [`RawSide::bracket`]); the candidate's bound is the
+    /// larger of the two, its place the bracket `e` (which holds the end).
+    #[inline(always)]
+    pub(super) fn widen_end(&mut self, i: usize, v: Ddi, corr: f64, e: Extremum) {
+        let ub = v.widen(corr).upper_end();
+        let ub = if ub.is_nan() { f64::INFINITY } else { ub };
+        self.point_evaluations += 1;
+        self.attain_ddi(v);
+        if ub > self.upper {
+            self.upper = ub;
+        }
+        let c = &mut self.cands[i];
+        *c = (c.0.max(ub), e);
     }
     /// The end values of a continuous rational segment over [a, b] as candidates of both
     /// sides (`out`: [max side, min side], the min side's values negated, exactly): each end
