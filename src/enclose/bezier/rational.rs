@@ -70,7 +70,7 @@
 //! the conic route. Every step is proven, rounding included; where one is not, `None`, and
 //! the caller runs the general fast path.
 
-use super::single::{extremum, points_around, side_brackets, square_below, RawSide, H};
+use super::single::{extremum, points_with_open_ends, side_brackets, square_below, RawSide, H};
 use super::CandidateKind;
 use crate::enclose::newton::bernstein::{locate_by, value_vs_dw, value_vs_f64};
 use crate::num::mr::Mr;
@@ -360,26 +360,8 @@ pub(crate) fn rational_sides_into(
     };
     // (an open end's zero estimates within 2h of it are left to its end bracket, and the
     // test point h from it comes in: [0, h] or [1 - h, 1] is that bracket)
-    let mut rr = [0.0f64; 4];
-    let mut nrr = 0;
-    for &t in &r[..nr] {
-        if !((open[0] && t <= 2.0 * H) || (open[1] && t >= 1.0 - 2.0 * H)) {
-            rr[nrr] = t;
-            nrr += 1;
-        }
-    }
     let mut z = [0.0f64; 12];
-    let mut k = points_around(&rr[..nrr], &mut z[..10]);
-    if open[0] {
-        z.copy_within(1..k, 2);
-        z[1] = H;
-        k += 1;
-    }
-    if open[1] {
-        z[k] = 1.0;
-        z[k - 1] = 1.0 - H;
-        k += 1;
-    }
+    let k = points_with_open_ends(&r[..nr], open, &mut z);
     let mut s = [false; 12];
     s[0] = e0.unwrap_or(false);
     s[k - 1] = e1.unwrap_or(false);

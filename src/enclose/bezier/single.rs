@@ -669,7 +669,10 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
     let mut derivative_evaluations = 0;
     // Test points and proven signs of x' there.
     let (z, k) = test_points(&deriv);
-    // Signs at the ends, by the filter (an end slope that may be zero gives up).
+    // Signs at the ends, by the filter (an end slope that may be zero gives up: the lane's
+    // closed-form cubic coefficients have wider ends than the general fast path's, whose end
+    // values that are doubles are made exact, and an open end's side would keep an inner
+    // bound an ulp farther; the quartic, quintic and rational routes open such ends)
     let max_roots = p - 1;
     let (s0, s1) = (co.sign(&deriv, 0.0)?, co.sign(&deriv, 1.0)?);
     let mut s = [false; 6];
@@ -747,7 +750,7 @@ fn bracket_candidates(
     pw: &[Ddi],
     out: &mut [RawSide; 2],
 ) -> Option<u64> {
-    let m2 = up((2..pw.len()).fold(0.0, |m, k| m + (k * (k - 1) / 2) as f64 * pw[k].abs_upper()));
+    let m2 = second_bound(pw);
     let [hi, lo] = out;
     let mut evaluations = 0;
     let (brackets, nb) = side_brackets(z, s, need)?;
@@ -766,6 +769,76 @@ fn bracket_candidates(
         }
     }
     Some(evaluations)
+}
+
+/// m2 >= max |x''(ξ) / 2| over [0, 1] from the enclosed power form `pw` (a_0 .. a_p):
+/// sum_{k>=2} C(k, 2) |α_k| (t^(k-2) <= 1; Lemma B: at most four products).
+#[inline(always)]
+fn second_bound(pw: &[Ddi]) -> f64 {
+    up((2..pw.len()).fold(0.0, |m, k| m + (k * (k - 1) / 2) as f64 * pw[k].abs_upper()))
+}
+
+/// The end brackets of an enclosed segment's open ends (module docs, step 4b): over [0, h]
+/// (or [1 - h, 1]) the Taylor form about its midpoint as in [`bracket_candidates`] bounds
+/// both sides that `need` asks for (the bracket may hold a maximum, a minimum or neither),
+/// and the end's candidate (`at_end[side]`: the index of the end value at 0 in each side's
+/// list, the one at 1 next) is widened to it. Returns the number of derivative evaluations.
+fn open_end_candidates(
+    seg: &Segment,
+    open: [bool; 2],
+    at_end: [usize; 2],
+    need: [bool; 2],
+    slope: &impl Fn(f64) -> f64,
+    pw: &[Ddi],
+    out: &mut [RawSide; 2],
+) -> u64 {
+    if !(open[0] | open[1]) {
+        return 0;
+    }
+    let m2 = second_bound(pw);
+    let mut evaluations = 0;
+    for (end, (t0, t1)) in [(0.0, H), (1.0 - H, 1.0)].into_iter().enumerate() {
+        if !open[end] {
+            continue;
+        }
+        let (m, corr) = taylor_radius(slope, 1.0, m2, t0, t1);
+        evaluations += 1;
+        let xm = horner(pw, &Ddi::exact(m));
+        let e = extremum(seg.a, seg.b, t0, t1, false, CandidateKind::Critical);
+        for which in (0..2).filter(|&w| need[w]) {
+            let v = if which == 0 { xm } else { -xm };
+            out[which].widen_end(at_end[which] + end, v, corr, e);
+        }
+    }
+    evaluations
+}
+
+/// The test points of a segment with open ends (module docs, step 4b; [`points_around`]
+/// where none is open): the ascending estimates `r` without those within 2h of an open end,
+/// the pairs r ± h around them, and the point h (1 - h) next to an open end 0 (1), whose
+/// bracket [0, h] ([1 - h, 1]) holds the zero about that end. At most four estimates; returns
+/// how many points there are.
+pub(super) fn points_with_open_ends(r: &[f64], open: [bool; 2], z: &mut [f64; 12]) -> usize {
+    let mut rr = [0.0f64; 4];
+    let mut n = 0;
+    for &t in r {
+        if !((open[0] && t <= 2.0 * H) || (open[1] && t >= 1.0 - 2.0 * H)) {
+            rr[n] = t;
+            n += 1;
+        }
+    }
+    let mut k = points_around(&rr[..n], &mut z[..10]);
+    if open[0] {
+        z.copy_within(1..k, 2);
+        z[1] = H;
+        k += 1;
+    }
+    if open[1] {
+        z[k] = 1.0;
+        z[k - 1] = 1.0 - H;
+        k += 1;
+    }
+    k
 }
 
 /// Up to two sign-change brackets (side, t0, t1): one per side.
@@ -904,7 +977,7 @@ impl DerivN {
 ///   ([`DerivN::zero_estimates`]).
 /// * Step 3: test points 0, r ± h, 1 with proven signs of x' (the filter [`DerivN`] with its
 ///   written bound, else a `Ddi` Horner enclosure of x' excluding 0); x'(0) = p Δc_0 and
-///   x'(1) = p Δc_{p-1} by the proven signs of those differences.
+///   x'(1) = p Δc_{p-1} by the proven signs of those differences (else step 4b).
 /// * Step 4: the bound R on the zeros of x' in (0, 1) is the number V of sign changes of the
 ///   Bernstein coefficients Δc_0 .. Δc_{p-1} of x' / p (each enclosure proven non-zero, or
 ///   exactly zero and skipped; the end ones proven non-zero, so x' has no zero at 0 or 1):
@@ -912,7 +985,18 @@ impl DerivN {
 ///   multiplicity, number at most V; Farin, *Curves and Surfaces for CAGD*, the variation
 ///   diminishing property). With c sign-change intervals among the test points and c >= V - 1,
 ///   each of them holds exactly one zero and every other interval none, as in step 4 of the
-///   module docs. Otherwise (or with an enclosure that may be zero) the proof gives up.
+///   module docs. Otherwise (or with an inner enclosure that may be zero) the proof gives up.
+/// * Step 4b: an end difference whose sign is not proven (Δc_0 or Δc_{p-1} about zero, or
+///   exactly zero: an extremum at or next to a knot) leaves that end open, as in
+///   `bezier::rational`'s step 4b: the test point h from it comes in, V counts the sign
+///   changes of the other differences (a zero that a non-zero Δc_0 adds to Descartes' bound
+///   lies in (0, h) where the proven sign of x'(h) is that of the next non-zero difference;
+///   Δc_0 = 0 exactly deflates, x' / p = t q with q's coefficients positive multiples of the
+///   others), one more where that sign differs, and the bracket [0, h] (or [1 - h, 1]) is
+///   bounded for both sides by the Taylor form of step 5, the end's candidate widened to it
+///   ([`open_end_candidates`]). The quadratic and cubic route does not open an end: the
+///   lane's closed-form cubic coefficients have wider ends than the exact end values its
+///   general fast path takes, and the inner bound would be an ulp farther.
 /// * Step 5: as there, with |x''(ξ) / 2| <= sum_{k>=2} C(k, 2) |α_k| from the power form and
 ///   x(m) by Horner in `Ddi`; at most one bracket per side (a second one, two local maxima in
 ///   one span, gives up: the side's candidate list has room for one).
@@ -934,17 +1018,25 @@ fn quartic_quintic_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide
             c[i + 1] - c[i]
         };
     }
-    let (s0, s1) = (sign(d[0])?, sign(d[p - 1])?);
+    // (an end difference whose sign is not proven, an exact zero included, leaves that end
+    // open: step 4b; V counts the changes of the others, `inner` the signs next to the ends)
+    let (e0, e1) = (sign(d[0]), sign(d[p - 1]));
+    let open = [e0.is_none(), e1.is_none()];
     let mut v = 0;
-    let mut last = s0;
-    for di in &d[1..p] {
+    let mut inner: [Option<bool>; 2] = [None; 2];
+    for di in &d[open[0] as usize..p - open[1] as usize] {
         if di.hi() == 0.0 && di.lo() == 0.0 && di.rad() == 0.0 {
             continue;
         }
         let si = sign(*di)?;
-        v += (si != last) as usize;
-        last = si;
+        if let Some(l) = inner[1] {
+            v += (si != l) as usize;
+        } else {
+            inner[0] = Some(si);
+        }
+        inner[1] = Some(si);
     }
+    let inner = [inner[0]?, inner[1]?];
     // the power form a_0 .. a_p (a_k = C(p, k) Δ^k c_0)
     let mut pw = [Ddi::exact(0.0); 6];
     pw[0] = c[0];
@@ -954,27 +1046,33 @@ fn quartic_quintic_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide
     let deriv = DerivN::new(pw);
     let (r, nr) = if v == 0 { ([0.0; 4], 0) } else { deriv.zero_estimates()? };
     // test points 0 < r_1 - h < r_1 + h < ... < 1 (of each pair only what lies inside (0, 1)
-    // and beyond the last point)
-    let mut z = [0.0f64; 10];
-    let k = points_around(&r[..nr], &mut z);
+    // and beyond the last point; h, 1 - h next to an open end)
+    let mut z = [0.0f64; 12];
+    let k = points_with_open_ends(&r[..nr], open, &mut z);
     // proven signs of x' at the test points
     let dpw: [Ddi; 5] =
         std::array::from_fn(|i| if i < p { Ddi::exact((i + 1) as f64) * pw[i + 1] } else { Ddi::exact(0.0) });
-    let mut s = [false; 10];
-    s[0] = s0;
-    s[k - 1] = s1;
+    let mut s = [false; 12];
+    s[0] = e0.unwrap_or(false);
+    s[k - 1] = e1.unwrap_or(false);
     let mut derivative_evaluations = proven_signs(&z[..k], &mut s, |t| (deriv.approx(t), deriv.err), |t| {
         sign(horner(&dpw[..p], &Ddi::exact(t)))
     })?;
-    let changes = (1..k).filter(|&i| s[i] != s[i - 1]).count();
+    // (the sign changes among the proven signs: all but an open end's; step 4b: one more
+    // zero for an open end whose test point's sign is not that of the difference next to it)
+    let (i0, i1) = (open[0] as usize, k - 1 - open[1] as usize);
+    let changes = (i0 + 1..=i1).filter(|&i| s[i] != s[i - 1]).count();
+    let v = v + (open[0] && s[1] != inner[0]) as usize + (open[1] && s[k - 2] != inner[1]) as usize;
     if changes + 1 < v || changes > v {
         return None;
     }
     // Candidates: the end values and the enclosures over the sign-change intervals.
     end_candidates(seg, out);
+    let at_end = [out[0].n - 2, out[1].n - 2];
     // (the filter approximates x' itself: scale 1)
     let slope = |m: f64| deriv.approx(m).abs() + deriv.err;
-    derivative_evaluations += bracket_candidates(seg, &z[..k], &s[..k], need, &slope, pw, out)?;
+    derivative_evaluations += bracket_candidates(seg, &z[i0..=i1], &s[i0..=i1], need, &slope, pw, out)?;
+    derivative_evaluations += open_end_candidates(seg, open, at_end, need, &slope, pw, out);
     out[0].derivative_evaluations = derivative_evaluations;
     Some(())
 }
@@ -1363,7 +1461,12 @@ pub(super) mod tests {
     /// each either exact or enclosed with a double-word part and a radius as the lane's
     /// extraction leaves them; and exact coefficients inside every enclosure (centre, or an
     /// end of the radius).
-    fn quintic_cases(seed: u64, count: usize) -> Vec<(Vec<Ddi>, Vec<crate::num::Exact>)> {
+    ///
+    /// `flat`: every case made flat at an end, x'(0) = 0 (`(index / 6) % 3` = 0: c_1 = c_0),
+    /// x'(1) = 0 (1: c_{p-1} = c_p) or both (2), half of them with that end above every other
+    /// value (a flat maximum there: an extremum at a knot); the enclosed ones then hold exact
+    /// coefficients whose end slope is tiny, of either sign, or zero.
+    fn quintic_cases(seed: u64, count: usize, flat: bool) -> Vec<(Vec<Ddi>, Vec<crate::num::Exact>)> {
         use crate::num::Exact;
         use rand::{Rng, SeedableRng};
         let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
@@ -1391,9 +1494,27 @@ pub(super) mod tests {
                         _ => r.random_range(-1.0..1.0) * mag,
                     })
                     .collect();
+                let mut c = c;
+                if flat {
+                    let ends = (it / 6) % 3;
+                    let top = c.iter().fold(0.0f64, |m, x| m.max(x.abs())) + 0.5 * mag;
+                    if ends != 1 {
+                        if it % 2 == 0 {
+                            c[0] = top;
+                        }
+                        c[1] = c[0];
+                    }
+                    if ends != 0 {
+                        if it % 2 == 0 {
+                            c[p] = top;
+                        }
+                        c[p - 1] = c[p];
+                    }
+                }
                 let enclosed = it % 3 != 0;
                 let side: f64 = [-1.0, 0.0, 1.0][it % 3];
-                c.iter()
+                let mut pairs: Vec<(Ddi, Exact)> = c
+                    .iter()
                     .map(|&x| {
                         if enclosed {
                             let lo = x * r.random_range(-1.0..1.0) * f64::EPSILON * 0.25;
@@ -1405,7 +1526,19 @@ pub(super) mod tests {
                             (Ddi::exact(x), Exact::of(x))
                         }
                     })
-                    .unzip()
+                    .collect();
+                if flat {
+                    // (a flat end's two coefficients the same enclosure and exact value: the
+                    // end difference encloses 0 and is 0)
+                    let ends = (it / 6) % 3;
+                    if ends != 1 {
+                        pairs[1] = pairs[0].clone();
+                    }
+                    if ends != 0 {
+                        pairs[p - 1] = pairs[p].clone();
+                    }
+                }
+                pairs.into_iter().unzip()
             })
             .collect()
     }
@@ -1465,7 +1598,7 @@ pub(super) mod tests {
         use crate::num::Exact;
         let mut worst: f64 = 0.0;
         let ts = [0.0, 1.0, 1e-13, 1.0 - 1e-12, 0.5, 0.3, 0.9];
-        for (c, ce) in quintic_cases(17, 3000) {
+        for (c, ce) in quintic_cases(17, 3000, false) {
             let p = c.len() - 1;
             let mut pw = [Ddi::exact(0.0); 6];
             pw[0] = c[0];
@@ -1499,15 +1632,18 @@ pub(super) mod tests {
     /// points and at its zeros of x' (located by exact bisection to 2^-60) lies at or below the
     /// bound, and the attained value at or below the exact maximum. Most cases are proved with
     /// both gaps within a few ulps of the scale (the path is not vacuous); the near-double
-    /// zeros may give up.
+    /// zeros may give up. The same on 600 cases flat at an end (`quintic_cases` with `flat`),
+    /// two in five of each kind proved within 8 ulps: fails when an open end gives up (0 of
+    /// 200) and when every open end adds one to V.
     #[test]
     fn quartic_quintic_sides_bound_the_exact_extremes() {
         use crate::num::Exact;
         let mut proved = 0;
-        let cases = quintic_cases(23, 1200);
+        let mut cases = quintic_cases(23, 1200, false);
         let n = cases.len();
-        // (per kind of case: proved within 8 ulps)
-        let mut kinds = [0usize; 6];
+        cases.extend(quintic_cases(24, 600, true));
+        // (per kind of case: proved within 8 ulps; per kind of flat end)
+        let (mut kinds, mut flat) = ([0usize; 6], [0usize; 3]);
         for (ci, (c, ce)) in cases.into_iter().enumerate() {
             let p = c.len() - 1;
             let seg = Segment {
@@ -1543,14 +1679,21 @@ pub(super) mod tests {
             // (a sign change over a wide interval, where an estimate is missing, is bounded
             // soundly but loosely: the lane then gives the span to the general fast path)
             let ok = out.iter().all(|sd| sd.upper - sd.attained <= 8.0 * crate::num::ulp(scale));
-            proved += ok as usize;
-            kinds[ci % 6] += ok as usize;
+            if ci < n {
+                proved += ok as usize;
+                kinds[ci % 6] += ok as usize;
+            } else {
+                flat[((ci - n) / 6) % 3] += ok as usize;
+            }
         }
         // every symmetric peak and every monotone case; random coefficients often have more
         // sign changes in their Bernstein differences than zeros of x' in [0, 1] (Descartes'
         // bound is loose there), and those give up to the general fast path
         assert!(kinds[2] == n / 6 && kinds[4] == n / 6, "{kinds:?}");
         assert!(proved * 2 >= n, "only {proved} of {n} proved within 8 ulps: {kinds:?}");
+        // the flat ends (an end difference not provably non-zero, the end's bracket of step
+        // 4b): about as many as of the cases without one (127, 153, 186 of 200 when written)
+        assert!(flat.iter().all(|&f| f * 5 >= 2 * 200), "flat ends proved: {flat:?} of 200 each");
     }
 
     /// Exact ties at the critical point (step 5b): symmetric quadratics and cubics with few-bit
