@@ -692,7 +692,8 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
     // (the Taylor forms from the enclosed power form; the filter approximates x' itself)
     let pw = co.poly().x;
     let slope = |m: f64| deriv.approx(m).abs() + deriv.err;
-    derivative_evaluations += bracket_candidates(seg, &z[..k], &s[..k], need, &slope, &pw[..=p], out)?;
+    let m2 = second_bound(&pw[..=p]);
+    derivative_evaluations += bracket_candidates(seg, &z[..k], &s[..k], need, &slope, &pw[..=p], m2, out)?;
     out[0].derivative_evaluations = derivative_evaluations;
     Some(())
 }
@@ -738,9 +739,10 @@ fn end_candidates(seg: &Segment, out: &mut [RawSide; 2]) {
 /// points `z`, the Taylor form about its midpoint m ([`taylor_radius`] with `slope(m)`, an
 /// upper bound of |x'(m)|) around the `Ddi` Horner value x(m) on the enclosed power form `pw`
 /// (a_0 .. a_p), with max |x''(ξ) / 2| over [0, 1] <= m2 = sum_{k>=2} C(k, 2) |α_k|
-/// (t^(k-2) <= 1; Lemma B: at most four products). At most one bracket per side (two,
-/// possible above degree 3, give up: a side's candidate list has room for one). Returns the
-/// number of derivative evaluations, or `None`.
+/// (t^(k-2) <= 1; Lemma B: at most four products; [`second_bound`], the caller's). At most
+/// one bracket per side (two, possible above degree 3, give up: a side's candidate list has
+/// room for one). Returns the number of derivative evaluations, or `None`.
+#[allow(clippy::too_many_arguments)]
 fn bracket_candidates(
     seg: &Segment,
     z: &[f64],
@@ -748,9 +750,9 @@ fn bracket_candidates(
     need: [bool; 2],
     slope: &impl Fn(f64) -> f64,
     pw: &[Ddi],
+    m2: f64,
     out: &mut [RawSide; 2],
 ) -> Option<u64> {
-    let m2 = second_bound(pw);
     let [hi, lo] = out;
     let mut evaluations = 0;
     let (brackets, nb) = side_brackets(z, s, need)?;
@@ -779,10 +781,12 @@ fn second_bound(pw: &[Ddi]) -> f64 {
 }
 
 /// The end brackets of an enclosed segment's open ends (module docs, step 4b): over [0, h]
-/// (or [1 - h, 1]) the Taylor form about its midpoint as in [`bracket_candidates`] bounds
-/// both sides that `need` asks for (the bracket may hold a maximum, a minimum or neither),
-/// and the end's candidate (`at_end[side]`: the index of the end value at 0 in each side's
-/// list, the one at 1 next) is widened to it. Returns the number of derivative evaluations.
+/// (or [1 - h, 1]) the Taylor form about its midpoint as in [`bracket_candidates`] (the same
+/// m2) bounds both sides that `need` asks for (the bracket may hold a maximum, a minimum or
+/// neither), and the end's candidate (`at_end[side]`: the index of the end value at 0 in each
+/// side's list, the one at 1 next) is widened to it. Returns the number of derivative
+/// evaluations.
+#[allow(clippy::too_many_arguments)]
 fn open_end_candidates(
     seg: &Segment,
     open: [bool; 2],
@@ -790,12 +794,12 @@ fn open_end_candidates(
     need: [bool; 2],
     slope: &impl Fn(f64) -> f64,
     pw: &[Ddi],
+    m2: f64,
     out: &mut [RawSide; 2],
 ) -> u64 {
     if !(open[0] | open[1]) {
         return 0;
     }
-    let m2 = second_bound(pw);
     let mut evaluations = 0;
     for (end, (t0, t1)) in [(0.0, H), (1.0 - H, 1.0)].into_iter().enumerate() {
         if !open[end] {
@@ -839,6 +843,27 @@ pub(super) fn points_with_open_ends(r: &[f64], open: [bool; 2], z: &mut [f64; 12
         k += 1;
     }
     k
+}
+
+/// Step 4 with open ends (module docs, step 4b; `bezier::rational`'s the same): c, the sign
+/// changes among the proven signs `s` at the test points (all but an open end's, whose
+/// derivative sign is not proven), against V: `v`, the sign changes of the coefficients other
+/// than the open ends', plus one for each open end whose test point's proven sign (at h or
+/// 1 - h) differs from `inner`, the proven sign of the coefficient next to that end. The count
+/// holds where c <= V <= c + 1 (parity: exactly one zero in each sign-change interval, none
+/// elsewhere). Returns the range i0 ..= i1 of the test points with proven signs, or `None`.
+#[inline(always)]
+pub(super) fn count_with_open_ends(
+    s: &[bool],
+    open: [bool; 2],
+    inner: [bool; 2],
+    v: usize,
+) -> Option<(usize, usize)> {
+    let k = s.len();
+    let (i0, i1) = (open[0] as usize, k - 1 - open[1] as usize);
+    let changes = (i0 + 1..=i1).filter(|&i| s[i] != s[i - 1]).count();
+    let v = v + (open[0] && s[1] != inner[0]) as usize + (open[1] && s[k - 2] != inner[1]) as usize;
+    (changes <= v && v <= changes + 1).then_some((i0, i1))
 }
 
 /// Up to two sign-change brackets (side, t0, t1): one per side.
@@ -1060,19 +1085,15 @@ fn quartic_quintic_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide
     })?;
     // (the sign changes among the proven signs: all but an open end's; step 4b: one more
     // zero for an open end whose test point's sign is not that of the difference next to it)
-    let (i0, i1) = (open[0] as usize, k - 1 - open[1] as usize);
-    let changes = (i0 + 1..=i1).filter(|&i| s[i] != s[i - 1]).count();
-    let v = v + (open[0] && s[1] != inner[0]) as usize + (open[1] && s[k - 2] != inner[1]) as usize;
-    if changes + 1 < v || changes > v {
-        return None;
-    }
+    let (i0, i1) = count_with_open_ends(&s[..k], open, inner, v)?;
     // Candidates: the end values and the enclosures over the sign-change intervals.
     end_candidates(seg, out);
     let at_end = [out[0].n - 2, out[1].n - 2];
     // (the filter approximates x' itself: scale 1)
     let slope = |m: f64| deriv.approx(m).abs() + deriv.err;
-    derivative_evaluations += bracket_candidates(seg, &z[i0..=i1], &s[i0..=i1], need, &slope, pw, out)?;
-    derivative_evaluations += open_end_candidates(seg, open, at_end, need, &slope, pw, out);
+    let m2 = second_bound(pw);
+    derivative_evaluations += bracket_candidates(seg, &z[i0..=i1], &s[i0..=i1], need, &slope, pw, m2, out)?;
+    derivative_evaluations += open_end_candidates(seg, open, at_end, need, &slope, pw, m2, out);
     out[0].derivative_evaluations = derivative_evaluations;
     Some(())
 }
@@ -1633,8 +1654,10 @@ pub(super) mod tests {
     /// bound, and the attained value at or below the exact maximum. Most cases are proved with
     /// both gaps within a few ulps of the scale (the path is not vacuous); the near-double
     /// zeros may give up. The same on 600 cases flat at an end (`quintic_cases` with `flat`),
-    /// two in five of each kind proved within 8 ulps: fails when an open end gives up (0 of
-    /// 200) and when every open end adds one to V.
+    /// two in five of each kind proved within 8 ulps, and every open end's bracket bounded
+    /// within an ulp of the scale above the end value's own bound: fails when an open end gives
+    /// up (0 of 200), when every open end adds one to V, and when an open end's correction is
+    /// 2^30 times larger.
     #[test]
     fn quartic_quintic_sides_bound_the_exact_extremes() {
         use crate::num::Exact;
@@ -1643,7 +1666,7 @@ pub(super) mod tests {
         let n = cases.len();
         cases.extend(quintic_cases(24, 600, true));
         // (per kind of case: proved within 8 ulps; per kind of flat end)
-        let (mut kinds, mut flat) = ([0usize; 6], [0usize; 3]);
+        let (mut kinds, mut flat, mut open_ends) = ([0usize; 6], [0usize; 3], 0);
         for (ci, (c, ce)) in cases.into_iter().enumerate() {
             let p = c.len() - 1;
             let seg = Segment {
@@ -1685,7 +1708,24 @@ pub(super) mod tests {
             } else {
                 flat[((ci - n) / 6) % 3] += ok as usize;
             }
+            // An open end's bracket [0, h] ([1 - h, 1]; its candidate, the first (second) of
+            // each side, spans it) bounded within an ulp of the scale above the end value's own
+            // bound (the end candidate before it was widened; the radii are 2^-100 of the values)
+            for (sd, sign) in out.iter().zip([1.0, -1.0]) {
+                for end in 0..2 {
+                    let (b, e) = sd.cands[end];
+                    if e.u_lo < e.u_hi {
+                        let v = c[end * p];
+                        let own = if sign > 0.0 { v } else { -v }.upper_end();
+                        let over = Exact::of(b) - Exact::of(own);
+                        assert!(!over.gt_f64(slack), "{c:?}: end {end}: {b} over {own} by {:e}", over.to_f64());
+                        open_ends += 1;
+                    }
+                }
+            }
         }
+        // (the open ends' brackets checked within an ulp: 1,330 when written)
+        assert!(open_ends >= 600, "only {open_ends} open ends bounded");
         // every symmetric peak and every monotone case; random coefficients often have more
         // sign changes in their Bernstein differences than zeros of x' in [0, 1] (Descartes'
         // bound is loose there), and those give up to the general fast path
