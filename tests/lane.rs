@@ -203,9 +203,10 @@ fn lane_answer(c: &NurbsCurve) -> Option<Enclosure> {
 }
 
 /// Symmetric polynomial splines of degree 2 and 3 whose extremum lies exactly at a knot (a
-/// double zero of C_j' there, where the root-isolating proof of the quadratic or cubic fails):
-/// the lane answers every one itself (the general fast path's proof on the span after that
-/// one), within two ulps, every bound certified optimal, and agrees with the general path.
+/// double zero of C_j' there, where the closed-form root-isolating proof of the quadratic or
+/// cubic fails): the lane answers every one itself (the Descartes route with that end open,
+/// else the general fast path's proof on the span), within two ulps, every bound certified
+/// optimal, and agrees with the general path.
 #[test]
 fn the_lane_keeps_extrema_at_knots() {
     let mut r = gen::rng(41);

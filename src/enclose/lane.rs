@@ -43,7 +43,9 @@
 
 use super::bezier::conic::{conic_sides, ConicSeg};
 use super::bezier::rational::{rational_sides_into, RationalSeg};
-use super::bezier::single::{extremum, f64_sides, raw_sides_into, RawSide, Segment};
+use super::bezier::single::{
+    descartes_sides_into, extremum, f64_sides, raw_sides_into, RawSide, Segment,
+};
 use super::bezier::{span_bounds, CoefficientProof};
 use super::driver::apply_facts;
 use super::driver::{pow2, COORD_WINDOW};
@@ -725,10 +727,12 @@ fn one_side(
 /// 3. Otherwise the span's Bézier coefficients are enclosed in double-double (the same
 ///    closed form in `Ddi`; above degree 3 by the insertion, [`SpanCache::get_ddi`]) and the
 ///    root-isolating proof (`bezier::single`, degree 2 to 5) bounds it, within two ulps of the
-///    scale; where that fails (a double zero of C_j' at or next to a knot; above degree 3 also
-///    more sign changes of C_j''s Bernstein coefficients than zeros found), the general fast
-///    path's proof (`bezier::coefficient_side`) on the coefficients by the insertion in `Ddi`;
-///    or the lane gives up.
+///    scale; where the closed-form proof of a quadratic or cubic span fails (an end slope not
+///    proven non-zero: an extremum at or next to a knot), the Descartes route of degree 4 and
+///    5 with that end left open, on the coefficients by the insertion; where that fails too (a
+///    double zero of C_j' inside; more sign changes of C_j''s Bernstein coefficients than
+///    zeros found), the general fast path's proof (`bezier::coefficient_side`) on the
+///    coefficients by the insertion in `Ddi`; or the lane gives up.
 ///
 /// A rational curve: step 1 as above (with positive weights the piece on a span is a convex
 /// combination of its local control points, NURBS Book eq. 4.11, and the skip argument holds
@@ -1017,7 +1021,20 @@ fn spline_side(
                 end_kinds: span_end_kinds(s, k),
                 right_attained: true,
             };
-            one_side(side, gap, |need, raw| raw_sides_into(&seg, need, raw))
+            one_side(side, gap, |need, raw| raw_sides_into(&seg, need, raw)).or_else(|| {
+                // (a quadratic or cubic span whose closed-form proof failed, as a rule at an end
+                // slope not proven non-zero, an extremum at or next to a knot: the Descartes
+                // route, which leaves such an end open (`bezier::single`'s step 4b), on the
+                // coefficients by the insertion, whose end values that are doubles are exact
+                // (`SpanCache::get_ddi`: the closed form's wider ends would leave an inner bound
+                // an ulp farther); they are cached for the general fast path's proof below)
+                if p > 3 {
+                    return None;
+                }
+                let q = cache.coordinate_ddi(s, k, j);
+                let seg = Segment { c: &q[..=p], ..seg };
+                one_side(side, gap, |need, raw| descartes_sides_into(&seg, need, raw))
+            })
         } else if let Some((xh, wh)) = &hom {
             // (a rational span of degree 3 to 5: the root-isolating proof of
             // `bezier::rational` on the homogeneous rows, its ends the Cartesian end values)
@@ -1037,8 +1054,8 @@ fn spline_side(
             // The general fast path's proof on the span's coefficients (the zeros of C_j'
             // located by Bernstein subdivision with proven sign counts): on a rational curve
             // above degree 2, and where the proof of a polynomial span fails (a double zero of
-            // C_j' at or next to a knot: a symmetric extremum at a knot, a near-degenerate
-            // cubic; above degree 3 also a loose count of zeros), as the general path's search tries it after
+            // C_j' inside the span or a loose count of zeros; a near-degenerate cubic; at or
+            // next to a knot where the Descartes route above gives up too), as the general path's search tries it after
             // `single` (before, the lane gave such a curve up to the general path, which
             // repeated the work done so far). A quadratic or cubic then takes its coefficients
             // by the insertion, whose end values that are exactly doubles are made exact

@@ -3,7 +3,8 @@
 //! the spans of non-rational quadratic / cubic splines (segments from double-double knot
 //! insertion, `HSpline::<Ddi>::bezier_segment`); and, for the driver's lane, the spans of
 //! quartic and quintic splines, with the zeros of x' counted by the sign changes of its
-//! Bernstein coefficients ([`quartic_quintic_sides_into`]).
+//! Bernstein coefficients ([`descartes_sides_into`]; also the lane's quadratic and cubic spans
+//! with an extremum at or next to a knot, where the closed-form route gives up).
 //!
 //! For one coordinate x(t) = sum_i c_i B_i^p(t), t in [0, 1] (the curve's image does not
 //! depend on the parametrisation, so the local parameter is used throughout), with control
@@ -640,7 +641,7 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
     let Segment { c, a, b, .. } = *seg;
     let p = c.len().checked_sub(1)?;
     if (4..=5).contains(&p) {
-        return quartic_quintic_sides_into(seg, need, out);
+        return descartes_sides_into(seg, need, out);
     }
     if !(2..=3).contains(&p) {
         return None;
@@ -670,9 +671,10 @@ pub(crate) fn raw_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide;
     // Test points and proven signs of x' there.
     let (z, k) = test_points(&deriv);
     // Signs at the ends, by the filter (an end slope that may be zero gives up: the lane's
-    // closed-form cubic coefficients have wider ends than the general fast path's, whose end
-    // values that are doubles are made exact, and an open end's side would keep an inner
-    // bound an ulp farther; the quartic, quintic and rational routes open such ends)
+    // closed-form cubic coefficients have wider ends than the insertion's, whose end values
+    // that are doubles are made exact, and an open end's side would keep an inner bound an ulp
+    // farther; the lane then runs the Descartes route, which opens such ends, on the
+    // insertion's coefficients)
     let max_roots = p - 1;
     let (s0, s1) = (co.sign(&deriv, 0.0)?, co.sign(&deriv, 1.0)?);
     let mut s = [false; 6];
@@ -898,7 +900,7 @@ pub(super) fn side_brackets(
     Some((out, n))
 }
 
-/// The f64 filter of degree 4 and 5 ([`quartic_quintic_sides_into`]): the polynomial y(t) with
+/// The f64 filter of the Descartes route ([`descartes_sides_into`], degree 2 to 5): the polynomial y(t) with
 /// coefficients b_0 .. b_{m} (m = p - 1 <= 4, `n` = p of them) and |x'(t) - y(t)| <= `err`
 /// for every t in [0, 1].
 struct DerivN {
@@ -908,7 +910,7 @@ struct DerivN {
 }
 
 impl DerivN {
-    /// From the enclosed power coefficients a_0 .. a_p of x (p = 4 or 5).
+    /// From the enclosed power coefficients a_0 .. a_p of x (2 <= p <= 5).
     ///
     /// Error bound (the argument of [`Deriv::new`] at degree m = p - 1 <= 4). With α_k the
     /// exact power coefficients (|α_k - (hi_k + lo_k)| <= rad_k) and b̂_{k-1} = fl(k hi_k)
@@ -992,13 +994,17 @@ impl DerivN {
     }
 }
 
-/// [`raw_sides_into`] on a polynomial segment of degree 4 or 5 with enclosed coefficients (the
-/// spans of the lane's quartic and quintic splines, and its single segments of those degrees):
-/// the proof of the module docs with these changes.
+/// The Descartes route: [`raw_sides_into`] on a polynomial segment of degree 4 or 5 with
+/// enclosed coefficients (the spans of the lane's quartic and quintic splines, and its single
+/// segments of those degrees), and on a quadratic or cubic span of the lane where the
+/// closed-form route of the module docs gave up (an end slope not proven non-zero: an extremum
+/// at or next to a knot; called there on the span's coefficients by the insertion, whose end
+/// values that are doubles are exact, `SpanCache::get_ddi`): the proof of the module docs with
+/// these changes.
 ///
 /// * Step 1: the power form a_0 .. a_p in `Ddi` (forward differences, as for p <= 3).
-/// * Step 2: f64 estimates of the zeros of the filter's polynomial y ≈ x' (degree p - 1 = 3
-///   or 4): sign changes at sixteen sample points, located by safeguarded Newton
+/// * Step 2: f64 estimates of the zeros of the filter's polynomial y ≈ x' (degree p - 1 <= 4):
+///   sign changes at sixteen sample points, located by safeguarded Newton
 ///   ([`DerivN::zero_estimates`]).
 /// * Step 3: test points 0, r ± h, 1 with proven signs of x' (the filter [`DerivN`] with its
 ///   written bound, else a `Ddi` Horner enclosure of x' excluding 0); x'(0) = p Δc_0 and
@@ -1019,9 +1025,10 @@ impl DerivN {
 ///   Δc_0 = 0 exactly deflates, x' / p = t q with q's coefficients positive multiples of the
 ///   others), one more where that sign differs, and the bracket [0, h] (or [1 - h, 1]) is
 ///   bounded for both sides by the Taylor form of step 5, the end's candidate widened to it
-///   ([`open_end_candidates`]). The quadratic and cubic route does not open an end: the
-///   lane's closed-form cubic coefficients have wider ends than the exact end values its
-///   general fast path takes, and the inner bound would be an ulp farther.
+///   ([`open_end_candidates`]). The closed-form quadratic and cubic route does not open an
+///   end: the lane's closed-form coefficients have wider ends than the exact end values of the
+///   insertion, and the inner bound would be an ulp farther; the lane hands such a span to
+///   this route on the insertion's coefficients instead.
 /// * Step 5: as there, with |x''(ξ) / 2| <= sum_{k>=2} C(k, 2) |α_k| from the power form and
 ///   x(m) by Horner in `Ddi`; at most one bracket per side (a second one, two local maxima in
 ///   one span, gives up: the side's candidate list has room for one).
@@ -1030,7 +1037,7 @@ impl DerivN {
 // (not inlined: inlined, it changed the register allocation of the cubic's `f64_sides`, +85
 // instructions per 2-D cubic)
 #[inline(never)]
-fn quartic_quintic_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide; 2]) -> Option<()> {
+pub(crate) fn descartes_sides_into(seg: &Segment, need: [bool; 2], out: &mut [RawSide; 2]) -> Option<()> {
     let c = seg.c;
     let p = c.len() - 1;
     // Δc_i, and their sign changes V (an exact zero skipped, an enclosure that may hold 0 gives
@@ -1476,8 +1483,8 @@ pub(super) mod tests {
         assert!(worst < 1e-12, "{worst}");
     }
 
-    /// Random quartic and quintic coefficient sets for the tests of
-    /// [`quartic_quintic_sides_into`]: f64 values (random, clustered around a base, small
+    /// Random coefficient sets of degree p0 and p0 + 1 (alternating; quartic and quintic, or
+    /// quadratic and cubic) for the tests of [`descartes_sides_into`]: f64 values (random, clustered around a base, small
     /// integers times a power of two, a symmetric peak, a near-double zero of x', monotone),
     /// each either exact or enclosed with a double-word part and a radius as the lane's
     /// extraction leaves them; and exact coefficients inside every enclosure (centre, or an
@@ -1487,13 +1494,13 @@ pub(super) mod tests {
     /// x'(1) = 0 (1: c_{p-1} = c_p) or both (2), half of them with that end above every other
     /// value (a flat maximum there: an extremum at a knot); the enclosed ones then hold exact
     /// coefficients whose end slope is tiny, of either sign, or zero.
-    fn quintic_cases(seed: u64, count: usize, flat: bool) -> Vec<(Vec<Ddi>, Vec<crate::num::Exact>)> {
+    fn quintic_cases(seed: u64, count: usize, flat: bool, p0: usize) -> Vec<(Vec<Ddi>, Vec<crate::num::Exact>)> {
         use crate::num::Exact;
         use rand::{Rng, SeedableRng};
         let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
         (0..count)
             .map(|it| {
-                let p = 4 + it % 2;
+                let p = p0 + it % 2;
                 let mag = 2f64.powi(r.random_range(-60..=60));
                 let base: f64 = r.random_range(-1.0..1.0) * mag;
                 let c: Vec<f64> = (0..=p)
@@ -1611,15 +1618,16 @@ pub(super) mod tests {
         sum
     }
 
-    /// The filter of degree 3 and 4 ([`DerivN`]) against exact arithmetic: |x'(t) - y(t)| <=
-    /// err for the exact coefficients anywhere in the enclosures (centres and radius ends), at
-    /// t = 0, 1, tiny, near 1 and random; and the bound is an error bound, not a vacuous one.
+    /// The filter of degree 1 to 4 ([`DerivN`], segments of degree 2 to 5) against exact
+    /// arithmetic: |x'(t) - y(t)| <= err for the exact coefficients anywhere in the enclosures
+    /// (centres and radius ends), at t = 0, 1, tiny, near 1 and random; and the bound is an
+    /// error bound, not a vacuous one.
     #[test]
     fn quintic_filter_bound_holds_exactly() {
         use crate::num::Exact;
         let mut worst: f64 = 0.0;
         let ts = [0.0, 1.0, 1e-13, 1.0 - 1e-12, 0.5, 0.3, 0.9];
-        for (c, ce) in quintic_cases(17, 3000, false) {
+        for (c, ce) in quintic_cases(17, 3000, false, 4).into_iter().chain(quintic_cases(18, 3000, false, 2)) {
             let p = c.len() - 1;
             let mut pw = [Ddi::exact(0.0); 6];
             pw[0] = c[0];
@@ -1648,7 +1656,9 @@ pub(super) mod tests {
         assert!(worst < 1e-11, "{worst}");
     }
 
-    /// [`quartic_quintic_sides_into`] against exact arithmetic: on every side it proves, every
+    /// [`descartes_sides_into`] against exact arithmetic, on segments of degree 4 and 5 and
+    /// (as the lane hands it quadratic and cubic spans with an open end) of degree 2 and 3: on
+    /// every side it proves, every
     /// exact value of the polynomial (the exact coefficients inside the enclosures) at 257
     /// points and at its zeros of x' (located by exact bisection to 2^-60) lies at or below the
     /// bound, and the attained value at or below the exact maximum. Most cases are proved with
@@ -1659,12 +1669,18 @@ pub(super) mod tests {
     /// up (0 of 200), when every open end adds one to V, and when an open end's correction is
     /// 2^30 times larger.
     #[test]
-    fn quartic_quintic_sides_bound_the_exact_extremes() {
+    fn descartes_sides_bound_the_exact_extremes() {
+        for (p0, seeds) in [(4, (23, 24)), (2, (25, 26))] {
+            check_descartes_sides(p0, seeds);
+        }
+    }
+
+    fn check_descartes_sides(p0: usize, (s0, s1): (u64, u64)) {
         use crate::num::Exact;
         let mut proved = 0;
-        let mut cases = quintic_cases(23, 1200, false);
+        let mut cases = quintic_cases(s0, 1200, false, p0);
         let n = cases.len();
-        cases.extend(quintic_cases(24, 600, true));
+        cases.extend(quintic_cases(s1, 600, true, p0));
         // (per kind of case: proved within 8 ulps; per kind of flat end)
         let (mut kinds, mut flat, mut open_ends) = ([0usize; 6], [0usize; 3], 0);
         for (ci, (c, ce)) in cases.into_iter().enumerate() {
@@ -1677,7 +1693,7 @@ pub(super) mod tests {
                 right_attained: true,
             };
             let mut out = [RawSide::new(), RawSide::new()];
-            if quartic_quintic_sides_into(&seg, [true, true], &mut out).is_none() {
+            if descartes_sides_into(&seg, [true, true], &mut out).is_none() {
                 continue;
             }
             // the exact extremes: samples and the zeros of x' (exact bisection on sign changes
@@ -1724,7 +1740,8 @@ pub(super) mod tests {
                 }
             }
         }
-        // (the open ends' brackets checked within an ulp: 1,330 when written)
+        // (the open ends' brackets checked within an ulp: 1,330 (degree 4 and 5) and 1,312
+        // (2 and 3) when written)
         assert!(open_ends >= 600, "only {open_ends} open ends bounded");
         // every symmetric peak and every monotone case; random coefficients often have more
         // sign changes in their Bernstein differences than zeros of x' in [0, 1] (Descartes'
@@ -1732,7 +1749,8 @@ pub(super) mod tests {
         assert!(kinds[2] == n / 6 && kinds[4] == n / 6, "{kinds:?}");
         assert!(proved * 2 >= n, "only {proved} of {n} proved within 8 ulps: {kinds:?}");
         // the flat ends (an end difference not provably non-zero, the end's bracket of step
-        // 4b): about as many as of the cases without one (127, 153, 186 of 200 when written)
+        // 4b): about as many as of the cases without one (127, 153, 186 of 200 at degree 4 and
+        // 5, 196, 181, 158 at 2 and 3 when written)
         assert!(flat.iter().all(|&f| f * 5 >= 2 * 200), "flat ends proved: {flat:?} of 200 each");
     }
 
