@@ -728,11 +728,12 @@ fn one_side(
 ///    closed form in `Ddi`; above degree 3 by the insertion, [`SpanCache::get_ddi`]) and the
 ///    root-isolating proof (`bezier::single`, degree 2 to 5) bounds it, within two ulps of the
 ///    scale; where the closed-form proof of a quadratic or cubic span fails (an end slope not
-///    proven non-zero: an extremum at or next to a knot), the Descartes route of degree 4 and
-///    5 with that end left open, on the coefficients by the insertion; where that fails too (a
-///    double zero of C_j' inside; more sign changes of C_j''s Bernstein coefficients than
-///    zeros found), the general fast path's proof (`bezier::coefficient_side`) on the
-///    coefficients by the insertion in `Ddi`; or the lane gives up.
+///    proven non-zero: an extremum at or next to a knot), the Descartes route (`bezier::single`,
+///    as on the spans of degree 4 and 5) with that end left open, on the coefficients by the
+///    insertion; where that fails too (a double zero of C_j' inside; more sign changes of
+///    C_j''s Bernstein coefficients than zeros found), the general fast path's proof
+///    (`bezier::coefficient_side`) on the coefficients by the insertion in `Ddi`; or the lane
+///    gives up.
 ///
 /// A rational curve: step 1 as above (with positive weights the piece on a span is a convex
 /// combination of its local control points, NURBS Book eq. 4.11, and the skip argument holds

@@ -1494,7 +1494,7 @@ pub(super) mod tests {
     /// x'(1) = 0 (1: c_{p-1} = c_p) or both (2), half of them with that end above every other
     /// value (a flat maximum there: an extremum at a knot); the enclosed ones then hold exact
     /// coefficients whose end slope is tiny, of either sign, or zero.
-    fn quintic_cases(seed: u64, count: usize, flat: bool, p0: usize) -> Vec<(Vec<Ddi>, Vec<crate::num::Exact>)> {
+    fn descartes_cases(seed: u64, count: usize, flat: bool, p0: usize) -> Vec<(Vec<Ddi>, Vec<crate::num::Exact>)> {
         use crate::num::Exact;
         use rand::{Rng, SeedableRng};
         let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
@@ -1627,7 +1627,7 @@ pub(super) mod tests {
         use crate::num::Exact;
         let mut worst: f64 = 0.0;
         let ts = [0.0, 1.0, 1e-13, 1.0 - 1e-12, 0.5, 0.3, 0.9];
-        for (c, ce) in quintic_cases(17, 3000, false, 4).into_iter().chain(quintic_cases(18, 3000, false, 2)) {
+        for (c, ce) in descartes_cases(17, 3000, false, 4).into_iter().chain(descartes_cases(18, 3000, false, 2)) {
             let p = c.len() - 1;
             let mut pw = [Ddi::exact(0.0); 6];
             pw[0] = c[0];
@@ -1663,7 +1663,7 @@ pub(super) mod tests {
     /// points and at its zeros of x' (located by exact bisection to 2^-60) lies at or below the
     /// bound, and the attained value at or below the exact maximum. Most cases are proved with
     /// both gaps within a few ulps of the scale (the path is not vacuous); the near-double
-    /// zeros may give up. The same on 600 cases flat at an end (`quintic_cases` with `flat`),
+    /// zeros may give up. The same on 600 cases flat at an end (`descartes_cases` with `flat`),
     /// two in five of each kind proved within 8 ulps, and every open end's bracket bounded
     /// within an ulp of the scale above the end value's own bound: fails when an open end gives
     /// up (0 of 200), when every open end adds one to V, and when an open end's correction is
@@ -1678,9 +1678,9 @@ pub(super) mod tests {
     fn check_descartes_sides(p0: usize, (s0, s1): (u64, u64)) {
         use crate::num::Exact;
         let mut proved = 0;
-        let mut cases = quintic_cases(s0, 1200, false, p0);
+        let mut cases = descartes_cases(s0, 1200, false, p0);
         let n = cases.len();
-        cases.extend(quintic_cases(s1, 600, true, p0));
+        cases.extend(descartes_cases(s1, 600, true, p0));
         // (per kind of case: proved within 8 ulps; per kind of flat end)
         let (mut kinds, mut flat, mut open_ends) = ([0usize; 6], [0usize; 3], 0);
         for (ci, (c, ce)) in cases.into_iter().enumerate() {
