@@ -71,7 +71,8 @@
 //! the caller runs the general fast path.
 
 use super::single::{
-    count_with_open_ends, extremum, points_with_open_ends, side_brackets, square_below, RawSide, H,
+    count_with_open_ends, extremum, points_with_open_ends, side_brackets, square_below,
+    widen_open_ends, RawSide,
 };
 use super::CandidateKind;
 use crate::enclose::newton::bernstein::{locate_by, value_vs_dw, value_vs_f64};
@@ -415,17 +416,7 @@ pub(crate) fn rational_sides_into(
     }
     // step 4b: an open end's bracket, which may hold a zero of g (a maximum or a minimum,
     // or none), bounds both sides there: its end candidate widened to it
-    for (end, (t0, t1)) in [(0.0, H), (1.0 - H, 1.0)].into_iter().enumerate() {
-        if !open[end] {
-            continue;
-        }
-        let (xm, corr) = over(t0, t1);
-        let e = extremum(seg.a, seg.b, t0, t1, false, CandidateKind::Critical);
-        for which in (0..2).filter(|&w| need[w]) {
-            let v = if which == 0 { xm } else { -xm };
-            out[which].widen_end(at_end[which] + end, v, corr, e);
-        }
-    }
+    widen_open_ends((seg.a, seg.b), open, at_end, need, out, over);
     out[0].derivative_evaluations = derivative_evaluations;
     Some(())
 }
@@ -433,7 +424,7 @@ pub(crate) fn rational_sides_into(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use super::super::single::tests::{bernstein_exact, samples_and_zeros};
+    use super::super::single::tests::{bernstein_exact, open_ends_within_an_ulp, samples_and_zeros};
     use crate::num::{Exact, Scalar};
     use rand::{Rng, SeedableRng};
     use std::cmp::Ordering;
@@ -732,16 +723,8 @@ mod tests {
             // below 2^-80 of the values, as the lane's double-double rows: the value at the
             // bracket's midpoint carries the largest radius of the rows, `value_vs_dw`)
             let tight = c.x.iter().chain(&c.w).all(|v| v.rad() <= v.hi().abs() * 2f64.powi(-80));
-            for (sd, sign) in out.iter().zip([1.0, -1.0]).filter(|_| tight) {
-                for (end, &v) in ends.iter().enumerate() {
-                    let (b, e) = sd.cands[end];
-                    if e.u_lo < e.u_hi {
-                        let own = if sign > 0.0 { v } else { -v }.upper_end();
-                        let over = Exact::of(b) - Exact::of(own);
-                        assert!(!over.gt_f64(slack), "case {ci}: end {end}: {b} over {own} by {:e}", over.to_f64());
-                        open_ends += 1;
-                    }
-                }
+            if tight {
+                open_ends += open_ends_within_an_ulp(&out, ends, slack, &format!("case {ci}"));
             }
         }
         // (the open ends' brackets checked within an ulp: 916 when written)

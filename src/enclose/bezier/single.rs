@@ -782,41 +782,33 @@ fn second_bound(pw: &[Ddi]) -> f64 {
     up((2..pw.len()).fold(0.0, |m, k| m + (k * (k - 1) / 2) as f64 * pw[k].abs_upper()))
 }
 
-/// The end brackets of an enclosed segment's open ends (module docs, step 4b): over [0, h]
-/// (or [1 - h, 1]) the Taylor form about its midpoint as in [`bracket_candidates`] (the same
-/// m2) bounds both sides that `need` asks for (the bracket may hold a maximum, a minimum or
+/// The end brackets of a segment's open ends over [a, b] (module docs, step 4b; shared by the
+/// rational route): over [0, h] (or [1 - h, 1]) the route's own enclosure `form(t0, t1)` =
+/// (x(m), corr), x within corr of x(m) over the bracket (here the Taylor form about its
+/// midpoint as in [`bracket_candidates`], the same m2; the rational route's mean value form),
+/// bounds both sides that `need` asks for (the bracket may hold a maximum, a minimum or
 /// neither), and the end's candidate (`at_end[side]`: the index of the end value at 0 in each
-/// side's list, the one at 1 next) is widened to it. Returns the number of derivative
-/// evaluations.
-#[allow(clippy::too_many_arguments)]
-fn open_end_candidates(
-    seg: &Segment,
+/// side's list, the one at 1 next) is widened to it.
+#[inline(always)]
+pub(super) fn widen_open_ends(
+    (a, b): (f64, f64),
     open: [bool; 2],
     at_end: [usize; 2],
     need: [bool; 2],
-    slope: &impl Fn(f64) -> f64,
-    pw: &[Ddi],
-    m2: f64,
     out: &mut [RawSide; 2],
-) -> u64 {
-    if !(open[0] | open[1]) {
-        return 0;
-    }
-    let mut evaluations = 0;
+    mut form: impl FnMut(f64, f64) -> (Ddi, f64),
+) {
     for (end, (t0, t1)) in [(0.0, H), (1.0 - H, 1.0)].into_iter().enumerate() {
         if !open[end] {
             continue;
         }
-        let (m, corr) = taylor_radius(slope, 1.0, m2, t0, t1);
-        evaluations += 1;
-        let xm = horner(pw, &Ddi::exact(m));
-        let e = extremum(seg.a, seg.b, t0, t1, false, CandidateKind::Critical);
+        let (xm, corr) = form(t0, t1);
+        let e = extremum(a, b, t0, t1, false, CandidateKind::Critical);
         for which in (0..2).filter(|&w| need[w]) {
             let v = if which == 0 { xm } else { -xm };
             out[which].widen_end(at_end[which] + end, v, corr, e);
         }
     }
-    evaluations
 }
 
 /// The test points of a segment with open ends (module docs, step 4b; [`points_around`]
@@ -1025,7 +1017,7 @@ impl DerivN {
 ///   Δc_0 = 0 exactly deflates, x' / p = t q with q's coefficients positive multiples of the
 ///   others), one more where that sign differs, and the bracket [0, h] (or [1 - h, 1]) is
 ///   bounded for both sides by the Taylor form of step 5, the end's candidate widened to it
-///   ([`open_end_candidates`]). The closed-form quadratic and cubic route does not open an
+///   ([`widen_open_ends`]). The closed-form quadratic and cubic route does not open an
 ///   end: the lane's closed-form coefficients have wider ends than the exact end values of the
 ///   insertion, and the inner bound would be an ulp farther; the lane hands such a span to
 ///   this route on the insertion's coefficients instead.
@@ -1100,7 +1092,11 @@ pub(crate) fn descartes_sides_into(seg: &Segment, need: [bool; 2], out: &mut [Ra
     let slope = |m: f64| deriv.approx(m).abs() + deriv.err;
     let m2 = second_bound(pw);
     derivative_evaluations += bracket_candidates(seg, &z[i0..=i1], &s[i0..=i1], need, &slope, pw, m2, out)?;
-    derivative_evaluations += open_end_candidates(seg, open, at_end, need, &slope, pw, m2, out);
+    widen_open_ends((seg.a, seg.b), open, at_end, need, out, |t0, t1| {
+        let (m, corr) = taylor_radius(slope, 1.0, m2, t0, t1);
+        derivative_evaluations += 1;
+        (horner(pw, &Ddi::exact(m)), corr)
+    });
     out[0].derivative_evaluations = derivative_evaluations;
     Some(())
 }
@@ -1523,8 +1519,9 @@ pub(super) mod tests {
                     })
                     .collect();
                 let mut c = c;
+                // (which ends are flat: 0 the first, 1 the last, 2 both)
+                let ends = (it / 6) % 3;
                 if flat {
-                    let ends = (it / 6) % 3;
                     let top = c.iter().fold(0.0f64, |m, x| m.max(x.abs())) + 0.5 * mag;
                     if ends != 1 {
                         if it % 2 == 0 {
@@ -1558,7 +1555,6 @@ pub(super) mod tests {
                 if flat {
                     // (a flat end's two coefficients the same enclosure and exact value: the
                     // end difference encloses 0 and is 0)
-                    let ends = (it / 6) % 3;
                     if ends != 1 {
                         pairs[1] = pairs[0].clone();
                     }
@@ -1569,6 +1565,27 @@ pub(super) mod tests {
                 pairs.into_iter().unzip()
             })
             .collect()
+    }
+
+    /// Checks that each open end's bracket of the sides `out` (step 4b: [0, h] or [1 - h, 1],
+    /// its candidate, the first (second) of each side, spanning it) is bounded within `slack`
+    /// (an ulp of the scale) above the end value's own bound (`ends`: the end values' enclosures,
+    /// the candidates before they were widened); returns how many were checked.
+    pub(crate) fn open_ends_within_an_ulp(out: &[RawSide; 2], ends: [Ddi; 2], slack: f64, case: &str) -> usize {
+        use crate::num::Exact;
+        let mut checked = 0;
+        for (sd, sign) in out.iter().zip([1.0, -1.0]) {
+            for (end, &v) in ends.iter().enumerate() {
+                let (b, e) = sd.cands[end];
+                if e.u_lo < e.u_hi {
+                    let own = if sign > 0.0 { v } else { -v }.upper_end();
+                    let over = Exact::of(b) - Exact::of(own);
+                    assert!(!over.gt_f64(slack), "{case}: end {end}: {b} over {own} by {:e}", over.to_f64());
+                    checked += 1;
+                }
+            }
+        }
+        checked
     }
 
     /// The points t = i / 256 and, on each sample interval where the exact sign `sg` of a
@@ -1724,21 +1741,8 @@ pub(super) mod tests {
             } else {
                 flat[((ci - n) / 6) % 3] += ok as usize;
             }
-            // An open end's bracket [0, h] ([1 - h, 1]; its candidate, the first (second) of
-            // each side, spans it) bounded within an ulp of the scale above the end value's own
-            // bound (the end candidate before it was widened; the radii are 2^-100 of the values)
-            for (sd, sign) in out.iter().zip([1.0, -1.0]) {
-                for end in 0..2 {
-                    let (b, e) = sd.cands[end];
-                    if e.u_lo < e.u_hi {
-                        let v = c[end * p];
-                        let own = if sign > 0.0 { v } else { -v }.upper_end();
-                        let over = Exact::of(b) - Exact::of(own);
-                        assert!(!over.gt_f64(slack), "{c:?}: end {end}: {b} over {own} by {:e}", over.to_f64());
-                        open_ends += 1;
-                    }
-                }
-            }
+            // (the radii are 2^-100 of the values: tight data)
+            open_ends += open_ends_within_an_ulp(&out, [c[0], c[p]], slack, &format!("{c:?}"));
         }
         // (the open ends' brackets checked within an ulp: 1,330 (degree 4 and 5) and 1,312
         // (2 and 3) when written)
