@@ -248,23 +248,8 @@ fn main() {
             }
         }
     }
-    // One pipeline run of the strategy named `name` over the batch, as a closure to time.
     let batch_ref = batch.as_slice();
-    let run = |name: &str| {
-        let st = [strategy_by_name(name, None).expect("registered")];
-        // (grouped by kind of curve as the command line does: unless `hull` is alone)
-        let opts = nurbs_box::io::batch::StreamOptions {
-            threads: 1,
-            group: nurbs_box::io::batch::group_for(&st),
-            ..Default::default()
-        };
-        move || {
-            let mut out = Vec::with_capacity(batch_ref.len() * 2);
-            nurbs_box::io::batch::enclose_stream(batch_ref, &mut out, &st, &opts, false)
-                .expect("stream");
-            out.len() as f64
-        }
-    };
+    let run = |name: &str| pipeline(batch_ref, name);
     let th = best(reps.min(15), &mut run("hull"));
     // (each strategy's ratio from runs alternating with `hull`'s: the same load for both)
     let paired_stream = |s: &dyn BoxEncloser| {
@@ -304,6 +289,12 @@ fn main() {
             if s.name() == "hull" { "" } else { "<= 2x" }
         ));
     }
+    kind_rows(
+        &strategies,
+        if quick { 40 } else { 150 },
+        reps.min(15),
+        &mut line,
+    );
     line(String::new());
     line(format!(
         "Fast-path counters of `newton` and `bezier` on the {NCUBIC} cubics (coordinate sides, \
@@ -466,6 +457,106 @@ fn tangent_rows(strategies: &[Box<dyn BoxEncloser>], reps: usize, line: &mut dyn
     }
 }
 
+/// One pipeline run of the strategy named `name` over the JSON Lines `batch` on one thread
+/// (parse, enclose, write, in memory: what `nurbs-box enclose --threads 1` does), as a closure
+/// to time.
+fn pipeline<'a>(batch: &'a [u8], name: &str) -> impl FnMut() -> f64 + 'a {
+    let st = [strategy_by_name(name, None).expect("registered")];
+    // (grouped by kind of curve as the command line does: unless `hull` is alone)
+    let opts = nurbs_box::io::batch::StreamOptions {
+        threads: 1,
+        group: nurbs_box::io::batch::group_for(&st),
+        ..Default::default()
+    };
+    move || {
+        let mut out = Vec::with_capacity(batch.len() * 2);
+        nurbs_box::io::batch::enclose_stream(batch, &mut out, &st, &opts, false).expect("stream");
+        out.len() as f64
+    }
+}
+
+/// The pipeline's ratio to `hull` per kind of curve (`n` curves each: font Béziers, and each
+/// test family, the range limits included), from runs alternating with `hull`'s: where the
+/// mixed batch's ratio comes from, and which kinds a suite of one kind would find above 2x.
+fn kind_rows(
+    strategies: &[Box<dyn BoxEncloser>],
+    n: usize,
+    reps: usize,
+    line: &mut dyn FnMut(String),
+) {
+    use nurbs_box::testkit::gen::Family;
+    let mut r = ChaCha8Rng::seed_from_u64(13);
+    let mut kinds: Vec<(&str, Vec<u8>)> = vec![("font Béziers (quadratic, cubic)", {
+        let mut out = Vec::new();
+        for i in 0..n {
+            out.extend_from_slice(font_bezier(&mut r, i).as_bytes());
+            out.push(b'\n');
+        }
+        out
+    })];
+    for f in Family::ALL.iter().chain([&Family::RangeLimits]) {
+        let mut out = Vec::new();
+        // (the range limits' huge numbers take ~0.5 ms per curve to parse: fewer of them)
+        let count = if *f == Family::RangeLimits { n / 5 } else { n };
+        for _ in 0..count {
+            out.extend_from_slice(nurbs_box::curve_to_json(&f.curve(&mut r)).as_bytes());
+            out.push(b'\n');
+        }
+        kinds.push((f.name(), out));
+    }
+    let others: Vec<&str> = strategies
+        .iter()
+        .map(|s| s.name())
+        .filter(|&s| s != "hull")
+        .collect();
+    line(String::new());
+    line(format!(
+        "The same pipeline per kind of curve ({n} curves each, {} of the range limits; runs \
+         alternating with `hull`'s): \
+         its time per curve under `hull`, and each strategy's time over `hull`'s (goal <= 2x on \
+         a mixed batch; a suite of a single kind can lie above it):",
+        n / 5
+    ));
+    line(String::new());
+    line(format!(
+        "| kind | `hull` per curve | {} |",
+        others
+            .iter()
+            .map(|s| format!("`{s}` / `hull`"))
+            .collect::<Vec<_>>()
+            .join(" | ")
+    ));
+    line(format!("|---|---|{}", "---|".repeat(others.len())));
+    for (kind, batch) in &kinds {
+        let mut th = f64::INFINITY;
+        let mut cells = Vec::new();
+        for s in &others {
+            let (mut h, mut t) = (pipeline(batch, "hull"), pipeline(batch, s));
+            let (h, t) = paired(reps, &mut h, &mut t);
+            th = th.min(h);
+            cells.push(format!("{:.2}x", t / h));
+        }
+        let count = batch.iter().filter(|&&b| b == b'\n').count();
+        line(format!(
+            "| {kind} | {:.2} µs | {} |",
+            th / count as f64 * 1e6,
+            cells.join(" | ")
+        ));
+    }
+}
+
+/// Curve `i` of the font-like Béziers: a 2-D quadratic or cubic (alternately) on the em square
+/// [0, 2048]^2, as a JSON object.
+fn font_bezier(r: &mut ChaCha8Rng, i: usize) -> String {
+    let p = [3, 2][i % 2];
+    let pts = (0..=p)
+        .map(|_| vec![r.random_range(0.0..2048.0), r.random_range(0.0..2048.0)])
+        .collect();
+    let mut k = vec![0.0; p + 1];
+    k.extend(vec![1.0; p + 1]);
+    nurbs_box::curve_to_json(&NurbsCurve::new(p, k, pts, None).expect("a valid Bézier curve"))
+}
+
 /// A mixed JSON Lines batch of `n` curves: half 2-D quadratic and cubic Béziers (font
 /// outlines), half from the test families (every family but the range limits, in turn).
 fn mixed_batch(n: usize) -> Vec<u8> {
@@ -474,17 +565,12 @@ fn mixed_batch(n: usize) -> Vec<u8> {
     let mut out = Vec::new();
     for i in 0..n {
         let c = if i % 2 == 0 {
-            let p = if i % 4 == 0 { 3 } else { 2 };
-            let pts = (0..=p)
-                .map(|_| vec![r.random_range(0.0..2048.0), r.random_range(0.0..2048.0)])
-                .collect();
-            let mut k = vec![0.0; p + 1];
-            k.extend(vec![1.0; p + 1]);
-            NurbsCurve::new(p, k, pts, None).expect("a valid Bézier curve")
+            // (cubic for i % 4 == 0, quadratic for i % 4 == 2)
+            font_bezier(&mut r, i / 2)
         } else {
-            Family::ALL[(i / 2) % Family::ALL.len()].curve(&mut r)
+            nurbs_box::curve_to_json(&Family::ALL[(i / 2) % Family::ALL.len()].curve(&mut r))
         };
-        out.extend_from_slice(nurbs_box::curve_to_json(&c).as_bytes());
+        out.extend_from_slice(c.as_bytes());
         out.push(b'\n');
     }
     out
