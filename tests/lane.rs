@@ -585,6 +585,46 @@ fn polylines_are_their_control_boxes() {
     assert!(limits > 10, "{limits}");
 }
 
+/// Curves at the edges of the lane's windows (`gen::lane_edge_curve`: coordinates at 2^-82 ..
+/// 2^80, subnormal, ulp-wide and huge domains, weights at 2^-100 and near 2^100 spread over up
+/// to 2^12, ties, tangents to zero, symmetric extrema at knots, repeated and clustered knots)
+/// against the 256-bit reference: every outer bound of `hull`, `bezier` and `newton` contains
+/// the exact extremum, every inner bound is reached, and every optimality certificate names the
+/// optimal double (`common::check_reference`). The reference audit runs the same draws at
+/// length (`reference_audit --curves lane`).
+#[cfg(feature = "mpfr")]
+#[test]
+fn lane_edge_curves_match_the_reference() {
+    use nurbs_box::enclose::strategy_by_name;
+    let strategies: Vec<_> = ["hull", "bezier", "newton"]
+        .iter()
+        .map(|n| strategy_by_name(n, None).unwrap())
+        .collect();
+    let mut r = gen::rng(71);
+    let (mut curves, mut lane, mut certified) = (0, 0, 0);
+    while curves < 1000 {
+        let Some(c) = gen::lane_edge_curve(&mut r) else {
+            continue;
+        };
+        curves += 1;
+        lane += Simple::of(&c).is_some() as usize;
+        let encs: Vec<Enclosure> = strategies.iter().map(|s| s.enclose(&c)).collect();
+        certified += encs[1]
+            .coords
+            .iter()
+            .filter(|cb| cb.optimal_lo && cb.optimal_hi)
+            .count();
+        common::check_reference(&format!("draw {curves}"), &c, &encs);
+    }
+    // (the draws reach the lane: about half of them as they are, most of the rest once scaled
+    // exactly into its window; nearly every coordinate is certified on both sides)
+    assert!(lane > 350, "{lane} of {curves} in the lane");
+    assert!(
+        certified > 2200,
+        "{certified} coordinates of bezier certified"
+    );
+}
+
 /// Counts heap allocations per thread (for the lane's no-allocation claim; other tests of this
 /// binary run on other threads).
 struct Counting;

@@ -642,6 +642,142 @@ pub fn near_degenerate_cubic(rng: &mut impl Rng) -> NurbsCurve {
     }
 }
 
+/// A clamped curve at the edges of the driver's lane (`enclose::lane::Simple::of`): a single
+/// polynomial Bézier segment of degree 2 or 3, or a clamped spline (polynomial or rational) of
+/// degree 2 to 5 with up to five spans, dimension 1 to 4, whose data sit where the lane's
+/// windows and fast proofs end: coordinates scaled by 2^e with e at the coordinate window's
+/// edges (2^-82 .. 2^80, sometimes times 2 - 2^-52); domains of a few subnormals, a few ulps
+/// of 1, ±2^999 and [2^999, 2^999 + 2^949] besides ordinary ones; weights at 2^-100 and just
+/// below 2^100, spread over up to 2^12 (sometimes exactly, alternating); integer and dyadic
+/// data (exact ties), coordinates tangent to zero (quadratics with b^2 = a c rounded),
+/// symmetric control polygons (an extremum at the middle, often a knot), repeated points,
+/// clustered and repeated interior knots (multiplicity up to p), ulp jitter. `None` where the
+/// draw is no valid curve (the constructor's typed error), which the caller skips.
+pub fn lane_edge_curve(rng: &mut impl Rng) -> Option<NurbsCurve> {
+    let pow2 = |e: i32| 2f64.powi(e);
+    let family = rng.random_range(0..6u32);
+    let p: usize = if family < 2 {
+        rng.random_range(2..=3)
+    } else {
+        rng.random_range(2..=5)
+    };
+    let d = rng.random_range(1..=4usize);
+    let spans = if family == 0 {
+        1
+    } else {
+        rng.random_range(1..=5usize)
+    };
+    let n = p + spans - 1;
+    let kind = rng.random_range(0..4u32);
+    let e = pick(rng, &[79, -80, -81, 78, 80, -82, 0, 0]);
+    let scale = pow2(e)
+        * if rng.random_bool(0.2) {
+            2.0 - f64::EPSILON
+        } else {
+            1.0
+        };
+    let mut pts: Vec<Vec<f64>> = vec![vec![0.0; d]; n + 1];
+    for x in pts.iter_mut().flatten() {
+        *x = scale
+            * match kind {
+                0 => rng.random_range(-1.0..1.0),
+                1 => rng.random_range(-8i32..8) as f64 / 4.0,
+                2 => rng.random_range(-1.0..1.0) * pow2(rng.random_range(-60..0)),
+                _ => pick(rng, &[0.0, 1.0, -1.0, 0.5, 0.25, 3.0]),
+            };
+    }
+    if family == 0 && p == 2 && rng.random_bool(0.3) {
+        // tangent to zero: (a, -sqrt(a c), c) rounded, min ~ 0 at an interior parameter
+        let (a, c): (f64, f64) = (rng.random_range(0.1..4.0), rng.random_range(0.1..4.0));
+        pts[0][0] = a * scale;
+        pts[1][0] = -(a * c).sqrt() * scale;
+        pts[2][0] = c * scale;
+    }
+    if rng.random_bool(0.3) {
+        // symmetric: the extremum at the middle parameter
+        for i in 0..=n / 2 {
+            pts[n - i] = pts[i].clone();
+        }
+    }
+    if rng.random_bool(0.2) && n >= 2 {
+        let i = rng.random_range(0..n);
+        pts[i + 1] = pts[i].clone();
+    }
+    if rng.random_bool(0.3) {
+        for x in pts.iter_mut().flatten() {
+            let k = rng.random_range(-3i32..=3);
+            for _ in 0..k.unsigned_abs() {
+                if *x != 0.0 {
+                    *x = if k > 0 { x.next_up() } else { x.next_down() };
+                }
+            }
+        }
+    }
+    let sub = |k: u64| f64::from_bits(k);
+    let (a, b) = match rng.random_range(0..9) {
+        0 => (0.0, 1.0),
+        1 => (-1.0, 1.0),
+        2 => (1e6, 1e6 + 1.0),
+        3 => (0.0, sub(rng.random_range(1..20))),
+        4 => (1.0, 1.0f64.next_up().next_up().next_up()),
+        5 => (-pow2(999), pow2(999)),
+        6 => (pow2(999), pow2(999) + pow2(949)),
+        7 => (
+            -sub(rng.random_range(1..2000)),
+            sub(rng.random_range(1..2000)),
+        ),
+        _ => (0.0, pow2(rng.random_range(-30..30))),
+    };
+    let mut inner: Vec<f64> = (1..spans)
+        .map(|i| {
+            if rng.random_bool(0.5) {
+                a + (b - a) * i as f64 / spans as f64
+            } else {
+                a + (b - a) * rng.random_range(0.0..1.0)
+            }
+        })
+        .collect();
+    inner.sort_by(f64::total_cmp);
+    if rng.random_bool(0.2) && !inner.is_empty() {
+        // clustered
+        let c = inner[0];
+        for (i, u) in inner.iter_mut().enumerate() {
+            *u = c + (b - a) * 1e-9 * i as f64;
+        }
+        inner.sort_by(f64::total_cmp);
+    }
+    if rng.random_bool(0.2) && !inner.is_empty() {
+        // repeated, up to multiplicity p
+        let u = inner[0];
+        for v in inner.iter_mut().take(rng.random_range(1..=p)) {
+            *v = u;
+        }
+        inner.sort_by(f64::total_cmp);
+    }
+    let mut knots = vec![a; p + 1];
+    knots.extend(inner);
+    knots.extend(vec![b; p + 1]);
+    let weights = (family >= 4).then(|| {
+        let spread = rng.random_range(0..13);
+        let base = match rng.random_range(0..4) {
+            0 => pow2(-100),
+            1 => pow2(99 - spread),
+            _ => pow2(rng.random_range(-99..88)),
+        };
+        let alternate = rng.random_bool(0.3);
+        (0..=n)
+            .map(|i| {
+                if alternate {
+                    base * pow2(spread * (i % 2) as i32)
+                } else {
+                    base * pow2(rng.random_range(0..=spread)) * rng.random_range(1.0..2.0)
+                }
+            })
+            .collect()
+    });
+    NurbsCurve::new(p, knots, pts, weights).ok()
+}
+
 /// The 1-D curve of the thesis's knot-count sweep (thesis ch. 6, first timing table: p = 3,
 /// n = 4 .. 100): `n_plus_1` control values uniform in [-1, 1] from `seed`, clamped uniform
 /// knots on [0, 1].
