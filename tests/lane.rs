@@ -585,9 +585,10 @@ fn polylines_are_their_control_boxes() {
     assert!(limits > 10, "{limits}");
 }
 
-/// Curves at the edges of the lane's windows (`gen::lane_edge_curve`: coordinates at 2^-82 ..
-/// 2^80, subnormal, ulp-wide and huge domains, weights at 2^-100 and near 2^100 spread over up
-/// to 2^12, ties, tangents to zero, symmetric extrema at knots, repeated and clustered knots)
+/// Curves at the edges of the lane's windows (`gen::lane_edge_curve`: Bézier segments,
+/// splines clamped or not and polylines with jumps; coordinates at 2^-82 .. 2^80, subnormal,
+/// ulp-wide and huge domains, weights at 2^-100 and near 2^100 spread over up to 2^12, ties,
+/// tangents to zero, symmetric extrema at knots, repeated and clustered knots)
 /// against the 256-bit reference: every outer bound of `hull`, `bezier` and `newton` contains
 /// the exact extremum, every inner bound is reached, and every optimality certificate names the
 /// optimal double (`common::check_reference`). The reference audit runs the same draws at

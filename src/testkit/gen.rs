@@ -642,30 +642,32 @@ pub fn near_degenerate_cubic(rng: &mut impl Rng) -> NurbsCurve {
     }
 }
 
-/// A clamped curve at the edges of the driver's lane (`enclose::lane::Simple::of`): a single
-/// polynomial Bézier segment of degree 2 or 3, or a clamped spline (polynomial or rational) of
-/// degree 2 to 5 with up to five spans, dimension 1 to 4, whose data sit where the lane's
+/// A curve at the edges of the driver's lane (`enclose::lane::Simple::of`): a single
+/// polynomial Bézier segment of degree 2 or 3, a spline (polynomial or rational, a quarter of
+/// them unclamped) of degree 2 to 5 with up to five spans, or a polyline of up to eight spans
+/// (jumps at double knots), dimension 1 to 4, whose data sit where the lane's
 /// windows and fast proofs end: coordinates scaled by 2^e with e at the coordinate window's
 /// edges (2^-82 .. 2^80, sometimes times 2 - 2^-52); domains of a few subnormals, a few ulps
 /// of 1, ±2^999 and [2^999, 2^999 + 2^949] besides ordinary ones; weights at 2^-100 and just
 /// below 2^100, spread over up to 2^12 (sometimes exactly, alternating); integer and dyadic
 /// data (exact ties), coordinates tangent to zero (quadratics with b^2 = a c rounded),
 /// symmetric control polygons (an extremum at the middle, often a knot), repeated points,
-/// clustered and repeated interior knots (multiplicity up to p), ulp jitter. `None` where the
+/// clustered and repeated interior knots (multiplicity up to p, two on a polyline: a jump), ulp
+/// jitter. `None` where the
 /// draw is no valid curve (the constructor's typed error), which the caller skips.
 pub fn lane_edge_curve(rng: &mut impl Rng) -> Option<NurbsCurve> {
     let pow2 = |e: i32| 2f64.powi(e);
-    let family = rng.random_range(0..6u32);
-    let p: usize = if family < 2 {
-        rng.random_range(2..=3)
-    } else {
-        rng.random_range(2..=5)
+    let family = rng.random_range(0..7u32);
+    let p: usize = match family {
+        0 | 1 => rng.random_range(2..=3),
+        6 => 1,
+        _ => rng.random_range(2..=5),
     };
     let d = rng.random_range(1..=4usize);
-    let spans = if family == 0 {
-        1
-    } else {
-        rng.random_range(1..=5usize)
+    let spans = match family {
+        0 => 1,
+        6 => rng.random_range(1..=8usize),
+        _ => rng.random_range(1..=5usize),
     };
     let n = p + spans - 1;
     let kind = rng.random_range(0..4u32);
@@ -747,9 +749,9 @@ pub fn lane_edge_curve(rng: &mut impl Rng) -> Option<NurbsCurve> {
         inner.sort_by(f64::total_cmp);
     }
     if rng.random_bool(0.2) && !inner.is_empty() {
-        // repeated, up to multiplicity p
+        // repeated, up to multiplicity p (a polyline's double knot: a jump)
         let u = inner[0];
-        for v in inner.iter_mut().take(rng.random_range(1..=p)) {
+        for v in inner.iter_mut().take(rng.random_range(1..=p.max(2))) {
             *v = u;
         }
         inner.sort_by(f64::total_cmp);
@@ -757,7 +759,16 @@ pub fn lane_edge_curve(rng: &mut impl Rng) -> Option<NurbsCurve> {
     let mut knots = vec![a; p + 1];
     knots.extend(inner);
     knots.extend(vec![b; p + 1]);
-    let weights = (family >= 4).then(|| {
+    if family != 0 && rng.random_bool(0.25) {
+        // unclamped: the outer knots spread beyond the domain [u_p, u_{n+1}] = [a, b]
+        let h = (b - a) / spans as f64;
+        let m = knots.len();
+        for i in 0..p {
+            knots[i] = a - (p - i) as f64 * h;
+            knots[m - 1 - i] = b + (p - i) as f64 * h;
+        }
+    }
+    let weights = (family >= 4 && (family != 6 || rng.random_bool(0.5))).then(|| {
         let spread = rng.random_range(0..13);
         let base = match rng.random_range(0..4) {
             0 => pow2(-100),
