@@ -536,6 +536,49 @@ mod mpfr {
         assert!(seen > 100, "only {seen} witnesses");
     }
 
+    /// A coordinate beyond the lane's magnitude window whose extremum is tiny against its
+    /// scale: the driver scales the coordinate into the window exactly (by 2^-81 here) and runs
+    /// the lane there, where the maximum (~9.2e-285 2^-81) is subnormal. The subnormal doubles
+    /// lie 2^-1074 apart, four times the spacing of the normal doubles they map to at ~9.2e-285,
+    /// so the scaled curve's optimal double, mapped back, can lie an ulp or more above the
+    /// curve's own (found by the reference audit with `--seed 50`: `hi` one ulp above the
+    /// optimal double, certified; and on a degree-5 curve of 34 points `lo` two ulps below).
+    /// Such a certificate must not carry over: every certificate agrees with MPFR.
+    #[test]
+    fn certificates_of_a_scaled_lane_with_a_subnormal_extremum_agree_with_mpfr() {
+        let x = [
+            -1.6391878169665195e-284,
+            -9.877157358644413e-285,
+            -1.3870050758947473e-284,
+            -2.206598984378007e-284,
+            1.681218273811815e-285,
+            -2.417851639229258e+24,
+            -6.094416242567829e-285,
+            -2.353705583336541e-284,
+            -1.3659898474720996e-284,
+            -1.5551269032759288e-284,
+            -1.1978680200909181e-284,
+            7.985786800606121e-285,
+            8.195939084832598e-285,
+            1.008730964287089e-284,
+            -2.1645685275327117e-284,
+            -1.9754314717288825e-284,
+            3.9928934003030604e-285,
+        ];
+        let mut knots = vec![0.0; 3];
+        knots.extend((1..15).map(|i| i as f64 / 15.0));
+        knots.extend([1.0; 3]);
+        let c = NurbsCurve::new(2, knots, x.iter().map(|&v| vec![v]).collect(), None).unwrap();
+        check("quadratic spline, maximum ~9.2e-285 against 2.4e24", &c).unwrap();
+        // (the same data an exponent lower and higher: the extremum subnormal after scaling
+        // or not, and the coordinate in the window or beyond it)
+        for k in [-60, -2, 1, 2, 40] {
+            let scaled: Vec<Vec<f64>> = x.iter().map(|&v| vec![v * 2f64.powi(k)]).collect();
+            let ck = NurbsCurve::new(2, c.knots().to_vec(), scaled, None).unwrap();
+            check(&format!("scaled by 2^{k}"), &ck).unwrap();
+        }
+    }
+
     /// Every curve checked against MPFR (all strategies, [`check`]); newton's certified
     /// bounds, its bounds equal to the optimal double (MPFR's rounding of the exact extremum)
     /// and all its bounds.

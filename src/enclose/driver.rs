@@ -525,18 +525,34 @@ pub fn drive_with<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool)
     e
 }
 
+/// Whether an optimality certificate of the bound `b` of a curve whose coordinate was scaled
+/// by 2^-k carries over to the bound b 2^k of the curve itself: b and b 2^k strictly inside
+/// the normal range (MIN_POSITIVE < |x| < MAX, so that their neighbours are normal and finite)
+/// and b 2^k exact (it scales back to b). Then scaling by 2^k maps b and its two neighbours
+/// onto b 2^k and its two neighbours (the neighbours of a normal double x of exponent e are
+/// x ± 2^(e-52), x - 2^(e-53) below a power of two; those of x 2^k, exponent e + k, are the
+/// same times 2^k), so prev(b) < M' <= b, b = RU(M'), gives prev(b 2^k) < M' 2^k <= b 2^k,
+/// b 2^k = RU(M' 2^k), and likewise for RD. A subnormal b does not carry: the subnormals lie
+/// 2^-1074 apart, and 2^k maps them 2^(k-1074) apart, coarser than the normal doubles there,
+/// so RU(M') 2^k can lie doubles above RU(M' 2^k) (found by the reference audit: a maximum
+/// ~9.2e-285 of a coordinate scaled by 2^-81, certified an ulp above the optimal double).
+fn certificate_carries(b: f64, k: i32) -> bool {
+    let inside = |x: f64| x.abs() > f64::MIN_POSITIVE && x.abs() < f64::MAX;
+    let y = ldexp(b, k);
+    inside(b) && inside(y) && ldexp(y, -k) == b
+}
+
 /// The tight lane on a curve whose coordinates alone lie beyond the lane's magnitude window
 /// (`lane::Simple::of`), scaled into it exactly: `r` scales coordinate j by 2^-coord_exp[j]
 /// with no value rounded, knots and weights unscaled, so the scaled curve is the curve with
 /// coordinate j multiplied by 2^-coord_exp[j] exactly, and its enclosure, mapped back by
 /// [`Rescaling::restore`] (outward where a value is not exact), encloses the curve. An
 /// optimality certificate of the scaled curve, bound b' = RU(max C'_j) (RD(min)), carries
-/// over where b = b' 2^k is exact and normal and so is the next double beyond it, scaled:
-/// scaling by 2^k maps the doubles of that range one to one and in order, so b is the
-/// smallest double above max C_j = 2^k max C'_j. Otherwise (a bound at zero, subnormal or
-/// overflowing when mapped back) the scaled lane's answer is dropped and the general path
-/// runs. `false` (`e` then unspecified): not taken. For the tight lane alone (`hull`'s
-/// general path is the control-point box, cheaper than building the scaled curve).
+/// over where [`certificate_carries`]: b' and b = b' 2^k both normal with normal neighbours,
+/// b exact. Otherwise (a bound at zero, subnormal on either side, overflowing when mapped
+/// back) the scaled lane's answer is dropped and the general path runs. `false` (`e` then
+/// unspecified): not taken. For the tight lane alone (`hull`'s general path is the
+/// control-point box, cheaper than building the scaled curve).
 fn scaled_lane<S: BoxEncloser + ?Sized>(
     s: &S,
     c: &NurbsCurve,
@@ -565,18 +581,9 @@ fn scaled_lane<S: BoxEncloser + ?Sized>(
     if !super::lane::enclose_into(e, lane, s.name(), &rc, &simple, certify) {
         return false;
     }
-    // (a certified bound, and the next double beyond it, exactly representable once scaled
-    // back: a normal double of the scaled range maps to a normal double)
-    let carries = |b: f64, k: i32, up: bool| {
-        let next = if up { b.next_up() } else { b.next_down() };
-        [b, next].iter().all(|&x| {
-            let y = ldexp(x, k);
-            y.is_finite() && y.abs() >= f64::MIN_POSITIVE && ldexp(y, -k) == x
-        })
-    };
     for (cb, &k) in e.coords.iter().zip(&r.coord_exp) {
-        if (cb.optimal_lo && !carries(cb.lo, k, false))
-            || (cb.optimal_hi && !carries(cb.hi, k, true))
+        if (cb.optimal_lo && !certificate_carries(cb.lo, k))
+            || (cb.optimal_hi && !certificate_carries(cb.hi, k))
         {
             return false;
         }
@@ -630,6 +637,50 @@ fn general<S: BoxEncloser + ?Sized>(s: &S, c: &NurbsCurve, certify: bool, e: &mu
 mod tests {
     use super::*;
     use crate::enclose::ControlHull;
+
+    /// Where a certificate carries over from the scaled curve ([`certificate_carries`]), the
+    /// scaling maps the bound's neighbours onto the scaled-back bound's neighbours (the claim
+    /// its proof rests on), checked on random doubles and exponents and at the edges; a
+    /// subnormal bound never carries, and for one the neighbours do not map (the case the
+    /// reference audit found: its certificate was false).
+    #[test]
+    fn certificates_carry_only_where_the_neighbours_map() {
+        use rand::Rng;
+        let mut r = crate::testkit::gen::rng(9);
+        let mut carried = 0;
+        for _ in 0..50_000 {
+            let b = f64::from_bits(r.random_range(0..0x7ff0_0000_0000_0000u64))
+                * if r.random_bool(0.5) { -1.0 } else { 1.0 };
+            let k = r.random_range(-1100..=1100);
+            if certificate_carries(b, k) {
+                carried += 1;
+                let y = ldexp(b, k);
+                assert_eq!(ldexp(b.next_up(), k), y.next_up(), "{b:e} 2^{k}");
+                assert_eq!(ldexp(b.next_down(), k), y.next_down(), "{b:e} 2^{k}");
+            }
+        }
+        assert!(carried > 10_000, "{carried}");
+        // the edges: the smallest normal, subnormals, zero, the largest double, overflow
+        let tiny = f64::MIN_POSITIVE;
+        for (b, k) in [
+            (tiny, 10),
+            (tiny / 4.0, 81),
+            (-tiny / 3.0, 81),
+            (0.0, 5),
+            (f64::MAX, -5),
+        ] {
+            assert!(!certificate_carries(b, k), "{b:e} 2^{k}");
+        }
+        assert!(!certificate_carries(1.0, 1024));
+        assert!(certificate_carries(tiny.next_up(), 10));
+        assert!(certificate_carries(1.5, -1021));
+        // a subnormal bound scaled up: its upper neighbour maps two doubles above the scaled
+        // bound (the certificate of the scaled curve says nothing about the double between)
+        let b = f64::from_bits(0x000a_0000_0000_0000); // 0.625 2^-1022, subnormal
+        let y = ldexp(b, 81);
+        assert_ne!(ldexp(b.next_up(), 81), y.next_up());
+        assert_eq!(ldexp(b.next_up(), 81), y.next_up().next_up());
+    }
 
     #[test]
     fn exponent_and_outward_scaling() {
