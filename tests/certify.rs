@@ -539,10 +539,10 @@ mod mpfr {
     /// A coordinate beyond the lane's magnitude window whose extremum is tiny against its
     /// scale: the driver scales the coordinate into the window exactly (by 2^-81 here) and runs
     /// the lane there, where the maximum (~9.2e-285 2^-81) is subnormal. The subnormal doubles
-    /// lie 2^-1074 apart, four times the spacing of the normal doubles they map to at ~9.2e-285,
+    /// lie 2^-1074 apart, mapped back eight times the spacing of the doubles at ~9.2e-285,
     /// so the scaled curve's optimal double, mapped back, can lie an ulp or more above the
     /// curve's own (found by the reference audit with `--seed 50`: `hi` one ulp above the
-    /// optimal double, certified; and on a degree-5 curve of 34 points `lo` two ulps below).
+    /// optimal double, certified; and on a degree-5 curve of 34 points `lo` one double below).
     /// Such a certificate must not carry over: every certificate agrees with MPFR.
     #[test]
     fn certificates_of_a_scaled_lane_with_a_subnormal_extremum_agree_with_mpfr() {
