@@ -252,10 +252,7 @@ fn main() {
     let run = |name: &str| pipeline(batch_ref, name);
     let th = best(reps.min(15), &mut run("hull"));
     // (each strategy's ratio from runs alternating with `hull`'s: the same load for both)
-    let paired_stream = |s: &dyn BoxEncloser| {
-        let (mut h, mut t) = (run("hull"), run(s.name()));
-        paired(reps.min(15), &mut h, &mut t)
-    };
+    let paired_stream = |s: &dyn BoxEncloser| vs_hull(batch_ref, s.name(), reps.min(15));
     let nlines = batch.iter().filter(|&&b| b == b'\n').count();
     line(String::new());
     line(format!(
@@ -475,6 +472,13 @@ fn pipeline<'a>(batch: &'a [u8], name: &str) -> impl FnMut() -> f64 + 'a {
     }
 }
 
+/// The pipeline times of `hull` and of the strategy named `name` on `batch`, minima of `reps`
+/// runs alternating with each other ([`paired`]: the same load for both).
+fn vs_hull(batch: &[u8], name: &str, reps: usize) -> (f64, f64) {
+    let (mut h, mut t) = (pipeline(batch, "hull"), pipeline(batch, name));
+    paired(reps, &mut h, &mut t)
+}
+
 /// The pipeline's ratio to `hull` per kind of curve (`n` curves each: font Béziers, and each
 /// test family, the range limits included), from runs alternating with `hull`'s: where the
 /// mixed batch's ratio comes from, and which kinds a suite of one kind would find above 2x.
@@ -531,8 +535,7 @@ fn kind_rows(
         let mut th = f64::INFINITY;
         let mut cells = Vec::new();
         for s in &others {
-            let (mut h, mut t) = (pipeline(batch, "hull"), pipeline(batch, s));
-            let (h, t) = paired(reps, &mut h, &mut t);
+            let (h, t) = vs_hull(batch, s, reps);
             th = th.min(h);
             cells.push(format!("{:.2}x", t / h));
         }

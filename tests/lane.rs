@@ -617,8 +617,8 @@ fn lane_edge_curves_match_the_reference() {
             .count();
         common::check_reference(&format!("draw {curves}"), &c, &encs);
     }
-    // (the draws reach the lane: about half of them as they are, most of the rest once scaled
-    // exactly into its window; nearly every coordinate is certified on both sides)
+    // (the draws reach the lane: about half of them as they are, the rest after an exact
+    // scaling or on the general path; nearly every coordinate is certified on both sides)
     assert!(lane > 350, "{lane} of {curves} in the lane");
     assert!(
         certified > 2200,
