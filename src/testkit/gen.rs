@@ -646,16 +646,15 @@ pub fn near_degenerate_cubic(rng: &mut impl Rng) -> NurbsCurve {
 /// polynomial Bézier segment of degree 2 or 3, a spline (polynomial or rational) of degree 2
 /// to 5 with up to five spans, or a polyline of up to eight spans (jumps at double knots; a
 /// quarter of the splines and polylines unclamped), dimension 1 to 4, whose data sit where
-/// the lane's windows and fast proofs end: coordinates scaled by 2^e with e at the coordinate window's
-/// edges (2^-82 .. 2^80, sometimes times 2 - 2^-52); domains of a few subnormals, a few ulps
-/// of 1, ±2^999 and [2^999, 2^999 + 2^949] besides ordinary ones; weights at 2^-100 and just
-/// below 2^100, spread over up to 2^12 (exactly, alternating, in a third of the draws; else
-/// up to just below 2^13, past the lane's limit); integer and dyadic
-/// data (exact ties), coordinates tangent to zero (quadratics with b^2 = a c rounded),
-/// symmetric control polygons (an extremum at the middle, often a knot), repeated points,
-/// clustered and repeated interior knots (multiplicity up to p, two on a polyline: a jump), ulp
-/// jitter. `None` where the
-/// draw is no valid curve (the constructor's typed error), which the caller skips.
+/// the lane's windows and fast proofs end: coordinates scaled by 2^e with e at the coordinate
+/// window's edges (2^-82 .. 2^80, sometimes times 2 - 2^-52); domains of a few subnormals, a
+/// few ulps of 1, ±2^999 and [2^999, 2^999 + 2^949] besides ordinary ones; weights at 2^-100
+/// and just below 2^100, spread over up to 2^12 (exactly, alternating, in a third of the
+/// draws; else up to just below 2^13, past the lane's limit); integer and dyadic data (exact
+/// ties), coordinates tangent to zero (quadratics with b^2 = a c rounded), symmetric control
+/// polygons (an extremum at the middle, often a knot), repeated points, clustered and repeated
+/// interior knots (multiplicity up to p, two on a polyline: a jump), ulp jitter. `None` where
+/// the draw is no valid curve (the constructor's typed error), which the caller skips.
 pub fn lane_edge_curve(rng: &mut impl Rng) -> Option<NurbsCurve> {
     let pow2 = |e: i32| 2f64.powi(e);
     let family = rng.random_range(0..7u32);
