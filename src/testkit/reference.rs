@@ -16,7 +16,8 @@
 //!    no root; V = 1 with non-zero end coefficients: exactly one simple root, refined by
 //!    safeguarded Newton in MPFR to full precision; otherwise split at 1/2 (de Casteljau).
 //!    A zero value at a split point is itself a candidate. Boxes narrower than 2^-120 of the
-//!    segment (2^-(120 + r/2) with r the curve's [`range_bits`]) that still show sign changes
+//!    segment (2^-(120 + (r + w)/2) with r the curve's [`range_bits`], w its
+//!    [`weight_bits`]) that still show sign changes
 //!    (multiple roots, clusters, rounding noise) give their midpoint as a candidate.
 //! 4. C_j at all candidates and at both segment ends; min / max over all segments.
 //!
@@ -41,7 +42,7 @@ use rug::Float;
 use std::cmp::Ordering;
 
 /// Subdivision depth limit (boxes of width 2^-MAX_DEPTH of the segment), raised by half the
-/// curve's [`range_bits`] (the value error at a box midpoint between two close roots is
+/// curve's [`range_bits`] and [`weight_bits`] (the value error at a box midpoint between two close roots is
 /// ~|C''| width^2, which must stay below the resolution).
 const MAX_DEPTH: u32 = 120;
 
@@ -268,13 +269,7 @@ fn row(seg: &BezierSeg<Float>, c: usize) -> Vec<Float> {
 /// enough bits for exact differences, so that the reference does not rest on that argument
 /// where the strategies are most fragile.
 pub fn working_prec(curve: &NurbsCurve) -> u32 {
-    let ratio_bits = curve.weights().map_or(0.0, |w| {
-        let (mn, mx) = w
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
-        // exact exponents: log2 of a ratio of positive finite f64s is at most ~2100
-        (mx.log2() - mn.log2()).max(0.0)
-    });
+    let ratio_bits = weight_ratio_bits(curve);
     let p_bits = (curve.degree() as f64 + 1.0).log2();
     let range = (0..curve.dim())
         .map(|j| range_bits(curve, j))
@@ -284,6 +279,35 @@ pub fn working_prec(curve: &NurbsCurve) -> u32 {
     // Knots spread over the f64 range (near ±f64::MAX next to subnormals): enough bits that
     // every knot difference is exact (up to ~2,100 bits; the range itself is 2,098 bits).
     prec.max(knot_bits(curve.knots()).saturating_add(64))
+}
+
+/// log2(w_max / w_min) of a rational curve (0 without weights): exact exponents, at most
+/// ~2,100 for positive finite doubles.
+fn weight_ratio_bits(curve: &NurbsCurve) -> f64 {
+    curve.weights().map_or(0.0, |w| {
+        let (mn, mx) = w
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+        (mx.log2() - mn.log2()).max(0.0)
+    })
+}
+
+/// Bits by which an extremum is resolved beyond [`MPFR_PREC`] + [`range_bits`] thanks to the
+/// weights' share of the [`working_prec`]: ceil(log2(w_max / w_min)).
+///
+/// Why: [`working_prec`] adds 2 log2(w_max / w_min) bits, enough for the derivative numerator
+/// N = A' w - A w', whose error carries the weight ratio twice. A *value* C_j = A_j / w at a
+/// candidate carries it once (error ~2^-prec (w_max / w_min) scale_j, see [`working_prec`];
+/// the root's own error, from N, moves the value only to second order, |C_j''| delta^2, and
+/// the midpoint of a narrowest box of a root cluster by |C_j''| width^2, which the subdivision
+/// depth, raised by half these bits, keeps as far below), so the other log2(w_max / w_min)
+/// bits resolve the extremum further. Stored at only MPFR_PREC + r bits, an extremum of a
+/// curve whose weights spread over 2^720 and which lies 2^-680 of its size above a double
+/// (the quintic of `weights_spread_over_2_720_resolve_an_extremum_next_to_a_double`) counted
+/// as that double, and the reference audit called the strategies' correct certificates of the
+/// next double up false.
+pub fn weight_bits(curve: &NurbsCurve) -> u32 {
+    weight_ratio_bits(curve).ceil() as u32
 }
 
 /// Bits between the magnitude of coordinate j (its largest |control value|) and its smallest
@@ -337,7 +361,8 @@ pub fn reference_box(curve: &NurbsCurve) -> ReferenceBox {
 fn reference_box_at_prec(curve: &NurbsCurve) -> ReferenceBox {
     let d = curve.dim();
     let range: Vec<u32> = (0..d).map(|j| range_bits(curve, j)).collect();
-    let max_depth = MAX_DEPTH + range.iter().max().copied().unwrap_or(0) / 2;
+    let wb = weight_bits(curve);
+    let max_depth = MAX_DEPTH + (range.iter().max().copied().unwrap_or(0) + wb) / 2;
     let segs = HSpline::<Float>::from_curve(curve).decompose();
     let mut lo: Vec<Option<(Float, f64)>> = vec![None; d];
     let mut hi: Vec<Option<(Float, f64)>> = vec![None; d];
@@ -376,12 +401,13 @@ fn reference_box_at_prec(curve: &NurbsCurve) -> ReferenceBox {
     };
     let (lo, argmin) = unzip(lo);
     let (hi, argmax) = unzip(hi);
-    // each extremum at MPFR_PREC + range_bits(j) bits: the precision it is resolved to
-    // (see [`range_bits`]; rounding relative to |exact|, far below the resolution)
+    // each extremum at MPFR_PREC + range_bits(j) + weight_bits bits: the precision it is
+    // resolved to (see [`range_bits`], [`weight_bits`]; rounding relative to |exact|, far
+    // below the resolution)
     let at = |v: Vec<Float>| -> Vec<Float> {
         v.into_iter()
             .zip(&range)
-            .map(|(x, r)| Float::with_val(MPFR_PREC + r, x))
+            .map(|(x, r)| Float::with_val(MPFR_PREC + r + wb, x))
             .collect()
     };
     let (lo, hi) = (at(lo), at(hi));
@@ -440,7 +466,7 @@ fn segment_candidates(
 /// A NaN bound counts as a miss (-inf); an infinite bound on the safe side gives +inf.
 /// Distances below the reference's resolution give 0: 2^-(p - 96) of max(scale, |exact|) for
 /// an `exact` of precision p (at least [`MPFR_PREC`]), i.e. 2^-160 at 256 bits; a reference
-/// extremum is stored at the precision it is resolved to ([`range_bits`]).
+/// extremum is stored at the precision it is resolved to ([`range_bits`], [`weight_bits`]).
 pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f64 {
     if bound.is_nan() {
         return f64::NEG_INFINITY;
@@ -453,7 +479,8 @@ pub fn ulps_outside(bound: f64, exact: &Float, scale: f64, is_upper: bool) -> f6
     };
     // The reference itself is accurate to ~2^-240 of the scale (MPFR rounding in the
     // decomposition, times the conditioning of the weights; ~2^-240 of the smallest non-zero
-    // control value with the range bits): distances below 2^-160 (2^-(160 + r)) of
+    // control value with the range bits, and the weight bits finer still for a value):
+    // distances below 2^-160 (2^-(160 + r + w)) of
     // max(scale, |exact|) are not resolvable and count as 0 (an f64 bound equal to an exact
     // f64 extremum, e.g. a control point interpolated at a knot, is then not a false miss).
     let res_bits = exact.prec().max(MPFR_PREC) - RES_MARGIN;
@@ -747,6 +774,71 @@ mod tests {
         // and the plain working precision really was not enough (so this test can fail)
         let coarse = with_mpfr_prec(MPFR_PREC, || reference_box_at_prec(&c));
         assert_ne!(coarse.hi[0], end);
+    }
+
+    /// Two rational curves drawn by the reference audit (`--seed 51`) whose weights spread over
+    /// 2^718 and 2^724: a quintic whose maximum of coordinate 1 lies ~2^-680 of its size above
+    /// 1.375, and an unclamped quadratic whose minimum of coordinate 0 lies as far below the
+    /// double 8.713557994944409e-240. The strategies certify next_up(1.375) and the double
+    /// below 8.713557994944409e-240, rightly: at 4,096 bits the quintic's value at the knot
+    /// 0.23076923076923078 exceeds 1.375, and the quadratic's end value lies below its double
+    /// (a value reached beyond the double: the optimal bound is the next one out). The reference
+    /// stored at MPFR_PREC + r bits counted both extrema as the doubles and called these
+    /// certificates false; with the weight bits it resolves them.
+    #[test]
+    fn weights_spread_over_2_720_resolve_an_extremum_next_to_a_double() {
+        let quintic = r#"{"degree":5,"knots":[0.0,0.0,0.0,0.0,0.0,0.0,0.07692307692307693,0.15384615384615385,0.23076923076923078,0.3076923076923077,0.38461538461538464,0.46153846153846156,0.5384615384615384,0.6153846153846154,0.6923076923076923,0.7692307692307693,0.8461538461538461,0.9230769230769231,1.0,1.0,1.0,1.0,1.0,1.0],"control_points":[[-0.3125,-1.0,18999.90625],[-1.5,-1.46875,19000.421875],[1.375,-1.8125,19000.953125],[-0.28125,1.375,18998.984375],[1.578125,1.59375,18999.625],[-0.4375,-0.109375,19000.625],[0.453125,-0.078125,18998.75],[1.28125,-0.53125,19000.625],[-1.53125,-1.6875,18999.171875],[-1.171875,-0.453125,19000.546875],[1.34375,1.921875,18998.296875],[-1.375,1.921875,18999.234375],[-1.53125,0.921875,19001.140625],[-0.796875,-1.859375,19000.109375],[-0.546875,-1.078125,19001.71875],[-1.0,-1.609375,18998.84375],[1.28125,0.59375,18998.046875],[0.453125,-0.515625,18998.90625]],"weights":[1463.3706173946357,101829.59482819049,947.0610000772239,8.423149402115106e+210,218063.34875063298,1.7227429147699425,3.6891739544382433e-6,0.008341801332506338,418839.1254457479,0.00004503428864545836,0.6471778159406796,0.0003966662010161199,96.4388379154446,1.7227429147699407e-6,107.52168531898921,16022.283408774752,355.7796490339495,0.008341801332506338]}"#;
+        let quadratic = r#"{"degree":2,"knots":[-0.9996837722339832,0.0003162277660168078,1.000316227766017,2.000316227766017,3.000316227766017,4.0003162277660165,5.0003162277660165,6.0003162277660165,7.0003162277660165,8.000316227766017,9.000316227766017,10.000316227766017,11.000316227766017,12.000316227766017,13.000316227766017,14.000316227766017],"control_points":[[8.713569109190721e-240,-1.5,-1.6239121659695505e+164,4.891648255572962e+187,1.6556180622086758e-141,-0.578125,-2.406474640379468e-155,-1.359375,-2.3434194041639243e-254,-1.4436811181807737e+192],[8.713883086649057e-240,-0.640625,9.743472995817303e+163,-1.6305494185243206e+187,1.6557595871456773e-141,1.609375,-4.010791067299114e-155,-0.0625,-1.1717097020819622e-255,-2.2858284371195584e+192],[8.713227346116605e-240,0.09375,-1.7321729770341874e+164,-5.87986002437558e+187,1.6556880637904184e-141,0.671875,1.7005754125348242e-155,0.75,1.3826174484567153e-253,1.4196197662110944e+192],[8.713913650826417e-240,-1.578125,-7.939126144740024e+163,-1.7293705954045824e+187,1.6557519782780966e-141,-1.3125,-3.6578414533767918e-155,-0.890625,-1.0896900229362248e-253,-2.2377057331801995e+192],[8.713327374333419e-240,1.53125,-3.789128387262285e+163,-9.388011803624876e+186,1.6557481738443063e-141,-0.234375,1.1551078273821446e-155,-1.890625,-5.624206569993419e-254,-1.1790062465142987e+192],[8.713630237545441e-240,0.96875,-1.587825228948005e+164,-2.0752447144854988e+187,1.6556796940360797e-141,-1.375,4.812949280758937e-156,1.75,5.858548510409811e-254,1.2993130063626964e+192],[8.7137247086391e-240,-0.453125,-7.758691459632298e+163,2.4211188335664154e+187,1.6557748048808386e-141,-1.609375,1.2513668129973234e-155,-1.21875,-6.561574331658989e-254,1.491803822120133e+192],[8.713802508363289e-240,-0.875,-1.0465211736248214e+164,1.5317282416440586e+187,1.6557078468461284e-141,-0.328125,3.0482012111473265e-155,-1.609375,9.02216470603111e-254,1.491803822120133e+192],[8.713641351791755e-240,1.109375,1.6960860400126418e+164,-4.1999000174111285e+187,1.6556271928497728e-141,-0.90625,3.0802875396857193e-155,0.1875,-2.577761344580317e-254,1.6842946378775695e+191],[8.713596894806503e-240,1.921875,1.2991297327756404e+164,-2.2728870682460224e+187,1.6556857811301444e-141,1.796875,8.021582134598227e-156,-1.84375,2.460590374372121e-254,3.127975756058343e+191],[8.713746937131725e-240,1.5,2.1110858157604158e+164,3.9528470752104736e+187,1.655756543598645e-141,-0.75,3.3048918394544696e-155,-1.84375,2.8121032849967094e-254,2.983607644240266e+192],[8.713277360225012e-240,0.0625,9.563038310709575e+163,-4.1999000174111285e+187,1.6557641524662257e-141,0.3125,-3.208632853839291e-157,1.359375,-5.27269365936883e-254,-8.421473189387847e+191],[8.713557994944409e-240,-1.671875,-2.0749988787388702e+164,-4.644595313372307e+187,1.655608170680821e-141,-0.015625,2.8877695684553616e-156,-1.71875,-1.4529200305816332e-253,-1.7976931348623157e+308]],"weights":[2.3875515424585845e-6,3133.7402238589048,5.70040236789636,612.9168695925733,2.141453563853957e-6,0.0007618855973704613,175426.21300415898,5.112830759482937e-6,0.0018190411331788228,0.014370779141993754,947.0610000772239,0.6471778159406796,1.4867394870657345e+212]}"#;
+        let witness = |c: &NurbsCurve, u: f64, j: usize| -> Float {
+            with_mpfr_prec(4096, || {
+                let h = HSpline::<Float>::from_curve(c);
+                let v = crate::spline::eval::project(h.eval(u), c.dim(), true);
+                v[j].clone()
+            })
+        };
+        for (json, j, up, double, u) in [
+            (quintic, 1, true, 1.375f64, 0.23076923076923078),
+            (
+                quadratic,
+                0,
+                false,
+                8.713557994944409e-240,
+                12.000316227766017,
+            ),
+        ] {
+            let c = crate::io::parse::parse_curve(json.as_bytes()).unwrap();
+            assert!(weight_bits(&c) > 700);
+            let optimal = if up {
+                double.next_up()
+            } else {
+                double.next_down()
+            };
+            // the independent witness: a value of the curve beyond the double
+            let v = witness(&c, u, j);
+            assert!(if up { v > double } else { v < double }, "{v}");
+            let rb = reference_box(&c);
+            let scale = c.coord_scale(j);
+            let exact = if up { &rb.hi[j] } else { &rb.lo[j] };
+            assert_eq!(optimal_bound(exact, scale, up), optimal, "{exact}");
+            assert!(false_certificate(double, exact, scale, up));
+            assert!(!false_certificate(optimal, exact, scale, up));
+            for name in ["bezier", "newton"] {
+                let s = crate::enclose::strategy_by_name(name, None).unwrap();
+                let e = s.enclose(&c);
+                let cb = &e.coords[j];
+                let (bound, cert) = if up {
+                    (cb.hi, cb.optimal_hi)
+                } else {
+                    (cb.lo, cb.optimal_lo)
+                };
+                assert!(cert && bound == optimal, "{name}: {bound:e} {cert}");
+                check_certificates(&c, &rb, &e).unwrap();
+            }
+            // stored at the former MPFR_PREC + r bits the extremum counts as the double
+            // (so this test can fail)
+            let coarse = Float::with_val(MPFR_PREC + range_bits(&c, j), exact);
+            assert_eq!(optimal_bound(&coarse, scale, up), double);
+        }
     }
 
     #[test]
