@@ -153,6 +153,17 @@ pub(crate) fn at_most_zero(a: &[BigInt]) -> Decision {
         if bisections > MAX_BISECTIONS {
             return Decision::Undecided;
         }
+        // (first at the split point of `split_point`, geometric next to an end of [0, 1]; if
+        // F vanishes there, from the midpoint as below)
+        if let Some((m, em)) = split_point(&na, &nb, e) {
+            let (vm, sm) = at(&m, em);
+            if sm != Sign::NoSign {
+                let s = em - e;
+                stack.push((&na << s, m.clone(), em, (va, sa), (vm, sm)));
+                stack.push((m, &nb << s, em, (vm, sm), (vb, sb)));
+                continue;
+            }
+        }
         let (na, nb) = (na << 1u64, nb << 1u64);
         let mut e = e + 1;
         let mut m = (&na + &nb) >> 1u64;
@@ -177,6 +188,44 @@ pub(crate) fn at_most_zero(a: &[BigInt]) -> Decision {
         stack.push((m, nb, e, (vm, sm), (vb, sb)));
     }
     Decision::AtMost
+}
+
+/// A split point m / 2^em strictly inside (na / 2^e, nb / 2^e) (0 <= na < nb <= 2^e) that
+/// approaches an end of [0, 1] geometrically, or `None` for the midpoint.
+///
+/// Why: the roots that [`at_most_zero`] must separate can lie within 2^-1000 of an end of
+/// [0, 1] (a range-limit curve: control values near f64::MAX next to subnormal ones put the
+/// maximum of a span's piece ~2^-1025 from its end), where halving takes one bisection per bit
+/// of that distance, each evaluating the whole sequence at a point of as many bits (~1,000
+/// bisections, 2-6 ms per decision, four decisions per bound). Here the interval [0, 2^-k]
+/// splits at 2^-2k, an interval [a, b] with b >= 8a > 0 at a power of two near sqrt(a b) (and
+/// the same for the distances to 1): a distance of 2^-D takes ~log2 D splits to reach, then
+/// halving separates what lies there. Any split point strictly inside keeps the bisection's
+/// counts and decisions exact (Sturm's theorem holds on every sub-interval; a split point
+/// that is a root of F is handled by the caller), so this changes only where it looks.
+fn split_point(na: &BigInt, nb: &BigInt, e: u64) -> Option<(BigInt, u64)> {
+    let one = BigInt::one() << e;
+    // (the distances of the ends from 1: b' = 1 - a, a' = 1 - b, mirrored back below)
+    let (da, db) = (&one - nb, &one - na);
+    // (l, r): the ends' numerators measured from 0 (`from_zero`) or from 1, the nearer end
+    let near_one = da < *na;
+    let (l, r) = if near_one { (&da, &db) } else { (na, nb) };
+    let (m, em) = if l.is_zero() && r.is_one() && e >= 1 {
+        // [0, 2^-e] -> 2^-2e
+        (BigInt::one(), 2 * e)
+    } else if l.is_positive() && *r >= l * 8u32 {
+        // a power of two 2^(c - 1), c = (bits(l) + bits(r)) / 2: bits(r) >= bits(l) + 3 makes
+        // bits(l) + 1 <= c <= bits(r) - 2, so l < 2^bits(l) <= 2^(c - 1) < 2^(bits(r) - 1) <= r
+        let c = (l.bits() + r.bits()) / 2;
+        (BigInt::one() << (c - 1), e)
+    } else {
+        return None;
+    };
+    Some(if near_one {
+        ((BigInt::one() << em) - m, em)
+    } else {
+        (m, em)
+    })
 }
 
 /// Exact Newton iterates towards a critical point of the quotient a / w (power forms with
@@ -323,8 +372,15 @@ fn sum(f: &[BigInt]) -> BigInt {
 /// The Sturm sequence of F (degree >= 1) as a signed pseudo-remainder sequence (module docs):
 /// each element a positive multiple of the classical one.
 fn sturm_sequence(f: &[BigInt]) -> Vec<Vec<BigInt>> {
-    sturm_sequence_with(f, f.len() > SUBRESULTANT_MIN_DEGREE).0
+    let long = f.iter().map(BigInt::bits).max().unwrap_or(0) > SUBRESULTANT_MIN_BITS;
+    sturm_sequence_with(f, long || f.len() > SUBRESULTANT_MIN_DEGREE).0
 }
+
+/// Coefficients longer than this take the subresultant recurrence at any degree, their first
+/// two elements divided by their common power of two alone: the gcds of the primitive parts
+/// cost ~O(bits^2) each, and on the range-limit curves (coefficients of ~2,100 bits from data
+/// at 2^±1074 and 2^1023, degree 3-4) they were ~80% of a decision.
+const SUBRESULTANT_MIN_BITS: u64 = 512;
 
 /// From this degree of F on, the elements after the first two are divided by the subresultant
 /// recurrence's factors, below it by their contents (the primitive pseudo-remainder sequence).
@@ -344,7 +400,16 @@ fn sturm_sequence_with(f: &[BigInt], subresultant: bool) -> (Vec<Vec<BigInt>>, b
         .skip(1)
         .map(|(k, x)| x * BigInt::from(k))
         .collect();
-    let mut seq = vec![primitive(f.to_vec()), primitive(df)];
+    // (the first two as primitive parts, or, for the subresultant recurrence, which needs no
+    // primitive start, divided by their common power of two: a positive factor either way)
+    let start = |x: Vec<BigInt>| {
+        if subresultant {
+            without_common_twos(x)
+        } else {
+            primitive(x)
+        }
+    };
+    let mut seq = vec![start(f.to_vec()), start(df)];
     // The subresultant recurrence (Collins 1967, Brown & Traub 1971; Cohen, *A Course in
     // Computational Algebraic Number Theory*, Alg. 3.3.1) on the magnitudes: with g = h = 1 at
     // first, each pseudo-remainder of A by B (degrees differing by d) is divisible by
@@ -389,6 +454,19 @@ fn sturm_sequence_with(f: &[BigInt], subresultant: bool) -> (Vec<Vec<BigInt>>, b
         seq.push(primitive(r));
     }
     (seq, subresultant)
+}
+
+/// x divided by the largest power of two that divides every coefficient (a positive factor).
+fn without_common_twos(mut x: Vec<BigInt>) -> Vec<BigInt> {
+    let tz = x
+        .iter()
+        .filter_map(BigInt::trailing_zeros)
+        .min()
+        .unwrap_or(0);
+    if tz > 0 {
+        x.iter_mut().for_each(|c| *c >>= tz);
+    }
+    x
 }
 
 /// x divided by the gcd of its coefficients (a positive factor).
@@ -493,7 +571,9 @@ mod tests {
             let mut f: Vec<BigInt> = (0..=n)
                 .map(|_| BigInt::from(r.random_range(-(1i64 << 60)..(1i64 << 60))))
                 .collect();
-            match case % 3 {
+            match case % 4 {
+                // a common factor (the subresultant start is not primitive)
+                3 => f.iter_mut().for_each(|c| *c *= (3 * 5 * 7) << 9),
                 // a square factor: f g^2
                 1 => {
                     let g = big(&[r.random_range(-9..9), r.random_range(1..9)]);
@@ -607,6 +687,77 @@ mod tests {
         assert_eq!(at_most_zero(&big(&[])), Decision::AtMost);
         assert_eq!(at_most_zero(&big(&[-3])), Decision::AtMost);
         assert_eq!(at_most_zero(&big(&[0])), Decision::AtMost);
+    }
+
+    /// Roots 2^-5000 from an end of [0, 1], farther than the bisection budget of halving
+    /// reaches (one bisection per bit: undecided before the geometric split points), decided:
+    /// a bump above 0 between two roots at 2^-5000 and 3 2^-5001 from 0 or from 1 (a witness
+    /// between them), and a double root there (f <= 0).
+    #[test]
+    fn roots_next_to_the_ends_are_decided() {
+        let d = 5000u64;
+        // r1 = 2 / 2^(d+1), r2 = 3 / 2^(d+1): 2^(2d+2) (-(s - r1)(s - r2))
+        //   = -2^(2d+2) s^2 + 5 2^(d+1) s - 6
+        let bump = vec![
+            BigInt::from(-6),
+            BigInt::from(5) << (d + 1),
+            -(BigInt::one() << (2 * d + 2)),
+        ];
+        // -(2^d s - 1)^2 = -2^(2d) s^2 + 2^(d+1) s - 1: a double root at 2^-d
+        let double = vec![
+            BigInt::from(-1),
+            BigInt::one() << (d + 1),
+            -(BigInt::one() << (2 * d)),
+        ];
+        // s -> 1 - s: a(1 - s) for a quadratic a0 + a1 s + a2 s^2
+        let mirror = |a: &[BigInt]| {
+            vec![
+                &a[0] + &a[1] + &a[2],
+                -&a[1] - (&a[2] << 1u64),
+                a[2].clone(),
+            ]
+        };
+        for f in [bump.clone(), mirror(&bump)] {
+            match at_most_zero(&f) {
+                Decision::Above(s) => assert!(value(&f, &s).is_positive()),
+                x => panic!("{x:?}"),
+            }
+        }
+        for f in [double.clone(), mirror(&double)] {
+            assert_eq!(at_most_zero(&f), Decision::AtMost);
+        }
+    }
+
+    /// Every split point lies strictly inside its interval, on random intervals near and away
+    /// from the ends of [0, 1].
+    #[test]
+    fn split_points_lie_inside() {
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let mut geometric = 0;
+        for _ in 0..20_000 {
+            let e = r.random_range(0..200u64);
+            let one = BigInt::one() << e;
+            let pick = |r: &mut rand_chacha::ChaCha8Rng| -> BigInt {
+                match r.random_range(0..4) {
+                    0 => BigInt::zero(),
+                    1 => one.clone(),
+                    2 => BigInt::one() << r.random_range(0..=e),
+                    _ => &one - (BigInt::one() << r.random_range(0..=e)),
+                }
+            };
+            let (a, b) = (pick(&mut r), pick(&mut r));
+            let (na, nb) = if a < b { (a, b) } else { (b, a) };
+            if na >= nb {
+                continue;
+            }
+            if let Some((m, em)) = split_point(&na, &nb, e) {
+                geometric += 1;
+                assert!(em >= e);
+                let s = em - e;
+                assert!((&na << s) < m && m < (&nb << s), "{na} {nb} {e}: {m} {em}");
+            }
+        }
+        assert!(geometric > 3_000, "{geometric}");
     }
 
     /// Random products of linear and quadratic factors with roots inside and outside [0, 1],
