@@ -25,7 +25,8 @@
 //! RU(max) of the reference, `reference::optimal_bound`), `certified` the share with
 //! `optimal_lo` / `optimal_hi` true, `false cert` the certificates whose bound is not the
 //! optimal double (must be 0; a bound within the reference's resolution, 2^-160 of the scale
-//! at 256 bits, finer with `reference::range_bits`, of the exact value is not counted:
+//! at 256 bits, finer with `reference::range_bits` and `reference::weight_bits`, of the exact
+//! value is not counted:
 //! `reference::false_certificate`). `cert +%`: the mean
 //! time with certification over the mean time of the same calls without it
 //! (`enclose::drive_with(s, c, false)`), minus 1, timed alternately on the same curves. The family `ties` is `testkit::ties` (extrema exactly

@@ -109,7 +109,7 @@ fn seeded(seed: u64) -> (Family, NurbsCurve, rand_chacha::ChaCha8Rng) {
 /// whose x coordinate is constant (a case the interval-parameter property drew): at u = 1 the
 /// verified C' encloses the exact values, 0 for x and the end-derivative closed form
 /// p (w_2 / w_3) (P_3 - P_2) / (u_4 - u_3) (NURBS Book eq. 4.9 at a clamped end) for y, while the
-/// f64 C'_x = 1.5e-8 carries an error beyond the slack linear in the weight ratio (1.3e-8) and
+/// f64 C'_x = 1.497e-8 carries an error beyond the slack linear in the weight ratio (1.487e-8) and
 /// within the one that grows like its square (see [`f64_slack_k`]).
 #[test]
 fn rational_end_derivative_with_a_tiny_end_weight() {

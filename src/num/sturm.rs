@@ -13,15 +13,17 @@
 //! S_0 = F, S_1 = F', S_{i+1} = -rem(S_{i-1}, S_i) evaluated at x. Multiplying any element by
 //! a positive factor changes no sign, so each remainder is taken as a pseudo-remainder with the
 //! positive multiplier |lc(S_i)|^(deg S_{i-1} - deg S_i + 1) and divided by a positive
-//! factor: from degree [`SUBRESULTANT_MIN_DEGREE`] on the subresultant recurrence's (Collins
-//! 1967, Brown & Traub 1971), below it its content (the primitive pseudo-remainder sequence,
+//! factor: from degree [`SUBRESULTANT_MIN_DEGREE`] on (or for coefficients longer than
+//! [`SUBRESULTANT_MIN_BITS`]) the subresultant recurrence's (Collins 1967, Brown & Traub
+//! 1971), below it its content (the primitive pseudo-remainder sequence,
 //! Collins 1967, whose gcds of coefficients were 85% of a degree-20 end game): all integers,
 //! no rational arithmetic.
 //!
 //! Between consecutive distinct roots F has one sign, so F <= 0 on [0, 1] iff F is <= 0 at the
-//! ends and at points between its roots; the roots are isolated by bisection at dyadic points
-//! with the same counts, and an interval holding one root is decided by the signs at its two
-//! ends (F keeps the end's sign up to the root).
+//! ends and at points between its roots; the roots are isolated by splitting at dyadic points
+//! with the same counts (halving, or geometrically next to an end of [0, 1]:
+//! [`split_point`]), and an interval holding one root is decided by the signs at its two ends
+//! (F keeps the end's sign up to the root).
 
 use num_bigint::{BigInt, Sign};
 use num_integer::Integer;
