@@ -209,7 +209,7 @@ fn split_point(na: &BigInt, nb: &BigInt, e: u64) -> Option<(BigInt, u64)> {
     let one = BigInt::one() << e;
     // (the distances of the ends from 1: b' = 1 - a, a' = 1 - b, mirrored back below)
     let (da, db) = (&one - nb, &one - na);
-    // (l, r): the ends' numerators measured from 0 (`from_zero`) or from 1, the nearer end
+    // (l, r): the ends' numerators measured from the nearer end of [0, 1], 0 or 1
     let near_one = da < *na;
     let (l, r) = if near_one { (&da, &db) } else { (na, nb) };
     let (m, em) = if l.is_zero() && r.is_one() && e >= 1 {

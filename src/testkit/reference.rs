@@ -42,8 +42,8 @@ use rug::Float;
 use std::cmp::Ordering;
 
 /// Subdivision depth limit (boxes of width 2^-MAX_DEPTH of the segment), raised by half the
-/// curve's [`range_bits`] and [`weight_bits`] (the value error at a box midpoint between two close roots is
-/// ~|C''| width^2, which must stay below the resolution).
+/// curve's [`range_bits`] and [`weight_bits`] (the value error at a box midpoint between two
+/// close roots is ~|C''| width^2, which must stay below the resolution).
 const MAX_DEPTH: u32 = 120;
 
 /// Bits of resolution below the precision of a reference value: an extremum computed at
